@@ -1,0 +1,37 @@
+# The two commands of the README: `make demo` and `make test`. Everything else is a helper.
+JOBS ?= $(shell nproc)
+BUILD_DIR := build
+FAIRSHAPE := $(BUILD_DIR)/bin/fairshape
+
+.PHONY: deps configure build test demo asan-test fuzz bench clean
+
+deps:
+	bash scripts/install-deps.sh
+
+configure: deps
+	cmake --preset release $(CMAKE_ARGS)
+
+build: configure
+	cmake --build $(BUILD_DIR) -j $(JOBS)
+
+test: build
+	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS) -LE slow
+
+test-all: build
+	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+
+demo: build
+	bash scripts/demo.sh
+
+asan-test: deps
+	cmake --preset asan && cmake --build build-asan -j $(JOBS)
+	cd build-asan && ASAN_OPTIONS=detect_leaks=0 ctest --output-on-failure -j $(JOBS) -L unit
+
+fuzz: deps
+	cmake --preset fuzz && cmake --build build-fuzz -j $(JOBS)
+
+bench: build
+	bash scripts/bench.sh
+
+clean:
+	rm -rf $(BUILD_DIR) build-debug build-asan build-fuzz

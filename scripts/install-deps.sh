@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Installs every Debian package fairshape needs to build, test, render and plot.
+# Idempotent: packages already present are skipped, so a second run costs one dpkg query.
+# Works as root, or through sudo for a normal user.
+set -euo pipefail
+
+PACKAGES=(
+  build-essential cmake ninja-build ccache pkg-config
+  libeigen3-dev libsuitesparse-dev libceres-dev libtbb-dev
+  libbenchmark-dev catch2 libvtk9-dev libyaml-cpp-dev libcli11-dev
+  libosd-dev libcgal-dev libembree-dev libmeshoptimizer-dev
+  python3-matplotlib python3-pandas xvfb xauth
+  clang libclang-rt-14-dev
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#PACKAGES[@]} Debian packages present"
+  exit 0
+fi
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then
+  if command -v sudo >/dev/null 2>&1; then SUDO="sudo"; else
+    echo "install-deps: missing packages (${missing[*]}) and not root, no sudo: install them as root" >&2
+    exit 1
+  fi
+fi
+
+echo "install-deps: installing ${#missing[@]} Debian packages: ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "install-deps: done"

@@ -1,0 +1,14 @@
+// The two implementations every pluggable component may have.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace fairshape {
+
+enum class Backend { Reference, Optimized };
+
+std::string_view to_string(Backend b);
+Backend backend_from_string(std::string_view s);  // throws InvalidConfig listing the choices
+
+}  // namespace fairshape

@@ -1,0 +1,11 @@
+// Peak resident memory of this process, resettable so each run of a sweep gets its own peak.
+#pragma once
+
+namespace fairshape {
+
+// Resets the kernel's high-water mark (Linux >= 4.0, /proc/self/clear_refs); false if unsupported.
+bool reset_peak_rss();
+// Peak resident set size in MiB since start or the last successful reset (VmHWM).
+double peak_rss_mb();
+
+}  // namespace fairshape

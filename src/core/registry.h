@@ -1,0 +1,93 @@
+// Named factories for pluggable components (energies, constraints, solvers, ...).
+//
+// A name may have a reference and an optimized back end; both register under the same
+// name. Registration is explicit (each module's register_*() function), never through
+// static initialisers, which static libraries drop silently.
+#pragma once
+
+#include <algorithm>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/backend.h"
+#include "core/config.h"
+#include "core/error.h"
+
+namespace fairshape {
+
+template <class Base>
+class Registry {
+ public:
+  using Factory = std::function<std::unique_ptr<Base>(Config&)>;
+  struct Entry {
+    std::string name;
+    Backend backend;
+    std::string doc;
+    Factory make;
+  };
+
+  explicit Registry(std::string kind) : kind_(std::move(kind)) {}
+  const std::string& kind() const { return kind_; }
+
+  void add(const std::string& name, Backend backend, std::string doc, Factory make) {
+    FAIRSHAPE_ASSERT(!has(name, backend), kind_ + " '" + name + "' registered twice");
+    entries_.push_back({name, backend, std::move(doc), std::move(make)});
+  }
+
+  bool has(const std::string& name, Backend backend) const { return find(name, backend) != nullptr; }
+  bool has(const std::string& name) const {
+    return has(name, Backend::Reference) || has(name, Backend::Optimized);
+  }
+
+  // Builds the component; `cfg` holds its options (unknown keys are rejected).
+  std::unique_ptr<Base> create(const std::string& name, Backend backend, Config& cfg) const {
+    const Entry* e = find(name, backend);
+    if (!e) throw_unknown(name, backend);
+    auto obj = e->make(cfg);
+    cfg.check_no_unknown_keys();
+    return obj;
+  }
+
+  // The option docs of one entry: its factory run on an empty block with a recorder.
+  std::vector<OptionDoc> options(const Entry& e) const {
+    Config empty;
+    auto rec = std::make_shared<std::vector<OptionDoc>>();
+    empty.set_recorder(rec);
+    e.make(empty);
+    return *rec;
+  }
+
+  std::vector<std::string> names() const {
+    std::vector<std::string> out;
+    for (const auto& e : entries_)
+      if (std::find(out.begin(), out.end(), e.name) == out.end()) out.push_back(e.name);
+    return out;
+  }
+  const std::vector<Entry>& entries() const { return entries_; }
+
+ private:
+  const Entry* find(const std::string& name, Backend backend) const {
+    for (const auto& e : entries_)
+      if (e.name == name && e.backend == backend) return &e;
+    return nullptr;
+  }
+
+  [[noreturn]] void throw_unknown(const std::string& name, Backend backend) const {
+    if (has(name)) {
+      const Backend other = backend == Backend::Reference ? Backend::Optimized : Backend::Reference;
+      throw InvalidConfig(kind_ + " '" + name + "' has no " + std::string(to_string(backend)) +
+                          " back end (available: " + std::string(to_string(other)) + ")");
+    }
+    std::string known;
+    for (const auto& n : names()) known += (known.empty() ? "" : ", ") + n;
+    throw InvalidConfig("unknown " + kind_ + " '" + name + "' (known: " + known + ")");
+  }
+
+  std::string kind_;
+  std::vector<Entry> entries_;
+};
+
+}  // namespace fairshape

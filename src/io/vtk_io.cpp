@@ -1,0 +1,220 @@
+#include "io/vtk_io.h"
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkCompositeDataSet.h>
+#include <vtkDoubleArray.h>
+#include <vtkIdList.h>
+#include <vtkInformation.h>
+#include <vtkMultiBlockDataSet.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkXMLDataElement.h>
+#include <vtkXMLMultiBlockDataReader.h>
+#include <vtkXMLMultiBlockDataWriter.h>
+#include <vtkXMLPolyDataReader.h>
+#include <vtkXMLPolyDataWriter.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+
+namespace fairshape {
+namespace fs = std::filesystem;
+namespace {
+
+vtkSmartPointer<vtkDoubleArray> to_vtk_array(const std::string& name, const Eigen::MatrixXd& m) {
+  auto a = vtkSmartPointer<vtkDoubleArray>::New();
+  a->SetName(name.c_str());
+  a->SetNumberOfComponents(static_cast<int>(m.cols()));
+  a->SetNumberOfTuples(m.rows());
+  for (Eigen::Index r = 0; r < m.rows(); ++r)
+    for (Eigen::Index c = 0; c < m.cols(); ++c) a->SetComponent(r, static_cast<int>(c), m(r, c));
+  return a;
+}
+
+void check_rows(const std::string& path, const std::string& name, Eigen::Index rows, Eigen::Index expected) {
+  if (rows != expected)
+    throw InvalidInput(path + ": data array '" + name + "' has " + std::to_string(rows) +
+                       " rows, expected " + std::to_string(expected));
+}
+
+vtkSmartPointer<vtkPoints> to_vtk_points(const MatrixX3& P) {
+  auto pts = vtkSmartPointer<vtkPoints>::New();
+  pts->SetDataTypeToDouble();
+  pts->SetNumberOfPoints(P.rows());
+  for (Eigen::Index i = 0; i < P.rows(); ++i) pts->SetPoint(i, P(i, 0), P(i, 1), P(i, 2));
+  return pts;
+}
+
+vtkSmartPointer<vtkPolyData> to_polydata(const SurfaceMesh& mesh, const std::string& path) {
+  auto pd = vtkSmartPointer<vtkPolyData>::New();
+  pd->SetPoints(to_vtk_points(mesh.positions()));
+  vtkNew<vtkCellArray> polys;
+  for (int f = 0; f < mesh.n_faces(); ++f) {
+    const auto ids = mesh.face_vertices(f);
+    polys->InsertNextCell(static_cast<vtkIdType>(ids.size()));
+    for (int id : ids) polys->InsertCellPoint(id);
+  }
+  pd->SetPolys(polys);
+  for (const auto& [name, m] : mesh.vertex_data) {
+    check_rows(path, name, m.rows(), mesh.n_vertices());
+    pd->GetPointData()->AddArray(to_vtk_array(name, m));
+  }
+  for (const auto& [name, m] : mesh.face_data) {
+    check_rows(path, name, m.rows(), mesh.n_faces());
+    pd->GetCellData()->AddArray(to_vtk_array(name, m));
+  }
+  return pd;
+}
+
+void write_polydata_atomically(vtkPolyData* pd, const std::string& path) {
+  const fs::path tmp = temporary_sibling(path);
+  vtkNew<vtkXMLPolyDataWriter> w;
+  w->SetFileName(tmp.c_str());
+  w->SetInputData(pd);
+  w->SetDataModeToAppended();
+  if (w->Write() != 1) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw IOError(path + ": VTK could not write the file");
+  }
+  commit_path(tmp, path);
+}
+
+void read_arrays(vtkFieldData* fd, std::map<std::string, Eigen::MatrixXd>& out) {
+  for (int i = 0; i < fd->GetNumberOfArrays(); ++i) {
+    vtkDataArray* a = vtkDataArray::SafeDownCast(fd->GetAbstractArray(i));
+    if (!a || !a->GetName()) continue;
+    Eigen::MatrixXd m(a->GetNumberOfTuples(), a->GetNumberOfComponents());
+    for (Eigen::Index r = 0; r < m.rows(); ++r)
+      for (Eigen::Index c = 0; c < m.cols(); ++c) m(r, c) = a->GetComponent(r, static_cast<int>(c));
+    out[a->GetName()] = std::move(m);
+  }
+}
+
+SurfaceMesh from_polydata(vtkPolyData* pd, const std::string& path) {
+  if (!pd || pd->GetNumberOfPoints() == 0) throw IOError(path + ": no points in the VTK file");
+  MatrixX3 V(pd->GetNumberOfPoints(), 3);
+  for (vtkIdType i = 0; i < pd->GetNumberOfPoints(); ++i) {
+    double p[3];
+    pd->GetPoint(i, p);
+    V.row(i) << p[0], p[1], p[2];
+  }
+  PolygonList faces;
+  vtkNew<vtkIdList> ids;
+  vtkCellArray* polys = pd->GetPolys();
+  polys->InitTraversal();
+  while (polys->GetNextCell(ids)) {
+    std::vector<int> f(ids->GetNumberOfIds());
+    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k) f[k] = static_cast<int>(ids->GetId(k));
+    faces.push_back(std::move(f));
+  }
+  SurfaceMesh m;
+  try {
+    m = SurfaceMesh::from_polygons(V, faces);
+  } catch (const Error& e) {
+    throw InvalidInput(path + ": " + e.what());
+  }
+  read_arrays(pd->GetPointData(), m.vertex_data);
+  read_arrays(pd->GetCellData(), m.face_data);
+  return m;
+}
+
+}  // namespace
+
+void write_vtp(const SurfaceMesh& mesh, const std::string& path) {
+  write_polydata_atomically(to_polydata(mesh, path), path);
+}
+
+void write_vtp(const Polyline& curve, const DataArrays& point_data, const std::string& path) {
+  vtkNew<vtkPolyData> pd;
+  pd->SetPoints(to_vtk_points(curve.points));
+  vtkNew<vtkCellArray> lines;
+  const int n = curve.n_points();
+  lines->InsertNextCell(curve.closed ? n + 1 : n);
+  for (int i = 0; i < n; ++i) lines->InsertCellPoint(i);
+  if (curve.closed && n > 0) lines->InsertCellPoint(0);
+  pd->SetLines(lines);
+  for (const auto& [name, m] : point_data) {
+    check_rows(path, name, m.rows(), n);
+    pd->GetPointData()->AddArray(to_vtk_array(name, m));
+  }
+  write_polydata_atomically(pd, path);
+}
+
+SurfaceMesh read_vtp(const std::string& path) {
+  if (!fs::is_regular_file(path)) throw IOError(path + ": no such file");
+  vtkNew<vtkXMLPolyDataReader> r;
+  if (!r->CanReadFile(path.c_str())) throw IOError(path + ": not a VTK XML PolyData file");
+  r->SetFileName(path.c_str());
+  r->Update();
+  return from_polydata(r->GetOutput(), path);
+}
+
+void write_vtm(const std::vector<NamedMesh>& blocks, const std::string& path) {
+  const fs::path target(path);
+  const fs::path staging = temporary_sibling(target);  // a folder holding the .vtm and its data folder
+  fs::create_directories(staging);
+  vtkNew<vtkMultiBlockDataSet> mb;
+  mb->SetNumberOfBlocks(static_cast<unsigned>(blocks.size()));
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    mb->SetBlock(static_cast<unsigned>(i), to_polydata(*blocks[i].mesh, path));
+    mb->GetMetaData(static_cast<unsigned>(i))->Set(vtkCompositeDataSet::NAME(), blocks[i].name.c_str());
+  }
+  vtkNew<vtkXMLMultiBlockDataWriter> w;
+  const fs::path staged_file = staging / target.filename();
+  w->SetFileName(staged_file.c_str());
+  w->SetInputData(mb);
+  w->SetDataModeToAppended();
+  if (w->Write() != 1) {
+    fs::remove_all(staging);
+    throw IOError(path + ": VTK could not write the multiblock file");
+  }
+  const fs::path data_dir = staging / target.stem();
+  if (fs::exists(data_dir)) commit_path(data_dir, target.parent_path() / target.stem());
+  commit_path(staged_file, target);
+  fs::remove_all(staging);
+}
+
+std::vector<SurfaceMesh> read_vtm(const std::string& path) {
+  if (!fs::is_regular_file(path)) throw IOError(path + ": no such file");
+  vtkNew<vtkXMLMultiBlockDataReader> r;
+  r->SetFileName(path.c_str());
+  r->Update();
+  auto* mb = vtkMultiBlockDataSet::SafeDownCast(r->GetOutput());
+  if (!mb) throw IOError(path + ": not a VTK multiblock file");
+  std::vector<SurfaceMesh> out;
+  for (unsigned i = 0; i < mb->GetNumberOfBlocks(); ++i)
+    out.push_back(from_polydata(vtkPolyData::SafeDownCast(mb->GetBlock(i)), path));
+  return out;
+}
+
+void write_pvd(const std::vector<std::pair<double, std::string>>& steps, const std::string& path) {
+  vtkNew<vtkXMLDataElement> root;
+  root->SetName("VTKFile");
+  root->SetAttribute("type", "Collection");
+  root->SetAttribute("version", "0.1");
+  root->SetAttribute("byte_order", "LittleEndian");
+  vtkNew<vtkXMLDataElement> coll;
+  coll->SetName("Collection");
+  for (const auto& [t, file] : steps) {
+    vtkNew<vtkXMLDataElement> ds;
+    ds->SetName("DataSet");
+    ds->SetDoubleAttribute("timestep", t);
+    ds->SetAttribute("part", "0");
+    ds->SetAttribute("file", file.c_str());
+    coll->AddNestedElement(ds);
+  }
+  root->AddNestedElement(coll);
+  std::ostringstream os;
+  root->PrintXML(os, vtkIndent());
+  write_atomically(path, [&](std::ostream& out) { out << "<?xml version=\"1.0\"?>\n" << os.str(); });
+}
+
+}  // namespace fairshape

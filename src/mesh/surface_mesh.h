@@ -1,0 +1,78 @@
+// Half-edge connectivity for manifold polygon meshes of any face size, with boundary and
+// any genus, plus named per-vertex and per-face data arrays. Deliberately lean: topology,
+// positions and properties only; algorithms are free functions elsewhere.
+//
+// Half-edges come in twin pairs (h, h ^ 1), so edge(h) = h / 2. A half-edge with face -1
+// lies on a boundary loop. Vertex ids, face ids and the face-corner order of the input are
+// kept, so ids are stable across read, process and write.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/types.h"
+
+namespace fairshape {
+
+using PolygonList = std::vector<std::vector<int>>;
+
+class SurfaceMesh {
+ public:
+  SurfaceMesh() = default;
+  //! Builds and validates. \throw InvalidInput (empty, bad index, NaN/Inf coordinate, face with
+  //! fewer than 3 or repeated vertices), TopologyError (non-manifold edge or vertex,
+  //! inconsistent orientation). Messages name the offending face/vertex ids.
+  static SurfaceMesh from_polygons(const MatrixX3& V, const PolygonList& faces);
+
+  int n_vertices() const { return static_cast<int>(positions_.rows()); }
+  int n_faces() const { return static_cast<int>(face_halfedge_.size()); }
+  int n_edges() const { return static_cast<int>(to_vertex_.size() / 2); }
+  int n_halfedges() const { return static_cast<int>(to_vertex_.size()); }
+
+  // Half-edge navigation.
+  int to_vertex(int h) const { return to_vertex_[h]; }
+  int from_vertex(int h) const { return to_vertex_[h ^ 1]; }
+  int twin(int h) const { return h ^ 1; }
+  int next(int h) const { return next_[h]; }
+  int prev(int h) const { return prev_[h]; }
+  int face(int h) const { return face_[h]; }
+  static int edge(int h) { return h >> 1; }
+  bool is_boundary_halfedge(int h) const { return face_[h] < 0; }
+  bool is_boundary_edge(int e) const { return face_[2 * e] < 0 || face_[2 * e + 1] < 0; }
+
+  // Vertex queries. halfedge(v) is outgoing; on a boundary vertex it is the boundary one,
+  // so a rotation started there visits the whole fan in order. -1 for an isolated vertex.
+  int halfedge(int v) const { return vertex_halfedge_[v]; }
+  bool is_isolated(int v) const { return vertex_halfedge_[v] < 0; }
+  bool is_boundary_vertex(int v) const;
+  int valence(int v) const;  // number of incident edges
+  // Next outgoing half-edge counter-clockwise around from_vertex(h).
+  int rotate_ccw(int h) const { return twin(prev_[h]); }
+  std::vector<int> outgoing_halfedges(int v) const;  // ccw, starting at halfedge(v)
+  std::vector<int> vertex_neighbors(int v) const;    // edge neighbours, same order
+  std::vector<int> vertex_faces(int v) const;        // incident faces, same order
+
+  // Face queries.
+  int face_halfedge(int f) const { return face_halfedge_[f]; }
+  int face_size(int f) const;
+  std::vector<int> face_vertices(int f) const;  // in input corner order
+  PolygonList polygons() const;
+
+  // Boundary loops, each a list of vertex ids in the order of its boundary half-edges.
+  std::vector<std::vector<int>> boundary_loops() const;
+
+  MatrixX3& positions() { return positions_; }
+  const MatrixX3& positions() const { return positions_; }
+  Vec3 position(int v) const { return positions_.row(v).transpose(); }
+
+  // Named data arrays ("v:displacement", "f:feature"): rows = #V or #F, any column count.
+  std::map<std::string, Eigen::MatrixXd> vertex_data, face_data;
+
+ private:
+  MatrixX3 positions_;
+  std::vector<int> to_vertex_, next_, prev_, face_;
+  std::vector<int> vertex_halfedge_, face_halfedge_;
+};
+
+}  // namespace fairshape

@@ -42,13 +42,12 @@ class Registry {
     return has(name, Backend::Reference) || has(name, Backend::Optimized);
   }
 
-  // Builds the component; `cfg` holds its options (unknown keys are rejected).
+  // Builds the component from its options in `cfg`. The caller finishes with
+  // cfg.check_no_unknown_keys(), after any other reads of the same block.
   std::unique_ptr<Base> create(const std::string& name, Backend backend, Config& cfg) const {
     const Entry* e = find(name, backend);
     if (!e) throw_unknown(name, backend);
-    auto obj = e->make(cfg);
-    cfg.check_no_unknown_keys();
-    return obj;
+    return e->make(cfg);
   }
 
   // The option docs of one entry: its factory run on an empty block with a recorder.

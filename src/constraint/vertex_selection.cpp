@@ -1,0 +1,55 @@
+#include "constraint/vertex_selection.h"
+
+#include <algorithm>
+
+namespace fairshape {
+
+VertexSelection VertexSelection::from_config(Config& cfg) {
+  VertexSelection s;
+  s.ids_ = cfg.get<std::vector<int>>("vertices", {}, "explicit vertex ids");
+  s.nearest_ = cfg.get<std::vector<double>>("nearest", {}, "select the vertex closest to [x, y, z]");
+  Config region = cfg.child("region", "vertices in a slab of the bounding box: {axis, from, to}");
+  const std::string axis = region.get_choice("axis", "x", {"x", "y", "z"}, "slab axis");
+  s.from_ = region.get_number("from", 0.0, 0.0, 1.0, "slab start, as a fraction of the box");
+  s.to_ = region.get_number("to", 0.0, 0.0, 1.0, "slab end, as a fraction of the box");
+  region.check_no_unknown_keys();
+  const bool has_region = cfg.has("region");
+  if (has_region) s.axis_ = axis[0] - 'x';
+  if (has_region && s.from_ > s.to_)
+    throw InvalidConfig(region.key_path("from") + ": must not exceed 'to'");
+  if (!s.nearest_.empty() && s.nearest_.size() != 3)
+    throw InvalidConfig(cfg.key_path("nearest") + ": expected 3 coordinates");
+  const int given = !s.ids_.empty() + !s.nearest_.empty() + has_region;
+  if (given > 1) throw InvalidConfig(cfg.path() + ": give only one of 'vertices', 'nearest', 'region'");
+  return s;
+}
+
+std::vector<int> VertexSelection::resolve(const SurfaceMesh& mesh, const std::string& who) const {
+  std::vector<int> out;
+  const int nv = mesh.n_vertices();
+  for (int id : ids_) {
+    if (id < 0 || id >= nv)
+      throw InvalidInput(who + ": vertex " + std::to_string(id) + " does not exist (mesh has " +
+                         std::to_string(nv) + " vertices)");
+    out.push_back(id);
+  }
+  if (nearest_.size() == 3) {
+    const Eigen::RowVector3d p(nearest_[0], nearest_[1], nearest_[2]);
+    Eigen::Index best = 0;
+    (mesh.positions().rowwise() - p).rowwise().squaredNorm().minCoeff(&best);
+    out.push_back(static_cast<int>(best));
+  }
+  if (axis_ >= 0) {
+    const double lo = mesh.positions().col(axis_).minCoeff(), hi = mesh.positions().col(axis_).maxCoeff();
+    for (int v = 0; v < nv; ++v) {
+      const double t = hi > lo ? (mesh.positions()(v, axis_) - lo) / (hi - lo) : 0.0;
+      if (t >= from_ && t <= to_) out.push_back(v);
+    }
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  if (out.empty()) throw InvalidInput(who + ": selects no vertex");
+  return out;
+}
+
+}  // namespace fairshape

@@ -1,0 +1,28 @@
+// Which vertices a constraint applies to, as written in a config:
+//   vertices: [12, 40]                     explicit ids
+//   nearest: [x, y, z]                     the vertex closest to a point
+//   region: {axis: x, from: 0.0, to: 0.3}  vertices whose coordinate along `axis` lies in a
+//                                          fraction [from, to] of the bounding box
+#pragma once
+
+#include <vector>
+
+#include "core/config.h"
+#include "mesh/surface_mesh.h"
+
+namespace fairshape {
+
+class VertexSelection {
+ public:
+  static VertexSelection from_config(Config& cfg);
+  //! \throw InvalidInput when an id is out of range or the selection is empty.
+  std::vector<int> resolve(const SurfaceMesh& mesh, const std::string& who) const;
+
+ private:
+  std::vector<int> ids_;
+  std::vector<double> nearest_;
+  int axis_ = -1;
+  double from_ = 0, to_ = 0;
+};
+
+}  // namespace fairshape

@@ -1,0 +1,24 @@
+// A quadratic fairness energy E(u) = ½ Σ_c u_cᵀ H u_c over the vertices of a mesh, one
+// shared N×N matrix H for the x, y and z columns of u (positions or displacements).
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "core/registry.h"
+#include "core/types.h"
+#include "mesh/surface_mesh.h"
+
+namespace fairshape {
+
+class Energy {
+ public:
+  virtual ~Energy() = default;
+  //! Adds weight × H to `out`, as triplets over vertex ids of `rest`.
+  virtual void add_hessian(const SurfaceMesh& rest, double weight, Triplets& out) const = 0;
+};
+
+using EnergyRegistry = Registry<Energy>;
+void register_energies(EnergyRegistry& r);
+
+}  // namespace fairshape

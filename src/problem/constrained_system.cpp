@@ -1,0 +1,68 @@
+#include "problem/constrained_system.h"
+
+#include "core/error.h"
+
+namespace fairshape {
+
+ReducedSystem reduce(const ConstrainedSystem& s) {
+  const int n = static_cast<int>(s.H.rows());
+  if (s.H.cols() != n || s.g.rows() != n)
+    throw InvalidInput("reduce: H is " + std::to_string(s.H.rows()) + "×" + std::to_string(s.H.cols()) +
+                       " but g has " + std::to_string(s.g.rows()) + " rows");
+  if (static_cast<Eigen::Index>(s.fixed.size()) != s.fixed_values.rows())
+    throw InvalidInput("reduce: fixed ids and fixed values differ in count");
+  if (!s.fixed_values.allFinite() || !s.g.allFinite())
+    throw InvalidInput("reduce: constraint targets or right-hand side are not finite");
+  ReducedSystem r;
+  r.n_full = n;
+  r.fixed = s.fixed;
+  r.fixed_values = s.fixed_values;
+  std::vector<int> slot(n, -1);  // index among free unknowns, or -1 for fixed
+  std::vector<char> is_fixed(n, 0);
+  for (int v : s.fixed) {
+    if (v < 0 || v >= n) throw InvalidInput("reduce: fixed vertex " + std::to_string(v) + " out of range");
+    is_fixed[v] = 1;
+  }
+  for (int v = 0; v < n; ++v)
+    if (!is_fixed[v]) {
+      slot[v] = static_cast<int>(r.free.size());
+      r.free.push_back(v);
+    }
+  Eigen::MatrixXd u_fixed_full = Eigen::MatrixXd::Zero(n, s.g.cols());
+  for (std::size_t k = 0; k < s.fixed.size(); ++k) u_fixed_full.row(s.fixed[k]) = s.fixed_values.row(k);
+  const Eigen::MatrixXd coupling = s.H * u_fixed_full;  // H_·c u_c
+  Triplets t;
+  for (int k = 0; k < s.H.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(s.H, k); it; ++it)
+      if (slot[it.row()] >= 0 && slot[it.col()] >= 0) t.emplace_back(slot[it.row()], slot[it.col()], it.value());
+  r.A.resize(static_cast<Eigen::Index>(r.free.size()), static_cast<Eigen::Index>(r.free.size()));
+  r.A.setFromTriplets(t.begin(), t.end());
+  r.b.resize(static_cast<Eigen::Index>(r.free.size()), s.g.cols());
+  for (std::size_t i = 0; i < r.free.size(); ++i)
+    r.b.row(static_cast<Eigen::Index>(i)) = s.g.row(r.free[i]) - coupling.row(r.free[i]);
+  return r;
+}
+
+Eigen::MatrixXd ReducedSystem::expand(const Eigen::MatrixXd& u_free) const {
+  Eigen::MatrixXd u(n_full, u_free.cols());
+  for (std::size_t i = 0; i < free.size(); ++i) u.row(free[i]) = u_free.row(static_cast<Eigen::Index>(i));
+  for (std::size_t k = 0; k < fixed.size(); ++k) u.row(fixed[k]) = fixed_values.row(static_cast<Eigen::Index>(k));
+  return u;
+}
+
+Eigen::MatrixXd ReducedSystem::restrict_to_free(const Eigen::MatrixXd& u_full) const {
+  Eigen::MatrixXd out(static_cast<Eigen::Index>(free.size()), u_full.cols());
+  for (std::size_t i = 0; i < free.size(); ++i) out.row(static_cast<Eigen::Index>(i)) = u_full.row(free[i]);
+  return out;
+}
+
+double energy(const ConstrainedSystem& s, const Eigen::MatrixXd& u) {
+  return 0.5 * (u.transpose() * (s.H * u)).trace() - (s.g.transpose() * u).trace();
+}
+
+double relative_residual(const SparseMatrix& A, const Eigen::MatrixXd& b, const Eigen::MatrixXd& x) {
+  const double r = (b - A * x).norm(), nb = b.norm();
+  return nb > 0 ? r / nb : r;
+}
+
+}  // namespace fairshape

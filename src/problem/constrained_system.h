@@ -1,0 +1,38 @@
+// minimize ½ Σ_c u_cᵀ H u_c − g_cᵀ u_c  subject to  u[fixed] = fixed_values
+// (u is #V × 3: one column per coordinate, all sharing H), and its reduced form
+// A u_free = b with A = H_ff and b = g_f − H_fc u_fixed, which is what linear solvers see.
+#pragma once
+
+#include <vector>
+
+#include "core/types.h"
+
+namespace fairshape {
+
+struct ConstrainedSystem {
+  SparseMatrix H;
+  Eigen::MatrixXd g;  // #V × 3
+  std::vector<int> fixed;
+  Eigen::MatrixXd fixed_values;  // #fixed × 3
+};
+
+struct ReducedSystem {
+  SparseMatrix A;     // #free × #free, symmetric
+  Eigen::MatrixXd b;  // #free × 3
+  std::vector<int> free, fixed;
+  Eigen::MatrixXd fixed_values;
+  int n_full = 0;
+
+  //! The full #V × 3 solution from the free unknowns.
+  Eigen::MatrixXd expand(const Eigen::MatrixXd& u_free) const;
+  //! The free unknowns of a full solution.
+  Eigen::MatrixXd restrict_to_free(const Eigen::MatrixXd& u_full) const;
+};
+
+//! \throw InvalidInput when sizes disagree, a fixed id is out of range, or values are not finite.
+ReducedSystem reduce(const ConstrainedSystem& s);
+double energy(const ConstrainedSystem& s, const Eigen::MatrixXd& u);
+//! ‖b − A x‖_F / ‖b‖_F (or ‖b − A x‖_F when b = 0).
+double relative_residual(const SparseMatrix& A, const Eigen::MatrixXd& b, const Eigen::MatrixXd& x);
+
+}  // namespace fairshape

@@ -1,0 +1,22 @@
+#include "solver/solver.h"
+
+namespace fairshape {
+
+std::unique_ptr<Solver> make_cholmod_cholesky(Config& cfg);
+std::unique_ptr<Solver> make_multicolor_gauss_seidel(Config& cfg);
+std::unique_ptr<Solver> make_multicolor_sor(Config& cfg);
+std::unique_ptr<Solver> make_parallel_cg(Config& cfg);
+
+void register_solvers(SolverRegistry& r) {
+  r.add("cholesky", Backend::Optimized, "sparse Cholesky, CHOLMOD supernodal LLᵀ (factored once)",
+        make_cholmod_cholesky);
+#ifdef FAIRSHAPE_WITH_TBB
+  r.add("gauss_seidel", Backend::Optimized, "multicolour Gauss-Seidel, TBB-parallel per colour",
+        make_multicolor_gauss_seidel);
+  r.add("sor", Backend::Optimized, "multicolour SOR with relaxation sor.omega, TBB-parallel", make_multicolor_sor);
+  r.add("conjugate_gradient", Backend::Optimized, "Jacobi-preconditioned CG, TBB-parallel products",
+        make_parallel_cg);
+#endif
+}
+
+}  // namespace fairshape

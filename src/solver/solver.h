@@ -1,0 +1,50 @@
+// One interface for every linear solver of the reduced system A x = b (A symmetric,
+// b with one column per coordinate). analyze() does the work that depends only on A
+// (factorization, colouring), so a sweep over right-hand sides or edits pays it once.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "core/registry.h"
+#include "core/types.h"
+
+namespace fairshape {
+
+enum class Termination { Converged, MaxIterations, NumericalFailure, InvalidInput };
+std::string_view to_string(Termination t);
+
+struct SolveSummary {
+  Termination termination = Termination::NumericalFailure;
+  int iterations = 0;
+  double residual = -1;  // relative: ‖b − A x‖ / ‖b‖
+  std::string message;
+};
+
+struct IterationRecord {
+  int iteration;
+  double residual;
+  double seconds;
+  const Eigen::MatrixXd* x;  // the current iterate, for snapshots
+};
+using IterationCallback = std::function<bool(const IterationRecord&)>;  // false stops the solve
+
+class Solver {
+ public:
+  virtual ~Solver() = default;
+  virtual void analyze(const SparseMatrix& A) = 0;
+  //! On entry x holds the initial guess (iterative solvers warm-start from it).
+  virtual SolveSummary solve(const SparseMatrix& A, const Eigen::MatrixXd& b, Eigen::MatrixXd& x,
+                             const IterationCallback& cb = {}) = 0;
+};
+
+using SolverRegistry = Registry<Solver>;
+void register_solvers(SolverRegistry& r);  // optimized back ends (src/solver)
+
+}  // namespace fairshape
+
+namespace fairshape::reference {
+void register_solvers(SolverRegistry& r);  // reference back ends (reference/solver)
+}  // namespace fairshape::reference

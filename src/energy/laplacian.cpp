@@ -1,5 +1,7 @@
 #include "energy/laplacian.h"
 
+#include <Eigen/Geometry>
+
 #include "core/error.h"
 
 namespace fairshape {

@@ -23,6 +23,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "io/vtk_convert.h"
 
 namespace fairshape {
 namespace fs = std::filesystem;
@@ -52,7 +53,9 @@ vtkSmartPointer<vtkPoints> to_vtk_points(const MatrixX3& P) {
   return pts;
 }
 
-vtkSmartPointer<vtkPolyData> to_polydata(const SurfaceMesh& mesh, const std::string& path) {
+}  // namespace
+
+vtkSmartPointer<vtkPolyData> io::internal::to_polydata(const SurfaceMesh& mesh, const std::string& path) {
   auto pd = vtkSmartPointer<vtkPolyData>::New();
   pd->SetPoints(to_vtk_points(mesh.positions()));
   vtkNew<vtkCellArray> polys;
@@ -72,6 +75,9 @@ vtkSmartPointer<vtkPolyData> to_polydata(const SurfaceMesh& mesh, const std::str
   }
   return pd;
 }
+
+namespace {
+using io::internal::to_polydata;
 
 void write_polydata_atomically(vtkPolyData* pd, const std::string& path) {
   const fs::path tmp = temporary_sibling(path);

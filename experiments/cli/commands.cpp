@@ -1,0 +1,113 @@
+#include "commands.h"
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <iostream>
+
+#include "core/error.h"
+#include "experiment/components.h"
+#include "io/mesh_io.h"
+#include "io/vtk_io.h"
+#include "mesh/mesh_stats.h"
+
+namespace fairshape::cli {
+namespace fs = std::filesystem;
+namespace {
+
+bool is_vtp(const std::string& p) { return fs::path(p).extension() == ".vtp"; }
+
+SurfaceMesh load_any(const std::string& path, std::vector<std::string>* warnings) {
+  if (is_vtp(path)) return read_vtp(path);
+  const MeshFile f = read_mesh_file(path);
+  if (warnings) *warnings = f.warnings;
+  try {
+    return SurfaceMesh::from_polygons(f.vertices, f.faces);
+  } catch (const Error& e) {
+    throw InvalidInput(path + ": " + e.what());
+  }
+}
+
+// A result folder renders its final geometry with the VTK arrays when there are some.
+std::string pick_render_input(const std::string& input) {
+  if (!fs::is_directory(input)) return input;
+  const fs::path dir(input), vtk = dir / "vtk";
+  if (fs::is_directory(vtk))
+    for (const auto& e : fs::directory_iterator(vtk))
+      if (e.path().extension() == ".vtp" && e.path().stem().string().find("_it") == std::string::npos)
+        return e.path().string();
+  if (fs::exists(dir / "final.obj")) return (dir / "final.obj").string();
+  throw IOError(input + ": a result folder with neither vtk/*.vtp nor final.obj");
+}
+
+}  // namespace
+
+int cmd_info(const InfoArgs& a) {
+  std::vector<std::string> warnings;
+  const SurfaceMesh m = load_any(a.mesh, &warnings);
+  for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
+  std::cout << a.mesh << "\n" << format_stats(compute_stats(m));
+  return 0;
+}
+
+int cmd_convert(const ConvertArgs& a) {
+  if (is_vtp(a.output)) {
+    write_vtp(load_any(a.input, nullptr), a.output);
+    return 0;
+  }
+  if (is_vtp(a.input)) {
+    write_mesh(read_vtp(a.input), a.output, {a.binary});
+    return 0;
+  }
+  MeshFile f = read_mesh_file(a.input);
+  for (const auto& w : f.warnings) std::cerr << "warning: " << w << "\n";
+  if (!f.faces.empty()) (void)SurfaceMesh::from_polygons(f.vertices, f.faces);  // refuse to pass on bad topology
+  write_mesh_file(f, a.output, {a.binary});
+  return 0;
+}
+
+int cmd_render(const RenderArgs& a, int argc, char** argv) {
+  const char* display = std::getenv("DISPLAY");
+  if ((!display || !*display) && !std::getenv("FAIRSHAPE_IN_XVFB")) {
+    // Debian's VTK renders only through X: start a virtual one for this command.
+    setenv("FAIRSHAPE_IN_XVFB", "1", 1);
+    std::vector<std::string> args{"xvfb-run", "-a", "-s", "-screen 0 1600x1200x24",
+                                  fs::read_symlink("/proc/self/exe").string()};
+    for (int i = 1; i < argc; ++i) args.emplace_back(argv[i]);
+    std::vector<char*> cargs;
+    for (auto& s : args) cargs.push_back(s.data());
+    cargs.push_back(nullptr);
+    execvp("xvfb-run", cargs.data());
+    throw IOError("render: no DISPLAY and xvfb-run is not installed (Debian package 'xvfb')");
+  }
+  const std::string input = pick_render_input(a.input);
+  render_png(load_any(input, nullptr), a.opt, a.output);
+  std::cerr << "rendered " << input << " -> " << a.output << "\n";
+  return 0;
+}
+
+template <class R>
+static void list_registry(const char* heading, const R& reg) {
+  std::cout << heading << ":\n";
+  for (const auto& name : reg.names()) {
+    const typename R::Entry* first = nullptr;
+    std::cout << "  " << name << "\n";
+    for (const auto& e : reg.entries())
+      if (e.name == name) {
+        std::cout << "      " << to_string(e.backend) << ": " << e.doc << "\n";
+        if (!first) first = &e;
+      }
+    for (const auto& o : reg.options(*first))
+      std::cout << "      " << o.key << " = " << o.default_value << "  -- " << o.doc << "\n";
+  }
+}
+
+int cmd_list() {
+  const Components& c = components();
+  list_registry("energies", c.energies);
+  list_registry("constraints", c.constraints);
+  list_registry("solvers", c.solvers);
+  return 0;
+}
+
+}  // namespace fairshape::cli

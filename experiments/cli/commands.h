@@ -1,0 +1,20 @@
+// The subcommands of `fairshape`, one function each (commands.cpp), kept apart from CLI11.
+#pragma once
+
+#include <string>
+
+#include "experiment/sweep_runner.h"
+#include "io/render.h"
+
+namespace fairshape::cli {
+
+struct InfoArgs { std::string mesh; };
+struct ConvertArgs { std::string input, output; bool binary = false; };
+struct RenderArgs { std::string input, output; RenderOptions opt; };
+
+int cmd_info(const InfoArgs& a);
+int cmd_convert(const ConvertArgs& a);
+int cmd_render(const RenderArgs& a, int argc, char** argv);  // argv: to re-run under xvfb-run
+int cmd_list();
+
+}  // namespace fairshape::cli

@@ -1,0 +1,86 @@
+// The `fairshape` command line. CLI11 stays in this one file (it costs ~7 s per TU).
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <iostream>
+
+#include "commands.h"
+#include "core/error.h"
+
+int main(int argc, char** argv) {
+  using namespace fairshape::cli;
+  CLI::App app{"fairshape: variational multiresolution shape design"};
+  app.require_subcommand(1);
+  app.set_help_all_flag("--help-all", "help for every subcommand");
+
+  InfoArgs info;
+  auto* c_info = app.add_subcommand("info", "counts, polygon sizes, boundary loops, Euler characteristic, genus, "
+                                            "valences and bounding box of a mesh");
+  c_info->add_option("mesh", info.mesh, "mesh file (.obj, .off, .ply, .vtp)")->required();
+
+  ConvertArgs conv;
+  auto* c_conv = app.add_subcommand("convert", "convert a mesh between formats, chosen by extension");
+  c_conv->add_option("input", conv.input, "input mesh (.obj, .off, .ply, .vtp)")->required();
+  c_conv->add_option("output", conv.output, "output mesh (.obj, .off, .ply, .vtp)")->required();
+  c_conv->add_flag("--binary", conv.binary, "binary PLY output");
+
+  RenderArgs ren;
+  auto* c_ren = app.add_subcommand("render", "render a mesh or a result folder to PNG (VTK, offscreen)");
+  c_ren->add_option("result", ren.input, "result folder (renders final.obj or its VTK) or a mesh/.vtp file")->required();
+  c_ren->add_option("output", ren.output, "PNG file")->required();
+  c_ren->add_option("--array", ren.opt.color_by, "colour by this point array (e.g. displacement_norm)");
+  c_ren->add_option("--azimuth", ren.opt.azimuth, "camera azimuth, degrees")->capture_default_str();
+  c_ren->add_option("--elevation", ren.opt.elevation, "camera elevation, degrees")->capture_default_str();
+  c_ren->add_option("--zoom", ren.opt.zoom, "camera zoom factor")->capture_default_str()->check(CLI::PositiveNumber);
+  c_ren->add_option("--width", ren.opt.width, "image width")->capture_default_str()->check(CLI::Range(16, 8192));
+  c_ren->add_option("--height", ren.opt.height, "image height")->capture_default_str()->check(CLI::Range(16, 8192));
+  c_ren->add_flag("--edges", ren.opt.edges, "draw mesh edges");
+
+  fairshape::SweepOptions run;
+  std::string shard = "0/1", worker = "0/1";
+  auto* c_run = app.add_subcommand("run", "run an experiment (a YAML config; a `sweep:` block runs many)");
+  c_run->add_option("config", run.config_path, "experiment YAML file")->required();
+  c_run->add_option("--set", run.sets, "override a key: --set solver.tolerance=1e-10 (value is YAML)");
+  c_run->add_option("--filter", run.filters, "only runs whose key has this value: --filter solver.type=sor");
+  c_run->add_option("--out", run.out_dir, "output folder (default results/<name>/<timestamp>_<commit>)");
+  c_run->add_flag("--resume", run.resume, "continue an interrupted sweep in --out, skipping finished runs");
+  c_run->add_flag("--force", run.force, "start over in an --out folder that holds results");
+  c_run->add_option("--jobs", run.jobs, "run sweep points in N parallel processes")->check(CLI::Range(1, 256));
+  c_run->add_option("--shard", shard, "run only slice i of n (0 <= i < n), e.g. for a cluster job array");
+  c_run->add_option("--worker", worker, "internal: set for processes started by --jobs")->group("");
+
+  auto* c_list = app.add_subcommand("list", "every registered energy, constraint and solver, with options");
+
+  std::vector<std::string> merge_in;
+  std::string merge_out;
+  auto* c_merge = app.add_subcommand("merge", "join runs.csv files of shards into one");
+  c_merge->add_option("output", merge_out, "merged CSV")->required();
+  c_merge->add_option("inputs", merge_in, "runs.csv files")->required();
+
+  CLI11_PARSE(app, argc, argv);
+  try {
+    if (*c_info) return cmd_info(info);
+    if (*c_conv) return cmd_convert(conv);
+    if (*c_ren) return cmd_render(ren, argc, argv);
+    if (*c_run) {
+      run.shard = fairshape::Slice::parse(shard, "--shard");
+      run.worker = fairshape::Slice::parse(worker, "--worker");
+      run.executable = std::filesystem::read_symlink("/proc/self/exe").string();
+      if (run.resume && run.out_dir.empty()) throw fairshape::InvalidConfig("--resume needs --out DIR");
+      return fairshape::run_sweep(run);
+    }
+    if (*c_list) return cmd_list();
+    if (*c_merge) {
+      fairshape::merge_run_tables(merge_in, merge_out);
+      return 0;
+    }
+  } catch (const fairshape::Error& e) {
+    std::cerr << "fairshape: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "fairshape: internal error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,113 @@
+#include "experiment/config_loader.h"
+
+#include <filesystem>
+
+#include "core/config.h"
+#include "core/error.h"
+
+namespace fairshape {
+namespace fs = std::filesystem;
+namespace {
+
+YAML::Node parse_file(const fs::path& path) {
+  if (!fs::is_regular_file(path)) throw InvalidConfig(path.string() + ": config file not found");
+  try {
+    return YAML::LoadFile(path.string());
+  } catch (const YAML::ParserException& e) {
+    throw InvalidConfig(path.string() + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax error: " + e.msg);
+  }
+}
+
+YAML::Node load_with_defaults(const fs::path& path, int depth) {
+  if (depth > 16) throw InvalidConfig(path.string() + ": `defaults` nest more than 16 deep (a cycle?)");
+  YAML::Node node = parse_file(path);
+  if (node.IsNull()) node = YAML::Node(YAML::NodeType::Map);
+  if (!node.IsMap()) throw InvalidConfig(path.string() + ": the top level must be a map of keys");
+  YAML::Node merged(YAML::NodeType::Map);
+  if (const YAML::Node defaults = node["defaults"]) {
+    if (!defaults.IsSequence())
+      throw InvalidConfig(path.string() + ": `defaults` must be a list of YAML files");
+    for (const auto& d : defaults) merged = deep_merge(merged, load_with_defaults(path.parent_path() / d.as<std::string>(), depth + 1));
+    node.remove("defaults");
+  }
+  return deep_merge(merged, node);
+}
+
+}  // namespace
+
+YAML::Node deep_copy(const YAML::Node& n) { return YAML::Clone(n); }
+
+YAML::Node deep_merge(const YAML::Node& base, const YAML::Node& over) {
+  if (!base.IsMap() || !over.IsMap()) return YAML::Clone(over);
+  YAML::Node out = YAML::Clone(base);
+  for (const auto& kv : over) {
+    const std::string key = kv.first.as<std::string>();
+    out[key] = out[key] && out[key].IsMap() ? deep_merge(out[key], kv.second) : YAML::Clone(kv.second);
+  }
+  return out;
+}
+
+static std::vector<std::string> split_path(const std::string& dotted) {
+  std::vector<std::string> parts;
+  std::string cur;
+  for (char c : dotted) {
+    if (c == '.') { parts.push_back(cur); cur.clear(); }
+    else cur += c;
+  }
+  parts.push_back(cur);
+  // Under `sweep` (and `sweep.zip`) the remainder is one dotted key.
+  if (parts.size() > 1 && parts[0] == "sweep") {
+    const std::size_t head = parts.size() > 2 && parts[1] == "zip" ? 2 : 1;
+    std::string rest;
+    for (std::size_t i = head; i < parts.size(); ++i) rest += (i > head ? "." : "") + parts[i];
+    parts.resize(head);
+    parts.push_back(rest);
+  }
+  return parts;
+}
+
+void set_by_path(YAML::Node root, const std::string& dotted, const YAML::Node& value) {
+  const auto parts = split_path(dotted);
+  for (const auto& p : parts)
+    if (p.empty()) throw InvalidConfig("--set " + dotted + ": empty key in the path");
+  YAML::Node cur = root;
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    YAML::Node next = cur[parts[i]];
+    if (!next || next.IsNull()) {
+      cur[parts[i]] = YAML::Node(YAML::NodeType::Map);
+      next = cur[parts[i]];
+    } else if (!next.IsMap()) {
+      throw InvalidConfig("--set " + dotted + ": '" + parts[i] + "' holds a value, not a map of keys");
+    }
+    cur.reset(next);
+  }
+  cur[parts.back()] = value;
+}
+
+YAML::Node get_by_path(const YAML::Node& root, const std::string& dotted) {
+  YAML::Node cur = YAML::Clone(root);
+  for (const auto& p : split_path(dotted)) {
+    if (!cur.IsMap() || !cur[p]) return YAML::Node(YAML::NodeType::Undefined);
+    cur.reset(cur[p]);
+  }
+  return cur;
+}
+
+YAML::Node load_experiment_config(const std::string& path, const std::vector<std::string>& sets) {
+  YAML::Node root = load_with_defaults(path, 0);
+  for (const auto& s : sets) {
+    const auto eq = s.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw InvalidConfig("--set '" + s + "': expected key.path=value");
+    YAML::Node value;
+    try {
+      value = YAML::Load(s.substr(eq + 1));
+    } catch (const YAML::Exception& e) {
+      throw InvalidConfig("--set '" + s + "': value is not valid YAML: " + e.msg);
+    }
+    set_by_path(root, s.substr(0, eq), value);
+  }
+  return root;
+}
+
+}  // namespace fairshape

@@ -1,0 +1,25 @@
+// Experiment files: YAML with `defaults: [other.yaml, ...]` merged underneath (paths relative
+// to the including file), then `--set key.path=value` overrides (value parsed as YAML, so
+// `--set 'sweep.input.levels=[4]'` replaces a whole list).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+namespace fairshape {
+
+//! \throw InvalidConfig naming the file (and line, for YAML syntax errors) or the key.
+YAML::Node load_experiment_config(const std::string& path, const std::vector<std::string>& sets);
+
+//! Sets a dotted key path, creating maps on the way. Under `sweep` (and `sweep.zip`) the rest
+//! of the path is one key, since swept keys are themselves dotted paths.
+void set_by_path(YAML::Node root, const std::string& dotted, const YAML::Node& value);
+YAML::Node get_by_path(const YAML::Node& root, const std::string& dotted);  // undefined if absent
+
+//! Maps merged recursively; anything else in `over` replaces `base`.
+YAML::Node deep_merge(const YAML::Node& base, const YAML::Node& over);
+YAML::Node deep_copy(const YAML::Node& n);
+
+}  // namespace fairshape

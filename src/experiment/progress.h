@@ -1,0 +1,23 @@
+// Progress of a sweep: a redrawn bar on a terminal, one plain line per run otherwise (logs, CI).
+#pragma once
+
+#include <string>
+
+#include "core/timer.h"
+
+namespace fairshape {
+
+class Progress {
+ public:
+  Progress(int total, std::string prefix);
+  void finished(int done, const std::string& run_id, const std::string& termination, double seconds);
+  void close();
+
+ private:
+  int total_;
+  std::string prefix_;
+  bool tty_;
+  Timer timer_;
+};
+
+}  // namespace fairshape

@@ -1,0 +1,40 @@
+// Executes one validated run: assemble, analyze, solve (timed, repeated), measure, write.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+
+#include "experiment/run_spec.h"
+#include "mesh/surface_mesh.h"
+
+namespace fairshape {
+
+// Metric columns of runs.csv, in order; every run fills every one (empty when not applicable).
+const std::vector<std::string>& metric_columns();
+
+using MetricRow = std::map<std::string, std::string>;
+
+// What runs of one sweep share: meshes read once, reference solutions solved once per system.
+class RunCache {
+ public:
+  const SurfaceMesh& mesh(const std::string& path);
+  const Eigen::MatrixXd* reference_solution(const std::string& key) const;
+  void store_reference_solution(const std::string& key, Eigen::MatrixXd u);
+
+ private:
+  std::map<std::string, SurfaceMesh> meshes_;
+  std::map<std::string, Eigen::MatrixXd> references_;
+};
+
+struct RunOutputs {
+  std::string dir;       // the experiment's output folder
+  std::string run_id;
+  bool single_run = true;  // final.obj, or final/<run_id>.obj in a sweep
+};
+
+//! Never throws for problems of the input, the numerics or the outputs: they become the
+//! row's termination and message, and the sweep goes on.
+MetricRow execute_run(RunSpec& spec, RunCache& cache, const RunOutputs& out);
+
+}  // namespace fairshape

@@ -1,0 +1,115 @@
+#include "experiment/run_spec.h"
+
+#include <filesystem>
+
+#include "core/config.h"
+
+namespace fairshape {
+namespace fs = std::filesystem;
+namespace {
+
+std::string resolve_input(const std::string& path, const std::vector<std::string>& dirs, const std::string& key) {
+  if (fs::path(path).is_absolute()) {
+    if (fs::is_regular_file(path)) return path;
+  } else {
+    for (const auto& d : dirs)
+      if (fs::is_regular_file(fs::path(d) / path)) return (fs::path(d) / path).lexically_normal().string();
+  }
+  throw InvalidConfig(key + ": input file '" + path + "' not found (looked in the current directory and "
+                      "beside the config)");
+}
+
+void read_energies(Config& root, const Components& c, Backend backend, RunSpec& s) {
+  for (Config e : root.child_list("energy", "energy terms: [{type, weight, options...}]")) {
+    EnergyTerm t;
+    t.type = e.require<std::string>("type", "energy name (see `fairshape list`)");
+    t.weight = e.get_number("weight", 1.0, 0.0, 1e12, "weight of this term");
+    t.energy = c.energies.create(t.type, backend, e);
+    e.check_no_unknown_keys();
+    s.energies.push_back(std::move(t));
+  }
+  if (s.energies.empty()) throw InvalidConfig("energy: at least one energy term is required");
+}
+
+void read_constraints(Config& root, const Components& c, Backend backend, RunSpec& s) {
+  for (Config k : root.child_list("constraints", "constraints: [{type, options...}]")) {
+    ConstraintTerm t;
+    t.type = k.require<std::string>("type", "constraint name (see `fairshape list`)");
+    t.constraint = c.constraints.create(t.type, backend, k);
+    k.check_no_unknown_keys();
+    s.constraints.push_back(std::move(t));
+  }
+}
+
+// The solver block: common keys, then every registered solver's sub-block that is present is
+// validated (so a sweep over solver.type stays valid), and the chosen one is kept.
+void read_solver(Config& root, const Components& c, Backend backend, RunSpec& s) {
+  Config sc = root.child("solver", "linear solver: {type, tolerance, max_iterations, <type>: {...}}");
+  s.solver_type = sc.get_choice("type", "cholesky", c.solvers.names(), "solver name");
+  s.initial_guess = sc.get_choice("initial_guess", "zero", {"zero", "random"},
+                                  "start of iterative solvers (random uses the seed)");
+  for (const auto& name : c.solvers.names()) {
+    if (name == s.solver_type) continue;
+    if (sc.has(name))
+      (void)c.solvers.create(name, c.solvers.has(name, backend) ? backend : Backend::Reference, sc);
+  }
+  s.solver = c.solvers.create(s.solver_type, backend, sc);
+  sc.check_no_unknown_keys();
+}
+
+void read_output(Config& root, OutputOptions& o) {
+  Config oc = root.child("output", "what each run writes");
+  o.vtk = oc.get_choice("vtk", o.vtk, {"none", "final", "every_iteration"}, "VTK PolyData per run");
+  o.vtk_every = oc.get_int("vtk_every", o.vtk_every, 1, 1000000, "iterations between VTK snapshots");
+  o.iterations = oc.get<bool>("iterations", o.iterations, "write iterations.csv (residual history)");
+  o.final_mesh = oc.get<bool>("final_mesh", o.final_mesh, "write final.obj (final/<run_id>.obj in sweeps)");
+  o.reference_solution = oc.get<bool>("reference_solution", o.reference_solution,
+                                      "compute error_vs_reference with a tight direct solve");
+  oc.check_no_unknown_keys();
+}
+
+}  // namespace
+
+std::vector<std::string> input_search_dirs(const std::string& config_path) {
+  std::vector<std::string> dirs{"."};
+  for (fs::path p = fs::absolute(config_path).parent_path(); !p.empty(); p = p.parent_path()) {
+    dirs.push_back(p.string());
+    if (p == p.root_path()) break;
+  }
+  return dirs;
+}
+
+RunSpec RunSpec::from_config(const YAML::Node& run_config, const Components& c,
+                             const std::vector<std::string>& search_dirs) {
+  Config root(run_config, "");
+  RunSpec s;
+  s.name = root.require<std::string>("name", "experiment name (names the results folder)");
+  root.get<std::string>("description", "", "free text");
+  s.seed = root.get_int("seed", 0, 0, INT32_MAX, "random seed");
+  s.threads = root.get_int("threads", 0, 0, 4096, "TBB threads for optimized back ends (0 = all cores)");
+  s.repeat = root.get_int("repeat", 1, 1, 1000, "timing repeats per run (median and minimum reported)");
+  s.implementation = backend_from_string(root.get_choice("implementation", "optimized",
+                                                         {"reference", "optimized"}, "back end of every component"));
+  Config in = root.child("input", "input geometry");
+  s.mesh_path = resolve_input(in.require<std::string>("mesh", "mesh file (.obj, .off, .ply)"), search_dirs,
+                              in.key_path("mesh"));
+  s.representation = in.get_choice("representation", "mesh", {"mesh"}, "shape representation");
+  in.check_no_unknown_keys();
+  read_energies(root, c, s.implementation, s);
+  read_constraints(root, c, s.implementation, s);
+  Config pc = root.child("problem", "how the problem is posed");
+  s.formulation = pc.get_choice("formulation", "displacement", {"displacement", "position"},
+                                "unknowns: displacement from the rest shape, or positions") == "position"
+                      ? Formulation::Position
+                      : Formulation::Displacement;
+  pc.check_no_unknown_keys();
+  read_solver(root, c, s.implementation, s);
+  read_output(root, s.output);
+  root.check_no_unknown_keys();
+
+  for (const char* key : {"input", "energy", "constraints", "problem"})
+    s.system_key += yaml_to_string(run_config[key]) + "|";
+  return s;
+}
+
+}  // namespace fairshape

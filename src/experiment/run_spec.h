@@ -1,0 +1,60 @@
+// One run of an experiment, parsed and validated from its resolved YAML. Building a RunSpec
+// is the validation step: it looks every component up, reads every key (rejecting unknown
+// ones and out-of-range values) and checks input files exist, before anything is computed.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "core/backend.h"
+#include "experiment/components.h"
+
+namespace fairshape {
+
+struct EnergyTerm {
+  std::string type;
+  double weight = 1.0;
+  std::unique_ptr<Energy> energy;
+};
+
+struct ConstraintTerm {
+  std::string type;
+  std::unique_ptr<Constraint> constraint;
+};
+
+enum class Formulation { Displacement, Position };
+
+struct OutputOptions {
+  std::string vtk = "final";  // none | final | every_iteration
+  int vtk_every = 10;
+  bool iterations = true;
+  bool final_mesh = true;
+  bool reference_solution = true;  // error_vs_reference against a tight direct solve
+};
+
+struct RunSpec {
+  std::string name;
+  int seed = 0, threads = 0, repeat = 1;
+  Backend implementation = Backend::Optimized;
+  std::string mesh_path, representation;
+  std::vector<EnergyTerm> energies;
+  std::vector<ConstraintTerm> constraints;
+  Formulation formulation = Formulation::Displacement;
+  std::string solver_type, initial_guess;
+  std::unique_ptr<Solver> solver;
+  OutputOptions output;
+  std::string system_key;  // equal for runs that solve the same linear system
+
+  //! \param search_dirs where relative input paths are looked up after the working directory.
+  static RunSpec from_config(const YAML::Node& run_config, const Components& c,
+                             const std::vector<std::string>& search_dirs);
+};
+
+//! The current directory, then `config_path`'s folder and its parents (so configs can name
+//! `data/cow.off` from anywhere inside the repository).
+std::vector<std::string> input_search_dirs(const std::string& config_path);
+
+}  // namespace fairshape

@@ -40,6 +40,10 @@ ConstrainedSystem assemble(const RunSpec& spec, const SurfaceMesh& rest) {
   sys.g = Eigen::MatrixXd::Zero(n, 3);
   PrescribedValues prescribed;
   for (const auto& c : spec.constraints) c.constraint->prescribe(rest, prescribed);
+  // Nothing pinned and H·1 = 0: the minimizer is defined only up to a translation.
+  if (prescribed.values().empty() && (sys.H * Eigen::VectorXd::Ones(n)).norm() <= 1e-12 * sys.H.norm())
+    throw InvalidInput("the problem is singular: no vertex is fixed or moved, and the energy is invariant under "
+                       "translation (add a 'fixed' or 'position' constraint)");
   sys.fixed_values.resize(static_cast<Eigen::Index>(prescribed.values().size()), 3);
   Eigen::Index k = 0;
   for (const auto& [v, value] : prescribed.values()) {

@@ -33,7 +33,8 @@ SparseMatrix read_matrix_market(const std::string& path) {
   if (banner.find("coordinate") == std::string::npos)
     throw ParseError(path, 1, "only the coordinate format is supported");
   const bool symmetric = banner.find("symmetric") != std::string::npos;
-  io::internal::TextScanner s(text.substr(text.find('\n') + 1), path, 2);
+  const std::string body = text.substr(text.find('\n') + 1);  // outlives the scanner's view
+  io::internal::TextScanner s(body, path, 2);
   while (s.next_line() && s.tokens()[0][0] == '%') {}
   if (s.tokens().size() != 3) s.fail("expected 'rows cols nonzeros'");
   const long long rows = s.to_integer(s.tokens()[0], "rows"), cols = s.to_integer(s.tokens()[1], "cols");

@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/error.h"
 #include "mesh/polyline.h"
 #include "mesh/surface_mesh.h"
 

@@ -68,7 +68,10 @@ class AsciiSource : public ValueSource {
     return t == PlyType::F32 || t == PlyType::F64 ? s_.to_double(tok, "a property value")
                                                   : static_cast<double>(s_.to_integer(tok, "an integer property"));
   }
-  std::size_t remaining() const override { return s_.remaining_bytes(); }
+  // Bytes after this line plus the tokens still unread on it (each at least 2 bytes).
+  std::size_t remaining() const override {
+    return s_.remaining_bytes() + 2 * (s_.tokens().size() - std::min(k_, s_.tokens().size()));
+  }
   std::size_t min_bytes(PlyType) const override { return 2; }
   void fail(const std::string& p) const override { s_.fail(p); }
 

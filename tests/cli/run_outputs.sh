@@ -1,0 +1,33 @@
+source "$(dirname "$0")/lib.sh"
+ROOT="$PWD"
+# Default output folder: results/<name>/<timestamp>_<sha>/ with a `latest` link, relative to the cwd.
+(cd "$SCRATCH" && "$FS" run "$ROOT/configs/demo.yaml" 2>/dev/null)
+OUT="$SCRATCH/results/demo/latest"
+[ -L "$OUT" ] || fail "no latest link"
+for f in runs.csv run.json config.resolved.yaml iterations.csv final.obj; do
+  [ -s "$OUT/$f" ] || fail "missing $f"
+done
+ls "$OUT"/vtk/*.vtp >/dev/null || fail "no vtp"
+$PY - "$OUT" <<'PYEOF'
+import csv, json, sys
+out = sys.argv[1]
+meta = json.load(open(f"{out}/run.json"))
+for key in ["git_commit", "compiler", "compiler_flags", "libraries", "cpu_model", "started", "ended", "config", "seed"]:
+    assert key in meta, key
+for lib in ["eigen", "tbb", "suitesparse_cholmod", "ceres", "vtk", "yaml_cpp"]:
+    assert meta["libraries"][lib], lib
+rows = list(csv.DictReader(open(f"{out}/runs.csv")))
+assert len(rows) == 1
+r = rows[0]
+assert r["termination"] == "converged", r
+assert float(r["constraint_violation"]) < 1e-10, r
+assert float(r["error_vs_reference"]) < 1e-8, r
+assert float(r["peak_rss_mb"]) > 0
+PYEOF
+# final.obj is the deformed cow: same size, moved.
+"$FS" info "$OUT/final.obj" | grep -q "vertices             2904" || fail "final.obj"
+"$FS" run configs/demo.yaml --out "$SCRATCH/every" --set output.vtk=every_iteration --set output.vtk_every=5 \
+  --set solver.type=conjugate_gradient --set solver.max_iterations=20 2>/dev/null || true
+ls "$SCRATCH"/every/vtk/*_it5.vtp >/dev/null || fail "no iteration snapshots"
+ls "$SCRATCH"/every/vtk/*.pvd >/dev/null || fail "no pvd series"
+echo "run_outputs: ok"

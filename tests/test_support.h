@@ -1,0 +1,53 @@
+// Paths and small fixtures shared by the Catch2 tests.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "mesh/surface_mesh.h"
+
+namespace fairshape::test {
+
+inline std::string source_path(const std::string& rel) { return std::string(FAIRSHAPE_SOURCE_DIR) + "/" + rel; }
+inline std::string data_path(const std::string& name) { return source_path("data/" + name); }
+
+// A fresh, empty folder under the build tree, unique per test name.
+inline std::filesystem::path scratch_dir(const std::string& name) {
+  const auto dir = std::filesystem::path(FAIRSHAPE_BINARY_DIR) / "test-scratch" / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+// Bundled meshes with their known topology.
+struct KnownMesh {
+  std::string file;
+  int genus, boundary_loops;
+};
+inline std::vector<KnownMesh> bundled_meshes() {
+  return {{"cow.off", 0, 0},           {"mushroom.off", 0, 1}, {"knot.off", 1, 0},
+          {"double-torus-example.off", 2, 0}, {"3torus.off", 3, 0}, {"torus_quad.off", 1, 0},
+          {"cross_quad.off", 0, 0},    {"fandisk.off", 0, 0}};
+}
+
+// An open (n+1) x (n+1) grid of quads in the z = 0 plane, optionally split into triangles.
+inline SurfaceMesh grid(int n, bool triangles = false) {
+  MatrixX3 V((n + 1) * (n + 1), 3);
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) V.row(j * (n + 1) + i) << double(i) / n, double(j) / n, 0.0;
+  PolygonList F;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int a = j * (n + 1) + i, b = a + 1, c = a + n + 2, d = a + n + 1;
+      if (triangles) {
+        F.push_back({a, b, c});
+        F.push_back({a, c, d});
+      } else {
+        F.push_back({a, b, c, d});
+      }
+    }
+  return SurfaceMesh::from_polygons(V, F);
+}
+
+}  // namespace fairshape::test

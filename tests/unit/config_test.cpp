@@ -1,0 +1,90 @@
+#include <catch2/catch.hpp>
+
+#include <fstream>
+
+#include "core/config.h"
+#include "experiment/components.h"
+#include "experiment/config_loader.h"
+#include "experiment/run_spec.h"
+#include "experiment/sweep.h"
+#include "test_support.h"
+
+using namespace fairshape;
+using Catch::Matchers::Contains;
+
+namespace {
+YAML::Node demo_config() { return load_experiment_config(test::source_path("configs/demo.yaml"), {}); }
+std::vector<std::string> dirs() { return input_search_dirs(test::source_path("configs/demo.yaml")); }
+}  // namespace
+
+TEST_CASE("Config: unknown keys, wrong types and ranges are errors naming the key", "[config]") {
+  Config c(YAML::Load("{tolerance: 1e-8, tolerence: 3, omega: abc, n: 7}"), "solver");
+  CHECK(c.get<double>("tolerance", 1.0, "doc") == 1e-8);
+  CHECK_THROWS_WITH(c.get<double>("omega", 1.0, "doc"), Contains("solver.omega: expected") && Contains("abc"));
+  CHECK_THROWS_WITH(c.get_int("n", 1, 0, 5, "doc"), Contains("solver.n: 7 is out of range [0, 5]"));
+  CHECK_THROWS_WITH(c.check_no_unknown_keys(), Contains("solver.tolerence: unknown key") && Contains("tolerance"));
+  Config choice(YAML::Load("{mode: fast}"), "x");
+  CHECK_THROWS_WITH(choice.get_choice("mode", "a", {"a", "b"}, "doc"), Contains("unknown value 'fast' (valid: a, b)"));
+}
+
+TEST_CASE("registry lookups list what exists", "[config]") {
+  const Components& c = components();
+  Config empty;
+  CHECK_THROWS_WITH(c.solvers.create("sor2", Backend::Optimized, empty),
+                    Contains("unknown solver 'sor2'") && Contains("gauss_seidel"));
+  CHECK(c.solvers.has("cholesky", Backend::Reference));
+  CHECK(c.solvers.has("cholesky", Backend::Optimized));
+}
+
+TEST_CASE("defaults are merged under the file, --set overrides, sweep keys stay dotted", "[config]") {
+  const YAML::Node root = demo_config();
+  CHECK(root["output"]["vtk"].as<std::string>() == "final");  // from base/output.yaml
+  CHECK(root["name"].as<std::string>() == "demo");
+  const YAML::Node over = load_experiment_config(
+      test::source_path("configs/demo.yaml"),
+      {"solver.tolerance=1e-10", "sweep.input.mesh=[data/cow.off, data/knot.off]", "solver.sor.omega=1.2"});
+  CHECK(over["solver"]["tolerance"].as<double>() == 1e-10);
+  CHECK(over["solver"]["sor"]["omega"].as<double>() == 1.2);
+  CHECK(over["sweep"]["input.mesh"].size() == 2);
+  CHECK_THROWS_WITH(load_experiment_config(test::source_path("configs/demo.yaml"), {"novalue"}),
+                    Contains("expected key.path=value"));
+}
+
+TEST_CASE("sweep expansion: Cartesian product, zip axes, stable run ids", "[config]") {
+  YAML::Node root = demo_config();
+  root["sweep"] = YAML::Load(
+      "{solver.type: [cholesky, sor], implementation: [reference, optimized, reference],"
+      " zip: {seed: [1, 2], solver.tolerance: [1.0e-6, 1.0e-9]}}");
+  const auto runs = expand_sweep(root);
+  REQUIRE(runs.size() == 2 * 3 * 2);
+  CHECK(swept_keys(root) == std::vector<std::string>{"seed", "solver.tolerance", "solver.type", "implementation"});
+  // zipped keys move together
+  for (const auto& r : runs) CHECK((r.config["seed"].as<int>() == 1) == (r.config["solver"]["tolerance"].as<double>() == 1e-6));
+  // identical points (implementation listed twice) share an id; different ones do not
+  CHECK(runs[0].run_id == runs[2].run_id);
+  CHECK(runs[0].run_id != runs[1].run_id);
+  CHECK(expand_sweep(root)[5].run_id == runs[5].run_id);
+
+  root["sweep"] = YAML::Load("{zip: {seed: [1, 2], solver.tolerance: [1.0e-6]}}");
+  CHECK_THROWS_WITH(expand_sweep(root), Contains("equally long"));
+  root["sweep"] = YAML::Load("{seed: []}");
+  CHECK_THROWS_WITH(expand_sweep(root), Contains("non-empty list"));
+}
+
+TEST_CASE("run validation catches bad components, keys and values before running", "[config]") {
+  auto spec_with = [](const std::string& key, const std::string& value) {
+    YAML::Node root = demo_config();
+    set_by_path(root, key, YAML::Load(value));
+    return RunSpec::from_config(root, components(), dirs());
+  };
+  CHECK_NOTHROW(spec_with("solver.type", "sor"));
+  CHECK_THROWS_WITH(spec_with("solver.type", "multigrd"), Contains("solver.type: unknown value 'multigrd'"));
+  CHECK_THROWS_WITH(spec_with("solver.sor", "{omega: 2.0}"), Contains("solver.sor.omega") && Contains("(0, 2)"));
+  CHECK_THROWS_WITH(spec_with("solver.tolerance", "-1"), Contains("solver.tolerance"));
+  CHECK_THROWS_WITH(spec_with("input.mesh", "nowhere.off"), Contains("input.mesh") && Contains("not found"));
+  CHECK_THROWS_WITH(spec_with("implementation", "fast"), Contains("valid: reference, optimized"));
+  CHECK_THROWS_WITH(spec_with("energy", "[{type: bending}]"), Contains("unknown energy 'bending'"));
+  CHECK_THROWS_WITH(spec_with("energy", "[{type: membrane, wieght: 2}]"), Contains("energy[0].wieght: unknown key"));
+  CHECK_THROWS_WITH(spec_with("constraints", "[{type: fixed, region: {axis: w}}]"), Contains("valid: x, y, z"));
+  CHECK_THROWS_WITH(spec_with("colour", "red"), Contains("colour: unknown key"));
+}

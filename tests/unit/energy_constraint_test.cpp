@@ -55,7 +55,7 @@ TEST_CASE("cotangent weights need triangles", "[energy]") {
   CHECK_THROWS_AS(hessian("membrane", test::grid(3), "{weights: cotangent}"), InvalidInput);
 }
 
-TEST_CASE("no handle moved means no deformation; a common offset is a translation", "[energy][constraint]") {
+TEST_CASE("no handle moved means no deformation, a common offset is a translation", "[energy][constraint]") {
   const SurfaceMesh m = test::grid(8, true);
   const SparseMatrix H = hessian("thin_plate", m);
   const std::vector<int> fixed{0, 8, 40, 80};

@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# `make bench`: every Google Benchmark program, CSV into results/bench/<timestamp>/ (medians of 5 repetitions).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out="results/bench/$(date -u +%Y%m%d-%H%M%S)"
+mkdir -p "$out"
+for b in build/bin/*_benchmark; do
+  name=$(basename "$b")
+  echo "== $name"
+  "$b" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
+       --benchmark_out="$out/$name.csv" --benchmark_out_format=csv
+done
+echo "bench: CSV in $out"

@@ -1,0 +1,85 @@
+// Reference subdivision: every child vertex's mask written out from the textbook rules
+// (Catmull-Clark 1978; Loop 1987; boundary rules of Table 1 in Boier-Martin, Ronfard and
+// Bernardini, "Detail-preserving variational surface design with multiresolution
+// constraints"), visiting the half-edge mesh one vertex, edge and face at a time.
+#include "subdivision/subdivider.h"
+
+namespace fairshape::reference {
+namespace {
+
+using Row = std::vector<std::pair<int, double>>;
+
+void add(Triplets& t, int row, const Row& entries) {
+  for (const auto& [col, w] : entries) t.emplace_back(row, col, w);
+}
+
+// Face point: the centroid.
+Row face_point(const SurfaceMesh& m, int f, double scale) {
+  Row r;
+  const auto vs = m.face_vertices(f);
+  for (int v : vs) r.emplace_back(v, scale / static_cast<double>(vs.size()));
+  return r;
+}
+
+Row edge_point(const SurfaceMesh& m, int e, const SubdivisionOptions& opt) {
+  const int h = 2 * e, a = m.from_vertex(h), b = m.to_vertex(h);
+  if (m.is_boundary_edge(e)) return {{a, 0.5}, {b, 0.5}};  // boundary curve: midpoint
+  if (opt.scheme == SchemeType::Loop) {
+    const int c = m.to_vertex(m.next(h)), d = m.to_vertex(m.next(m.twin(h)));
+    return {{a, 3.0 / 8.0}, {b, 3.0 / 8.0}, {c, 1.0 / 8.0}, {d, 1.0 / 8.0}};
+  }
+  Row r{{a, 0.25}, {b, 0.25}};  // Catmull-Clark: (a + b + F0 + F1) / 4
+  for (int side : {h, m.twin(h)})
+    for (const auto& entry : face_point(m, m.face(side), 0.25)) r.push_back(entry);
+  return r;
+}
+
+Row vertex_point(const SurfaceMesh& m, int v, const SubdivisionOptions& opt) {
+  if (m.is_isolated(v)) return {{v, 1.0}};
+  if (m.is_boundary_vertex(v)) {
+    const bool corner = m.vertex_faces(v).size() == 1;
+    if (corner && opt.boundary == BoundaryMode::EdgeAndCorner) return {{v, 1.0}};
+    const int h = m.halfedge(v);  // the outgoing boundary half-edge
+    const int next_on_boundary = m.to_vertex(h), prev_on_boundary = m.from_vertex(m.prev(h));
+    return {{v, 0.75}, {next_on_boundary, 0.125}, {prev_on_boundary, 0.125}};  // cubic B-spline
+  }
+  const auto ring = m.vertex_neighbors(v);
+  const double n = static_cast<double>(ring.size());
+  Row r;
+  if (opt.scheme == SchemeType::Loop) {
+    const double beta = loop_beta(static_cast<int>(ring.size()), opt.weights);
+    r.emplace_back(v, 1.0 - n * beta);
+    for (int w : ring) r.emplace_back(w, beta);
+    return r;
+  }
+  // Catmull-Clark: (n − 2)/n v + 1/n² Σ edge neighbours + 1/n² Σ face points.
+  r.emplace_back(v, (n - 2.0) / n);
+  for (int w : ring) r.emplace_back(w, 1.0 / (n * n));
+  for (int f : m.vertex_faces(v))
+    for (const auto& entry : face_point(m, f, 1.0 / (n * n))) r.push_back(entry);
+  return r;
+}
+
+class MaskSubdivider : public Subdivider {
+ public:
+  Refinement refine(const SurfaceMesh& m, const SubdivisionOptions& opt) const override {
+    if (opt.scheme == SchemeType::Loop) require_triangles(m, "subdivide");
+    const int nv = m.n_vertices(), ne = m.n_edges();
+    Triplets t;
+    for (int v = 0; v < nv; ++v) add(t, v, vertex_point(m, v, opt));
+    for (int e = 0; e < ne; ++e) add(t, nv + e, edge_point(m, e, opt));
+    if (opt.scheme == SchemeType::CatmullClark)
+      for (int f = 0; f < m.n_faces(); ++f) add(t, nv + ne + f, face_point(m, f, 1.0));
+    Refinement r;
+    r.S.resize(child_vertex_count(m, opt.scheme), nv);
+    r.S.setFromTriplets(t.begin(), t.end());
+    r.fine_faces = child_faces(m, opt.scheme);
+    return r;
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Subdivider> make_mask_subdivider() { return std::make_unique<MaskSubdivider>(); }
+
+}  // namespace fairshape::reference

@@ -1,0 +1,55 @@
+// One uniform subdivision step as a sparse linear operator: the fine mesh's vertex positions
+// are S · (coarse positions). Child vertices are numbered so that ids nest across levels:
+//   [0, #V)                 vertex points (a vertex keeps its id),
+//   [#V, #V + #E)           edge points (edge e -> #V + e),
+//   [#V + #E, ... + #F)     face points (Catmull-Clark only, face f -> #V + #E + f).
+// Child faces: Catmull-Clark splits a k-gon into k quads (corner i: v_i, edge i, face, edge i-1);
+// Loop splits a triangle into four (three corners, then the middle one).
+#pragma once
+
+#include <memory>
+
+#include "core/backend.h"
+#include "mesh/surface_mesh.h"
+#include "subdivision/scheme.h"
+
+namespace fairshape {
+
+struct Refinement {
+  SparseMatrix S;          // #fine × #coarse, rows sum to 1
+  PolygonList fine_faces;  // topology of the fine mesh
+};
+
+class Subdivider {
+ public:
+  virtual ~Subdivider() = default;
+  //! \throw InvalidInput for Loop on a mesh that is not all triangles.
+  virtual Refinement refine(const SurfaceMesh& coarse, const SubdivisionOptions& opt) const = 0;
+};
+
+//! Reference: masks applied vertex by vertex on the half-edge mesh, triplets, setFromTriplets.
+//! Optimized: stencil rows built in parallel (TBB) straight into compressed storage.
+//! Defined in the reference library, the one place that sees both back ends.
+std::unique_ptr<Subdivider> make_subdivider(Backend backend);
+
+//! The child faces (shared by both back ends: pure bookkeeping, no arithmetic).
+PolygonList child_faces(const SurfaceMesh& coarse, SchemeType scheme);
+int child_vertex_count(const SurfaceMesh& coarse, SchemeType scheme);
+void require_triangles(const SurfaceMesh& mesh, const char* who);  // throws InvalidInput
+
+//! One step, positions included. \throw InvalidInput as refine().
+SurfaceMesh subdivide_once(const SurfaceMesh& coarse, const SubdivisionOptions& opt, Backend backend,
+                           SparseMatrix* S = nullptr);
+
+//! Estimated peak memory of `levels` steps (bytes); refine_uniform refuses beyond a limit.
+double estimated_subdivision_bytes(const SurfaceMesh& coarse, SchemeType scheme, int levels);
+struct UniformRefineLimits {
+  int max_levels = 12;
+  double max_bytes = 8.0 * (1ull << 30);  // 8 GiB
+};
+//! `levels` uniform steps. \throw InvalidInput for levels < 1 or > max_levels, or when the
+//! estimate exceeds max_bytes (the message gives the estimate).
+std::vector<SurfaceMesh> refine_uniform(const SurfaceMesh& base, const SubdivisionOptions& opt, int levels,
+                                        Backend backend, const UniformRefineLimits& limits = {});
+
+}  // namespace fairshape

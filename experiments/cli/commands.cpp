@@ -10,6 +10,8 @@
 #include "io/mesh_io.h"
 #include "io/vtk_io.h"
 #include "mesh/mesh_stats.h"
+#include "subdivision/limit.h"
+#include "subdivision/subdivider.h"
 
 namespace fairshape::cli {
 namespace fs = std::filesystem;
@@ -83,6 +85,29 @@ int cmd_render(const RenderArgs& a, int argc, char** argv) {
   const std::string input = pick_render_input(a.input);
   render_png(load_any(input, nullptr), a.opt, a.output);
   std::cerr << "rendered " << input << " -> " << a.output << "\n";
+  return 0;
+}
+
+int cmd_subdivide(const SubdivideArgs& a) {
+  const SubdivisionOptions opt{scheme_from_string(a.scheme), boundary_from_string(a.boundary),
+                               loop_weights_from_string(a.weights)};
+  UniformRefineLimits limits;
+  limits.max_bytes = a.max_memory_gb * double(1ull << 30);
+  std::vector<SurfaceMesh> levels =
+      refine_uniform(load_any(a.input, nullptr), opt, a.levels, backend_from_string(a.implementation), limits);
+  if (a.limit) levels.back().positions() = limit_positions(levels.back(), opt);
+  if (fs::path(a.output).extension() == ".vtm") {
+    std::vector<NamedMesh> blocks;
+    for (std::size_t l = 0; l < levels.size(); ++l) blocks.push_back({"level_" + std::to_string(l), &levels[l]});
+    write_vtm(blocks, a.output);
+  } else if (is_vtp(a.output)) {
+    write_vtp(levels.back(), a.output);
+  } else {
+    write_mesh(levels.back(), a.output);
+  }
+  std::cerr << "subdivided " << a.input << " (" << levels.front().n_faces() << " faces) " << a.levels << "x with "
+            << a.scheme << " -> " << a.output << " (" << levels.back().n_vertices() << " vertices, "
+            << levels.back().n_faces() << " faces)\n";
   return 0;
 }
 

@@ -11,10 +11,17 @@ namespace fairshape::cli {
 struct InfoArgs { std::string mesh; };
 struct ConvertArgs { std::string input, output; bool binary = false; };
 struct RenderArgs { std::string input, output; RenderOptions opt; };
+struct SubdivideArgs {
+  std::string input, output, scheme, boundary = "edge-only", weights = "loop", implementation = "optimized";
+  int levels = 1;
+  bool limit = false;
+  double max_memory_gb = 8.0;
+};
 
 int cmd_info(const InfoArgs& a);
 int cmd_convert(const ConvertArgs& a);
 int cmd_render(const RenderArgs& a, int argc, char** argv);  // argv: to re-run under xvfb-run
 int cmd_list();
+int cmd_subdivide(const SubdivideArgs& a);
 
 }  // namespace fairshape::cli

@@ -50,6 +50,22 @@ int main(int argc, char** argv) {
   c_run->add_option("--shard", shard, "run only slice i of n (0 <= i < n), e.g. for a cluster job array");
   c_run->add_option("--worker", worker, "internal: set for processes started by --jobs")->group("");
 
+  SubdivideArgs sub;
+  auto* c_sub = app.add_subcommand("subdivide", "uniform Catmull-Clark or Loop subdivision (all levels into a .vtm)");
+  c_sub->add_option("--scheme", sub.scheme, "subdivision scheme")->required()->check(CLI::IsMember({"catmull-clark", "loop"}));
+  c_sub->add_option("--levels", sub.levels, "number of uniform refinement steps")->required();
+  c_sub->add_option("--boundary", sub.boundary, "boundary rule (edge-and-corner pins vertices of one face)")
+      ->capture_default_str()->check(CLI::IsMember({"edge-only", "edge-and-corner"}));
+  c_sub->add_option("--weights", sub.weights, "Loop vertex weights: loop (Loop 1987) or warren")
+      ->capture_default_str()->check(CLI::IsMember({"loop", "warren"}));
+  c_sub->add_flag("--limit", sub.limit, "move the final vertices to their limit positions");
+  c_sub->add_option("--implementation", sub.implementation, "back end")->capture_default_str()
+      ->check(CLI::IsMember({"reference", "optimized"}));
+  c_sub->add_option("--max-memory-gb", sub.max_memory_gb, "refuse refinements estimated to need more")
+      ->capture_default_str()->check(CLI::PositiveNumber);
+  c_sub->add_option("input", sub.input, "base mesh (.obj, .off, .ply, .vtp)")->required();
+  c_sub->add_option("output", sub.output, "finest mesh (.obj, .off, .ply, .vtp) or every level (.vtm)")->required();
+
   auto* c_list = app.add_subcommand("list", "every registered energy, constraint and solver, with options");
 
   std::vector<std::string> merge_in;
@@ -58,7 +74,11 @@ int main(int argc, char** argv) {
   c_merge->add_option("output", merge_out, "merged CSV")->required();
   c_merge->add_option("inputs", merge_in, "runs.csv files")->required();
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;  // --help is a success; bad arguments are invalid input (2)
+  }
   try {
     if (*c_info) return cmd_info(info);
     if (*c_conv) return cmd_convert(conv);
@@ -71,6 +91,7 @@ int main(int argc, char** argv) {
       return fairshape::run_sweep(run);
     }
     if (*c_list) return cmd_list();
+    if (*c_sub) return cmd_subdivide(sub);
     if (*c_merge) {
       fairshape::merge_run_tables(merge_in, merge_out);
       return 0;

@@ -1,0 +1,175 @@
+#include "subdivision/multires_surface.h"
+
+#include <Eigen/Geometry>
+#include <Eigen/SparseCholesky>
+#include <filesystem>
+
+#include "io/json_io.h"
+#include "io/vtk_io.h"
+#include "subdivision/limit.h"
+#include "subdivision/subdivider.h"
+
+namespace fairshape {
+namespace fs = std::filesystem;
+namespace {
+
+MatrixX3 to_local(const Frames& f, const MatrixX3& d) {
+  MatrixX3 out(d.rows(), 3);
+  out.col(0) = f.t1.cwiseProduct(d).rowwise().sum();
+  out.col(1) = f.t2.cwiseProduct(d).rowwise().sum();
+  out.col(2) = f.n.cwiseProduct(d).rowwise().sum();
+  return out;
+}
+
+MatrixX3 to_world(const Frames& f, const MatrixX3& d) {
+  return f.t1.array().colwise() * d.col(0).array() + f.t2.array().colwise() * d.col(1).array() +
+         f.n.array().colwise() * d.col(2).array();
+}
+
+}  // namespace
+
+Frames local_frames(const SurfaceMesh& mesh, const SubdivisionOptions& opt) {
+  Frames f;
+  f.n = limit_normals(mesh, opt);
+  f.t1.resize(mesh.n_vertices(), 3);
+  f.t2.resize(mesh.n_vertices(), 3);
+  for (int v = 0; v < mesh.n_vertices(); ++v) {
+    Vec3 n = f.n.row(v).transpose();
+    Vec3 t = Vec3::UnitX();
+    if (n.squaredNorm() < 0.5) n = Vec3::UnitZ();  // no normal (isolated vertex): world axes
+    else if (!mesh.is_isolated(v)) t = mesh.position(mesh.to_vertex(mesh.halfedge(v))) - mesh.position(v);
+    t -= t.dot(n) * n;
+    if (t.norm() < 1e-300) t = n.unitOrthogonal();
+    t.normalize();
+    f.n.row(v) = n.transpose();
+    f.t1.row(v) = t.transpose();
+    f.t2.row(v) = n.cross(t).transpose();
+  }
+  return f;
+}
+
+MultiresSurface::MultiresSurface(const SurfaceMesh& base, const SubdivisionOptions& opt, int levels, Backend backend)
+    : opt_(opt), backend_(backend) {
+  meshes_ = refine_uniform(base, opt, levels, backend);
+  const auto sub = make_subdivider(backend);
+  for (int l = 0; l < levels; ++l) S_.push_back(sub->refine(meshes_[l], opt).S);
+  world_.resize(levels + 1);
+  local_.resize(levels + 1);
+  for (int l = 1; l <= levels; ++l) {
+    world_[l] = MatrixX3::Zero(meshes_[l].n_vertices(), 3);
+    local_[l] = world_[l];
+  }
+}
+
+MultiresSurface MultiresSurface::analyze(const SurfaceMesh& base, const MatrixX3& finest,
+                                         const SubdivisionOptions& opt, int levels, Backend backend) {
+  MultiresSurface h(base, opt, levels, backend);
+  if (finest.rows() != h.meshes_.back().n_vertices())
+    throw InvalidInput("analyze: " + std::to_string(finest.rows()) + " fine positions, but the base refined " +
+                       std::to_string(levels) + " times has " + std::to_string(h.meshes_.back().n_vertices()) +
+                       " vertices");
+  MatrixX3 X = finest;
+  for (int l = levels - 1; l >= 0; --l) {
+    const SparseMatrix& S = h.S_[l];
+    const SparseMatrix StS = SparseMatrix(S.transpose()) * S;
+    const Eigen::SimplicialLDLT<SparseMatrix> fit(StS);
+    if (fit.info() != Eigen::Success)
+      throw InvalidInput("analyze: the least-squares fit of level " + std::to_string(l) + " is singular");
+    const MatrixX3 coarse = fit.solve(SparseMatrix(S.transpose()) * X);
+    h.world_[l + 1] = X - S * coarse;
+    h.meshes_[l + 1].positions() = X;
+    X = coarse;
+  }
+  h.meshes_[0].positions() = X;
+  for (int l = 1; l <= levels; ++l) {
+    SurfaceMesh predicted = h.meshes_[l];
+    predicted.positions() = h.S_[l - 1] * h.meshes_[l - 1].positions();
+    h.local_[l] = to_local(local_frames(predicted, opt), h.world_[l]);
+  }
+  return h;
+}
+
+const MatrixX3& MultiresSurface::details(int level, DetailSpace space) const {
+  if (level < 1 || level > levels())
+    throw InvalidInput("details: level " + std::to_string(level) + " outside [1, " + std::to_string(levels()) + "]");
+  return space == DetailSpace::World ? world_[level] : local_[level];
+}
+
+void MultiresSurface::set_base_positions(const MatrixX3& X0) {
+  if (X0.rows() != meshes_[0].n_vertices() || !X0.allFinite())
+    throw InvalidInput("set_base_positions: expected " + std::to_string(meshes_[0].n_vertices()) + " finite rows");
+  meshes_[0].positions() = X0;
+}
+
+void MultiresSurface::set_details(int level, const MatrixX3& d, DetailSpace space) {
+  const MatrixX3& current = details(level, space);
+  if (d.rows() != current.rows() || !d.allFinite())
+    throw InvalidInput("set_details: level " + std::to_string(level) + " needs " + std::to_string(current.rows()) +
+                       " finite rows");
+  (space == DetailSpace::World ? world_ : local_)[level] = d;
+}
+
+void MultiresSurface::synthesize(DetailSpace keep) {
+  for (int l = 0; l < levels(); ++l) {
+    MatrixX3 predicted = S_[l] * meshes_[l].positions();
+    SurfaceMesh& fine = meshes_[l + 1];
+    fine.positions() = predicted;
+    const Frames frames = local_frames(fine, opt_);
+    if (keep == DetailSpace::Local) world_[l + 1] = to_world(frames, local_[l + 1]);
+    else local_[l + 1] = to_local(frames, world_[l + 1]);
+    fine.positions() = predicted + world_[l + 1];
+  }
+}
+
+void MultiresSurface::save(const std::string& vtm_path) const {
+  std::vector<SurfaceMesh> blocks = meshes_;
+  std::vector<NamedMesh> named;
+  for (int l = 0; l <= levels(); ++l) {
+    const int nv = blocks[l].n_vertices();
+    blocks[l].vertex_data["detail"] = l ? Eigen::MatrixXd(world_[l]) : Eigen::MatrixXd::Zero(nv, 3);
+    blocks[l].vertex_data["detail_local"] = l ? Eigen::MatrixXd(local_[l]) : Eigen::MatrixXd::Zero(nv, 3);
+    blocks[l].vertex_data["detail_norm"] = blocks[l].vertex_data["detail"].rowwise().norm();
+  }
+  for (int l = 0; l <= levels(); ++l) named.push_back({"level_" + std::to_string(l), &blocks[l]});
+  const fs::path p(vtm_path);
+  write_json({{"format", "fairshape multiresolution surface"},
+              {"scheme", to_string(opt_.scheme)},
+              {"boundary", to_string(opt_.boundary)},
+              {"weights", to_string(opt_.weights)},
+              {"levels", levels()}},
+             (p.parent_path() / (p.stem().string() + ".json")).string());
+  write_vtm(named, vtm_path);
+}
+
+MultiresSurface MultiresSurface::load(const std::string& vtm_path, Backend backend) {
+  const fs::path p(vtm_path);
+  const auto meta = read_json((p.parent_path() / (p.stem().string() + ".json")).string());
+  SubdivisionOptions opt;
+  try {
+    opt = {scheme_from_string(meta.at("scheme").get<std::string>()),
+           boundary_from_string(meta.at("boundary").get<std::string>()),
+           loop_weights_from_string(meta.at("weights").get<std::string>())};
+  } catch (const nlohmann::json::exception& e) {
+    throw InvalidInput(vtm_path + ": the sidecar JSON lacks scheme options: " + e.what());
+  }
+  const auto blocks = read_vtm(vtm_path);
+  if (blocks.empty()) throw InvalidInput(vtm_path + ": no levels");
+  MultiresSurface h(blocks[0], opt, static_cast<int>(blocks.size()) - 1, backend);
+  for (int l = 1; l <= h.levels(); ++l) {
+    const auto it = blocks[l].vertex_data.find("detail");
+    if (it == blocks[l].vertex_data.end() || it->second.rows() != h.meshes_[l].n_vertices())
+      throw InvalidInput(vtm_path + ": level " + std::to_string(l) + " has no usable 'detail' array");
+    h.world_[l] = it->second;
+  }
+  h.synthesize(DetailSpace::World);
+  for (int l = 1; l <= h.levels(); ++l) {
+    const double err = (h.meshes_[l].positions() - blocks[l].positions()).cwiseAbs().maxCoeff();
+    const double scale = 1.0 + blocks[l].positions().cwiseAbs().maxCoeff();
+    if (!(err <= 1e-9 * scale))
+      throw InvalidInput(vtm_path + ": level " + std::to_string(l) + " does not match base + details (error " +
+                         std::to_string(err) + "): not a hierarchy of this scheme?");
+  }
+  return h;
+}
+
+}  // namespace fairshape

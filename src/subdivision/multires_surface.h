@@ -1,0 +1,69 @@
+// A multiresolution subdivision surface H = (M^0, ..., M^L): a base mesh, the subdivision
+// operators S_l, and per-level detail vectors, so that
+//     X_{l+1} = S_l X_l + D_{l+1}          (details in world coordinates), or
+//     X_{l+1} = P + F(P) · D^loc_{l+1},  P = S_l X_l   (details in local frames),
+// where F(P) holds, per vertex, the frame (t1, t2, n) of the predicted surface P: the limit
+// normal n and the first edge projected onto the tangent plane (as in Zorin, Schröder and
+// Sweldens 1997 and Khodakovsky & Schröder 1999). Local details follow the surface when a
+// coarse level is edited; world details translate with it.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/backend.h"
+#include "core/error.h"
+#include "mesh/surface_mesh.h"
+#include "subdivision/scheme.h"
+
+namespace fairshape {
+
+enum class DetailSpace { World, Local };
+
+struct Frames {
+  MatrixX3 t1, t2, n;  // orthonormal per row
+};
+//! Frames of a mesh from its limit normals; a vertex without a normal gets the world axes.
+Frames local_frames(const SurfaceMesh& mesh, const SubdivisionOptions& opt);
+
+class MultiresSurface {
+ public:
+  //! Zero details: every level is the subdivision of the one below.
+  MultiresSurface(const SurfaceMesh& base, const SubdivisionOptions& opt, int levels, Backend backend);
+
+  //! Analysis of a fine semi-regular mesh: `finest` gives the positions of the base refined
+  //! `levels` times (vertex ids as subdivide produces them). Each coarser level is the
+  //! least-squares fit through the subdivision operator, X_l = argmin ‖S_l X − X_{l+1}‖, and
+  //! the details are the residuals, so synthesis reproduces `finest` (up to rounding).
+  //! \throw InvalidInput when the sizes do not match or a fit is singular.
+  static MultiresSurface analyze(const SurfaceMesh& base, const MatrixX3& finest, const SubdivisionOptions& opt,
+                                 int levels, Backend backend);
+
+  int levels() const { return static_cast<int>(meshes_.size()) - 1; }
+  const SubdivisionOptions& options() const { return opt_; }
+  const SurfaceMesh& mesh(int level) const { return meshes_.at(level); }
+  const SparseMatrix& subdivision_operator(int level) const { return S_.at(level); }  // level -> level + 1
+  //! Details of level l = 1..L, world or local coordinates.
+  const MatrixX3& details(int level, DetailSpace space) const;
+
+  void set_base_positions(const MatrixX3& X0);
+  void set_details(int level, const MatrixX3& d, DetailSpace space);
+  //! Recomputes levels 1..L from the base, keeping the details of `keep` fixed (the other
+  //! representation is updated to match).
+  void synthesize(DetailSpace keep);
+
+  //! Stores every level as a block of a .vtm (point arrays `detail`, `detail_local`) plus a
+  //! JSON sidecar with the scheme options; load checks that the stored levels are consistent.
+  void save(const std::string& vtm_path) const;
+  static MultiresSurface load(const std::string& vtm_path, Backend backend);
+
+ private:
+  MultiresSurface() = default;
+  SubdivisionOptions opt_;
+  Backend backend_ = Backend::Optimized;
+  std::vector<SurfaceMesh> meshes_;
+  std::vector<SparseMatrix> S_;
+  std::vector<MatrixX3> world_, local_;  // index = level; entry 0 unused
+};
+
+}  // namespace fairshape

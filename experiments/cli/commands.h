@@ -23,5 +23,10 @@ int cmd_convert(const ConvertArgs& a);
 int cmd_render(const RenderArgs& a, int argc, char** argv);  // argv: to re-run under xvfb-run
 int cmd_list();
 int cmd_subdivide(const SubdivideArgs& a);
+struct RemeshArgs {
+  std::string input, output, scheme, boundary = "edge-only", weights = "loop";
+  int base_faces = 500, levels = 3;
+};
+int cmd_remesh(const RemeshArgs& a);
 
 }  // namespace fairshape::cli

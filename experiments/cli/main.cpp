@@ -66,6 +66,18 @@ int main(int argc, char** argv) {
   c_sub->add_option("input", sub.input, "base mesh (.obj, .off, .ply, .vtp)")->required();
   c_sub->add_option("output", sub.output, "finest mesh (.obj, .off, .ply, .vtp) or every level (.vtm)")->required();
 
+  RemeshArgs rem;
+  auto* c_rem = app.add_subcommand("remesh", "semi-regular remesh of a dense triangle mesh into a multiresolution "
+                                             "subdivision surface (.vtm of every level with details)");
+  c_rem->add_option("dense", rem.input, "dense triangle mesh")->required();
+  c_rem->add_option("--scheme", rem.scheme, "subdivision scheme")->required()->check(CLI::IsMember({"catmull-clark", "loop"}));
+  c_rem->add_option("--base-faces", rem.base_faces, "target face count of the base mesh")->capture_default_str();
+  c_rem->add_option("--levels", rem.levels, "subdivision levels")->capture_default_str();
+  c_rem->add_option("--boundary", rem.boundary, "boundary rule")->capture_default_str()
+      ->check(CLI::IsMember({"edge-only", "edge-and-corner"}));
+  c_rem->add_option("--weights", rem.weights, "Loop weights")->capture_default_str()->check(CLI::IsMember({"loop", "warren"}));
+  c_rem->add_option("output", rem.output, "hierarchy (.vtm, plus a .json sidecar)")->required();
+
   auto* c_list = app.add_subcommand("list", "every registered energy, constraint and solver, with options");
 
   std::vector<std::string> merge_in;
@@ -92,6 +104,7 @@ int main(int argc, char** argv) {
     }
     if (*c_list) return cmd_list();
     if (*c_sub) return cmd_subdivide(sub);
+    if (*c_rem) return cmd_remesh(rem);
     if (*c_merge) {
       fairshape::merge_run_tables(merge_in, merge_out);
       return 0;

@@ -29,7 +29,7 @@ class Subdivider {
 
 //! Reference: masks applied vertex by vertex on the half-edge mesh, triplets, setFromTriplets.
 //! Optimized: stencil rows built in parallel (TBB) straight into compressed storage.
-//! Defined in the reference library, the one place that sees both back ends.
+//! Defined in make_subdivider.cpp, above both back ends.
 std::unique_ptr<Subdivider> make_subdivider(Backend backend);
 
 //! The child faces (shared by both back ends: pure bookkeeping, no arithmetic).

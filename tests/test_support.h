@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include <catch2/catch.hpp>
+
 #include "mesh/surface_mesh.h"
 
 namespace fairshape::test {
@@ -49,5 +51,29 @@ inline SurfaceMesh grid(int n, bool triangles = false) {
     }
   return SurfaceMesh::from_polygons(V, F);
 }
+
+// The half-edge invariants every mesh must satisfy.
+inline void check_halfedge_invariants(const SurfaceMesh& m) {
+  for (int h = 0; h < m.n_halfedges(); ++h) {
+    REQUIRE(m.twin(m.twin(h)) == h);
+    REQUIRE(m.next(m.prev(h)) == h);
+    REQUIRE(m.prev(m.next(h)) == h);
+    REQUIRE(m.from_vertex(m.next(h)) == m.to_vertex(h));
+    REQUIRE(m.face(m.next(h)) == m.face(h));
+    REQUIRE(m.from_vertex(h) != m.to_vertex(h));
+    REQUIRE(!(m.is_boundary_halfedge(h) && m.is_boundary_halfedge(m.twin(h))));
+  }
+  int outgoing_total = 0;
+  for (int v = 0; v < m.n_vertices(); ++v) {
+    const auto out = m.outgoing_halfedges(v);
+    outgoing_total += static_cast<int>(out.size());
+    for (int h : out) REQUIRE(m.from_vertex(h) == v);
+    // A boundary vertex starts its fan at its boundary half-edge; no other half-edge of the fan is boundary.
+    for (std::size_t k = 1; k < out.size(); ++k) REQUIRE(!m.is_boundary_halfedge(out[k]));
+    REQUIRE(m.is_boundary_vertex(v) == (!out.empty() && m.is_boundary_halfedge(out[0])));
+  }
+  REQUIRE(outgoing_total == m.n_halfedges());
+}
+
 
 }  // namespace fairshape::test

@@ -129,6 +129,22 @@ SurfaceMesh SurfaceMesh::from_polygons(const MatrixX3& V, const PolygonList& fac
   return m;
 }
 
+SurfaceMesh SurfaceMesh::from_halfedge_arrays(MatrixX3 V, HalfedgeArrays a) {
+  const std::size_t nh = a.to_vertex.size();
+  FAIRSHAPE_ASSERT(nh % 2 == 0 && a.next.size() == nh && a.prev.size() == nh && a.face.size() == nh &&
+                       a.vertex_halfedge.size() == static_cast<std::size_t>(V.rows()),
+                   "inconsistent half-edge arrays");
+  SurfaceMesh m;
+  m.positions_ = std::move(V);
+  m.to_vertex_ = std::move(a.to_vertex);
+  m.next_ = std::move(a.next);
+  m.prev_ = std::move(a.prev);
+  m.face_ = std::move(a.face);
+  m.vertex_halfedge_ = std::move(a.vertex_halfedge);
+  m.face_halfedge_ = std::move(a.face_halfedge);
+  return m;
+}
+
 bool SurfaceMesh::is_boundary_vertex(int v) const {
   const int h = vertex_halfedge_[v];
   return h >= 0 && face_[h] < 0;

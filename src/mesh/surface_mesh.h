@@ -25,6 +25,13 @@ class SurfaceMesh {
   //! inconsistent orientation). Messages name the offending face/vertex ids.
   static SurfaceMesh from_polygons(const MatrixX3& V, const PolygonList& faces);
 
+  // Raw half-edge arrays of a mesh whose connectivity another algorithm derived (subdivision
+  // builds child connectivity straight from the parent's). Trusted: only sizes are checked.
+  struct HalfedgeArrays {
+    std::vector<int> to_vertex, next, prev, face, vertex_halfedge, face_halfedge;
+  };
+  static SurfaceMesh from_halfedge_arrays(MatrixX3 V, HalfedgeArrays arrays);
+
   int n_vertices() const { return static_cast<int>(positions_.rows()); }
   int n_faces() const { return static_cast<int>(face_halfedge_.size()); }
   int n_edges() const { return static_cast<int>(to_vertex_.size() / 2); }

@@ -4,14 +4,16 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "subdivision/apply.h"
 
 namespace fairshape {
 
 SurfaceMesh subdivide_once(const SurfaceMesh& coarse, const SubdivisionOptions& opt, Backend backend,
                            SparseMatrix* S_out) {
   Refinement r = make_subdivider(backend)->refine(coarse, opt);
-  const MatrixX3 fine_positions = r.S * coarse.positions();
-  SurfaceMesh fine = SurfaceMesh::from_polygons(fine_positions, r.fine_faces);
+  SurfaceMesh fine = backend == Backend::Reference ? SurfaceMesh::from_polygons(r.S * coarse.positions(), r.fine_faces)
+                                                   : refine_topology(coarse, opt.scheme);
+  if (backend == Backend::Optimized) apply_stencils(r.S, coarse.positions(), fine.positions());
   if (S_out) *S_out = std::move(r.S);
   return fine;
 }

@@ -35,6 +35,9 @@ std::unique_ptr<Subdivider> make_subdivider(Backend backend);
 //! The child faces (shared by both back ends: pure bookkeeping, no arithmetic).
 PolygonList child_faces(const SurfaceMesh& coarse, SchemeType scheme);
 int child_vertex_count(const SurfaceMesh& coarse, SchemeType scheme);
+//! The fine mesh's connectivity (positions zero), built directly from the parent's half-edges
+//! in parallel; polygons() equals child_faces().
+SurfaceMesh refine_topology(const SurfaceMesh& coarse, SchemeType scheme);
 void require_triangles(const SurfaceMesh& mesh, const char* who);  // throws InvalidInput
 
 //! One step, positions included. \throw InvalidInput as refine().

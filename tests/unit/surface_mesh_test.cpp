@@ -6,32 +6,7 @@
 
 using namespace fairshape;
 
-namespace {
-
-// The half-edge invariants every mesh must satisfy.
-void check_halfedge_invariants(const SurfaceMesh& m) {
-  for (int h = 0; h < m.n_halfedges(); ++h) {
-    REQUIRE(m.twin(m.twin(h)) == h);
-    REQUIRE(m.next(m.prev(h)) == h);
-    REQUIRE(m.prev(m.next(h)) == h);
-    REQUIRE(m.from_vertex(m.next(h)) == m.to_vertex(h));
-    REQUIRE(m.face(m.next(h)) == m.face(h));
-    REQUIRE(m.from_vertex(h) != m.to_vertex(h));
-    REQUIRE(!(m.is_boundary_halfedge(h) && m.is_boundary_halfedge(m.twin(h))));
-  }
-  int outgoing_total = 0;
-  for (int v = 0; v < m.n_vertices(); ++v) {
-    const auto out = m.outgoing_halfedges(v);
-    outgoing_total += static_cast<int>(out.size());
-    for (int h : out) REQUIRE(m.from_vertex(h) == v);
-    // A boundary vertex starts its fan at its boundary half-edge; no other half-edge of the fan is boundary.
-    for (std::size_t k = 1; k < out.size(); ++k) REQUIRE(!m.is_boundary_halfedge(out[k]));
-    REQUIRE(m.is_boundary_vertex(v) == (!out.empty() && m.is_boundary_halfedge(out[0])));
-  }
-  REQUIRE(outgoing_total == m.n_halfedges());
-}
-
-}  // namespace
+using test::check_halfedge_invariants;
 
 TEST_CASE("half-edge invariants and topology of every bundled mesh", "[mesh]") {
   for (const auto& k : test::bundled_meshes()) {

@@ -73,7 +73,6 @@ class MaskSubdivider : public Subdivider {
     Refinement r;
     r.S.resize(child_vertex_count(m, opt.scheme), nv);
     r.S.setFromTriplets(t.begin(), t.end());
-    r.fine_faces = child_faces(m, opt.scheme);
     return r;
   }
 };

@@ -129,7 +129,6 @@ class ParallelStencilSubdivider : public Subdivider {
     R.outerIndexPtr()[rows] = static_cast<int>(chunk_start[chunks]);
     Refinement out;
     out.S = R;
-    out.fine_faces = child_faces(m, opt.scheme);
     return out;
   }
 };

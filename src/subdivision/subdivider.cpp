@@ -10,10 +10,12 @@ namespace fairshape {
 
 SurfaceMesh subdivide_once(const SurfaceMesh& coarse, const SubdivisionOptions& opt, Backend backend,
                            SparseMatrix* S_out) {
+  // Connectivity is shared bookkeeping (so vertex ids agree across back ends); the
+  // arithmetic, S and its application, is each back end's own.
   Refinement r = make_subdivider(backend)->refine(coarse, opt);
-  SurfaceMesh fine = backend == Backend::Reference ? SurfaceMesh::from_polygons(r.S * coarse.positions(), r.fine_faces)
-                                                   : refine_topology(coarse, opt.scheme);
+  SurfaceMesh fine = refine_topology(coarse, opt.scheme);
   if (backend == Backend::Optimized) apply_stencils(r.S, coarse.positions(), fine.positions());
+  else fine.positions() = r.S * coarse.positions();
   if (S_out) *S_out = std::move(r.S);
   return fine;
 }

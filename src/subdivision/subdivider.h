@@ -5,6 +5,10 @@
 //   [#V + #E, ... + #F)     face points (Catmull-Clark only, face f -> #V + #E + f).
 // Child faces: Catmull-Clark splits a k-gon into k quads (corner i: v_i, edge i, face, edge i-1);
 // Loop splits a triangle into four (three corners, then the middle one).
+// Edge ids of a refined mesh follow refine_topology (the halves of parent edge e are 2e and
+// 2e + 1, then one interior edge per face corner), so refining level by level gives the same
+// ids every time. A mesh re-read from a file numbers its edges by first appearance instead:
+// refining it again numbers the new edge points differently (positions are the same).
 #pragma once
 
 #include <memory>
@@ -16,8 +20,7 @@
 namespace fairshape {
 
 struct Refinement {
-  SparseMatrix S;          // #fine × #coarse, rows sum to 1
-  PolygonList fine_faces;  // topology of the fine mesh
+  SparseMatrix S;  // #fine × #coarse, rows sum to 1 (the fine connectivity: refine_topology)
 };
 
 class Subdivider {
@@ -32,7 +35,7 @@ class Subdivider {
 //! Defined in make_subdivider.cpp, above both back ends.
 std::unique_ptr<Subdivider> make_subdivider(Backend backend);
 
-//! The child faces (shared by both back ends: pure bookkeeping, no arithmetic).
+//! The child faces, written out plainly: the specification refine_topology is tested against.
 PolygonList child_faces(const SurfaceMesh& coarse, SchemeType scheme);
 int child_vertex_count(const SurfaceMesh& coarse, SchemeType scheme);
 //! The fine mesh's connectivity (positions zero), built directly from the parent's half-edges

@@ -74,7 +74,9 @@ int cmd_render(const RenderArgs& a, int argc, char** argv) {
   if ((!display || !*display) && !std::getenv("FAIRSHAPE_IN_XVFB")) {
     // Debian's VTK renders only through X: start a virtual one for this command.
     setenv("FAIRSHAPE_IN_XVFB", "1", 1);
-    std::vector<std::string> args{"xvfb-run", "-a", "-s", "-screen 0 1600x1200x24",
+    // -noreset: Xvfb otherwise resets when its last client leaves, which races with the
+    // display probe in render_png that connects and disconnects just before VTK connects.
+    std::vector<std::string> args{"xvfb-run", "-a", "-s", "-screen 0 1600x1200x24 -noreset",
                                   fs::read_symlink("/proc/self/exe").string()};
     for (int i = 1; i < argc; ++i) args.emplace_back(argv[i]);
     std::vector<char*> cargs;

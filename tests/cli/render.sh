@@ -1,7 +1,7 @@
 source "$(dirname "$0")/lib.sh"
 command -v xvfb-run >/dev/null || { echo "render: xvfb-run missing (Debian package xvfb)"; exit 1; }
-"$FS" run configs/demo.yaml --out "$SCRATCH/run" 2>/dev/null
-"$FS" render "$SCRATCH/run" "$SCRATCH/final.png" --array displacement_norm --width 320 --height 240 2>/dev/null
+"$FS" run configs/demo.yaml --out "$SCRATCH/run" 2>"$SCRATCH/run.log" || { cat "$SCRATCH/run.log" >&2; fail "run"; }
+"$FS" render "$SCRATCH/run" "$SCRATCH/final.png" --array displacement_norm --width 320 --height 240 2>"$SCRATCH/render.log" || { cat "$SCRATCH/render.log" >&2; fail "render"; }
 $PY - "$SCRATCH/final.png" <<'PYEOF'
 import sys
 import matplotlib.image as mpimg

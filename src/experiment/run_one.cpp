@@ -12,6 +12,7 @@
 #include "io/mesh_io.h"
 #include "io/vtk_io.h"
 #include "problem/constrained_system.h"
+#include "subdivision/subdivider.h"
 
 namespace fairshape {
 namespace fs = std::filesystem;
@@ -150,16 +151,28 @@ void write_geometry(const RunSpec& spec, const RunOutputs& out, const SurfaceMes
 
 const std::vector<std::string>& metric_columns() {
   static const std::vector<std::string> cols{
-      "n_dofs", "n_fine", "n_constrained", "repeat", "assemble_s", "analyze_s", "solve_s", "solve_min_s",
+      "n_dofs", "n_fine", "n_constrained", "repeat", "subdivide_s", "assemble_s", "analyze_s", "solve_s", "solve_min_s",
       "time_s", "iterations", "residual", "energy", "constraint_violation", "error_vs_reference",
       "peak_rss_mb", "termination", "message"};
   return cols;
 }
 
-const SurfaceMesh& RunCache::mesh(const std::string& path) {
-  auto it = meshes_.find(path);
-  if (it == meshes_.end()) it = meshes_.emplace(path, read_mesh(path)).first;
-  return it->second;
+const SurfaceMesh& RunCache::surface(const RunSpec& spec, double* build_s) {
+  const std::string key = spec.mesh_path + "|" + spec.representation + "|" + std::to_string(spec.levels) + "|" +
+                          spec.boundary + "|" + spec.loop_weights + "|" + std::string(to_string(spec.implementation));
+  auto it = surfaces_.find(key);
+  if (it == surfaces_.end()) {
+    SurfaceMesh m = read_mesh(spec.mesh_path);
+    Timer t;
+    if (spec.levels > 0) {
+      const SubdivisionOptions opt{scheme_from_string(spec.representation), boundary_from_string(spec.boundary),
+                                   loop_weights_from_string(spec.loop_weights)};
+      m = refine_uniform(m, opt, spec.levels, spec.implementation).back();
+    }
+    it = surfaces_.emplace(key, std::make_pair(std::move(m), t.seconds())).first;
+  }
+  *build_s = it->second.second;
+  return it->second.first;
 }
 
 const Eigen::MatrixXd* RunCache::reference_solution(const std::string& key) const {
@@ -176,7 +189,9 @@ MetricRow execute_run(RunSpec& spec, RunCache& cache, const RunOutputs& out) {
   reset_peak_rss();
   Timer total;
   try {
-    const SurfaceMesh& rest = cache.mesh(spec.mesh_path);
+    double subdivide_s = 0;
+    const SurfaceMesh& rest = cache.surface(spec, &subdivide_s);
+    row["subdivide_s"] = num(subdivide_s);
     Timer t;
     const ConstrainedSystem sys = assemble(spec, rest);
     const ReducedSystem red = reduce(sys);

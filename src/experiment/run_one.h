@@ -18,12 +18,14 @@ using MetricRow = std::map<std::string, std::string>;
 // What runs of one sweep share: meshes read once, reference solutions solved once per system.
 class RunCache {
  public:
-  const SurfaceMesh& mesh(const std::string& path);
+  //! The surface a run works on: the input mesh, refined spec.levels times when the
+  //! representation is a subdivision scheme; *build_s is the time it took to make.
+  const SurfaceMesh& surface(const RunSpec& spec, double* build_s);
   const Eigen::MatrixXd* reference_solution(const std::string& key) const;
   void store_reference_solution(const std::string& key, Eigen::MatrixXd u);
 
  private:
-  std::map<std::string, SurfaceMesh> meshes_;
+  std::map<std::string, std::pair<SurfaceMesh, double>> surfaces_;
   std::map<std::string, Eigen::MatrixXd> references_;
 };
 

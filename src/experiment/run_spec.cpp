@@ -93,8 +93,15 @@ RunSpec RunSpec::from_config(const YAML::Node& run_config, const Components& c,
   Config in = root.child("input", "input geometry");
   s.mesh_path = resolve_input(in.require<std::string>("mesh", "mesh file (.obj, .off, .ply)"), search_dirs,
                               in.key_path("mesh"));
-  s.representation = in.get_choice("representation", "mesh", {"mesh"}, "shape representation");
+  s.representation = in.get_choice("representation", "mesh", {"mesh", "catmull-clark", "loop"},
+                                   "shape representation: the mesh itself or its subdivision surface");
+  s.levels = in.get_int("levels", 0, 0, 8, "uniform subdivision steps; the problem lives on the finest level");
+  s.boundary = in.get_choice("boundary", "edge-only", {"edge-only", "edge-and-corner"}, "subdivision boundary rule");
+  s.loop_weights = in.get_choice("weights", "loop", {"loop", "warren"}, "Loop vertex weights");
   in.check_no_unknown_keys();
+  if (s.representation == "mesh" && s.levels > 0)
+    throw InvalidConfig(in.key_path("levels") + ": " + std::to_string(s.levels) +
+                        " subdivision levels need representation catmull-clark or loop");
   read_energies(root, c, s.implementation, s);
   read_constraints(root, c, s.implementation, s);
   Config pc = root.child("problem", "how the problem is posed");

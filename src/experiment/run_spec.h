@@ -39,7 +39,9 @@ struct RunSpec {
   std::string name;
   int seed = 0, threads = 0, repeat = 1;
   Backend implementation = Backend::Optimized;
-  std::string mesh_path, representation;
+  std::string mesh_path, representation;  // representation: mesh | catmull-clark | loop
+  int levels = 0;                          // uniform subdivision steps of the input mesh
+  std::string boundary = "edge-only", loop_weights = "loop";
   std::vector<EnergyTerm> energies;
   std::vector<ConstraintTerm> constraints;
   Formulation formulation = Formulation::Displacement;

@@ -30,4 +30,17 @@ PYEOF
   --set solver.type=conjugate_gradient --set solver.max_iterations=20 2>/dev/null || true
 ls "$SCRATCH"/every/vtk/*_it5.vtp >/dev/null || fail "no iteration snapshots"
 ls "$SCRATCH"/every/vtk/*.pvd >/dev/null || fail "no pvd series"
-echo "run_outputs: ok"
+
+# Subdivision representations: the problem lives on the finest level of the ladder.
+"$FS" run configs/examples/subdivision_ladder.yaml --out "$SCRATCH/ladder" --set 'sweep.input.levels=[1, 2]' 2>/dev/null
+$PY - "$SCRATCH/ladder/runs.csv" <<'PYEOF'
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert len(rows) == 4, rows
+for r in rows:
+    assert r["n_fine"] == {"1": "17414", "2": "69650"}[r["input.levels"]], r
+    assert float(r["subdivide_s"]) > 0, r
+PYEOF
+expect_error 2 "input.levels: 2 subdivision levels need representation" -- \
+  "$FS" run configs/demo.yaml --set input.levels=2 --out "$SCRATCH/bad"
+echo "run_outputs (subdivision): ok"

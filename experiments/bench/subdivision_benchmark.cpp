@@ -3,7 +3,8 @@
 //   topology:  OpenSubdiv TopologyRefiner (create + RefineUniform) vs fairshape's direct
 //              child half-edge construction (refine_topology) at every level, 1 and 2 threads;
 //   primvar:   OpenSubdiv PrimvarRefiner::Interpolate through the levels vs fairshape's
-//              prebuilt operators S_l applied level by level (row-parallel), 1 and 2 threads;
+//              prebuilt operators S_l applied level by level (row-parallel), and vs its
+//              matrix-free step (stencils generated on the fly, like OpenSubdiv), 1 and 2 threads;
 //   stencils:  OpenSubdiv StencilTable::UpdateValues (level 0 -> L in one table) vs
 //              fairshape's composed operator S_{L-1}...S_0 applied once.
 // Arguments: /level/threads.
@@ -145,6 +146,20 @@ void BM_Primvar_Fairshape(benchmark::State& state) {
   set_counters(state, levels);
 }
 
+// Like OpenSubdiv's PrimvarRefiner: no stored operator, weights derived from topology.
+void BM_PrimvarMatrixFree_Fairshape(benchmark::State& state) {
+  const int levels = static_cast<int>(state.range(0));
+  const Ladder& l = ladder(levels);
+  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(state.range(1)));
+  std::vector<MatrixX3> X(levels + 1);
+  X[0] = cow().positions();
+  for (auto _ : state) {
+    for (int k = 0; k < levels; ++k) subdivide_positions_matrix_free(l.meshes[k], {}, X[k], X[k + 1]);
+    benchmark::DoNotOptimize(X.back().data());
+  }
+  set_counters(state, levels);
+}
+
 void BM_Stencils_OpenSubdiv(benchmark::State& state) {
   const int levels = static_cast<int>(state.range(0));
   const auto refiner = osd_refine(levels);
@@ -187,6 +202,7 @@ BENCHMARK(BM_Topology_OpenSubdiv)->Apply(levels_only)->Unit(benchmark::kMillisec
 BENCHMARK(BM_Topology_Fairshape)->Apply(levels_and_threads)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Primvar_OpenSubdiv)->Apply(levels_only)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Primvar_Fairshape)->Apply(levels_and_threads)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PrimvarMatrixFree_Fairshape)->Apply(levels_and_threads)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Stencils_OpenSubdiv)->Apply(levels_only)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Stencils_Fairshape)->Apply(levels_and_threads)->Unit(benchmark::kMillisecond);
 

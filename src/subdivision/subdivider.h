@@ -35,6 +35,11 @@ class Subdivider {
 //! Defined in make_subdivider.cpp, above both back ends.
 std::unique_ptr<Subdivider> make_subdivider(Backend backend);
 
+//! One step of positions without storing S: every stencil is generated and applied on the fly
+//! (TBB over child vertices). Restriction by Sᵀ uses the stored operator instead.
+void subdivide_positions_matrix_free(const SurfaceMesh& coarse, const SubdivisionOptions& opt, const MatrixX3& X,
+                                     MatrixX3& Y);
+
 //! The child faces, written out plainly: the specification refine_topology is tested against.
 PolygonList child_faces(const SurfaceMesh& coarse, SchemeType scheme);
 int child_vertex_count(const SurfaceMesh& coarse, SchemeType scheme);

@@ -322,6 +322,9 @@ TEST_CASE("reference and optimized subdivision operators agree to 1e-12", "[subd
         const Refinement ref = make_subdivider(Backend::Reference)->refine(m, opt);
         const Refinement opt_r = make_subdivider(Backend::Optimized)->refine(m, opt);
         CHECK((ref.S - opt_r.S).norm() <= 1e-12 * ref.S.norm());
+        MatrixX3 Y;
+        subdivide_positions_matrix_free(m, opt, m.positions(), Y);
+        CHECK((Y - MatrixX3(ref.S * m.positions())).norm() <= 1e-12 * Y.norm());
         // Rows sum to one and reproduce affine functions.
         const Eigen::VectorXd ones = Eigen::VectorXd::Ones(m.n_vertices());
         CHECK((ref.S * ones - Eigen::VectorXd::Ones(ref.S.rows())).cwiseAbs().maxCoeff() <= 1e-14);

@@ -1,0 +1,75 @@
+// One subdivision step of positions without a stored operator, staged as the rules are:
+// face points, then edge points (which use them), then vertex points (which use both), each
+// stage a TBB loop whose outputs are independent. Same arithmetic as the masks, so the result
+// equals S X up to rounding.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "subdivision/subdivider.h"
+
+namespace fairshape {
+namespace {
+
+template <class F>
+void parallel_range(int n, const F& body) {
+  tbb::parallel_for(tbb::blocked_range<int>(0, n, 2048), [&](const tbb::blocked_range<int>& r) {
+    for (int i = r.begin(); i != r.end(); ++i) body(i);
+  });
+}
+
+using Row = Eigen::RowVector3d;
+
+}  // namespace
+
+void subdivide_positions_matrix_free(const SurfaceMesh& m, const SubdivisionOptions& opt, const MatrixX3& X,
+                                     MatrixX3& Y) {
+  const bool cc = opt.scheme == SchemeType::CatmullClark;
+  if (!cc) require_triangles(m, "subdivide");
+  const int nv = m.n_vertices(), ne = m.n_edges(), nf = m.n_faces();
+  Y.resize(child_vertex_count(m, opt.scheme), 3);
+  const int fp = nv + ne;  // first face point
+  if (cc) {
+    parallel_range(nf, [&](int f) {
+      const int h0 = m.face_halfedge(f);
+      Row sum = Row::Zero();
+      int k = 0, h = h0;
+      do { sum += X.row(m.from_vertex(h)); ++k; h = m.next(h); } while (h != h0);
+      Y.row(fp + f) = sum / k;
+    });
+  }
+  parallel_range(ne, [&](int e) {
+    const int h = 2 * e, t = h ^ 1;
+    const Row a = X.row(m.from_vertex(h)), b = X.row(m.to_vertex(h));
+    if (m.is_boundary_halfedge(h) || m.is_boundary_halfedge(t)) Y.row(nv + e) = 0.5 * (a + b);
+    else if (cc) Y.row(nv + e) = 0.25 * (a + b + Y.row(fp + m.face(h)) + Y.row(fp + m.face(t)));
+    else Y.row(nv + e) = 0.375 * (a + b) + 0.125 * (X.row(m.to_vertex(m.next(h))) + X.row(m.to_vertex(m.next(t))));
+  });
+  parallel_range(nv, [&](int v) {
+    const int h0 = m.halfedge(v);
+    const Row x = X.row(v);
+    if (h0 < 0) { Y.row(v) = x; return; }
+    if (m.is_boundary_halfedge(h0)) {
+      const bool corner = m.rotate_ccw(m.rotate_ccw(h0)) == h0;  // valence 2: one face
+      Y.row(v) = corner && opt.boundary == BoundaryMode::EdgeAndCorner
+                     ? x
+                     : Row(0.75 * x + 0.125 * (X.row(m.to_vertex(h0)) + X.row(m.from_vertex(m.prev(h0)))));
+      return;
+    }
+    Row ring = Row::Zero(), faces = Row::Zero();
+    int n = 0, h = h0;
+    do {
+      ring += X.row(m.to_vertex(h));
+      if (cc) faces += Y.row(fp + m.face(h));
+      ++n;
+      h = m.rotate_ccw(h);
+    } while (h != h0);
+    if (cc) {
+      Y.row(v) = (n - 2.0) / n * x + (ring + faces) / (double(n) * n);
+    } else {
+      const double beta = loop_beta(n, opt.weights);
+      Y.row(v) = (1.0 - n * beta) * x + beta * ring;
+    }
+  });
+}
+
+}  // namespace fairshape

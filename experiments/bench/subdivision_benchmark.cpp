@@ -133,31 +133,30 @@ void BM_Primvar_OpenSubdiv(benchmark::State& state) {
   set_counters(state, levels);
 }
 
-void BM_Primvar_Fairshape(benchmark::State& state) {
+// Positions through the ladder, one step function per level.
+template <class Step>
+void run_ladder(benchmark::State& state, const Step& step) {
   const int levels = static_cast<int>(state.range(0));
   const Ladder& l = ladder(levels);
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(state.range(1)));
   std::vector<MatrixX3> X(levels + 1);
   X[0] = cow().positions();
   for (auto _ : state) {
-    for (int k = 0; k < levels; ++k) apply_stencils(l.S[k], X[k], X[k + 1]);
+    for (int k = 0; k < levels; ++k) step(l, k, X[k], X[k + 1]);
     benchmark::DoNotOptimize(X.back().data());
   }
   set_counters(state, levels);
 }
 
+void BM_Primvar_Fairshape(benchmark::State& state) {
+  run_ladder(state, [](const Ladder& l, int k, const MatrixX3& x, MatrixX3& y) { apply_stencils(l.S[k], x, y); });
+}
+
 // Like OpenSubdiv's PrimvarRefiner: no stored operator, weights derived from topology.
 void BM_PrimvarMatrixFree_Fairshape(benchmark::State& state) {
-  const int levels = static_cast<int>(state.range(0));
-  const Ladder& l = ladder(levels);
-  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(state.range(1)));
-  std::vector<MatrixX3> X(levels + 1);
-  X[0] = cow().positions();
-  for (auto _ : state) {
-    for (int k = 0; k < levels; ++k) subdivide_positions_matrix_free(l.meshes[k], {}, X[k], X[k + 1]);
-    benchmark::DoNotOptimize(X.back().data());
-  }
-  set_counters(state, levels);
+  run_ladder(state, [](const Ladder& l, int k, const MatrixX3& x, MatrixX3& y) {
+    subdivide_positions_matrix_free(l.meshes[k], {}, x, y);
+  });
 }
 
 void BM_Stencils_OpenSubdiv(benchmark::State& state) {

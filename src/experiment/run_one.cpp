@@ -225,17 +225,11 @@ MetricRow execute_run(RunSpec& spec, RunCache& cache, const RunOutputs& out) {
       measure_accuracy(spec, cache, sys, red, u, row);
       write_geometry(spec, out, result_mesh(rest, u, sys, spec.formulation));
     }
-  } catch (const IOError& e) {
-    row["termination"] = std::string(to_string(Termination::InvalidInput));
-    row["message"] = e.what();
-  } catch (const InvalidInput& e) {
-    row["termination"] = std::string(to_string(Termination::InvalidInput));
-    row["message"] = e.what();
-  } catch (const TopologyError& e) {
-    row["termination"] = std::string(to_string(Termination::InvalidInput));
-    row["message"] = e.what();
   } catch (const SolverError& e) {
     row["termination"] = std::string(to_string(Termination::NumericalFailure));
+    row["message"] = e.what();
+  } catch (const Error& e) {  // the input: files, topology, constraints
+    row["termination"] = std::string(to_string(Termination::InvalidInput));
     row["message"] = e.what();
   }
   row["time_s"] = num(total.seconds());

@@ -7,6 +7,8 @@
 
 #include "core/error.h"
 #include "experiment/components.h"
+#include "energy/local_quadratic.h"
+#include "io/matrix_market.h"
 #include "io/mesh_io.h"
 #include "io/vtk_io.h"
 #include "mesh/mesh_stats.h"
@@ -126,6 +128,17 @@ int cmd_remesh(const RemeshArgs& a) {
   std::cout << "base faces          " << r.base_faces << "\nfinest vertices     " << r.fine_vertices
             << "\nHausdorff distance  " << r.hausdorff << " (" << 100.0 * r.hausdorff / r.bbox_diagonal
             << "% of the bounding-box diagonal)\nRMS fine->dense     " << r.rms_fine_to_dense << "\n";
+  return 0;
+}
+
+int cmd_energy(const EnergyArgs& a) {
+  if (a.alpha == 0 && a.beta == 0) throw InvalidInput("energy: --alpha and --beta are both zero");
+  const Backend backend = backend_from_string(a.implementation);
+  SurfaceMesh m = load_any(a.mesh, nullptr);
+  if (a.level > 0) m = refine_uniform(m, {scheme_from_string(a.scheme)}, a.level, backend).back();
+  const SparseMatrix H = stretch_bend_hessian(m, {a.alpha, a.beta}, backend);
+  write_matrix_market(H, a.out, true);
+  std::cerr << "H: " << H.rows() << " x " << H.cols() << ", " << H.nonZeros() << " nonzeros -> " << a.out << "\n";
   return 0;
 }
 

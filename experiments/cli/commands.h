@@ -28,5 +28,11 @@ struct RemeshArgs {
   int base_faces = 500, levels = 3;
 };
 int cmd_remesh(const RemeshArgs& a);
+struct EnergyArgs {
+  std::string mesh, out, scheme = "catmull-clark", implementation = "optimized";
+  double alpha = 0.1, beta = 1.0;
+  int level = 0;
+};
+int cmd_energy(const EnergyArgs& a);
 
 }  // namespace fairshape::cli

@@ -78,6 +78,20 @@ int main(int argc, char** argv) {
   c_rem->add_option("--weights", rem.weights, "Loop weights")->capture_default_str()->check(CLI::IsMember({"loop", "warren"}));
   c_rem->add_option("output", rem.output, "hierarchy (.vtm, plus a .json sidecar)")->required();
 
+  EnergyArgs en;
+  auto* c_en = app.add_subcommand("energy", "export the stretch+bend matrix H (E = ½ Pᵀ H P, Boier-Martin et al. §3.4) "
+                                            "of a mesh or one of its subdivision levels as Matrix Market");
+  c_en->add_option("mesh", en.mesh, "mesh (.obj, .off, .ply, .vtp)")->required();
+  c_en->add_option("--out", en.out, "output .mtx (SciPy: scipy.io.mmread)")->required();
+  c_en->add_option("--alpha", en.alpha, "stretch weight")->capture_default_str()->check(CLI::NonNegativeNumber);
+  c_en->add_option("--beta", en.beta, "bend weight")->capture_default_str()->check(CLI::NonNegativeNumber);
+  c_en->add_option("--level", en.level, "subdivide the mesh this many times first")->capture_default_str()
+      ->check(CLI::Range(0, 8));
+  c_en->add_option("--scheme", en.scheme, "scheme for --level")->capture_default_str()
+      ->check(CLI::IsMember({"catmull-clark", "loop"}));
+  c_en->add_option("--implementation", en.implementation, "back end")->capture_default_str()
+      ->check(CLI::IsMember({"reference", "optimized"}));
+
   auto* c_list = app.add_subcommand("list", "every registered energy, constraint and solver, with options");
 
   std::vector<std::string> merge_in;
@@ -105,6 +119,7 @@ int main(int argc, char** argv) {
     if (*c_list) return cmd_list();
     if (*c_sub) return cmd_subdivide(sub);
     if (*c_rem) return cmd_remesh(rem);
+    if (*c_en) return cmd_energy(en);
     if (*c_merge) {
       fairshape::merge_run_tables(merge_in, merge_out);
       return 0;

@@ -1,5 +1,7 @@
 #include "core/config.h"
 
+#include <cstdio>
+#include <cstdlib>
 #include <sstream>
 
 namespace fairshape {
@@ -100,6 +102,15 @@ void Config::check_no_unknown_keys() const {
     throw InvalidConfig(key_path(k) + ": unknown key (valid keys here: " +
                         (valid.empty() ? "none" : valid) + ")");
   }
+}
+
+std::string format_default(double v) {
+  char buf[32];
+  for (int precision = 6; precision <= 17; ++precision) {
+    std::snprintf(buf, sizeof buf, "%.*g", precision, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
+  return buf;
 }
 
 std::string yaml_to_string(const YAML::Node& n) {

@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <type_traits>
 #include <string>
 #include <vector>
 
@@ -62,11 +63,14 @@ class Config {
 
 std::string yaml_to_string(const YAML::Node& n);  // one-line flow style, for messages and CSV
 
+std::string format_default(double v);  // shortest round-trip form, for docs
+
 template <class T>
 T Config::get(const std::string& key, const T& fallback, const std::string& doc) {
   YAML::Node fb;
   fb = fallback;
-  mark(key, yaml_to_string(fb), doc);
+  if constexpr (std::is_floating_point_v<T>) mark(key, format_default(fallback), doc);
+  else mark(key, yaml_to_string(fb), doc);
   if (!has(key)) return fallback;
   try {
     return node_[key].as<T>();

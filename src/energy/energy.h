@@ -16,6 +16,9 @@ class Energy {
   virtual ~Energy() = default;
   //! Adds weight × H to `out`, as triplets over vertex ids of `rest`.
   virtual void add_hessian(const SurfaceMesh& rest, double weight, Triplets& out) const = 0;
+  //! True when the energy is of the deformed positions P_rest + u rather than of the
+  //! displacement u: the problem then gains the linear term −H P_rest.
+  virtual bool measures_positions() const { return false; }
 };
 
 using EnergyRegistry = Registry<Energy>;

@@ -33,12 +33,17 @@ double median(std::vector<double> v) {
 
 ConstrainedSystem assemble(const RunSpec& spec, const SurfaceMesh& rest) {
   const int n = rest.n_vertices();
-  Triplets t;
-  for (const auto& e : spec.energies) e.energy->add_hessian(rest, e.weight, t);
   ConstrainedSystem sys;
   sys.H.resize(n, n);
-  sys.H.setFromTriplets(t.begin(), t.end());
   sys.g = Eigen::MatrixXd::Zero(n, 3);
+  for (const auto& e : spec.energies) {
+    Triplets t;
+    e.energy->add_hessian(rest, e.weight, t);
+    SparseMatrix He(n, n);
+    He.setFromTriplets(t.begin(), t.end());
+    if (e.energy->measures_positions()) sys.g -= He * rest.positions();  // E(P_rest + u)
+    sys.H += He;
+  }
   PrescribedValues prescribed;
   for (const auto& c : spec.constraints) c.constraint->prescribe(rest, prescribed);
   // Nothing pinned and H·1 = 0: the minimizer is defined only up to a translation.

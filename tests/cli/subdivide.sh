@@ -27,3 +27,19 @@ expect_error 2 "non-manifold" -- "$FS" subdivide --scheme catmull-clark --levels
 expect_error 2 "scheme" -- "$FS" subdivide --scheme butterfly --levels 1 data/cow.off "$SCRATCH/x.obj"
 [ ! -e "$SCRATCH/x.obj" ] || fail "a refused subdivision wrote a file"
 echo "subdivide: ok"
+# fairshape energy: H of a subdivision level as symmetric Matrix Market, rows summing to zero.
+"$FS" energy data/torus_quad.off --level 1 --alpha 0.2 --beta 1 --out "$SCRATCH/H.mtx" 2>/dev/null
+$PY - "$SCRATCH/H.mtx" <<'PYEOF'
+import sys
+lines = [l for l in open(sys.argv[1]) if not l.startswith("%")]
+n, m, nnz = map(int, lines[0].split())
+assert n == m == 100 and open(sys.argv[1]).readline().strip().endswith("symmetric")
+rows = [0.0] * n
+for l in lines[1:]:
+    i, j, v = l.split(); i, j, v = int(i) - 1, int(j) - 1, float(v)
+    rows[i] += v
+    if i != j: rows[j] += v
+assert max(abs(r) for r in rows) < 1e-9 * max(1.0, max(abs(float(l.split()[2])) for l in lines[1:])), max(rows)
+PYEOF
+expect_error 2 "both zero" -- "$FS" energy data/torus_quad.off --alpha 0 --beta 0 --out "$SCRATCH/Z.mtx"
+echo "energy: ok"

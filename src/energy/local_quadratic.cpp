@@ -1,0 +1,51 @@
+#include "energy/local_quadratic.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "energy/divided_differences.h"
+
+namespace fairshape {
+
+void add_vertex_block(const SurfaceMesh& mesh, int v, const StretchBendWeights& w, double scale, Triplets& out) {
+  if (mesh.is_isolated(v)) return;
+  const LocalFit fit = local_fit(mesh, v);
+  const int n = static_cast<int>(fit.ring.size());
+  const double weight[5] = {w.alpha, w.alpha, w.beta, 2.0 * w.beta, w.beta};
+  // G: 5 × (1 + n) rows g_m over (v, ring...): g_m[v] = −Σ_j D_mj, g_m[ring j] = D_mj.
+  Eigen::MatrixXd G(5, n + 1);
+  G.col(0) = -fit.D.rowwise().sum();
+  G.rightCols(n) = fit.D;
+  const Eigen::MatrixXd block = 2.0 * scale * G.transpose() * Eigen::Vector<double, 5>(weight).asDiagonal() * G;
+  std::vector<int> ids{v};
+  ids.insert(ids.end(), fit.ring.begin(), fit.ring.end());
+  for (int a = 0; a <= n; ++a)
+    for (int b = 0; b <= n; ++b) out.emplace_back(ids[a], ids[b], block(a, b));
+}
+
+void add_stretch_bend_hessian(const SurfaceMesh& mesh, const StretchBendWeights& w, double scale, Triplets& out,
+                              Backend backend) {
+  const int nv = mesh.n_vertices();
+  if (backend == Backend::Reference) {
+    for (int v = 0; v < nv; ++v) add_vertex_block(mesh, v, w, scale, out);
+    return;
+  }
+  constexpr int kChunk = 1024;
+  const int chunks = (nv + kChunk - 1) / kChunk;
+  std::vector<Triplets> parts(chunks);
+  tbb::parallel_for(tbb::blocked_range<int>(0, chunks, 1), [&](const tbb::blocked_range<int>& r) {
+    for (int c = r.begin(); c != r.end(); ++c)
+      for (int v = c * kChunk; v < std::min(nv, (c + 1) * kChunk); ++v) add_vertex_block(mesh, v, w, scale, parts[c]);
+  });
+  for (auto& p : parts) out.insert(out.end(), p.begin(), p.end());  // chunk order: deterministic
+}
+
+SparseMatrix stretch_bend_hessian(const SurfaceMesh& mesh, const StretchBendWeights& w, Backend backend) {
+  Triplets t;
+  add_stretch_bend_hessian(mesh, w, 1.0, t, backend);
+  SparseMatrix H(mesh.n_vertices(), mesh.n_vertices());
+  H.setFromTriplets(t.begin(), t.end());
+  return H;
+}
+
+}  // namespace fairshape

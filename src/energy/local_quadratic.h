@@ -1,0 +1,26 @@
+// The discrete stretch + bend energy of §3.4 (Boier-Martin et al.):
+//   E(P) = Σ_i Σ_{j,k ∈ R(i)} E_ijk (P_j − P_i)ᵀ(P_k − P_i) = ½ Pᵀ H P,
+//   E_ijk = α (D1j D1k + D2j D2k) + β (D3j D3k + 2 D4j D4k + D5j D5k).
+// Per vertex this is Σ_m w_m (g_m · P)² with w = (α, α, β, 2β, β) and g_m the m-th divided
+// difference as a row over {i} ∪ R(i), so H = 2 Σ_i Σ_m w_m g_mᵀ g_m.
+#pragma once
+
+#include "core/backend.h"
+#include "core/types.h"
+#include "mesh/surface_mesh.h"
+
+namespace fairshape {
+
+struct StretchBendWeights {
+  double alpha = 0.1;  // stretch (first derivatives)
+  double beta = 1.0;   // bend (second derivatives)
+};
+
+//! Adds scale × (vertex v's block of H) to `out`. \throw InvalidInput for a degenerate ring.
+void add_vertex_block(const SurfaceMesh& mesh, int v, const StretchBendWeights& w, double scale, Triplets& out);
+//! scale × H over all vertices: reference = one vertex after another; optimized = TBB chunks.
+void add_stretch_bend_hessian(const SurfaceMesh& mesh, const StretchBendWeights& w, double scale, Triplets& out,
+                              Backend backend);
+SparseMatrix stretch_bend_hessian(const SurfaceMesh& mesh, const StretchBendWeights& w, Backend backend);
+
+}  // namespace fairshape

@@ -1,0 +1,49 @@
+// The two registered formulations of the stretch + bend energy (Boier-Martin et al.):
+//   thin-plate         energy of the deformed positions, E(P_rest + ΔP) (§3.4);
+//   detail-preserving  energy of the deformation itself, E(ΔP), with the divided differences
+//                      taken from the rest shape (§4.1): details ride along with an edit.
+// The unknowns are always displacements; thin-plate's linear term −H P_rest comes from
+// measures_positions().
+#include "energy/energy.h"
+#include "energy/local_quadratic.h"
+
+namespace fairshape {
+namespace {
+
+class StretchBend : public Energy {
+ public:
+  StretchBend(StretchBendWeights w, Backend backend, bool positions)
+      : w_(w), backend_(backend), positions_(positions) {}
+  void add_hessian(const SurfaceMesh& rest, double weight, Triplets& out) const override {
+    add_stretch_bend_hessian(rest, w_, weight, out, backend_);
+  }
+  bool measures_positions() const override { return positions_; }
+
+ private:
+  StretchBendWeights w_;
+  Backend backend_;
+  bool positions_;
+};
+
+StretchBendWeights weights_from(Config& cfg) {
+  StretchBendWeights w;
+  w.alpha = cfg.get_number("alpha", w.alpha, 0.0, 1e12, "stretch weight α (first divided differences)");
+  w.beta = cfg.get_number("beta", w.beta, 0.0, 1e12, "bend weight β (second divided differences)");
+  if (w.alpha == 0 && w.beta == 0) throw InvalidConfig(cfg.path() + ": alpha and beta are both zero");
+  return w;
+}
+
+}  // namespace
+
+void register_stretch_bend(EnergyRegistry& r) {
+  for (Backend b : {Backend::Reference, Backend::Optimized}) {
+    r.add("thin-plate", b,
+          "α·stretch + β·bend of the deformed surface, local quadratic fits (Boier-Martin et al. §3.4)",
+          [b](Config& cfg) -> std::unique_ptr<Energy> { return std::make_unique<StretchBend>(weights_from(cfg), b, true); });
+    r.add("detail-preserving", b,
+          "α·stretch + β·bend of the deformation ΔP, fits from the rest shape (Boier-Martin et al. §4.1)",
+          [b](Config& cfg) -> std::unique_ptr<Energy> { return std::make_unique<StretchBend>(weights_from(cfg), b, false); });
+  }
+}
+
+}  // namespace fairshape

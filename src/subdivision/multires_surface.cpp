@@ -95,10 +95,25 @@ const MatrixX3& MultiresSurface::details(int level, DetailSpace space) const {
   return space == DetailSpace::World ? world_[level] : local_[level];
 }
 
-void MultiresSurface::set_base_positions(const MatrixX3& X0) {
-  if (X0.rows() != meshes_[0].n_vertices() || !X0.allFinite())
-    throw InvalidInput("set_base_positions: expected " + std::to_string(meshes_[0].n_vertices()) + " finite rows");
-  meshes_[0].positions() = X0;
+void MultiresSurface::set_base_positions(const MatrixX3& X0) { set_level_positions(0, X0); }
+
+void MultiresSurface::set_level_positions(int level, const MatrixX3& X) {
+  if (level < 0 || level > levels())
+    throw InvalidInput("set_level_positions: level " + std::to_string(level) + " outside [0, " +
+                       std::to_string(levels()) + "]");
+  if (X.rows() != meshes_[level].n_vertices() || !X.allFinite())
+    throw InvalidInput("set_level_positions: level " + std::to_string(level) + " needs " +
+                       std::to_string(meshes_[level].n_vertices()) + " finite rows");
+  meshes_[level].positions() = X;
+}
+
+SparseMatrix MultiresSurface::prolongation(int from, int to) const {
+  if (from < 0 || to > levels() || from > to)
+    throw InvalidInput("prolongation: levels " + std::to_string(from) + " -> " + std::to_string(to) + " outside the hierarchy");
+  SparseMatrix P(meshes_[from].n_vertices(), meshes_[from].n_vertices());
+  P.setIdentity();
+  for (int l = from; l < to; ++l) P = SparseMatrix(S_[l] * P);
+  return P;
 }
 
 void MultiresSurface::set_details(int level, const MatrixX3& d, DetailSpace space) {
@@ -109,8 +124,8 @@ void MultiresSurface::set_details(int level, const MatrixX3& d, DetailSpace spac
   (space == DetailSpace::World ? world_ : local_)[level] = d;
 }
 
-void MultiresSurface::synthesize(DetailSpace keep) {
-  for (int l = 0; l < levels(); ++l) {
+void MultiresSurface::synthesize_from(int level, DetailSpace keep) {
+  for (int l = level; l < levels(); ++l) {
     MatrixX3 predicted = S_[l] * meshes_[l].positions();
     SurfaceMesh& fine = meshes_[l + 1];
     fine.positions() = predicted;

@@ -47,10 +47,16 @@ class MultiresSurface {
   const MatrixX3& details(int level, DetailSpace space) const;
 
   void set_base_positions(const MatrixX3& X0);
+  //! Replaces the positions of one level (an edit made there); synthesize_from(level, ...)
+  //! then rebuilds the finer levels on top of it.
+  void set_level_positions(int level, const MatrixX3& X);
   void set_details(int level, const MatrixX3& d, DetailSpace space);
   //! Recomputes levels 1..L from the base, keeping the details of `keep` fixed (the other
   //! representation is updated to match).
-  void synthesize(DetailSpace keep);
+  void synthesize(DetailSpace keep) { synthesize_from(0, keep); }
+  void synthesize_from(int level, DetailSpace keep);
+  //! The operator mapping positions of level `from` to level `to` ≥ from: S_{to-1} ··· S_from.
+  SparseMatrix prolongation(int from, int to) const;
 
   //! Stores every level as a block of a .vtm (point arrays `detail`, `detail_local`) plus a
   //! JSON sidecar with the scheme options; load checks that the stored levels are consistent.

@@ -1,0 +1,36 @@
+// The constrained minimization of §4.3 (Boier-Martin et al.) at one level:
+//   minimize ½ Σ_c ΔP_cᵀ H ΔP_c − gᵀΔP   subject to   A ΔP = C.
+// `paper`: the constrained vertices' deformations from the minimum-norm least-squares
+//          solution of A ΔP_c = C, then fixed; the free ones from the given solver (Gauss-
+//          Seidel, SOR, CG, Cholesky) on the reduced system.
+// `kkt`:   the exact Lagrange system [H Aᵀ; A 0] (reference Eigen SparseLU, optimized UMFPACK),
+//          for comparison: it satisfies the constraints exactly and minimizes the energy.
+#pragma once
+
+#include "core/backend.h"
+#include "design/multires_constraints.h"
+#include "solver/solver.h"
+
+namespace fairshape {
+
+enum class ConstraintMode { Paper, Kkt };
+
+struct EditProblem {
+  SparseMatrix H;      // n × n, shared by x, y, z
+  Eigen::MatrixXd g;   // n × 3 linear term (thin plate: −H P_rest; detail-preserving: 0)
+  LinearConstraints constraints;
+};
+
+struct EditSolution {
+  Eigen::MatrixXd delta;  // n × 3
+  SolveSummary summary;
+  double constraint_residual = 0;  // ‖A ΔP − C‖_F
+  int constrained_vertices = 0;
+};
+
+//! \throw InvalidInput when there are no constraints (the deformation is then undetermined
+//! for translation-invariant energies) or sizes disagree.
+EditSolution solve_edit(const EditProblem& p, ConstraintMode mode, Solver& free_solver, Backend backend,
+                        const IterationCallback& cb = {});
+
+}  // namespace fairshape

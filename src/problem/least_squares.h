@@ -1,0 +1,27 @@
+// Minimum-norm least-squares solutions of A X = C (A sparse, m × k, any shape and rank;
+// C with one column per coordinate). §4.3 of Boier-Martin et al. fixes the deformations of
+// the constrained vertices this way before solving for the free ones: a point constraint
+// propagated to a coarse level touches more vertices than it has equations, so the
+// underdetermined case (minimum norm) is the common one.
+#pragma once
+
+#include <string>
+
+#include "core/backend.h"
+#include "core/types.h"
+
+namespace fairshape {
+
+struct LeastSquaresResult {
+  Eigen::MatrixXd X;  // k × columns of C
+  int rank = 0;
+  double residual = 0;  // ‖A X − C‖_F: nonzero when the constraints are inconsistent
+};
+
+//! Reference: dense complete orthogonal decomposition (exact minimum norm for any rank).
+//! Optimized: CHOLMOD on A Aᵀ when m < k (minimum norm), SuiteSparseQR otherwise; the dense
+//! COD when the sparse path meets dependent rows.
+//! \throw InvalidInput for non-finite input or mismatched sizes.
+LeastSquaresResult min_norm_least_squares(const SparseMatrix& A, const Eigen::MatrixXd& C, Backend backend);
+
+}  // namespace fairshape

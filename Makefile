@@ -15,7 +15,7 @@ build: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
 test: build
-	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS) -LE slow
+	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS) -LE slow --timeout 600
 
 test-all: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)

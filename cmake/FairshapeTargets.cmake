@@ -31,6 +31,6 @@ function(fairshape_add_test name)
   target_compile_definitions(${name} PRIVATE
       FAIRSHAPE_SOURCE_DIR="${PROJECT_SOURCE_DIR}" FAIRSHAPE_BINARY_DIR="${PROJECT_BINARY_DIR}")
   fairshape_set_flags(${name})
-  catch_discover_tests(${name} PROPERTIES LABELS "${ARG_LABELS}"
+  catch_discover_tests(${name} PROPERTIES LABELS "${ARG_LABELS}" TIMEOUT 300
                        WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
 endfunction()

@@ -1,61 +1,56 @@
-// The `fixed` and `position` constraints, and the bookkeeping that catches conflicts.
-#include <sstream>
-
+// The `fixed` and `position` constraints: selected vertices of one level (the finest unless
+// `level` says otherwise) keep their place or move by an offset.
 #include "constraint/constraint.h"
 #include "constraint/vertex_selection.h"
 
 namespace fairshape {
-
-void PrescribedValues::set(int vertex, const Vec3& value, const std::string& who) {
-  auto [it, inserted] = values_.try_emplace(vertex, value);
-  if (inserted) {
-    owner_[vertex] = who;
-    return;
-  }
-  if ((it->second - value).norm() <= 1e-12 * (1.0 + value.norm())) return;  // same target twice
-  std::ostringstream os;
-  os << "vertex " << vertex << " has incompatible targets: " << owner_[vertex] << " asks for displacement ["
-     << it->second.transpose() << "], " << who << " for [" << value.transpose() << "]";
-  throw InvalidInput(os.str());
-}
-
 namespace {
 
 class PositionConstraint : public Constraint {
  public:
-  PositionConstraint(VertexSelection sel, Vec3 offset, std::string who)
-      : selection_(std::move(sel)), offset_(offset), who_(std::move(who)) {}
-  void prescribe(const SurfaceMesh& rest, PrescribedValues& out) const override {
-    for (int v : selection_.resolve(rest, who_)) out.set(v, offset_, who_);
+  PositionConstraint(VertexSelection sel, Vec3 offset, int level, bool on_limit, std::string who)
+      : selection_(std::move(sel)), offset_(offset), level_(level), on_limit_(on_limit), who_(std::move(who)) {}
+
+  void add_points(const LevelMeshes& mesh_at, int finest, std::vector<PointConstraint>& out) const override {
+    const int level = level_ < 0 ? finest : level_;
+    if (level > finest)
+      throw InvalidInput(who_ + ": level " + std::to_string(level) + " is not in the hierarchy (levels 0.." +
+                         std::to_string(finest) + ")");
+    for (int v : selection_.resolve(mesh_at(level), who_)) out.push_back({level, v, on_limit_, offset_, who_});
   }
 
  private:
   VertexSelection selection_;
   Vec3 offset_;
+  int level_;
+  bool on_limit_;
   std::string who_;
 };
 
 std::string label(const Config& cfg) { return cfg.path().empty() ? "constraint" : cfg.path(); }
 
+std::unique_ptr<Constraint> make(Config& cfg, bool with_offset) {
+  Vec3 offset = Vec3::Zero();
+  if (with_offset) {
+    const auto off = cfg.get<std::vector<double>>("offset", {0, 0, 0}, "displacement [dx, dy, dz] of the handle");
+    if (off.size() != 3) throw InvalidConfig(cfg.key_path("offset") + ": expected 3 numbers");
+    offset = Vec3(off[0], off[1], off[2]);
+    if (!offset.allFinite()) throw InvalidConfig(cfg.key_path("offset") + ": not finite");
+  }
+  const int level = cfg.get_int("level", -1, -1, 16, "hierarchy level of the selected vertices (-1: the finest)");
+  const bool on_limit = cfg.get<bool>("on_limit", false, "constrain the limit positions of the selected vertices");
+  return std::make_unique<PositionConstraint>(VertexSelection::from_config(cfg), offset, level, on_limit, label(cfg));
+}
+
 }  // namespace
 
-std::unique_ptr<Constraint> make_fixed(Config& cfg) {
-  return std::make_unique<PositionConstraint>(VertexSelection::from_config(cfg), Vec3::Zero(), label(cfg));
-}
-
-std::unique_ptr<Constraint> make_position(Config& cfg) {
-  const auto off = cfg.get<std::vector<double>>("offset", {0, 0, 0}, "displacement [dx, dy, dz] of the handle");
-  if (off.size() != 3) throw InvalidConfig(cfg.key_path("offset") + ": expected 3 numbers");
-  for (double d : off)
-    if (!std::isfinite(d)) throw InvalidConfig(cfg.key_path("offset") + ": not finite");
-  return std::make_unique<PositionConstraint>(VertexSelection::from_config(cfg), Vec3(off[0], off[1], off[2]),
-                                              label(cfg));
-}
+std::unique_ptr<Constraint> make_fixed(Config& cfg) { return make(cfg, false); }
+std::unique_ptr<Constraint> make_position(Config& cfg) { return make(cfg, true); }
 
 void register_constraints(ConstraintRegistry& r) {
   for (Backend b : {Backend::Reference, Backend::Optimized}) {
-    r.add("fixed", b, "selected vertices keep their rest position (u = 0)", make_fixed);
-    r.add("position", b, "selected vertices move by a given offset (u = offset)", make_position);
+    r.add("fixed", b, "selected vertices keep their rest position (ΔP = 0)", make_fixed);
+    r.add("position", b, "selected vertices move by a given offset (ΔP = offset)", make_position);
   }
 }
 

@@ -3,13 +3,16 @@
 #include <Eigen/SparseLU>
 #include <Eigen/UmfPackSupport>
 
+#include "core/timer.h"
 #include "problem/constrained_system.h"
 #include "problem/least_squares.h"
 
 namespace fairshape {
 namespace {
 
-EditSolution solve_paper(const EditProblem& p, Solver& solver, Backend backend, const IterationCallback& cb) {
+EditSolution solve_paper(const EditProblem& p, Solver& solver, Backend backend, const IterationCallback& cb,
+                         const Eigen::MatrixXd* initial) {
+  Timer setup;
   const SparseMatrix& A = p.constraints.A;
   std::vector<int> touched;  // vertices that appear in some constraint row
   std::vector<int> column_of(A.cols(), -1);
@@ -29,18 +32,29 @@ EditSolution solve_paper(const EditProblem& p, Solver& solver, Backend backend, 
   const ReducedSystem red = reduce(sys);
   EditSolution out;
   out.constrained_vertices = static_cast<int>(touched.size());
-  Eigen::MatrixXd x = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(red.free.size()), 3);
+  Eigen::MatrixXd x = initial ? red.restrict_to_free(*initial)
+                              : Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(red.free.size()), 3);
   if (red.free.empty()) {
     out.summary = {Termination::Converged, 0, 0.0, "every vertex is constrained"};
   } else {
     solver.analyze(red.A);
-    out.summary = solver.solve(red.A, red.b, x, cb);
+    out.analyze_s = setup.seconds();
+    // Callers see the whole deformation, not the solver's reduced unknowns.
+    Eigen::MatrixXd full;
+    const IterationCallback expanded = [&](const IterationRecord& r) {
+      full = red.expand(*r.x);
+      return cb({r.iteration, r.residual, r.seconds, &full});
+    };
+    Timer t;
+    out.summary = solver.solve(red.A, red.b, x, cb ? expanded : IterationCallback());
+    out.solve_s = t.seconds();
   }
   out.delta = red.expand(x);
   return out;
 }
 
 EditSolution solve_kkt(const EditProblem& p, Backend backend) {
+  Timer setup;
   const SparseMatrix& A = p.constraints.A;
   const Eigen::Index n = p.H.rows(), m = A.rows();
   Triplets t;
@@ -59,14 +73,20 @@ EditSolution solve_kkt(const EditProblem& p, Backend backend) {
   EditSolution out;
   Eigen::MatrixXd sol;
   bool ok = false;
+  auto factor_and_solve = [&](auto& lu) {
+    lu.compute(K);
+    ok = lu.info() == Eigen::Success;
+    out.analyze_s = setup.seconds();
+    Timer t;
+    if (ok) sol = lu.solve(rhs);
+    out.solve_s = t.seconds();
+  };
   if (backend == Backend::Reference) {
-    Eigen::SparseLU<SparseMatrix> lu(K);
-    ok = lu.info() == Eigen::Success;
-    if (ok) sol = lu.solve(rhs);
+    Eigen::SparseLU<SparseMatrix> lu;
+    factor_and_solve(lu);
   } else {
-    Eigen::UmfPackLU<SparseMatrix> lu(K);
-    ok = lu.info() == Eigen::Success;
-    if (ok) sol = lu.solve(rhs);
+    Eigen::UmfPackLU<SparseMatrix> lu;
+    factor_and_solve(lu);
   }
   if (!ok || !sol.allFinite()) {
     out.summary.message = "KKT system is singular (dependent constraints, or nothing pins the deformation)";
@@ -82,12 +102,13 @@ EditSolution solve_kkt(const EditProblem& p, Backend backend) {
 }  // namespace
 
 EditSolution solve_edit(const EditProblem& p, ConstraintMode mode, Solver& free_solver, Backend backend,
-                        const IterationCallback& cb) {
+                        const IterationCallback& cb, const Eigen::MatrixXd* initial) {
   if (p.constraints.A.rows() == 0)
     throw InvalidInput("edit: no constraint: the deformation is undetermined (add a point or fixed constraint)");
   if (p.H.rows() != p.H.cols() || p.g.rows() != p.H.rows() || p.constraints.A.cols() != p.H.rows())
     throw InvalidInput("edit: H, g and the constraints disagree in size");
-  EditSolution out = mode == ConstraintMode::Kkt ? solve_kkt(p, backend) : solve_paper(p, free_solver, backend, cb);
+  EditSolution out =
+      mode == ConstraintMode::Kkt ? solve_kkt(p, backend) : solve_paper(p, free_solver, backend, cb, initial);
   out.constraint_residual = (p.constraints.A * out.delta - p.constraints.C).norm();
   return out;
 }

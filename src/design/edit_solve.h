@@ -24,13 +24,16 @@ struct EditProblem {
 struct EditSolution {
   Eigen::MatrixXd delta;  // n × 3
   SolveSummary summary;
+  double analyze_s = 0, solve_s = 0;  // factorization/setup, then the solve proper
   double constraint_residual = 0;  // ‖A ΔP − C‖_F
   int constrained_vertices = 0;
 };
 
 //! \throw InvalidInput when there are no constraints (the deformation is then undetermined
 //! for translation-invariant energies) or sizes disagree.
+//! `initial` (optional, n × 3) starts the iterative solvers on the free vertices; `cb` gets
+//! the full n × 3 deformation as its iterate.
 EditSolution solve_edit(const EditProblem& p, ConstraintMode mode, Solver& free_solver, Backend backend,
-                        const IterationCallback& cb = {});
+                        const IterationCallback& cb = {}, const Eigen::MatrixXd* initial = nullptr);
 
 }  // namespace fairshape

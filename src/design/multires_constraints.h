@@ -9,17 +9,10 @@
 #include <string>
 #include <vector>
 
+#include "constraint/constraint.h"
 #include "subdivision/multires_surface.h"
 
 namespace fairshape {
-
-struct PointConstraint {
-  int level = 0;          // where the constrained vertex lives (≥ the edit level)
-  int vertex = 0;
-  bool on_limit = false;  // constrain the limit position of that vertex instead
-  Vec3 offset = Vec3::Zero();
-  std::string label;      // names the constraint in error messages
-};
 
 struct LinearConstraints {
   SparseMatrix A;     // m × #vertices of the edit level

@@ -11,7 +11,8 @@
 #include "io/csv.h"
 #include "io/mesh_io.h"
 #include "io/vtk_io.h"
-#include "problem/constrained_system.h"
+#include "design/edit_solve.h"
+#include "remesh/remesh.h"
 #include "subdivision/subdivider.h"
 
 namespace fairshape {
@@ -31,74 +32,80 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-ConstrainedSystem assemble(const RunSpec& spec, const SurfaceMesh& rest) {
+// The problem at the edit level: H and the linear term from the energies, the designer's
+// constraints propagated from their levels (Boier-Martin et al. §4.2).
+EditProblem assemble(const RunSpec& spec, const MultiresSurface& h, int level, std::vector<PointConstraint>& points) {
+  const SurfaceMesh& rest = h.mesh(level);
   const int n = rest.n_vertices();
-  ConstrainedSystem sys;
-  sys.H.resize(n, n);
-  sys.g = Eigen::MatrixXd::Zero(n, 3);
+  EditProblem p;
+  p.H.resize(n, n);
+  p.g = Eigen::MatrixXd::Zero(n, 3);
   for (const auto& e : spec.energies) {
     Triplets t;
     e.energy->add_hessian(rest, e.weight, t);
     SparseMatrix He(n, n);
     He.setFromTriplets(t.begin(), t.end());
-    if (e.energy->measures_positions()) sys.g -= He * rest.positions();  // E(P_rest + u)
-    sys.H += He;
+    if (e.energy->measures_positions() || spec.formulation == Formulation::Position)
+      p.g -= He * rest.positions();  // the energy of P_rest + ΔP
+    p.H += He;
   }
-  PrescribedValues prescribed;
-  for (const auto& c : spec.constraints) c.constraint->prescribe(rest, prescribed);
-  // Nothing pinned and H·1 = 0: the minimizer is defined only up to a translation.
-  if (prescribed.values().empty() && (sys.H * Eigen::VectorXd::Ones(n)).norm() <= 1e-12 * sys.H.norm())
-    throw InvalidInput("the problem is singular: no vertex is fixed or moved, and the energy is invariant under "
-                       "translation (add a 'fixed' or 'position' constraint)");
-  sys.fixed_values.resize(static_cast<Eigen::Index>(prescribed.values().size()), 3);
-  Eigen::Index k = 0;
-  for (const auto& [v, value] : prescribed.values()) {
-    sys.fixed.push_back(v);
-    const Vec3 target = spec.formulation == Formulation::Position ? Vec3(rest.position(v) + value) : value;
-    sys.fixed_values.row(k++) = target.transpose();
-  }
-  return sys;
+  const LevelMeshes mesh_at = [&h](int l) -> const SurfaceMesh& { return h.mesh(l); };
+  for (const auto& c : spec.constraints) c.constraint->add_points(mesh_at, h.levels(), points);
+  p.constraints = propagate_constraints(h, level, points);
+  return p;
 }
 
-Eigen::MatrixXd initial_guess(const RunSpec& spec, const ReducedSystem& red, const SurfaceMesh& rest) {
-  const Eigen::Index n = static_cast<Eigen::Index>(red.free.size());
-  if (spec.initial_guess == "random") {
-    std::mt19937_64 gen(static_cast<std::uint64_t>(spec.seed));
-    std::uniform_real_distribution<double> d(-1.0, 1.0);
-    Eigen::MatrixXd x(n, 3);
-    for (Eigen::Index i = 0; i < x.size(); ++i) x.data()[i] = d(gen);
-    return x;
-  }
-  if (spec.formulation == Formulation::Position) return red.restrict_to_free(rest.positions());
-  return Eigen::MatrixXd::Zero(n, 3);
+Eigen::MatrixXd random_start(const RunSpec& spec, Eigen::Index rows) {
+  std::mt19937_64 gen(static_cast<std::uint64_t>(spec.seed));
+  std::uniform_real_distribution<double> d(-1.0, 1.0);
+  Eigen::MatrixXd x(rows, 3);
+  for (Eigen::Index i = 0; i < x.size(); ++i) x.data()[i] = d(gen);
+  return x;
 }
 
-SurfaceMesh result_mesh(const SurfaceMesh& rest, const Eigen::MatrixXd& u, const ConstrainedSystem& sys,
-                        Formulation f) {
-  SurfaceMesh m = rest;
-  const Eigen::MatrixXd displacement = f == Formulation::Position ? Eigen::MatrixXd(u - rest.positions()) : u;
-  m.positions() = rest.positions() + displacement;
+// A level with the displacement it received and its constrained vertices, for final.obj and VTK.
+SurfaceMesh result_mesh(const SurfaceMesh& before, const MatrixX3& after, int level,
+                        const std::vector<PointConstraint>& points) {
+  SurfaceMesh m = before;
+  m.positions() = after;
+  const Eigen::MatrixXd displacement = after - before.positions();
   m.vertex_data["displacement"] = displacement;
   m.vertex_data["displacement_norm"] = displacement.rowwise().norm();
-  Eigen::MatrixXd constrained = Eigen::MatrixXd::Zero(rest.n_vertices(), 1);
-  for (int v : sys.fixed) constrained(v, 0) = 1.0;
+  Eigen::MatrixXd constrained = Eigen::MatrixXd::Zero(m.n_vertices(), 1);
+  for (const auto& p : points)
+    if (p.level == level) constrained(p.vertex, 0) = 1.0;
   m.vertex_data["constrained"] = constrained;
   return m;
 }
 
-// Writes iterations.csv rows and VTK snapshots while a solve runs.
+// Boier-Martin et al.'s claim as a number: the RMS change of the local-frame detail vectors
+// (re-analysed from the edited finest level) relative to their RMS size before the edit.
+// Empty for hierarchies without details.
+std::string detail_change(const MultiresSurface& before, const SurfaceMesh& edited_finest, Backend backend) {
+  if (before.levels() == 0) return "";
+  const MultiresSurface after =
+      MultiresSurface::analyze(before.mesh(0), edited_finest.positions(), before.options(), before.levels(), backend);
+  double change = 0, size = 0;
+  for (int l = 1; l <= before.levels(); ++l) {
+    change += (after.details(l, DetailSpace::Local) - before.details(l, DetailSpace::Local)).squaredNorm();
+    size += before.details(l, DetailSpace::Local).squaredNorm();
+  }
+  return size > 0 ? num(std::sqrt(change / size)) : "";
+}
+
+// Writes iterations.csv rows and VTK snapshots of the edit level while a solve runs.
 class IterationSink {
  public:
-  IterationSink(const RunSpec& spec, const RunOutputs& out, const SurfaceMesh& rest, const ConstrainedSystem& sys,
-                const ReducedSystem& red)
-      : spec_(spec), out_(out), rest_(rest), sys_(sys), red_(red) {
+  IterationSink(const RunSpec& spec, const RunOutputs& out, const SurfaceMesh& rest, int level,
+                const std::vector<PointConstraint>& points)
+      : spec_(spec), out_(out), rest_(rest), level_(level), points_(points) {
     if (spec.output.iterations) csv_ = std::make_unique<CsvAppender>((fs::path(out.dir) / "iterations.csv").string());
   }
   bool operator()(const IterationRecord& r) {
     if (csv_) csv_->append({out_.run_id, std::to_string(r.iteration), num(r.residual), num(r.seconds)});
     if (spec_.output.vtk == "every_iteration" && r.iteration % spec_.output.vtk_every == 0) {
       const std::string file = out_.run_id + "_it" + std::to_string(r.iteration) + ".vtp";
-      write_vtp(result_mesh(rest_, red_.expand(*r.x), sys_, spec_.formulation),
+      write_vtp(result_mesh(rest_, rest_.positions() + MatrixX3(*r.x), level_, points_),
                 (fs::path(out_.dir) / "vtk" / file).string());
       steps_.emplace_back(r.iteration, file);
     }
@@ -112,35 +119,37 @@ class IterationSink {
   const RunSpec& spec_;
   const RunOutputs& out_;
   const SurfaceMesh& rest_;
-  const ConstrainedSystem& sys_;
-  const ReducedSystem& red_;
+  int level_;
+  const std::vector<PointConstraint>& points_;
   std::unique_ptr<CsvAppender> csv_;
   std::vector<std::pair<double, std::string>> steps_;
 };
 
-void measure_accuracy(const RunSpec& spec, RunCache& cache, const ConstrainedSystem& sys, const ReducedSystem& red,
-                      const Eigen::MatrixXd& u, MetricRow& row) {
-  row["energy"] = num(energy(sys, u));
-  double violation = 0;
-  for (std::size_t k = 0; k < sys.fixed.size(); ++k)
-    violation = std::max(violation, (u.row(sys.fixed[k]) - sys.fixed_values.row(static_cast<Eigen::Index>(k))).norm());
-  row["constraint_violation"] = num(violation);
-  if (!spec.output.reference_solution) return;
-  const Eigen::MatrixXd* ref = cache.reference_solution(spec.system_key);
-  if (!ref) {
-    Config none;
-    auto direct = components().solvers.create("cholesky", Backend::Reference, none);
-    Eigen::MatrixXd x;
-    direct->analyze(red.A);
-    if (direct->solve(red.A, red.b, x).termination != Termination::Converged) return;
-    cache.store_reference_solution(spec.system_key, red.expand(x));
-    ref = cache.reference_solution(spec.system_key);
-  }
-  const double scale = ref->norm() > 0 ? ref->norm() : 1.0;
-  row["error_vs_reference"] = num((u - *ref).norm() / scale);
+ConstraintMode mode_of(const RunSpec& spec) {
+  return spec.constraint_mode == "kkt" ? ConstraintMode::Kkt : ConstraintMode::Paper;
 }
 
-void write_geometry(const RunSpec& spec, const RunOutputs& out, const SurfaceMesh& result) {
+void measure_accuracy(const RunSpec& spec, RunCache& cache, const EditProblem& p, const EditSolution& sol,
+                      MetricRow& row) {
+  const Eigen::MatrixXd& d = sol.delta;
+  row["energy"] = num(0.5 * (d.transpose() * (p.H * d)).trace() - (p.g.transpose() * d).trace());
+  row["constraint_violation"] = num(sol.constraint_residual);
+  if (!spec.output.reference_solution) return;
+  const std::string key = spec.system_key + spec.constraint_mode;
+  const Eigen::MatrixXd* ref = cache.reference_solution(key);
+  if (!ref) {  // the same problem, solved directly by the reference back end
+    Config none;
+    auto direct = components().solvers.create("cholesky", Backend::Reference, none);
+    const EditSolution exact = solve_edit(p, mode_of(spec), *direct, Backend::Reference);
+    if (exact.summary.termination != Termination::Converged) return;
+    cache.store_reference_solution(key, exact.delta);
+    ref = cache.reference_solution(key);
+  }
+  const double scale = ref->norm() > 0 ? ref->norm() : 1.0;
+  row["error_vs_reference"] = num((d - *ref).norm() / scale);
+}
+
+void write_geometry(const RunSpec& spec, const RunOutputs& out, const SurfaceMesh& result, const MultiresSurface& h) {
   if (spec.output.final_mesh) {
     fs::path p = fs::path(out.dir) / "final.obj";
     if (!out.single_run) {
@@ -149,7 +158,9 @@ void write_geometry(const RunSpec& spec, const RunOutputs& out, const SurfaceMes
     }
     write_mesh(result, p.string());
   }
-  if (spec.output.vtk != "none") write_vtp(result, (fs::path(out.dir) / "vtk" / (out.run_id + ".vtp")).string());
+  if (spec.output.vtk == "none") return;
+  write_vtp(result, (fs::path(out.dir) / "vtk" / (out.run_id + ".vtp")).string());
+  if (h.levels() > 0) h.save((fs::path(out.dir) / "vtk" / (out.run_id + "_levels.vtm")).string());
 }
 
 }  // namespace
@@ -157,24 +168,27 @@ void write_geometry(const RunSpec& spec, const RunOutputs& out, const SurfaceMes
 const std::vector<std::string>& metric_columns() {
   static const std::vector<std::string> cols{
       "n_dofs", "n_fine", "n_constrained", "repeat", "subdivide_s", "assemble_s", "analyze_s", "solve_s", "solve_min_s",
-      "time_s", "iterations", "residual", "energy", "constraint_violation", "error_vs_reference",
+      "time_s", "iterations", "residual", "energy", "constraint_violation", "error_vs_reference", "detail_change",
       "peak_rss_mb", "termination", "message"};
   return cols;
 }
 
-const SurfaceMesh& RunCache::surface(const RunSpec& spec, double* build_s) {
+const MultiresSurface& RunCache::hierarchy(const RunSpec& spec, double* build_s) {
   const std::string key = spec.mesh_path + "|" + spec.representation + "|" + std::to_string(spec.levels) + "|" +
-                          spec.boundary + "|" + spec.loop_weights + "|" + std::string(to_string(spec.implementation));
-  auto it = surfaces_.find(key);
-  if (it == surfaces_.end()) {
-    SurfaceMesh m = read_mesh(spec.mesh_path);
+                          spec.boundary + "|" + spec.loop_weights + "|" + std::to_string(spec.remesh_base_faces) +
+                          "|" + std::string(to_string(spec.implementation));
+  auto it = hierarchies_.find(key);
+  if (it == hierarchies_.end()) {
+    const SurfaceMesh input = read_mesh(spec.mesh_path);
     Timer t;
-    if (spec.levels > 0) {
-      const SubdivisionOptions opt{scheme_from_string(spec.representation), boundary_from_string(spec.boundary),
-                                   loop_weights_from_string(spec.loop_weights)};
-      m = refine_uniform(m, opt, spec.levels, spec.implementation).back();
-    }
-    it = surfaces_.emplace(key, std::make_pair(std::move(m), t.seconds())).first;
+    SubdivisionOptions opt;
+    if (spec.representation != "mesh")
+      opt = {scheme_from_string(spec.representation), boundary_from_string(spec.boundary),
+             loop_weights_from_string(spec.loop_weights)};
+    MultiresSurface h = spec.remesh_base_faces > 0
+                            ? remesh(input, {opt, spec.remesh_base_faces, spec.levels, spec.implementation}, nullptr)
+                            : MultiresSurface(input, opt, spec.levels, spec.implementation);
+    it = hierarchies_.emplace(key, std::make_pair(std::move(h), t.seconds())).first;
   }
   *build_s = it->second.second;
   return it->second.first;
@@ -194,41 +208,42 @@ MetricRow execute_run(RunSpec& spec, RunCache& cache, const RunOutputs& out) {
   reset_peak_rss();
   Timer total;
   try {
-    double subdivide_s = 0;
-    const SurfaceMesh& rest = cache.surface(spec, &subdivide_s);
-    row["subdivide_s"] = num(subdivide_s);
+    double build_s = 0;
+    const MultiresSurface& rest = cache.hierarchy(spec, &build_s);
+    row["subdivide_s"] = num(build_s);
+    const int level = spec.edit_level < 0 ? rest.levels() : spec.edit_level;
     Timer t;
-    const ConstrainedSystem sys = assemble(spec, rest);
-    const ReducedSystem red = reduce(sys);
+    std::vector<PointConstraint> points;
+    const EditProblem problem = assemble(spec, rest, level, points);
     row["assemble_s"] = num(t.seconds());
-    row["n_dofs"] = std::to_string(red.free.size());
-    row["n_fine"] = std::to_string(rest.n_vertices());
-    row["n_constrained"] = std::to_string(sys.fixed.size());
-    t.reset();
-    spec.solver->analyze(red.A);
-    row["analyze_s"] = num(t.seconds());
-    const Eigen::MatrixXd x0 = initial_guess(spec, red, rest);
-    IterationSink sink(spec, out, rest, sys, red);
+    row["n_dofs"] = std::to_string(problem.H.rows());
+    row["n_fine"] = std::to_string(rest.mesh(rest.levels()).n_vertices());
+    row["n_constrained"] = std::to_string(problem.constraints.A.rows());
+    const Eigen::MatrixXd start = spec.initial_guess == "random" ? random_start(spec, problem.H.rows()) : Eigen::MatrixXd();
+    IterationSink sink(spec, out, rest.mesh(level), level, points);
     std::vector<double> times;
-    SolveSummary summary;
-    Eigen::MatrixXd x;
+    EditSolution sol;
     for (int r = 0; r < spec.repeat; ++r) {
-      x = x0;
-      t.reset();
-      summary = spec.solver->solve(red.A, red.b, x, r == 0 ? IterationCallback(std::ref(sink)) : IterationCallback());
-      times.push_back(t.seconds());
+      sol = solve_edit(problem, mode_of(spec), *spec.solver, spec.implementation,
+                       r == 0 ? IterationCallback(std::ref(sink)) : IterationCallback(), start.size() ? &start : nullptr);
+      times.push_back(sol.solve_s);
     }
     sink.finish();
+    row["analyze_s"] = num(sol.analyze_s);
     row["solve_s"] = num(median(times));
     row["solve_min_s"] = num(*std::min_element(times.begin(), times.end()));
-    row["iterations"] = std::to_string(summary.iterations);
-    row["residual"] = num(summary.residual);
-    row["termination"] = std::string(to_string(summary.termination));
-    row["message"] = summary.message;
-    if (x.allFinite() && summary.termination != Termination::NumericalFailure) {
-      const Eigen::MatrixXd u = red.expand(x);
-      measure_accuracy(spec, cache, sys, red, u, row);
-      write_geometry(spec, out, result_mesh(rest, u, sys, spec.formulation));
+    row["iterations"] = std::to_string(sol.summary.iterations);
+    row["residual"] = num(sol.summary.residual);
+    row["termination"] = std::string(to_string(sol.summary.termination));
+    row["message"] = sol.summary.message;
+    if (sol.delta.allFinite() && sol.summary.termination != Termination::NumericalFailure) {
+      measure_accuracy(spec, cache, problem, sol, row);
+      MultiresSurface edited = rest;
+      edited.set_level_positions(level, rest.mesh(level).positions() + MatrixX3(sol.delta));
+      edited.synthesize_from(level, DetailSpace::Local);
+      const SurfaceMesh& finest = edited.mesh(edited.levels());
+      row["detail_change"] = detail_change(rest, finest, spec.implementation);
+      write_geometry(spec, out, result_mesh(rest.mesh(rest.levels()), finest.positions(), rest.levels(), points), edited);
     }
   } catch (const SolverError& e) {
     row["termination"] = std::string(to_string(Termination::NumericalFailure));

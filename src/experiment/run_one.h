@@ -6,7 +6,7 @@
 #include <string>
 
 #include "experiment/run_spec.h"
-#include "mesh/surface_mesh.h"
+#include "subdivision/multires_surface.h"
 
 namespace fairshape {
 
@@ -18,14 +18,14 @@ using MetricRow = std::map<std::string, std::string>;
 // What runs of one sweep share: meshes read once, reference solutions solved once per system.
 class RunCache {
  public:
-  //! The surface a run works on: the input mesh, refined spec.levels times when the
-  //! representation is a subdivision scheme; *build_s is the time it took to make.
-  const SurfaceMesh& surface(const RunSpec& spec, double* build_s);
+  //! The hierarchy a run works on: the input mesh (0 levels), its subdivision (zero details)
+  //! or its remesh (details); *build_s is the time it took to make.
+  const MultiresSurface& hierarchy(const RunSpec& spec, double* build_s);
   const Eigen::MatrixXd* reference_solution(const std::string& key) const;
   void store_reference_solution(const std::string& key, Eigen::MatrixXd u);
 
  private:
-  std::map<std::string, std::pair<SurfaceMesh, double>> surfaces_;
+  std::map<std::string, std::pair<MultiresSurface, double>> hierarchies_;
   std::map<std::string, Eigen::MatrixXd> references_;
 };
 

@@ -98,7 +98,16 @@ RunSpec RunSpec::from_config(const YAML::Node& run_config, const Components& c,
   s.levels = in.get_int("levels", 0, 0, 8, "uniform subdivision steps; the problem lives on the finest level");
   s.boundary = in.get_choice("boundary", "edge-only", {"edge-only", "edge-and-corner"}, "subdivision boundary rule");
   s.loop_weights = in.get_choice("weights", "loop", {"loop", "warren"}, "Loop vertex weights");
+  s.remesh_base_faces = in.get_int("remesh_base_faces", 0, 0, 10000000,
+                                   "remesh the input into a hierarchy with details from about this many base faces "
+                                   "(0: the input mesh is the base, zero details)");
+  s.edit_level = in.get_int("edit_level", -1, -1, 8, "level the deformation is solved on (-1: the finest)");
   in.check_no_unknown_keys();
+  if (s.edit_level > s.levels)
+    throw InvalidConfig(in.key_path("edit_level") + ": " + std::to_string(s.edit_level) + " is above the finest level " +
+                        std::to_string(s.levels));
+  if (s.remesh_base_faces > 0 && s.representation == "mesh")
+    throw InvalidConfig(in.key_path("remesh_base_faces") + ": remeshing needs representation catmull-clark or loop");
   if (s.representation == "mesh" && s.levels > 0)
     throw InvalidConfig(in.key_path("levels") + ": " + std::to_string(s.levels) +
                         " subdivision levels need representation catmull-clark or loop");
@@ -109,6 +118,9 @@ RunSpec RunSpec::from_config(const YAML::Node& run_config, const Components& c,
                                 "unknowns: displacement from the rest shape, or positions") == "position"
                       ? Formulation::Position
                       : Formulation::Displacement;
+  s.constraint_mode = pc.get_choice("constraint_mode", "paper", {"paper", "kkt"},
+                                    "paper: least-squares constrained vertices then the solver (§4.3); kkt: exact "
+                                    "Lagrange system");
   pc.check_no_unknown_keys();
   read_solver(root, c, s.implementation, s);
   read_output(root, s.output);

@@ -41,6 +41,9 @@ struct RunSpec {
   Backend implementation = Backend::Optimized;
   std::string mesh_path, representation;  // representation: mesh | catmull-clark | loop
   int levels = 0;                          // uniform subdivision steps of the input mesh
+  int remesh_base_faces = 0;               // > 0: remesh the input into a hierarchy with details
+  int edit_level = -1;                     // where the problem is solved (-1: the finest)
+  std::string constraint_mode = "paper";   // paper | kkt
   std::string boundary = "edge-only", loop_weights = "loop";
   std::vector<EnergyTerm> energies;
   std::vector<ConstraintTerm> constraints;

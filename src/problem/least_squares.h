@@ -18,9 +18,9 @@ struct LeastSquaresResult {
   double residual = 0;  // ‖A X − C‖_F: nonzero when the constraints are inconsistent
 };
 
-//! Reference: dense complete orthogonal decomposition (exact minimum norm for any rank).
-//! Optimized: CHOLMOD on A Aᵀ when m < k (minimum norm), SuiteSparseQR otherwise; the dense
-//! COD when the sparse path meets dependent rows.
+//! Reference: Eigen SparseQR (of Aᵀ when m < k, for the minimum norm). Optimized: CHOLMOD on
+//! A Aᵀ when m < k, SuiteSparseQR otherwise. Dependent rows: a dense complete orthogonal
+//! decomposition for small systems, a SolverError naming the problem for large ones.
 //! \throw InvalidInput for non-finite input or mismatched sizes.
 LeastSquaresResult min_norm_least_squares(const SparseMatrix& A, const Eigen::MatrixXd& C, Backend backend);
 

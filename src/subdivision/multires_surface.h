@@ -28,7 +28,7 @@ Frames local_frames(const SurfaceMesh& mesh, const SubdivisionOptions& opt);
 
 class MultiresSurface {
  public:
-  //! Zero details: every level is the subdivision of the one below.
+  //! Zero details: every level is the subdivision of the one below (levels = 0: just the mesh).
   MultiresSurface(const SurfaceMesh& base, const SubdivisionOptions& opt, int levels, Backend backend);
 
   //! Analysis of a fine semi-regular mesh: `finest` gives the positions of the base refined

@@ -66,23 +66,33 @@ TEST_CASE("no handle moved means no deformation, a common offset is a translatio
   CHECK((moved.rowwise() - t).norm() <= 1e-9);
 }
 
-TEST_CASE("constraints: selections, offsets and incompatible targets", "[constraint]") {
+TEST_CASE("constraints: selections, offsets, levels", "[constraint]") {
   const SurfaceMesh m = test::grid(4);
+  const LevelMeshes one_level = [&m](int) -> const SurfaceMesh& { return m; };
   auto make = [](const std::string& type, const std::string& yaml) {
     Config cfg(YAML::Load(yaml), "constraints[0]");
     auto c = components().constraints.create(type, Backend::Reference, cfg);
     cfg.check_no_unknown_keys();
     return c;
   };
-  PrescribedValues p;
-  make("fixed", "{region: {axis: x, from: 0.0, to: 0.1}}")->prescribe(m, p);
-  CHECK(p.values().size() == 5);  // the column x = 0
-  make("position", "{nearest: [1, 1, 0], offset: [0, 0, 1]}")->prescribe(m, p);
-  CHECK(p.values().at(24) == Vec3(0, 0, 1));
-  make("position", "{vertices: [24], offset: [0, 0, 1]}")->prescribe(m, p);  // same target twice is fine
-  CHECK_THROWS_WITH(make("position", "{vertices: [0], offset: [1, 0, 0]}")->prescribe(m, p),
-                    Catch::Matchers::Contains("vertex 0 has incompatible targets"));
-  CHECK_THROWS_WITH(make("fixed", "{vertices: [99]}")->prescribe(m, p), Catch::Matchers::Contains("vertex 99 does not exist"));
+  std::vector<PointConstraint> p;
+  make("fixed", "{region: {axis: x, from: 0.0, to: 0.1}}")->add_points(one_level, 0, p);
+  CHECK(p.size() == 5);  // the column x = 0
+  for (const auto& c : p) CHECK(c.offset == Vec3::Zero());
+  p.clear();
+  make("position", "{nearest: [1, 1, 0], offset: [0, 0, 1], on_limit: true}")->add_points(one_level, 0, p);
+  REQUIRE(p.size() == 1);
+  CHECK(p[0].vertex == 24);
+  CHECK(p[0].offset == Vec3(0, 0, 1));
+  CHECK(p[0].on_limit);
+  CHECK(p[0].label == "constraints[0]");
+  p.clear();
+  make("position", "{vertices: [3], level: 1, offset: [1, 0, 0]}")->add_points(one_level, 2, p);
+  CHECK(p.at(0).level == 1);
+  CHECK_THROWS_WITH(make("fixed", "{vertices: [99]}")->add_points(one_level, 0, p),
+                    Catch::Matchers::Contains("vertex 99 does not exist"));
+  CHECK_THROWS_WITH(make("fixed", "{vertices: [1], level: 3}")->add_points(one_level, 1, p),
+                    Catch::Matchers::Contains("level 3 is not in the hierarchy"));
   CHECK_THROWS_AS(make("fixed", "{vertices: [1], nearest: [0, 0, 0]}"), InvalidConfig);
   CHECK_THROWS_AS(make("position", "{vertices: [1], offset: [1, 2]}"), InvalidConfig);
 }

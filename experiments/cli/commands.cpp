@@ -127,7 +127,8 @@ int cmd_remesh(const RemeshArgs& a) {
   h.save(a.output);
   std::cout << "base faces          " << r.base_faces << "\nfinest vertices     " << r.fine_vertices
             << "\nHausdorff distance  " << r.hausdorff << " (" << 100.0 * r.hausdorff / r.bbox_diagonal
-            << "% of the bounding-box diagonal)\nRMS fine->dense     " << r.rms_fine_to_dense << "\n";
+            << "% of the bounding-box diagonal)\nRMS fine->dense     " << r.rms_fine_to_dense
+            << "\nshortest edge       " << r.shortest_edge << "\n";
   return 0;
 }
 

@@ -12,6 +12,7 @@
 #include "io/mesh_io.h"
 #include "io/vtk_io.h"
 #include "design/edit_solve.h"
+#include "problem/constrained_system.h"
 #include "remesh/remesh.h"
 #include "subdivision/subdivider.h"
 
@@ -132,7 +133,7 @@ ConstraintMode mode_of(const RunSpec& spec) {
 void measure_accuracy(const RunSpec& spec, RunCache& cache, const EditProblem& p, const EditSolution& sol,
                       MetricRow& row) {
   const Eigen::MatrixXd& d = sol.delta;
-  row["energy"] = num(0.5 * (d.transpose() * (p.H * d)).trace() - (p.g.transpose() * d).trace());
+  row["energy"] = num(quadratic_energy(p.H, p.g, d));
   row["constraint_violation"] = num(sol.constraint_residual);
   if (!spec.output.reference_solution) return;
   const std::string key = spec.system_key + spec.constraint_mode;

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 #include <iostream>
 #include <set>
 
@@ -30,6 +31,7 @@ struct Plan {
   YAML::Node root;
   std::string name;
   std::vector<std::string> search_dirs, columns;
+  std::map<std::string, std::string> swept_key_of;  // CSV column -> swept key (they differ by a prefix)
   std::vector<RunPoint> runs;  // after --filter
 };
 
@@ -69,8 +71,10 @@ Plan make_plan(const SweepOptions& opt) {
   }
   plan.columns = {"run_id"};
   const auto& metrics = metric_columns();
-  for (const auto& k : swept_keys(plan.root))  // a swept key named like a metric (energy) gets a prefix
+  for (const auto& k : swept_keys(plan.root)) {  // a swept key named like a metric (energy) gets a prefix
     plan.columns.push_back(std::find(metrics.begin(), metrics.end(), k) == metrics.end() ? k : "param." + k);
+    plan.swept_key_of[plan.columns.back()] = k;
+  }
   for (const char* k : {"implementation", "solver.type"})
     if (std::find(plan.columns.begin(), plan.columns.end(), k) == plan.columns.end()) plan.columns.push_back(k);
   for (const auto& m : metric_columns()) plan.columns.push_back(m);
@@ -141,7 +145,7 @@ std::vector<std::string> row_fields(const Plan& plan, const RunPoint& p, const R
     else if (m.count(c)) out.push_back(m.at(c));
     else if (c == "implementation") out.push_back(std::string(to_string(spec.implementation)));
     else if (c == "solver.type") out.push_back(spec.solver_type);
-    else out.push_back(yaml_to_string(get_by_path(p.config, c.rfind("param.", 0) == 0 ? c.substr(6) : c)));
+    else out.push_back(yaml_to_string(get_by_path(p.config, plan.swept_key_of.at(c))));
   }
   return out;
 }

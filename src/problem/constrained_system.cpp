@@ -56,8 +56,8 @@ Eigen::MatrixXd ReducedSystem::restrict_to_free(const Eigen::MatrixXd& u_full) c
   return out;
 }
 
-double energy(const ConstrainedSystem& s, const Eigen::MatrixXd& u) {
-  return 0.5 * (u.transpose() * (s.H * u)).trace() - (s.g.transpose() * u).trace();
+double quadratic_energy(const SparseMatrix& H, const Eigen::MatrixXd& g, const Eigen::MatrixXd& u) {
+  return 0.5 * (u.transpose() * (H * u)).trace() - (g.transpose() * u).trace();
 }
 
 double relative_residual(const SparseMatrix& A, const Eigen::MatrixXd& b, const Eigen::MatrixXd& x) {

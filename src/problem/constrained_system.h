@@ -31,7 +31,8 @@ struct ReducedSystem {
 
 //! \throw InvalidInput when sizes disagree, a fixed id is out of range, or values are not finite.
 ReducedSystem reduce(const ConstrainedSystem& s);
-double energy(const ConstrainedSystem& s, const Eigen::MatrixXd& u);
+//! ½ Σ_c u_cᵀ H u_c − Σ_c g_cᵀ u_c, the objective of a ConstrainedSystem or an edit problem.
+double quadratic_energy(const SparseMatrix& H, const Eigen::MatrixXd& g, const Eigen::MatrixXd& u);
 //! ‖b − A x‖_F / ‖b‖_F (or ‖b − A x‖_F when b = 0).
 double relative_residual(const SparseMatrix& A, const Eigen::MatrixXd& b, const Eigen::MatrixXd& x);
 

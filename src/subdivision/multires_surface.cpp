@@ -50,9 +50,7 @@ Frames local_frames(const SurfaceMesh& mesh, const SubdivisionOptions& opt) {
 
 MultiresSurface::MultiresSurface(const SurfaceMesh& base, const SubdivisionOptions& opt, int levels, Backend backend)
     : opt_(opt), backend_(backend) {
-  meshes_ = levels == 0 ? std::vector<SurfaceMesh>{base} : refine_uniform(base, opt, levels, backend);
-  const auto sub = make_subdivider(backend);
-  for (int l = 0; l < levels; ++l) S_.push_back(sub->refine(meshes_[l], opt).S);
+  meshes_ = levels == 0 ? std::vector<SurfaceMesh>{base} : refine_uniform(base, opt, levels, backend, {}, &S_);
   world_.resize(levels + 1);
   local_.resize(levels + 1);
   for (int l = 1; l <= levels; ++l) {

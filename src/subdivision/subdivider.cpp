@@ -11,9 +11,14 @@ namespace fairshape {
 SurfaceMesh subdivide_once(const SurfaceMesh& coarse, const SubdivisionOptions& opt, Backend backend,
                            SparseMatrix* S_out) {
   // Connectivity is shared bookkeeping (so vertex ids agree across back ends); the
-  // arithmetic, S and its application, is each back end's own.
-  Refinement r = make_subdivider(backend)->refine(coarse, opt);
+  // arithmetic, S and its application, is each back end's own. The optimized back end
+  // builds no operator unless the caller wants it.
   SurfaceMesh fine = refine_topology(coarse, opt.scheme);
+  if (backend == Backend::Optimized && !S_out) {
+    subdivide_positions_matrix_free(coarse, opt, coarse.positions(), fine.positions());
+    return fine;
+  }
+  Refinement r = make_subdivider(backend)->refine(coarse, opt);
   if (backend == Backend::Optimized) apply_stencils(r.S, coarse.positions(), fine.positions());
   else fine.positions() = r.S * coarse.positions();
   if (S_out) *S_out = std::move(r.S);
@@ -31,7 +36,8 @@ double estimated_subdivision_bytes(const SurfaceMesh& coarse, SchemeType scheme,
 }
 
 std::vector<SurfaceMesh> refine_uniform(const SurfaceMesh& base, const SubdivisionOptions& opt, int levels,
-                                        Backend backend, const UniformRefineLimits& limits) {
+                                        Backend backend, const UniformRefineLimits& limits,
+                                        std::vector<SparseMatrix>* operators) {
   if (levels < 1 || levels > limits.max_levels)
     throw InvalidInput("levels must be in [1, " + std::to_string(limits.max_levels) + "], got " +
                        std::to_string(levels));
@@ -46,7 +52,9 @@ std::vector<SurfaceMesh> refine_uniform(const SurfaceMesh& base, const Subdivisi
   }
   if (opt.scheme == SchemeType::Loop) require_triangles(base, "subdivide");
   std::vector<SurfaceMesh> out{base};
-  for (int l = 0; l < levels; ++l) out.push_back(subdivide_once(out.back(), opt, backend));
+  if (operators) operators->resize(levels);
+  for (int l = 0; l < levels; ++l)
+    out.push_back(subdivide_once(out.back(), opt, backend, operators ? &(*operators)[l] : nullptr));
   return out;
 }
 

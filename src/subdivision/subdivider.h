@@ -58,9 +58,11 @@ struct UniformRefineLimits {
   int max_levels = 12;
   double max_bytes = 8.0 * (1ull << 30);  // 8 GiB
 };
-//! `levels` uniform steps. \throw InvalidInput for levels < 1 or > max_levels, or when the
-//! estimate exceeds max_bytes (the message gives the estimate).
+//! `levels` uniform steps; `operators` (optional) receives S_0 .. S_{levels-1}.
+//! \throw InvalidInput for levels < 1 or > max_levels, or when the estimate exceeds
+//! max_bytes (the message gives the estimate).
 std::vector<SurfaceMesh> refine_uniform(const SurfaceMesh& base, const SubdivisionOptions& opt, int levels,
-                                        Backend backend, const UniformRefineLimits& limits = {});
+                                        Backend backend, const UniformRefineLimits& limits = {},
+                                        std::vector<SparseMatrix>* operators = nullptr);
 
 }  // namespace fairshape

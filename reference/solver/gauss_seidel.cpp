@@ -14,7 +14,7 @@ class LexicographicSor : public Solver {
   SolveSummary solve(const SparseMatrix& A, const Eigen::MatrixXd& b, Eigen::MatrixXd& x,
                      const IterationCallback& cb) override {
     if (A_.rows() != A.rows()) analyze(A);
-    IterationMonitor monitor(opt_, cb);
+    IterationMonitor monitor(opt_, cb, system_energy(A, b));
     const Eigen::VectorXd diag = A.diagonal();
     if (const auto problem = diagonal_problem(diag); !problem.empty()) {
       monitor.fail(problem);

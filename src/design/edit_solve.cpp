@@ -3,6 +3,8 @@
 #include <Eigen/SparseLU>
 #include <Eigen/UmfPackSupport>
 
+#include <cmath>
+
 #include "core/timer.h"
 #include "problem/constrained_system.h"
 #include "problem/least_squares.h"
@@ -43,7 +45,8 @@ EditSolution solve_paper(const EditProblem& p, Solver& solver, Backend backend, 
     Eigen::MatrixXd full;
     const IterationCallback expanded = [&](const IterationRecord& r) {
       full = red.expand(*r.x);
-      return cb({r.iteration, r.residual, r.seconds, &full});
+      const double energy = std::isnan(r.energy) ? r.energy : quadratic_energy(p.H, p.g, full);
+      return cb({r.iteration, r.residual, r.seconds, energy, &full});
     };
     Timer t;
     out.summary = solver.solve(red.A, red.b, x, cb ? expanded : IterationCallback());

@@ -103,7 +103,7 @@ class IterationSink {
     if (spec.output.iterations) csv_ = std::make_unique<CsvAppender>((fs::path(out.dir) / "iterations.csv").string());
   }
   bool operator()(const IterationRecord& r) {
-    if (csv_) csv_->append({out_.run_id, std::to_string(r.iteration), num(r.residual), num(r.seconds)});
+    if (csv_) csv_->append({out_.run_id, std::to_string(r.iteration), num(r.residual), num(r.energy), num(r.seconds)});
     if (spec_.output.vtk == "every_iteration" && r.iteration % spec_.output.vtk_every == 0) {
       const std::string file = out_.run_id + "_it" + std::to_string(r.iteration) + ".vtp";
       write_vtp(result_mesh(rest_, rest_.positions() + MatrixX3(*r.x), level_, points_),

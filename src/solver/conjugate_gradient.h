@@ -10,7 +10,9 @@ namespace fairshape {
 template <class Multiply>
 SolveSummary conjugate_gradient(const Multiply& A_times, const Eigen::VectorXd& diag, const Eigen::MatrixXd& b,
                                 Eigen::MatrixXd& x, const IterativeOptions& opt, const IterationCallback& cb) {
-  IterationMonitor monitor(opt, cb);
+  IterationMonitor monitor(opt, cb, [&](const Eigen::MatrixXd& v) {
+    return 0.5 * v.cwiseProduct(A_times(v)).sum() - v.cwiseProduct(b).sum();
+  });
   if (const auto problem = diagonal_problem(diag); !problem.empty()) {
     monitor.fail(problem);
     return monitor.summary();

@@ -7,6 +7,7 @@ namespace fairshape {
 std::string_view to_string(Termination t) {
   switch (t) {
     case Termination::Converged: return "converged";
+    case Termination::EnergyStalled: return "energy_stalled";
     case Termination::MaxIterations: return "max_iterations";
     case Termination::NumericalFailure: return "numerical_failure";
     case Termination::InvalidInput: return "invalid_input";
@@ -16,7 +17,10 @@ std::string_view to_string(Termination t) {
 
 IterativeOptions IterativeOptions::from_config(Config& cfg) {
   IterativeOptions o;
-  o.tolerance = cfg.get_number("tolerance", o.tolerance, 0.0, 1.0, "relative residual to stop at");
+  o.tolerance = cfg.get_number("tolerance", o.tolerance, 0.0, 1.0, "relative residual to stop at (0: off)");
+  o.energy_tolerance = cfg.get_number("energy_tolerance", o.energy_tolerance, 0.0, 1.0,
+                                      "stop when a check's energy decrease is at most this fraction of the "
+                                      "decrease since the start (0: off)");
   o.max_iterations = cfg.get_int("max_iterations", o.max_iterations, 1, 100000000, "iteration cap");
   o.check_every = cfg.get_int("check_every", o.check_every, 1, 1000000, "sweeps between residual checks");
   return o;
@@ -32,20 +36,37 @@ double sor_omega_from_config(Config& cfg) {
   return omega;
 }
 
+SystemEnergy system_energy(const SparseMatrix& A, const Eigen::MatrixXd& b) {
+  return [&A, &b](const Eigen::MatrixXd& x) { return 0.5 * x.cwiseProduct(A * x).sum() - x.cwiseProduct(b).sum(); };
+}
+
 bool IterationMonitor::record(int iteration, double residual, const Eigen::MatrixXd& x) {
   summary_.iterations = iteration;
   summary_.residual = residual;
-  if (first_residual_ < 0) first_residual_ = residual;
+  const bool first = first_residual_ < 0;
+  if (first) first_residual_ = residual;
+  const bool energy_rule = opt_.energy_tolerance > 0;
+  const double energy = (energy_rule || cb_) ? energy_(x) : std::nan("");
+  // Relative to the decrease so far, so a constant in the energy (the reduced system drops
+  // one) does not change when the rule fires.
+  const bool stalled = energy_rule && !first &&
+                       std::abs(last_energy_ - energy) <= opt_.energy_tolerance * std::abs(first_energy_ - energy);
+  if (first) first_energy_ = energy;
+  last_energy_ = energy;
   if (!std::isfinite(residual) || residual > 1e12 * std::max(first_residual_, 1.0)) {
     fail("diverged at iteration " + std::to_string(iteration) + " (residual " + std::to_string(residual) + ")");
     return false;
   }
-  if (cb_ && !cb_({iteration, residual, timer_.seconds(), &x})) {
+  if (cb_ && !cb_({iteration, residual, timer_.seconds(), energy, &x})) {
     summary_.message = "stopped by the callback";
     return false;
   }
   if (residual <= opt_.tolerance) {
     summary_.termination = Termination::Converged;
+    return false;
+  }
+  if (stalled) {
+    summary_.termination = Termination::EnergyStalled;
     return false;
   }
   return iteration < opt_.max_iterations;

@@ -8,8 +8,12 @@
 
 namespace fairshape {
 
+// Stopping rules. Boier-Martin et al. run a fixed number of sweeps (tolerance 0,
+// energy_tolerance 0: exactly max_iterations); a residual tolerance and an energy-change
+// tolerance are the alternatives their §6 leaves as future work.
 struct IterativeOptions {
-  double tolerance = 1e-8;  // on the relative residual
+  double tolerance = 1e-8;      // on the relative residual ‖b − A x‖ / ‖b‖; 0 disables
+  double energy_tolerance = 0;  // stop when the last check's energy decrease ≤ this × the total decrease; 0 disables
   int max_iterations = 1000;
   int check_every = 1;  // residual evaluations cost about one sweep: check less often on big systems
   static IterativeOptions from_config(Config& cfg);
@@ -18,9 +22,15 @@ struct IterativeOptions {
 // SOR relaxation factor, shared by both back ends' `sor` solver.
 double sor_omega_from_config(Config& cfg);
 
+//! ½ Σ_c x_cᵀ A x_c − b_cᵀ x_c, the quadratic the solver minimizes.
+using SystemEnergy = std::function<double(const Eigen::MatrixXd& x)>;
+SystemEnergy system_energy(const SparseMatrix& A, const Eigen::MatrixXd& b);
+
 class IterationMonitor {
  public:
-  IterationMonitor(const IterativeOptions& opt, const IterationCallback& cb) : opt_(opt), cb_(cb) {}
+  //! `energy` is evaluated only when the energy rule is on or a callback listens.
+  IterationMonitor(const IterativeOptions& opt, const IterationCallback& cb, SystemEnergy energy)
+      : opt_(opt), cb_(cb), energy_(std::move(energy)) {}
   //! Records the residual after `iteration` sweeps; false when the loop must stop.
   bool record(int iteration, double residual, const Eigen::MatrixXd& x);
   bool should_check(int iteration) const {
@@ -36,7 +46,9 @@ class IterationMonitor {
   IterativeOptions opt_;
   const IterationCallback& cb_;
   Timer timer_;
+  SystemEnergy energy_;
   double first_residual_ = -1;
+  double first_energy_ = 0, last_energy_ = 0;
   SolveSummary summary_{Termination::MaxIterations, 0, -1, ""};
 };
 

@@ -28,7 +28,7 @@ class MulticolorSor : public Solver {
   SolveSummary solve(const SparseMatrix& A, const Eigen::MatrixXd& b, Eigen::MatrixXd& x,
                      const IterationCallback& cb) override {
     if (A_.rows() != A.rows()) analyze(A);
-    IterationMonitor monitor(opt_, cb);
+    IterationMonitor monitor(opt_, cb, system_energy(A, b));
     if (const auto problem = diagonal_problem(diag_); !problem.empty()) {
       monitor.fail(problem);
       return monitor.summary();

@@ -13,7 +13,10 @@
 
 namespace fairshape {
 
-enum class Termination { Converged, MaxIterations, NumericalFailure, InvalidInput };
+// Converged: the residual tolerance was met; EnergyStalled: the energy stopped decreasing
+// (energy_tolerance); MaxIterations: the iteration cap, which is the paper's fixed count when
+// both tolerances are 0.
+enum class Termination { Converged, EnergyStalled, MaxIterations, NumericalFailure, InvalidInput };
 std::string_view to_string(Termination t);
 
 struct SolveSummary {
@@ -27,6 +30,7 @@ struct IterationRecord {
   int iteration;
   double residual;
   double seconds;
+  double energy;             // ½ xᵀA x − bᵀx of the system solved (NaN when not evaluated)
   const Eigen::MatrixXd* x;  // the current iterate, for snapshots
 };
 using IterationCallback = std::function<bool(const IterationRecord&)>;  // false stops the solve

@@ -159,3 +159,37 @@ TEST_CASE("an indefinite system is a numerical failure with a message, never NaN
       CHECK(x.allFinite());
     }
 }
+
+TEST_CASE("stopping rules: a fixed sweep count, and the energy rule on a monotone energy", "[solver][stopping]") {
+  const auto sys = systems().front();
+  for (const auto& name : {"gauss_seidel", "sor", "conjugate_gradient"})
+    for (Backend b : {Backend::Reference, Backend::Optimized}) {
+      INFO(name << " / " << to_string(b));
+      {  // The paper's rule: both tolerances off, exactly max_iterations sweeps.
+        Config cfg(YAML::Load("{tolerance: 0, energy_tolerance: 0, max_iterations: 7}"), "solver");
+        auto s = components().solvers.create(name, b, cfg);
+        Eigen::MatrixXd x = Eigen::MatrixXd::Zero(sys.r.A.rows(), 3);
+        const SolveSummary sum = s->solve(sys.r.A, sys.r.b, x);
+        CHECK(sum.termination == Termination::MaxIterations);
+        CHECK(sum.iterations == 7);
+      }
+      Config cfg(YAML::Load("{tolerance: 0, energy_tolerance: 1.0e-6, max_iterations: 100000}"), "solver");
+      auto s = components().solvers.create(name, b, cfg);
+      Eigen::MatrixXd x = Eigen::MatrixXd::Zero(sys.r.A.rows(), 3);
+      std::vector<double> energies;
+      const SolveSummary sum = s->solve(sys.r.A, sys.r.b, x, [&](const IterationRecord& r) {
+        energies.push_back(r.energy);
+        return true;
+      });
+      CHECK(sum.termination == Termination::EnergyStalled);
+      REQUIRE(energies.size() >= 3);
+      // Gauss-Seidel, SOR (0 < ω < 2) and CG all decrease ½xᵀAx − bᵀx at every step on an SPD system.
+      for (std::size_t k = 1; k < energies.size(); ++k) CHECK(energies[k] <= energies[k - 1] + 1e-12 * std::abs(energies[0]));
+      const double last_drop = energies[energies.size() - 2] - energies.back();
+      CHECK(last_drop <= 1e-6 * (energies.front() - energies.back()));
+      // The stationary value is the minimum of the quadratic.
+      const Eigen::MatrixXd exact = direct_solution(sys.r);
+      const double e_min = 0.5 * exact.cwiseProduct(sys.r.A * exact).sum() - exact.cwiseProduct(sys.r.b).sum();
+      CHECK(energies.back() - e_min <= 1e-4 * std::abs(energies.front() - e_min));
+    }
+}

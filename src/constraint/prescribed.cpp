@@ -1,6 +1,6 @@
 // The `fixed` and `position` constraints: selected vertices of one level (the finest unless
 // `level` says otherwise) keep their place or move by an offset.
-#include "constraint/constraint.h"
+#include "constraint/constraint_factories.h"
 #include "constraint/vertex_selection.h"
 
 namespace fairshape {
@@ -11,12 +11,9 @@ class PositionConstraint : public Constraint {
   PositionConstraint(VertexSelection sel, Vec3 offset, int level, bool on_limit, std::string who)
       : selection_(std::move(sel)), offset_(offset), level_(level), on_limit_(on_limit), who_(std::move(who)) {}
 
-  void add_points(const LevelMeshes& mesh_at, int finest, std::vector<PointConstraint>& out) const override {
-    const int level = level_ < 0 ? finest : level_;
-    if (level > finest)
-      throw InvalidInput(who_ + ": level " + std::to_string(level) + " is not in the hierarchy (levels 0.." +
-                         std::to_string(finest) + ")");
-    for (int v : selection_.resolve(mesh_at(level), who_)) out.push_back({level, v, on_limit_, offset_, who_});
+  void add_to(const LevelMeshes& mesh_at, int finest, DesignConstraints& out) const override {
+    const int level = resolve_level(level_, finest, who_);
+    for (int v : selection_.resolve(mesh_at(level), who_)) out.points.push_back({level, v, on_limit_, offset_, who_});
   }
 
  private:
@@ -26,8 +23,6 @@ class PositionConstraint : public Constraint {
   bool on_limit_;
   std::string who_;
 };
-
-std::string label(const Config& cfg) { return cfg.path().empty() ? "constraint" : cfg.path(); }
 
 std::unique_ptr<Constraint> make(Config& cfg, bool with_offset) {
   Vec3 offset = Vec3::Zero();
@@ -39,10 +34,21 @@ std::unique_ptr<Constraint> make(Config& cfg, bool with_offset) {
   }
   const int level = cfg.get_int("level", -1, -1, 16, "hierarchy level of the selected vertices (-1: the finest)");
   const bool on_limit = cfg.get<bool>("on_limit", false, "constrain the limit positions of the selected vertices");
-  return std::make_unique<PositionConstraint>(VertexSelection::from_config(cfg), offset, level, on_limit, label(cfg));
+  return std::make_unique<PositionConstraint>(VertexSelection::from_config(cfg), offset, level, on_limit,
+                                              constraint_label(cfg));
 }
 
 }  // namespace
+
+int resolve_level(int level, int finest, const std::string& who) {
+  const int l = level < 0 ? finest : level;
+  if (l > finest)
+    throw InvalidInput(who + ": level " + std::to_string(l) + " is not in the hierarchy (levels 0.." +
+                       std::to_string(finest) + ")");
+  return l;
+}
+
+std::string constraint_label(const Config& cfg) { return cfg.path().empty() ? "constraint" : cfg.path(); }
 
 std::unique_ptr<Constraint> make_fixed(Config& cfg) { return make(cfg, false); }
 std::unique_ptr<Constraint> make_position(Config& cfg) { return make(cfg, true); }
@@ -51,6 +57,11 @@ void register_constraints(ConstraintRegistry& r) {
   for (Backend b : {Backend::Reference, Backend::Optimized}) {
     r.add("fixed", b, "selected vertices keep their rest position (ΔP = 0)", make_fixed);
     r.add("position", b, "selected vertices move by a given offset (ΔP = offset)", make_position);
+    r.add("normal", b, "the surface normal at selected vertices becomes a given direction (§4.2)", make_normal);
+    r.add("rigid", b, "selected vertices (e.g. a boundary loop) follow a rotation and translation (Figure 9)",
+          make_rigid);
+    r.add("curve", b, "a curve on the surface follows a rigid motion; vertices snapped onto it (Appendix)",
+          make_curve);
   }
 }
 

@@ -1,6 +1,7 @@
 #include "constraint/vertex_selection.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace fairshape {
 
@@ -8,6 +9,8 @@ VertexSelection VertexSelection::from_config(Config& cfg) {
   VertexSelection s;
   s.ids_ = cfg.get<std::vector<int>>("vertices", {}, "explicit vertex ids");
   s.nearest_ = cfg.get<std::vector<double>>("nearest", {}, "select the vertex closest to [x, y, z]");
+  s.loop_near_ = cfg.get<std::vector<double>>("boundary_loop_near", {},
+                                               "select the boundary loop closest to [x, y, z]");
   Config region = cfg.child("region", "vertices in a slab of the bounding box: {axis, from, to}");
   const std::string axis = region.get_choice("axis", "x", {"x", "y", "z"}, "slab axis");
   s.from_ = region.get_number("from", 0.0, 0.0, 1.0, "slab start, as a fraction of the box");
@@ -19,8 +22,11 @@ VertexSelection VertexSelection::from_config(Config& cfg) {
     throw InvalidConfig(region.key_path("from") + ": must not exceed 'to'");
   if (!s.nearest_.empty() && s.nearest_.size() != 3)
     throw InvalidConfig(cfg.key_path("nearest") + ": expected 3 coordinates");
-  const int given = !s.ids_.empty() + !s.nearest_.empty() + has_region;
-  if (given > 1) throw InvalidConfig(cfg.path() + ": give only one of 'vertices', 'nearest', 'region'");
+  if (!s.loop_near_.empty() && s.loop_near_.size() != 3)
+    throw InvalidConfig(cfg.key_path("boundary_loop_near") + ": expected 3 coordinates");
+  const int given = !s.ids_.empty() + !s.nearest_.empty() + has_region + !s.loop_near_.empty();
+  if (given > 1)
+    throw InvalidConfig(cfg.path() + ": give only one of 'vertices', 'nearest', 'region', 'boundary_loop_near'");
   return s;
 }
 
@@ -38,6 +44,20 @@ std::vector<int> VertexSelection::resolve(const SurfaceMesh& mesh, const std::st
     Eigen::Index best = 0;
     (mesh.positions().rowwise() - p).rowwise().squaredNorm().minCoeff(&best);
     out.push_back(static_cast<int>(best));
+  }
+  if (loop_near_.size() == 3) {
+    const Eigen::RowVector3d p(loop_near_[0], loop_near_[1], loop_near_[2]);
+    const auto loops = mesh.boundary_loops();
+    if (loops.empty()) throw InvalidInput(who + ": boundary_loop_near: the mesh has no boundary");
+    std::size_t best_loop = 0;
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < loops.size(); ++k)
+      for (int v : loops[k])
+        if (const double d = (mesh.positions().row(v) - p).squaredNorm(); d < best) {
+          best = d;
+          best_loop = k;
+        }
+    out.insert(out.end(), loops[best_loop].begin(), loops[best_loop].end());
   }
   if (axis_ >= 0) {
     const double lo = mesh.positions().col(axis_).minCoeff(), hi = mesh.positions().col(axis_).maxCoeff();

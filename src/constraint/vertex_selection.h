@@ -3,6 +3,8 @@
 //   nearest: [x, y, z]                     the vertex closest to a point
 //   region: {axis: x, from: 0.0, to: 0.3}  vertices whose coordinate along `axis` lies in a
 //                                          fraction [from, to] of the bounding box
+//   boundary_loop_near: [x, y, z]          the whole boundary loop with the boundary vertex
+//                                          closest to a point (Figure 9's rotated inner rim)
 #pragma once
 
 #include <vector>
@@ -20,7 +22,7 @@ class VertexSelection {
 
  private:
   std::vector<int> ids_;
-  std::vector<double> nearest_;
+  std::vector<double> nearest_, loop_near_;
   int axis_ = -1;
   double from_ = 0, to_ = 0;
 };

@@ -35,7 +35,7 @@ EditSolution solve_paper(const EditProblem& p, Solver& solver, Backend backend, 
   EditSolution out;
   out.constrained_vertices = static_cast<int>(touched.size());
   Eigen::MatrixXd x = initial ? red.restrict_to_free(*initial)
-                              : Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(red.free.size()), 3);
+                              : Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(red.free.size()), p.g.cols());
   if (red.free.empty()) {
     out.summary = {Termination::Converged, 0, 0.0, "every vertex is constrained"};
   } else {
@@ -70,7 +70,7 @@ EditSolution solve_kkt(const EditProblem& p, Backend backend) {
     }
   SparseMatrix K(n + m, n + m);
   K.setFromTriplets(t.begin(), t.end());
-  Eigen::MatrixXd rhs(n + m, 3);
+  Eigen::MatrixXd rhs(n + m, p.g.cols());
   rhs.topRows(n) = p.g;
   rhs.bottomRows(m) = p.constraints.C;
   EditSolution out;
@@ -91,14 +91,70 @@ EditSolution solve_kkt(const EditProblem& p, Backend backend) {
     Eigen::UmfPackLU<SparseMatrix> lu;
     factor_and_solve(lu);
   }
-  if (!ok || !sol.allFinite()) {
+  // UMFPACK can "succeed" on a numerically singular K and return huge values: check the residual.
+  const double residual = ok && sol.allFinite() ? relative_residual(K, rhs, sol) : 0.0;
+  if (!ok || !sol.allFinite() || residual > 1e-6) {
     out.summary.message = "KKT system is singular (dependent constraints, or nothing pins the deformation)";
-    out.delta = Eigen::MatrixXd::Zero(n, 3);
+    out.delta = Eigen::MatrixXd::Zero(n, p.g.cols());
     return out;
   }
   out.delta = sol.topRows(n);
-  out.summary = {Termination::Converged, 1, relative_residual(K, rhs, sol), ""};
+  out.summary = {Termination::Converged, 1, residual, ""};
   out.constrained_vertices = static_cast<int>(m);
+  return out;
+}
+
+SparseMatrix block_diagonal3(const SparseMatrix& M) {
+  Triplets t;
+  t.reserve(3 * static_cast<std::size_t>(M.nonZeros()));
+  for (int d = 0; d < 3; ++d)
+    for (int c = 0; c < M.outerSize(); ++c)
+      for (SparseMatrix::InnerIterator it(M, c); it; ++it)
+        t.emplace_back(static_cast<int>(d * M.rows() + it.row()), static_cast<int>(d * M.cols() + c), it.value());
+  SparseMatrix out(3 * M.rows(), 3 * M.cols());
+  out.setFromTriplets(t.begin(), t.end());
+  return out;
+}
+
+// Columns x, y, z stacked into one: an n × 3 matrix is, column-major, already [x; y; z].
+Eigen::VectorXd stack(const Eigen::MatrixXd& M) { return Eigen::Map<const Eigen::VectorXd>(M.data(), M.size()); }
+Eigen::MatrixXd unstack(const Eigen::MatrixXd& v) { return Eigen::Map<const Eigen::MatrixXd>(v.data(), v.size() / 3, 3); }
+
+// The one coupled system of §5 on [Δx; Δy; Δz]: H three times on the diagonal, each point
+// row three times, then the normal rows.
+EditProblem stacked(const EditProblem& p) {
+  const LinearConstraints& lc = p.constraints;
+  EditProblem s;
+  s.H = block_diagonal3(p.H);
+  s.g = stack(p.g);
+  const SparseMatrix A3 = block_diagonal3(lc.A);
+  SparseMatrix A(A3.rows() + lc.A_coupled.rows(), A3.cols());
+  Triplets t;
+  for (const SparseMatrix* part : {&A3, &lc.A_coupled})
+    for (int c = 0; c < part->outerSize(); ++c)
+      for (SparseMatrix::InnerIterator it(*part, c); it; ++it)
+        t.emplace_back(static_cast<int>(it.row() + (part == &A3 ? 0 : A3.rows())), c, it.value());
+  A.setFromTriplets(t.begin(), t.end());
+  s.constraints.A = A;
+  s.constraints.C.resize(A.rows(), 1);
+  s.constraints.C << stack(lc.C), lc.C_coupled;
+  return s;
+}
+
+EditSolution solve_coupled(const EditProblem& p, ConstraintMode mode, Solver& solver, Backend backend,
+                           const IterationCallback& cb, const Eigen::MatrixXd* initial) {
+  const EditProblem s = stacked(p);
+  Eigen::MatrixXd full;
+  const IterationCallback unstacked = [&](const IterationRecord& r) {
+    full = unstack(*r.x);
+    return cb({r.iteration, r.residual, r.seconds, r.energy, &full});
+  };
+  const Eigen::MatrixXd start = initial ? Eigen::MatrixXd(stack(*initial)) : Eigen::MatrixXd();
+  EditSolution out = mode == ConstraintMode::Kkt
+                         ? solve_kkt(s, backend)
+                         : solve_paper(s, solver, backend, cb ? unstacked : IterationCallback(), initial ? &start : nullptr);
+  out.constraint_residual = (s.constraints.A * out.delta - s.constraints.C).norm();
+  out.delta = unstack(out.delta);
   return out;
 }
 
@@ -107,9 +163,13 @@ EditSolution solve_kkt(const EditProblem& p, Backend backend) {
 EditSolution solve_edit(const EditProblem& p, ConstraintMode mode, Solver& free_solver, Backend backend,
                         const IterationCallback& cb, const Eigen::MatrixXd* initial) {
   if (p.constraints.A.rows() == 0)
-    throw InvalidInput("edit: no constraint: the deformation is undetermined (add a point or fixed constraint)");
-  if (p.H.rows() != p.H.cols() || p.g.rows() != p.H.rows() || p.constraints.A.cols() != p.H.rows())
+    throw InvalidInput(p.constraints.coupled()
+                           ? "edit: normal constraints fix no position: add a point or fixed constraint"
+                           : "edit: no constraint: the deformation is undetermined (add a point or fixed constraint)");
+  if (p.H.rows() != p.H.cols() || p.g.rows() != p.H.rows() || p.constraints.A.cols() != p.H.rows() ||
+      (p.constraints.coupled() && p.constraints.A_coupled.cols() != 3 * p.H.rows()))
     throw InvalidInput("edit: H, g and the constraints disagree in size");
+  if (p.constraints.coupled()) return solve_coupled(p, mode, free_solver, backend, cb, initial);
   EditSolution out =
       mode == ConstraintMode::Kkt ? solve_kkt(p, backend) : solve_paper(p, free_solver, backend, cb, initial);
   out.constraint_residual = (p.constraints.A * out.delta - p.constraints.C).norm();

@@ -5,6 +5,8 @@
 //          Seidel, SOR, CG, Cholesky) on the reduced system.
 // `kkt`:   the exact Lagrange system [H Aᵀ; A 0] (reference Eigen SparseLU, optimized UMFPACK),
 //          for comparison: it satisfies the constraints exactly and minimizes the energy.
+// Point constraints alone keep x, y and z apart (three right-hand sides of one n × n system);
+// normal constraints couple them, and both modes then solve the one 3n × 3n system of §5.
 #pragma once
 
 #include "core/backend.h"

@@ -3,24 +3,102 @@
 #include <map>
 #include <sstream>
 
+#include <array>
+
+#include <Eigen/Geometry>
+
+#include "energy/divided_differences.h"
 #include "subdivision/limit.h"
 
 namespace fairshape {
 
-LinearConstraints propagate_constraints(const MultiresSurface& h, int l, const std::vector<PointConstraint>& cs) {
+namespace {
+
+void check_edit_level(const MultiresSurface& h, int l) {
   if (l < 0 || l > h.levels())
     throw InvalidInput("edit level " + std::to_string(l) + " outside the hierarchy [0, " + std::to_string(h.levels()) + "]");
+}
+
+void check_place(const MultiresSurface& h, int l, int level, int vertex, const std::string& label) {
+  if (level < l || level > h.levels())
+    throw InvalidInput(label + ": level " + std::to_string(level) + " is " +
+                       (level < l ? "coarser than the edit level " + std::to_string(l)
+                                  : "not in the hierarchy (levels 0.." + std::to_string(h.levels()) + ")"));
+  if (vertex < 0 || vertex >= h.mesh(level).n_vertices())
+    throw InvalidInput(label + ": vertex " + std::to_string(vertex) + " does not exist on level " +
+                       std::to_string(level) + " (" + std::to_string(h.mesh(level).n_vertices()) + " vertices)");
+}
+
+// Rows u and v of one normal constraint, over level k's vertices: the tangents Q_u, Q_v of
+// the local fit are linear in the positions, a_r · P with a_r(j) = D_{r,j}, a_r(i) = −Σ_j D_{r,j}.
+std::array<Eigen::SparseVector<double>, 2> tangent_rows(const SurfaceMesh& mesh, int vertex) {
+  const LocalFit fit = local_fit(mesh, vertex);
+  std::array<Eigen::SparseVector<double>, 2> rows;
+  for (int r = 0; r < 2; ++r) {
+    rows[r].resize(mesh.n_vertices());
+    for (std::size_t j = 0; j < fit.ring.size(); ++j)
+      rows[r].coeffRef(fit.ring[j]) += fit.D(r, static_cast<Eigen::Index>(j));
+    rows[r].coeffRef(vertex) -= fit.D.row(r).sum();
+  }
+  return rows;
+}
+
+void add_normal_rows(const MultiresSurface& h, int l, const std::vector<NormalConstraint>& normals,
+                     LinearConstraints& out) {
+  const int n = h.mesh(l).n_vertices();
+  std::map<int, RowSparseMatrix> prolongation_to;  // level k → P_{l→k}, rows = level-k vertices
+  Triplets t;
+  std::vector<double> c;
+  for (const auto& nc : normals) {
+    check_place(h, l, nc.level, nc.vertex, nc.label);
+    if (!nc.normal.allFinite() || nc.normal.norm() == 0) throw InvalidInput(nc.label + ": the normal is zero or not finite");
+    const Vec3 N = nc.normal.normalized();
+    auto it = prolongation_to.find(nc.level);
+    if (it == prolongation_to.end()) it = prolongation_to.emplace(nc.level, RowSparseMatrix(h.prolongation(l, nc.level))).first;
+    const SurfaceMesh& mesh = h.mesh(nc.level);
+    for (const auto& a : tangent_rows(mesh, nc.vertex)) {
+      // a · ΔP^k = (a P_{l→k}) · ΔP^l: the row on the edit level, times N on each coordinate block.
+      Eigen::SparseVector<double> row(n);
+      for (Eigen::SparseVector<double>::InnerIterator e(a); e; ++e)
+        row += e.value() * Eigen::SparseVector<double>(it->second.row(e.index()).transpose());
+      const int r = static_cast<int>(c.size());
+      for (Eigen::SparseVector<double>::InnerIterator e(row); e; ++e)
+        for (int d = 0; d < 3; ++d)
+          if (N[d] != 0) t.emplace_back(r, d * n + static_cast<int>(e.index()), e.value() * N[d]);
+      double current = 0;  // a · P_rest · N, the tangent's component along N now
+      for (Eigen::SparseVector<double>::InnerIterator e(a); e; ++e) current += e.value() * mesh.position(static_cast<int>(e.index())).dot(N);
+      c.push_back(-current);
+    }
+  }
+  out.A_coupled.resize(static_cast<Eigen::Index>(c.size()), 3 * n);
+  out.A_coupled.setFromTriplets(t.begin(), t.end());
+  out.C_coupled = Eigen::Map<const Eigen::VectorXd>(c.data(), static_cast<Eigen::Index>(c.size()));
+}
+
+}  // namespace
+
+LinearConstraints propagate_constraints(const MultiresSurface& h, int l, const DesignConstraints& dc) {
+  LinearConstraints out = propagate_constraints(h, l, dc.points);
+  if (!dc.normals.empty()) add_normal_rows(h, l, dc.normals, out);
+  return out;
+}
+
+Vec3 estimated_normal(const SurfaceMesh& D_mesh, const MatrixX3& positions, int vertex) {
+  const auto rows = tangent_rows(D_mesh, vertex);
+  Vec3 q[2] = {Vec3::Zero(), Vec3::Zero()};
+  for (int r = 0; r < 2; ++r)
+    for (Eigen::SparseVector<double>::InnerIterator e(rows[r]); e; ++e)
+      q[r] += e.value() * positions.row(e.index()).transpose();
+  return q[0].cross(q[1]).normalized();
+}
+
+LinearConstraints propagate_constraints(const MultiresSurface& h, int l, const std::vector<PointConstraint>& cs) {
+  check_edit_level(h, l);
   // Incompatible targets on one vertex are an error, a repeated identical one is harmless.
   std::map<std::tuple<int, int, bool>, const PointConstraint*> seen;
   std::vector<const PointConstraint*> unique;
   for (const auto& c : cs) {
-    if (c.level < l || c.level > h.levels())
-      throw InvalidInput(c.label + ": level " + std::to_string(c.level) + " is " +
-                         (c.level < l ? "coarser than the edit level " + std::to_string(l)
-                                      : "not in the hierarchy (levels 0.." + std::to_string(h.levels()) + ")"));
-    if (c.vertex < 0 || c.vertex >= h.mesh(c.level).n_vertices())
-      throw InvalidInput(c.label + ": vertex " + std::to_string(c.vertex) + " does not exist on level " +
-                         std::to_string(c.level) + " (" + std::to_string(h.mesh(c.level).n_vertices()) + " vertices)");
+    check_place(h, l, c.level, c.vertex, c.label);
     if (!c.offset.allFinite()) throw InvalidInput(c.label + ": target is not finite");
     auto [it, inserted] = seen.try_emplace({c.level, c.vertex, c.on_limit}, &c);
     if (inserted) unique.push_back(&c);

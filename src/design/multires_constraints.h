@@ -4,6 +4,10 @@
 // linear row  e_iᵀ S_{k-1} ··· S_l ΔP^l = C_i  (with the limit stencil in front for limit
 // constraints). One step of that product is exactly Table 1's five masks; the coarser the
 // edit level, the wider the row and the region of influence (Figure 1 b vs c).
+// A normal constraint at vertex i of level k gives the two rows of §4.2,
+//   Σ_j D_{r,j} (ΔP_j − ΔP_i)·N = −Σ_j D_{r,j} (P_j − P_i)·N,   r = u, v,
+// with D the divided differences of level k's rest shape; they mix x, y and z, so they live
+// on the stacked unknowns [Δx; Δy; Δz] (§5 "Point vs. normal constraints").
 #pragma once
 
 #include <string>
@@ -15,13 +19,21 @@
 namespace fairshape {
 
 struct LinearConstraints {
-  SparseMatrix A;     // m × #vertices of the edit level
+  SparseMatrix A;     // m × n (n = #vertices of the edit level), shared by x, y, z
   Eigen::MatrixXd C;  // m × 3 targets (deformations)
+  SparseMatrix A_coupled;     // q × 3n rows on [Δx; Δy; Δz] (normal constraints)
+  Eigen::VectorXd C_coupled;  // q
+  bool coupled() const { return A_coupled.rows() > 0; }
 };
 
 //! \throw InvalidInput for a missing level or vertex, a constraint coarser than the edit level,
 //! or two incompatible targets on one vertex (naming both constraints).
+LinearConstraints propagate_constraints(const MultiresSurface& h, int edit_level, const DesignConstraints& constraints);
 LinearConstraints propagate_constraints(const MultiresSurface& h, int edit_level,
-                                        const std::vector<PointConstraint>& constraints);
+                                        const std::vector<PointConstraint>& points);
+
+//! The normal estimated at `vertex` by the divided differences of `D_mesh` (its rest shape)
+//! applied to `positions`: Q_u × Q_v normalized — what a normal constraint prescribes.
+Vec3 estimated_normal(const SurfaceMesh& D_mesh, const MatrixX3& positions, int vertex);
 
 }  // namespace fairshape

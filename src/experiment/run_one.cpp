@@ -35,7 +35,7 @@ double median(std::vector<double> v) {
 
 // The problem at the edit level: H and the linear term from the energies, the designer's
 // constraints propagated from their levels (Boier-Martin et al. §4.2).
-EditProblem assemble(const RunSpec& spec, const MultiresSurface& h, int level, std::vector<PointConstraint>& points) {
+EditProblem assemble(const RunSpec& spec, const MultiresSurface& h, int level, DesignConstraints& placed) {
   const SurfaceMesh& rest = h.mesh(level);
   const int n = rest.n_vertices();
   EditProblem p;
@@ -51,8 +51,8 @@ EditProblem assemble(const RunSpec& spec, const MultiresSurface& h, int level, s
     p.H += He;
   }
   const LevelMeshes mesh_at = [&h](int l) -> const SurfaceMesh& { return h.mesh(l); };
-  for (const auto& c : spec.constraints) c.constraint->add_points(mesh_at, h.levels(), points);
-  p.constraints = propagate_constraints(h, level, points);
+  for (const auto& c : spec.constraints) c.constraint->add_to(mesh_at, h.levels(), placed);
+  p.constraints = propagate_constraints(h, level, placed);
   return p;
 }
 
@@ -66,16 +66,22 @@ Eigen::MatrixXd random_start(const RunSpec& spec, Eigen::Index rows) {
 
 // A level with the displacement it received and its constrained vertices, for final.obj and VTK.
 SurfaceMesh result_mesh(const SurfaceMesh& before, const MatrixX3& after, int level,
-                        const std::vector<PointConstraint>& points) {
+                        const DesignConstraints& placed) {
   SurfaceMesh m = before;
   m.positions() = after;
   const Eigen::MatrixXd displacement = after - before.positions();
   m.vertex_data["displacement"] = displacement;
   m.vertex_data["displacement_norm"] = displacement.rowwise().norm();
   Eigen::MatrixXd constrained = Eigen::MatrixXd::Zero(m.n_vertices(), 1);
-  for (const auto& p : points)
+  for (const auto& p : placed.points)
     if (p.level == level) constrained(p.vertex, 0) = 1.0;
   m.vertex_data["constrained"] = constrained;
+  if (!placed.normals.empty()) {
+    Eigen::MatrixXd normals = Eigen::MatrixXd::Zero(m.n_vertices(), 3);
+    for (const auto& n : placed.normals)
+      if (n.level == level) normals.row(n.vertex) = n.normal.transpose();
+    m.vertex_data["target_normal"] = normals;
+  }
   return m;
 }
 
@@ -98,15 +104,15 @@ std::string detail_change(const MultiresSurface& before, const SurfaceMesh& edit
 class IterationSink {
  public:
   IterationSink(const RunSpec& spec, const RunOutputs& out, const SurfaceMesh& rest, int level,
-                const std::vector<PointConstraint>& points)
-      : spec_(spec), out_(out), rest_(rest), level_(level), points_(points) {
+                const DesignConstraints& placed)
+      : spec_(spec), out_(out), rest_(rest), level_(level), placed_(placed) {
     if (spec.output.iterations) csv_ = std::make_unique<CsvAppender>((fs::path(out.dir) / "iterations.csv").string());
   }
   bool operator()(const IterationRecord& r) {
     if (csv_) csv_->append({out_.run_id, std::to_string(r.iteration), num(r.residual), num(r.energy), num(r.seconds)});
     if (spec_.output.vtk == "every_iteration" && r.iteration % spec_.output.vtk_every == 0) {
       const std::string file = out_.run_id + "_it" + std::to_string(r.iteration) + ".vtp";
-      write_vtp(result_mesh(rest_, rest_.positions() + MatrixX3(*r.x), level_, points_),
+      write_vtp(result_mesh(rest_, rest_.positions() + MatrixX3(*r.x), level_, placed_),
                 (fs::path(out_.dir) / "vtk" / file).string());
       steps_.emplace_back(r.iteration, file);
     }
@@ -121,7 +127,7 @@ class IterationSink {
   const RunOutputs& out_;
   const SurfaceMesh& rest_;
   int level_;
-  const std::vector<PointConstraint>& points_;
+  const DesignConstraints& placed_;
   std::unique_ptr<CsvAppender> csv_;
   std::vector<std::pair<double, std::string>> steps_;
 };
@@ -214,14 +220,14 @@ MetricRow execute_run(RunSpec& spec, RunCache& cache, const RunOutputs& out) {
     row["subdivide_s"] = num(build_s);
     const int level = spec.edit_level < 0 ? rest.levels() : spec.edit_level;
     Timer t;
-    std::vector<PointConstraint> points;
-    const EditProblem problem = assemble(spec, rest, level, points);
+    DesignConstraints placed;
+    const EditProblem problem = assemble(spec, rest, level, placed);
     row["assemble_s"] = num(t.seconds());
     row["n_dofs"] = std::to_string(problem.H.rows());
     row["n_fine"] = std::to_string(rest.mesh(rest.levels()).n_vertices());
-    row["n_constrained"] = std::to_string(problem.constraints.A.rows());
+    row["n_constrained"] = std::to_string(problem.constraints.A.rows() + problem.constraints.A_coupled.rows());
     const Eigen::MatrixXd start = spec.initial_guess == "random" ? random_start(spec, problem.H.rows()) : Eigen::MatrixXd();
-    IterationSink sink(spec, out, rest.mesh(level), level, points);
+    IterationSink sink(spec, out, rest.mesh(level), level, placed);
     std::vector<double> times;
     EditSolution sol;
     for (int r = 0; r < spec.repeat; ++r) {
@@ -244,7 +250,7 @@ MetricRow execute_run(RunSpec& spec, RunCache& cache, const RunOutputs& out) {
       edited.synthesize_from(level, DetailSpace::Local);
       const SurfaceMesh& finest = edited.mesh(edited.levels());
       row["detail_change"] = detail_change(rest, finest, spec.implementation);
-      write_geometry(spec, out, result_mesh(rest.mesh(rest.levels()), finest.positions(), rest.levels(), points), edited);
+      write_geometry(spec, out, result_mesh(rest.mesh(rest.levels()), finest.positions(), rest.levels(), placed), edited);
     }
   } catch (const SolverError& e) {
     row["termination"] = std::string(to_string(Termination::NumericalFailure));

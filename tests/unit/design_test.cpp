@@ -2,6 +2,9 @@
 // constrained solve (paper mode and exact KKT).
 #include <catch2/catch.hpp>
 
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+
 #include "design/edit_solve.h"
 #include "energy/local_quadratic.h"
 #include "experiment/components.h"
@@ -147,4 +150,140 @@ TEST_CASE("bad constraints are refused with what is wrong", "[design][bm]") {
   auto solver = cholesky();
   CHECK_THROWS_WITH(solve_edit(detail_preserving(h, 0, {}), ConstraintMode::Paper, *solver, Backend::Optimized),
                     Contains("no constraint"));
+}
+
+namespace {
+
+// Detail-preserving problem with the designer's point and normal constraints.
+EditProblem detail_preserving(const MultiresSurface& h, int level, const DesignConstraints& dc) {
+  EditProblem p;
+  p.H = stretch_bend_hessian(h.mesh(level), {0.1, 1.0}, Backend::Optimized);
+  p.g = Eigen::MatrixXd::Zero(p.H.rows(), 3);
+  p.constraints = propagate_constraints(h, level, dc);
+  return p;
+}
+
+std::unique_ptr<Solver> gauss_seidel(Backend b) {
+  Config cfg(YAML::Load("{tolerance: 1.0e-12, max_iterations: 200000}"), "solver");
+  return components().solvers.create("gauss_seidel", b, cfg);
+}
+
+}  // namespace
+
+TEST_CASE("a normal constraint makes the estimated normal equal the target", "[design][bm][normal]") {
+  const MultiresSurface h = quad_hierarchy(1);
+  const int v = 200, level = 1;
+  const SurfaceMesh& rest = h.mesh(level);
+  const Vec3 n0 = estimated_normal(rest, rest.positions(), v);
+  // Tilt the normal by 25 degrees about a tangent direction; pin the vertex and a far region.
+  const Vec3 tangent = n0.unitOrthogonal();
+  const Vec3 target = Eigen::AngleAxisd(25.0 * M_PI / 180.0, tangent) * n0;
+  for (int edit : {1, 0}) {
+    DesignConstraints dc;  // the far region is pinned on the edit level, where it has as many vertices as rows
+    dc.normals.push_back({level, v, target, "tilt"});
+    dc.points.push_back({level, v, false, Vec3::Zero(), "pin"});
+    const SurfaceMesh& e = h.mesh(edit);
+    for (int w = 0; w < e.n_vertices(); ++w)
+      if ((e.position(w) - rest.position(v)).norm() > 2.5) dc.points.push_back({edit, w, false, Vec3::Zero(), "far"});
+    const EditProblem p = detail_preserving(h, edit, dc);
+    REQUIRE(p.constraints.coupled());
+    Eigen::MatrixXd by_backend[2];
+    for (ConstraintMode mode : {ConstraintMode::Kkt, ConstraintMode::Paper})
+      for (Backend b : {Backend::Reference, Backend::Optimized}) {
+        INFO("edit level " << edit << ", " << (mode == ConstraintMode::Kkt ? "kkt" : "paper") << ", " << to_string(b));
+        auto solver = gauss_seidel(b);
+        const EditSolution s = solve_edit(p, mode, *solver, b);
+        REQUIRE(s.delta.rows() == h.mesh(edit).n_vertices());
+        CHECK(s.constraint_residual <= 1e-10);
+        const MatrixX3 moved = rest.positions() + MatrixX3(h.prolongation(edit, level) * s.delta);
+        const Vec3 n = estimated_normal(rest, moved, v);
+        CHECK(n.dot(target) >= 1.0 - 1e-10);
+        CHECK(s.delta.norm() > 1e-3);  // the surface did turn
+        if (mode == ConstraintMode::Kkt) by_backend[static_cast<int>(b)] = s.delta;
+      }
+    CHECK((by_backend[0] - by_backend[1]).norm() <= 1e-8 * by_backend[1].norm());
+  }
+  // Without a point constraint the position is free: refused, not a singular solve.
+  DesignConstraints only_normal;
+  only_normal.normals.push_back({level, v, target, "tilt"});
+  auto solver = cholesky();
+  CHECK_THROWS_WITH(solve_edit(detail_preserving(h, 1, only_normal), ConstraintMode::Kkt, *solver, Backend::Optimized),
+                    Catch::Matchers::Contains("normal constraints fix no position"));
+}
+
+TEST_CASE("a curve between vertex rows is snapped on the first finer level where it has no gap", "[design][bm][curve]") {
+  const MultiresSurface h(test::grid(4), {}, 2, Backend::Optimized);  // spacing 0.25, 0.125, 0.0625
+  const LevelMeshes mesh_at = [&h](int l) -> const SurfaceMesh& { return h.mesh(l); };
+  Config cfg(YAML::Load("{points: [[0.3, 0.375, 0], [0.7, 0.375, 0]], translation: [0, 0, 0.1]}"), "constraints[0]");
+  auto curve = components().constraints.create("curve", Backend::Optimized, cfg);
+  DesignConstraints dc;
+  curve->add_to(mesh_at, 2, dc);
+  REQUIRE(!dc.points.empty());
+  for (const auto& c : dc.points) {
+    CHECK(c.level == 1);  // level 0 has no vertex near y = 0.375, level 1 has a row on it
+    CHECK(std::abs(h.mesh(1).position(c.vertex).y() - 0.375) <= 1e-12);
+  }
+  // The surface follows: the boundary stays, the snapped vertices reach the lifted curve.
+  const auto rims = h.mesh(1).boundary_loops();
+  DesignConstraints with_rim = dc;
+  for (int w : rims.front()) with_rim.points.push_back({1, w, false, Vec3::Zero(), "rim"});
+  auto solver = cholesky();
+  const EditSolution s = solve_edit(detail_preserving(h, 1, with_rim), ConstraintMode::Kkt, *solver, Backend::Optimized);
+  CHECK(s.constraint_residual <= 1e-10);
+  for (const auto& c : dc.points) CHECK(s.delta(c.vertex, 2) == Approx(0.1).margin(1e-10));
+  // On the base level the 4 × 4 grid cannot carry these rows independently (A has rank 19 of
+  // 20): KKT says so instead of returning garbage; paper mode gives its least-squares answer.
+  const auto base_rims = h.mesh(0).boundary_loops();
+  for (int w : base_rims.front()) dc.points.push_back({0, w, false, Vec3::Zero(), "rim"});
+  const EditProblem coarse = detail_preserving(h, 0, dc);
+  const EditSolution kkt = solve_edit(coarse, ConstraintMode::Kkt, *solver, Backend::Optimized);
+  CHECK(kkt.summary.termination == Termination::NumericalFailure);
+  CHECK_THAT(kkt.summary.message, Catch::Matchers::Contains("singular"));
+  CHECK(kkt.delta.allFinite());
+  const EditSolution paper = solve_edit(coarse, ConstraintMode::Paper, *solver, Backend::Optimized);
+  CHECK(paper.delta.allFinite());
+  CHECK(paper.constraint_residual < coarse.constraints.C.norm());
+}
+
+TEST_CASE("rotating an annulus' inner rim: constraints met, the result keeps the annulus' symmetry", "[design][bm][curve]") {
+  const MultiresSurface h(read_mesh(test::data_path("annulus.obj")), {}, 2, Backend::Optimized);
+  const LevelMeshes mesh_at = [&h](int l) -> const SurfaceMesh& { return h.mesh(l); };
+  const SurfaceMesh& fine = h.mesh(2);
+  const Eigen::Matrix3d twist = Eigen::AngleAxisd(M_PI / 3, Vec3::UnitZ()).toRotationMatrix();
+  const Vec3 lift(0, 0, 0.3);
+  auto solver = cholesky();
+  for (int edit : {0, 2}) {
+    INFO("edit level " << edit);
+    DesignConstraints dc;  // the rims of the edit level: inner turned 60° and lifted, outer fixed
+    const std::string level = std::to_string(edit);
+    for (const std::string yaml : {"{boundary_loop_near: [0, 0, 0], rotation: {axis: [0, 0, 1], angle_deg: 60}, "
+                                   "translation: [0, 0, 0.3], level: " + level + "}",
+                                   "{boundary_loop_near: [1, 0, 0], level: " + level + "}"}) {
+      Config cfg(YAML::Load(yaml), "constraints[0]");
+      components().constraints.create("rigid", Backend::Optimized, cfg)->add_to(mesh_at, 2, dc);
+    }
+    const EditSolution s = solve_edit(detail_preserving(h, edit, dc), ConstraintMode::Kkt, *solver, Backend::Optimized);
+    CHECK(s.constraint_residual <= 1e-10);
+    const Eigen::MatrixXd d = h.prolongation(edit, 2) * s.delta;
+    // Boundary rules use boundary vertices only, so the fine inner rim turns rigidly too.
+    const auto rims = fine.boundary_loops();
+    for (const auto& rim : rims)
+      for (int v : rim) {
+        const Vec3 p = fine.position(v);
+        if (p.norm() > 0.7) continue;  // the outer rim
+        CHECK((p + Vec3(d.row(v).transpose()) - (twist * p + lift)).norm() <= 1e-10);
+      }
+    // 16-fold symmetry: a vertex and its copy turned by 2π/16 move alike (|Δ| and Δz).
+    int compared = 0;
+    const Eigen::Matrix3d turn = Eigen::AngleAxisd(2 * M_PI / 16, Vec3::UnitZ()).toRotationMatrix();
+    for (int a = 0; a < fine.n_vertices(); a += 7) {
+      const Vec3 q = turn * fine.position(a);
+      Eigen::Index b = 0;
+      if ((fine.positions().rowwise() - q.transpose()).rowwise().norm().minCoeff(&b) > 1e-9) continue;
+      CHECK(std::abs(d.row(a).norm() - d.row(b).norm()) <= 1e-8);
+      CHECK(std::abs(d(a, 2) - d(b, 2)) <= 1e-8);
+      ++compared;
+    }
+    CHECK(compared > 50);
+  }
 }

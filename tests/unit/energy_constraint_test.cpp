@@ -75,24 +75,80 @@ TEST_CASE("constraints: selections, offsets, levels", "[constraint]") {
     cfg.check_no_unknown_keys();
     return c;
   };
-  std::vector<PointConstraint> p;
-  make("fixed", "{region: {axis: x, from: 0.0, to: 0.1}}")->add_points(one_level, 0, p);
+  DesignConstraints dc;
+  std::vector<PointConstraint>& p = dc.points;
+  make("fixed", "{region: {axis: x, from: 0.0, to: 0.1}}")->add_to(one_level, 0, dc);
   CHECK(p.size() == 5);  // the column x = 0
   for (const auto& c : p) CHECK(c.offset == Vec3::Zero());
   p.clear();
-  make("position", "{nearest: [1, 1, 0], offset: [0, 0, 1], on_limit: true}")->add_points(one_level, 0, p);
+  make("position", "{nearest: [1, 1, 0], offset: [0, 0, 1], on_limit: true}")->add_to(one_level, 0, dc);
   REQUIRE(p.size() == 1);
   CHECK(p[0].vertex == 24);
   CHECK(p[0].offset == Vec3(0, 0, 1));
   CHECK(p[0].on_limit);
   CHECK(p[0].label == "constraints[0]");
   p.clear();
-  make("position", "{vertices: [3], level: 1, offset: [1, 0, 0]}")->add_points(one_level, 2, p);
+  make("position", "{vertices: [3], level: 1, offset: [1, 0, 0]}")->add_to(one_level, 2, dc);
   CHECK(p.at(0).level == 1);
-  CHECK_THROWS_WITH(make("fixed", "{vertices: [99]}")->add_points(one_level, 0, p),
+  CHECK_THROWS_WITH(make("fixed", "{vertices: [99]}")->add_to(one_level, 0, dc),
                     Catch::Matchers::Contains("vertex 99 does not exist"));
-  CHECK_THROWS_WITH(make("fixed", "{vertices: [1], level: 3}")->add_points(one_level, 1, p),
+  CHECK_THROWS_WITH(make("fixed", "{vertices: [1], level: 3}")->add_to(one_level, 1, dc),
                     Catch::Matchers::Contains("level 3 is not in the hierarchy"));
   CHECK_THROWS_AS(make("fixed", "{vertices: [1], nearest: [0, 0, 0]}"), InvalidConfig);
   CHECK_THROWS_AS(make("position", "{vertices: [1], offset: [1, 2]}"), InvalidConfig);
+}
+
+TEST_CASE("rigid, normal and curve constraints place what their configs say", "[constraint]") {
+  const SurfaceMesh m = test::grid(4);  // 5 × 5 vertices on [0, 1]², spacing 0.25
+  const LevelMeshes one_level = [&m](int) -> const SurfaceMesh& { return m; };
+  auto make = [](const std::string& type, const std::string& yaml) {
+    Config cfg(YAML::Load(yaml), "constraints[0]");
+    auto c = components().constraints.create(type, Backend::Reference, cfg);
+    cfg.check_no_unknown_keys();
+    return c;
+  };
+  SECTION("rigid: the boundary loop turns about its centroid") {
+    DesignConstraints dc;
+    make("rigid", "{boundary_loop_near: [0, 0, 0], rotation: {axis: [0, 0, 1], angle_deg: 90}, translation: [0, 0, 1]}")
+        ->add_to(one_level, 0, dc);
+    CHECK(dc.points.size() == 16);
+    for (const auto& c : dc.points) {
+      const Vec3 p = m.position(c.vertex), q = p + c.offset;
+      CHECK(q.x() == Approx(0.5 - (p.y() - 0.5)));
+      CHECK(q.y() == Approx(0.5 + (p.x() - 0.5)));
+      CHECK(q.z() == Approx(1.0));
+    }
+  }
+  SECTION("normal: unit target, selection resolved") {
+    DesignConstraints dc;
+    make("normal", "{nearest: [0.5, 0.5, 0], normal: [0, 3, 4]}")->add_to(one_level, 0, dc);
+    REQUIRE(dc.normals.size() == 1);
+    CHECK(dc.normals[0].vertex == 12);
+    CHECK((dc.normals[0].normal - Vec3(0, 0.6, 0.8)).norm() <= 1e-15);
+    CHECK_THROWS_AS(make("normal", "{vertices: [1]}"), InvalidConfig);
+    CHECK_THROWS_AS(make("normal", "{vertices: [1], normal: [0, 0, 0]}"), InvalidConfig);
+  }
+  SECTION("curve: vertices snapped in order, targets on the moved curve") {
+    DesignConstraints dc;
+    make("curve", "{points: [[0, 0.55, 0], [1, 0.55, 0]], translation: [0, 0, 0.2]}")->add_to(one_level, 0, dc);
+    REQUIRE(dc.points.size() == 5);  // the row y = 0.5, 0.05 from the curve
+    for (std::size_t i = 0; i < 5; ++i) {
+      const Vec3 p = m.position(dc.points[i].vertex);
+      CHECK(p.y() == Approx(0.5));
+      CHECK(p.x() == Approx(0.25 * static_cast<double>(i)));
+      // The vertex lands on the translated curve: the snap is part of the deformation.
+      CHECK((p + dc.points[i].offset - Vec3(p.x(), 0.55, 0.2)).norm() <= 1e-12);
+    }
+  }
+  SECTION("curve: bad curves are refused with the reason") {
+    DesignConstraints dc;
+    CHECK_THROWS_WITH(make("curve", "{points: [[0, 0.5, 0], [1, 0.5, 0.5]]}")->add_to(one_level, 0, dc),
+                      Catch::Matchers::Contains("leaves the surface"));
+    CHECK_THROWS_WITH(make("curve", "{points: [[0, 0.375, 0], [1, 0.375, 0]]}")->add_to(one_level, 0, dc),
+                      Catch::Matchers::Contains("no level from 0 to 0"));
+    CHECK_THROWS_AS(make("curve", "{points: [[0, 0, 0]]}"), InvalidConfig);
+    CHECK_THROWS_AS(make("curve", "{points: [[0, 0, 0], [1, 1, 0]], target_points: [[0, 0, 0]]}"), InvalidConfig);
+    CHECK_THROWS_AS(make("curve", "{points: [[0, 0, 0], [1, 1, 0]], snap_ratio: 0.9}"), InvalidConfig);
+    CHECK_THROWS_AS(make("rigid", "{vertices: [1], rotation: {axis: [0, 0, 0], angle_deg: 3}}"), InvalidConfig);
+  }
 }

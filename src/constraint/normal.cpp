@@ -1,0 +1,38 @@
+// The `normal` constraint (Boier-Martin et al. §4.2): at each selected vertex the surface
+// normal becomes the given direction.
+#include "constraint/constraint_factories.h"
+#include "constraint/rigid_motion.h"
+#include "constraint/vertex_selection.h"
+
+namespace fairshape {
+namespace {
+
+class NormalDirection : public Constraint {
+ public:
+  NormalDirection(VertexSelection sel, Vec3 normal, int level, std::string who)
+      : selection_(std::move(sel)), normal_(normal), level_(level), who_(std::move(who)) {}
+
+  void add_to(const LevelMeshes& mesh_at, int finest, DesignConstraints& out) const override {
+    const int level = resolve_level(level_, finest, who_);
+    for (int v : selection_.resolve(mesh_at(level), who_)) out.normals.push_back({level, v, normal_, who_});
+  }
+
+ private:
+  VertexSelection selection_;
+  Vec3 normal_;
+  int level_;
+  std::string who_;
+};
+
+}  // namespace
+
+std::unique_ptr<Constraint> make_normal(Config& cfg) {
+  if (!cfg.has("normal")) throw InvalidConfig(cfg.key_path("normal") + ": required (the target normal [x, y, z])");
+  const Vec3 n = get_vec3(cfg, "normal", Vec3::UnitZ(), "target normal direction (normalized here)");
+  if (n.norm() == 0) throw InvalidConfig(cfg.key_path("normal") + ": must not be zero");
+  const int level = cfg.get_int("level", -1, -1, 16, "hierarchy level of the selected vertices (-1: the finest)");
+  return std::make_unique<NormalDirection>(VertexSelection::from_config(cfg), n.normalized(), level,
+                                           constraint_label(cfg));
+}
+
+}  // namespace fairshape

@@ -1,6 +1,5 @@
 #include "problem/least_squares.h"
 
-#include <Eigen/Dense>
 #include <Eigen/SparseQR>
 #include <Eigen/CholmodSupport>
 #include <Eigen/SPQRSupport>
@@ -10,21 +9,36 @@
 namespace fairshape {
 namespace {
 
-// Dense complete orthogonal decomposition: exact minimum norm for any rank, but O(m k min(m,k))
-// time and m k memory, so only for small systems (rank-deficient fallbacks).
-constexpr double kDenseLimit = 4e6;  // entries
-
-LeastSquaresResult dense_cod(const SparseMatrix& A, const Eigen::MatrixXd& C) {
-  if (double(A.rows()) * double(A.cols()) > kDenseLimit)
-    throw SolverError("least squares: the constraints are dependent (rank-deficient) and the system (" +
-                      std::to_string(A.rows()) + " x " + std::to_string(A.cols()) +
-                      ") is too large for the dense fallback: remove redundant constraints");
-  const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod{Eigen::MatrixXd(A)};
+// Dependent rows (a fixed region propagated to a coarse level gives many more rows than the
+// vertices they touch). With A_I a maximal independent set of A's rows (the first `rank`
+// pivots of a QR of Aᵀ; both QRs move dependent columns last), every x = A_Iᵀ w lies in A's
+// row space, and B = A A_Iᵀ has full column rank; w = argmin ‖B w − C‖ is unique, so x is
+// the least-squares solution of least norm, A⁺C, and stays sparse whatever the size.
+template <class QR>
+LeastSquaresResult rank_deficient(const SparseMatrix& A, const Eigen::MatrixXd& C) {
+  SparseMatrix At = A.transpose();
+  At.makeCompressed();
+  QR rows_qr(At);
+  if (rows_qr.info() != Eigen::Success) throw SolverError("least squares: QR of the constraint rows failed");
+  const Eigen::Index rank = rows_qr.rank();
+  const auto& perm = rows_qr.colsPermutation().indices();
+  Triplets t;
+  for (Eigen::Index k = 0; k < rank; ++k) t.emplace_back(static_cast<int>(perm[k]), static_cast<int>(k), 1.0);
+  SparseMatrix pick(A.rows(), rank);  // selects the independent rows: A_Iᵀ = Aᵀ pick
+  pick.setFromTriplets(t.begin(), t.end());
+  const SparseMatrix AIt = At * pick;
+  SparseMatrix B = A * AIt;
+  B.makeCompressed();
+  QR b_qr(B);
+  if (b_qr.info() != Eigen::Success) throw SolverError("least squares: QR of the reduced constraint system failed");
+  const Eigen::MatrixXd w = b_qr.solve(C);
   LeastSquaresResult r;
-  r.X = cod.solve(C);
-  r.rank = static_cast<int>(cod.rank());
+  r.X = AIt * w;
+  r.rank = static_cast<int>(rank);
   return r;
 }
+
+using ReferenceQR = Eigen::SparseQR<SparseMatrix, Eigen::COLAMDOrdering<int>>;
 
 // Reference: Eigen's SparseQR. m >= k: least squares through A P = Q R. m < k: minimum norm
 // through the QR of Aᵀ: Aᵀ P = Q R gives A = P Rᵀ Qᵀ, so x = Q [R₁⁻ᵀ Pᵀ C; 0].
@@ -33,10 +47,10 @@ LeastSquaresResult sparse_qr(const SparseMatrix& A, const Eigen::MatrixXd& C) {
   const bool wide = A.rows() < A.cols();
   SparseMatrix M = wide ? SparseMatrix(A.transpose()) : A;
   M.makeCompressed();
-  Eigen::SparseQR<SparseMatrix, Eigen::COLAMDOrdering<int>> qr(M);
+  ReferenceQR qr(M);
   if (qr.info() != Eigen::Success) throw SolverError("least squares: sparse QR failed on the constraint system");
   r.rank = static_cast<int>(qr.rank());
-  if (r.rank < std::min(A.rows(), A.cols())) return dense_cod(A, C);
+  if (r.rank < std::min(A.rows(), A.cols())) return rank_deficient<ReferenceQR>(A, C);
   if (!wide) {
     r.X = qr.solve(C);
     return r;
@@ -51,7 +65,7 @@ LeastSquaresResult sparse_qr(const SparseMatrix& A, const Eigen::MatrixXd& C) {
 }
 
 // Optimized: underdetermined (m < k, the usual case for propagated constraints) via CHOLMOD on
-// the small m × m system A Aᵀ; otherwise SuiteSparseQR. Dependent rows: the dense fallback.
+// the small m × m system A Aᵀ; otherwise SuiteSparseQR. Dependent rows: rank_deficient.
 LeastSquaresResult sparse_least_squares(const SparseMatrix& A, const Eigen::MatrixXd& C) {
   LeastSquaresResult r;
   if (A.rows() < A.cols()) {
@@ -65,7 +79,7 @@ LeastSquaresResult sparse_least_squares(const SparseMatrix& A, const Eigen::Matr
         return r;
       }
     }
-    return dense_cod(A, C);
+    return rank_deficient<Eigen::SPQR<SparseMatrix>>(A, C);
   }
   SparseMatrix Ac = A;
   Ac.makeCompressed();
@@ -73,7 +87,7 @@ LeastSquaresResult sparse_least_squares(const SparseMatrix& A, const Eigen::Matr
   if (qr.info() != Eigen::Success) throw SolverError("least squares: SuiteSparseQR failed on the constraint system");
   r.X = qr.solve(C);
   r.rank = static_cast<int>(qr.rank());
-  if (r.rank < A.cols()) return dense_cod(A, C);  // SPQR's basic solution is not minimum norm
+  if (r.rank < A.cols()) return rank_deficient<Eigen::SPQR<SparseMatrix>>(A, C);  // SPQR's basic solution is not minimum norm
   return r;
 }
 

@@ -19,8 +19,8 @@ struct LeastSquaresResult {
 };
 
 //! Reference: Eigen SparseQR (of Aᵀ when m < k, for the minimum norm). Optimized: CHOLMOD on
-//! A Aᵀ when m < k, SuiteSparseQR otherwise. Dependent rows: a dense complete orthogonal
-//! decomposition for small systems, a SolverError naming the problem for large ones.
+//! A Aᵀ when m < k, SuiteSparseQR otherwise. Dependent rows (any size): A⁺C through a maximal
+//! independent row set found by the same QR (see least_squares.cpp).
 //! \throw InvalidInput for non-finite input or mismatched sizes.
 LeastSquaresResult min_norm_least_squares(const SparseMatrix& A, const Eigen::MatrixXd& C, Backend backend);
 

@@ -2,6 +2,7 @@
 // constrained solve (paper mode and exact KKT).
 #include <catch2/catch.hpp>
 
+#include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
@@ -285,5 +286,37 @@ TEST_CASE("rotating an annulus' inner rim: constraints met, the result keeps the
       ++compared;
     }
     CHECK(compared > 50);
+  }
+}
+
+TEST_CASE("rank-deficient constraint systems: the sparse path gives A⁺C on both back ends", "[design][bm][conformance]") {
+  // Rows of a propagated operator and sums of them: wide and tall, consistent or not.
+  const MultiresSurface h = quad_hierarchy(1);
+  const RowSparseMatrix P = h.prolongation(0, 1);
+  for (const auto& [rows, consistent] : std::vector<std::pair<int, bool>>{{150, true}, {150, false}, {900, true}}) {
+    Triplets t;  // two thirds rows of P, then sums of two of those (dependent by construction)
+    const int base = 2 * rows / 3;
+    auto copy_row = [&](int r, int src) {
+      for (RowSparseMatrix::InnerIterator it(P, src); it; ++it) t.emplace_back(r, static_cast<int>(it.col()), it.value());
+    };
+    for (int r = 0; r < base; ++r) copy_row(r, r);
+    for (int r = base; r < rows; ++r) {
+      copy_row(r, r - base);
+      copy_row(r, r - base + 1);
+    }
+    SparseMatrix A(rows, P.cols());
+    A.setFromTriplets(t.begin(), t.end());
+    const Eigen::MatrixXd X0 = Eigen::MatrixXd::Random(P.cols(), 3);
+    Eigen::MatrixXd C = A * X0;
+    if (!consistent) C += 0.1 * Eigen::MatrixXd::Random(rows, 3);
+    const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod{Eigen::MatrixXd(A)};
+    const Eigen::MatrixXd exact = cod.solve(C);
+    INFO(rows << " rows, rank " << cod.rank() << (consistent ? ", consistent" : ", inconsistent"));
+    REQUIRE(cod.rank() < rows);  // dependent rows
+    for (Backend b : {Backend::Reference, Backend::Optimized}) {
+      const auto r = min_norm_least_squares(A, C, b);
+      CHECK(r.rank == cod.rank());
+      CHECK((r.X - exact).norm() <= 1e-8 * exact.norm());
+    }
   }
 }

@@ -56,23 +56,27 @@ EditSolution solve_paper(const EditProblem& p, Solver& solver, Backend backend, 
   return out;
 }
 
-EditSolution solve_kkt(const EditProblem& p, Backend backend) {
+EditSolution kkt_once(const EditProblem& p, Backend backend) {
   Timer setup;
   const SparseMatrix& A = p.constraints.A;
   const Eigen::Index n = p.H.rows(), m = A.rows();
+  // Constraint rows scaled to H's size: on remeshed levels H's diagonal spans 1e8..1e14, and
+  // an unscaled [H Aᵀ; A 0] loses most digits in the LU. (λ is scaled too; it is not used.)
+  const double diag_max = p.H.diagonal().cwiseAbs().maxCoeff();
+  const double s = diag_max > 0 ? diag_max : 1.0;
   Triplets t;
   for (int c = 0; c < p.H.outerSize(); ++c)
     for (SparseMatrix::InnerIterator it(p.H, c); it; ++it) t.emplace_back(static_cast<int>(it.row()), c, it.value());
   for (int c = 0; c < A.outerSize(); ++c)
     for (SparseMatrix::InnerIterator it(A, c); it; ++it) {
-      t.emplace_back(static_cast<int>(n + it.row()), c, it.value());
-      t.emplace_back(c, static_cast<int>(n + it.row()), it.value());
+      t.emplace_back(static_cast<int>(n + it.row()), c, s * it.value());
+      t.emplace_back(c, static_cast<int>(n + it.row()), s * it.value());
     }
   SparseMatrix K(n + m, n + m);
   K.setFromTriplets(t.begin(), t.end());
   Eigen::MatrixXd rhs(n + m, p.g.cols());
   rhs.topRows(n) = p.g;
-  rhs.bottomRows(m) = p.constraints.C;
+  rhs.bottomRows(m) = s * p.constraints.C;
   EditSolution out;
   Eigen::MatrixXd sol;
   bool ok = false;
@@ -94,13 +98,41 @@ EditSolution solve_kkt(const EditProblem& p, Backend backend) {
   // UMFPACK can "succeed" on a numerically singular K and return huge values: check the residual.
   const double residual = ok && sol.allFinite() ? relative_residual(K, rhs, sol) : 0.0;
   if (!ok || !sol.allFinite() || residual > 1e-6) {
-    out.summary.message = "KKT system is singular (dependent constraints, or nothing pins the deformation)";
+    out.summary.message = "KKT system is singular (nothing pins the deformation?)";
     out.delta = Eigen::MatrixXd::Zero(n, p.g.cols());
     return out;
   }
   out.delta = sol.topRows(n);
   out.summary = {Termination::Converged, 1, residual, ""};
   out.constrained_vertices = static_cast<int>(m);
+  return out;
+}
+
+// Dependent rows (a fixed region propagated to a coarser level) make K singular: keep a
+// maximal independent set (rank-revealing sparse QR) and say how many rows were dropped; if
+// the dropped rows disagree with the kept ones, constraint_residual shows it.
+EditSolution solve_kkt(const EditProblem& p, Backend backend) {
+  EditSolution out = kkt_once(p, backend);
+  if (out.summary.termination == Termination::Converged) return out;
+  Timer t;
+  const std::vector<int> keep = independent_rows(p.constraints.A, backend);
+  if (keep.size() == static_cast<std::size_t>(p.constraints.A.rows())) return out;
+  EditProblem reduced{p.H, p.g, {}};
+  const RowSparseMatrix A = p.constraints.A;
+  Triplets tr;
+  reduced.constraints.C.resize(static_cast<Eigen::Index>(keep.size()), p.constraints.C.cols());
+  for (std::size_t k = 0; k < keep.size(); ++k) {
+    for (RowSparseMatrix::InnerIterator it(A, keep[k]); it; ++it) tr.emplace_back(static_cast<int>(k), static_cast<int>(it.col()), it.value());
+    reduced.constraints.C.row(static_cast<Eigen::Index>(k)) = p.constraints.C.row(keep[k]);
+  }
+  reduced.constraints.A.resize(static_cast<Eigen::Index>(keep.size()), A.cols());
+  reduced.constraints.A.setFromTriplets(tr.begin(), tr.end());
+  const double qr_s = t.seconds();
+  out = kkt_once(reduced, backend);
+  out.analyze_s += qr_s;
+  const std::string dropped = std::to_string(p.constraints.A.rows() - static_cast<Eigen::Index>(keep.size()));
+  out.summary.message = out.summary.message.empty() ? "dropped " + dropped + " dependent constraint rows"
+                                                    : out.summary.message.append(" after dropping ").append(dropped).append(" dependent constraint rows");
   return out;
 }
 

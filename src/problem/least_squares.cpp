@@ -1,5 +1,7 @@
 #include "problem/least_squares.h"
 
+#include <algorithm>
+
 #include <Eigen/SparseQR>
 #include <Eigen/CholmodSupport>
 #include <Eigen/SPQRSupport>
@@ -15,18 +17,31 @@ namespace {
 // row space, and B = A A_Iᵀ has full column rank; w = argmin ‖B w − C‖ is unique, so x is
 // the least-squares solution of least norm, A⁺C, and stays sparse whatever the size.
 template <class QR>
-LeastSquaresResult rank_deficient(const SparseMatrix& A, const Eigen::MatrixXd& C) {
+std::vector<int> independent_rows_by(const SparseMatrix& A) {
   SparseMatrix At = A.transpose();
   At.makeCompressed();
-  QR rows_qr(At);
-  if (rows_qr.info() != Eigen::Success) throw SolverError("least squares: QR of the constraint rows failed");
-  const Eigen::Index rank = rows_qr.rank();
-  const auto& perm = rows_qr.colsPermutation().indices();
+  QR qr(At);
+  if (qr.info() != Eigen::Success) throw SolverError("least squares: QR of the constraint rows failed");
+  const auto permutation = qr.colsPermutation();  // SPQR returns it by value: keep it alive
+  const auto& perm = permutation.indices();
+  std::vector<int> rows;
+  for (Eigen::Index k = 0; k < qr.rank(); ++k) rows.push_back(static_cast<int>(perm[k]));
+  std::sort(rows.begin(), rows.end());
+  return rows;
+}
+
+SparseMatrix row_picker(Eigen::Index m, const std::vector<int>& rows) {
   Triplets t;
-  for (Eigen::Index k = 0; k < rank; ++k) t.emplace_back(static_cast<int>(perm[k]), static_cast<int>(k), 1.0);
-  SparseMatrix pick(A.rows(), rank);  // selects the independent rows: A_Iᵀ = Aᵀ pick
+  for (std::size_t k = 0; k < rows.size(); ++k) t.emplace_back(rows[k], static_cast<int>(k), 1.0);
+  SparseMatrix pick(m, static_cast<Eigen::Index>(rows.size()));
   pick.setFromTriplets(t.begin(), t.end());
-  const SparseMatrix AIt = At * pick;
+  return pick;
+}
+
+template <class QR>
+LeastSquaresResult rank_deficient(const SparseMatrix& A, const Eigen::MatrixXd& C) {
+  const std::vector<int> rows = independent_rows_by<QR>(A);
+  const SparseMatrix AIt = SparseMatrix(A.transpose()) * row_picker(A.rows(), rows);  // A_Iᵀ
   SparseMatrix B = A * AIt;
   B.makeCompressed();
   QR b_qr(B);
@@ -34,7 +49,7 @@ LeastSquaresResult rank_deficient(const SparseMatrix& A, const Eigen::MatrixXd& 
   const Eigen::MatrixXd w = b_qr.solve(C);
   LeastSquaresResult r;
   r.X = AIt * w;
-  r.rank = static_cast<int>(rank);
+  r.rank = static_cast<int>(rows.size());
   return r;
 }
 
@@ -92,6 +107,11 @@ LeastSquaresResult sparse_least_squares(const SparseMatrix& A, const Eigen::Matr
 }
 
 }  // namespace
+
+std::vector<int> independent_rows(const SparseMatrix& A, Backend backend) {
+  return backend == Backend::Reference ? independent_rows_by<ReferenceQR>(A)
+                                       : independent_rows_by<Eigen::SPQR<SparseMatrix>>(A);
+}
 
 LeastSquaresResult min_norm_least_squares(const SparseMatrix& A, const Eigen::MatrixXd& C, Backend backend) {
   if (A.rows() != C.rows())

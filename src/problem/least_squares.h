@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "core/backend.h"
 #include "core/types.h"
@@ -23,5 +24,9 @@ struct LeastSquaresResult {
 //! independent row set found by the same QR (see least_squares.cpp).
 //! \throw InvalidInput for non-finite input or mismatched sizes.
 LeastSquaresResult min_norm_least_squares(const SparseMatrix& A, const Eigen::MatrixXd& C, Backend backend);
+
+//! A maximal set of linearly independent rows of A (ascending), from a rank-revealing QR of Aᵀ
+//! (reference Eigen SparseQR, optimized SuiteSparseQR).
+std::vector<int> independent_rows(const SparseMatrix& A, Backend backend);
 
 }  // namespace fairshape

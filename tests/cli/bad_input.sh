@@ -8,29 +8,29 @@ expect_error 2 "only .* bytes follow" -- "$FS" info $M/absurd_count.off
 expect_error 2 "valid: .obj, .off, .ply" -- "$FS" convert data/cow.off "$SCRATCH/cow.stl"
 [ ! -e "$SCRATCH/cow.stl" ] || fail "a refused conversion left a file"
 expect_error 2 "config file not found" -- "$FS" run nowhere.yaml
-expect_error 2 "colour: unknown key" -- "$FS" run configs/demo.yaml --set colour=red --out "$SCRATCH/x"
-expect_error 2 "unknown value 'multigrd'" -- "$FS" run configs/demo.yaml --set solver.type=multigrd --out "$SCRATCH/x"
-expect_error 2 "solver.sor.omega" -- "$FS" run configs/demo.yaml --set solver.sor.omega=2.5 --out "$SCRATCH/x"
-expect_error 2 "expected key.path=value" -- "$FS" run configs/demo.yaml --set oops
-expect_error 2 "--resume needs --out" -- "$FS" run configs/demo.yaml --resume
-expect_error 2 "expected i/n" -- "$FS" run configs/demo.yaml --shard 3 --out "$SCRATCH/x"
+expect_error 2 "colour: unknown key" -- "$FS" run configs/smoke/cow_nose_pull.yaml --set colour=red --out "$SCRATCH/x"
+expect_error 2 "unknown value 'multigrd'" -- "$FS" run configs/smoke/cow_nose_pull.yaml --set solver.type=multigrd --out "$SCRATCH/x"
+expect_error 2 "solver.sor.omega" -- "$FS" run configs/smoke/cow_nose_pull.yaml --set solver.sor.omega=2.5 --out "$SCRATCH/x"
+expect_error 2 "expected key.path=value" -- "$FS" run configs/smoke/cow_nose_pull.yaml --set oops
+expect_error 2 "--resume needs --out" -- "$FS" run configs/smoke/cow_nose_pull.yaml --resume
+expect_error 2 "expected i/n" -- "$FS" run configs/smoke/cow_nose_pull.yaml --shard 3 --out "$SCRATCH/x"
 # All problems of a sweep are listed at once, before any run.
-expect_error 2 "2 problem(s), nothing was run" -- "$FS" run configs/demo.yaml \
+expect_error 2 "2 problem(s), nothing was run" -- "$FS" run configs/smoke/cow_nose_pull.yaml \
   --set 'sweep.solver.type=[cholesky, nope]' --set 'sweep.input.mesh=[data/cow.off, data/none.off]' --out "$SCRATCH/y"
 [ ! -e "$SCRATCH/y/runs.csv" ] || fail "an invalid sweep wrote results"
 # Incompatible targets on one vertex: the run fails with a message, the sweep records it.
-rc=0; "$FS" run configs/demo.yaml --out "$SCRATCH/conflict" \
+rc=0; "$FS" run configs/smoke/cow_nose_pull.yaml --out "$SCRATCH/conflict" \
   --set 'constraints=[{type: fixed, vertices: [5]}, {type: position, vertices: [5], offset: [1, 0, 0]}]' 2>/dev/null || rc=$?
 [ "$rc" -eq 3 ] || fail "conflicting targets: exit $rc, expected 3"
 grep -q "invalid_input" "$SCRATCH/conflict/runs.csv" || fail "no invalid_input row"
 grep -q "incompatible targets" "$SCRATCH/conflict/runs.csv" || fail "no message"
 # Nothing pinned under a translation-invariant energy: singular, reported, never NaN.
-rc=0; "$FS" run configs/demo.yaml --out "$SCRATCH/singular" --set 'constraints=[]' --set solver.type=gauss_seidel \
+rc=0; "$FS" run configs/smoke/cow_nose_pull.yaml --out "$SCRATCH/singular" --set 'constraints=[]' --set solver.type=gauss_seidel \
   2>/dev/null || rc=$?
 [ "$rc" -eq 3 ] || fail "singular system: exit $rc, expected 3"
 grep -q "invalid_input" "$SCRATCH/singular/runs.csv" || fail "singular system not reported"
 grep -q "no constraint: the deformation is undetermined" "$SCRATCH/singular/runs.csv" || fail "singular system: no message"
 ! grep -qi "nan" "$SCRATCH/singular/runs.csv" || fail "NaN written"
 # An existing result folder is not overwritten by accident.
-expect_error 2 "already holds results" -- "$FS" run configs/demo.yaml --out "$SCRATCH/conflict"
+expect_error 2 "already holds results" -- "$FS" run configs/smoke/cow_nose_pull.yaml --out "$SCRATCH/conflict"
 echo "bad_input: ok"

@@ -1,8 +1,8 @@
 source "$(dirname "$0")/lib.sh"
 ROOT="$PWD"
 # Default output folder: results/<name>/<timestamp>_<sha>/ with a `latest` link, relative to the cwd.
-(cd "$SCRATCH" && "$FS" run "$ROOT/configs/demo.yaml" 2>/dev/null)
-OUT="$SCRATCH/results/demo/latest"
+(cd "$SCRATCH" && "$FS" run "$ROOT/configs/smoke/cow_nose_pull.yaml" 2>/dev/null)
+OUT="$SCRATCH/results/smoke_cow_nose_pull/latest"
 [ -L "$OUT" ] || fail "no latest link"
 for f in runs.csv run.json config.resolved.yaml iterations.csv final.obj; do
   [ -s "$OUT/$f" ] || fail "missing $f"
@@ -26,7 +26,7 @@ assert float(r["peak_rss_mb"]) > 0
 PYEOF
 # final.obj is the deformed cow: same size, moved.
 "$FS" info "$OUT/final.obj" | grep -q "vertices             2904" || fail "final.obj"
-"$FS" run configs/demo.yaml --out "$SCRATCH/every" --set output.vtk=every_iteration --set output.vtk_every=5 \
+"$FS" run configs/smoke/cow_nose_pull.yaml --out "$SCRATCH/every" --set output.vtk=every_iteration --set output.vtk_every=5 \
   --set solver.type=conjugate_gradient --set solver.max_iterations=20 2>/dev/null || true
 ls "$SCRATCH"/every/vtk/*_it5.vtp >/dev/null || fail "no iteration snapshots"
 ls "$SCRATCH"/every/vtk/*.pvd >/dev/null || fail "no pvd series"
@@ -42,5 +42,5 @@ for r in rows:
     assert float(r["subdivide_s"]) > 0, r
 PYEOF
 expect_error 2 "input.levels: 2 subdivision levels need representation" -- \
-  "$FS" run configs/demo.yaml --set input.levels=2 --out "$SCRATCH/bad"
+  "$FS" run configs/smoke/cow_nose_pull.yaml --set input.levels=2 --out "$SCRATCH/bad"
 echo "run_outputs (subdivision): ok"

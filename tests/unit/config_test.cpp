@@ -13,8 +13,8 @@ using namespace fairshape;
 using Catch::Matchers::Contains;
 
 namespace {
-YAML::Node demo_config() { return load_experiment_config(test::source_path("configs/demo.yaml"), {}); }
-std::vector<std::string> dirs() { return input_search_dirs(test::source_path("configs/demo.yaml")); }
+YAML::Node smoke_config() { return load_experiment_config(test::source_path("configs/smoke/cow_nose_pull.yaml"), {}); }
+std::vector<std::string> dirs() { return input_search_dirs(test::source_path("configs/smoke/cow_nose_pull.yaml")); }
 }  // namespace
 
 TEST_CASE("Config: unknown keys, wrong types and ranges are errors naming the key", "[config]") {
@@ -37,21 +37,21 @@ TEST_CASE("registry lookups list what exists", "[config]") {
 }
 
 TEST_CASE("defaults are merged under the file, --set overrides, sweep keys stay dotted", "[config]") {
-  const YAML::Node root = demo_config();
+  const YAML::Node root = smoke_config();
   CHECK(root["output"]["vtk"].as<std::string>() == "final");  // from base/output.yaml
-  CHECK(root["name"].as<std::string>() == "demo");
+  CHECK(root["name"].as<std::string>() == "smoke_cow_nose_pull");
   const YAML::Node over = load_experiment_config(
-      test::source_path("configs/demo.yaml"),
+      test::source_path("configs/smoke/cow_nose_pull.yaml"),
       {"solver.tolerance=1e-10", "sweep.input.mesh=[data/cow.off, data/knot.off]", "solver.sor.omega=1.2"});
   CHECK(over["solver"]["tolerance"].as<double>() == 1e-10);
   CHECK(over["solver"]["sor"]["omega"].as<double>() == 1.2);
   CHECK(over["sweep"]["input.mesh"].size() == 2);
-  CHECK_THROWS_WITH(load_experiment_config(test::source_path("configs/demo.yaml"), {"novalue"}),
+  CHECK_THROWS_WITH(load_experiment_config(test::source_path("configs/smoke/cow_nose_pull.yaml"), {"novalue"}),
                     Contains("expected key.path=value"));
 }
 
 TEST_CASE("sweep expansion: Cartesian product, zip axes, stable run ids", "[config]") {
-  YAML::Node root = demo_config();
+  YAML::Node root = smoke_config();
   root["sweep"] = YAML::Load(
       "{solver.type: [cholesky, sor], implementation: [reference, optimized, reference],"
       " zip: {seed: [1, 2], solver.tolerance: [1.0e-6, 1.0e-9]}}");
@@ -73,7 +73,7 @@ TEST_CASE("sweep expansion: Cartesian product, zip axes, stable run ids", "[conf
 
 TEST_CASE("run validation catches bad components, keys and values before running", "[config]") {
   auto spec_with = [](const std::string& key, const std::string& value) {
-    YAML::Node root = demo_config();
+    YAML::Node root = smoke_config();
     set_by_path(root, key, YAML::Load(value));
     return RunSpec::from_config(root, components(), dirs());
   };

@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Figures 1 b/c, 2, 7 and 9 (top) of Boier-Martin et al.: runs each config under
+# configs/boier-martin/, renders every run (VTK offscreen) side by side into
+# papers/boier-martin/figures/figN.png and keeps its runs.csv in papers/boier-martin/data/.
+#   bash papers/boier-martin/figures/make_figures.sh [fig1 fig2 fig7 fig9]   (after `make build`)
+set -euo pipefail
+cd "$(dirname "$0")/../../.."
+figures=("$@")
+[ ${#figures[@]} -gt 0 ] || figures=(fig1 fig2 fig7 fig9)
+cow_view=(--azimuth 0 --elevation 0 --zoom 1.5 --width 800 --height 560)
+
+figure() {  # name config panels-arguments...
+  local name=$1 config=$2
+  shift 2
+  local out=results/figures/$name
+  build/bin/fairshape run "configs/boier-martin/$config.yaml" --out "$out" --force
+  /usr/bin/python3 scripts/panels.py "$out" "papers/boier-martin/figures/$name.png" "$@"
+  mkdir -p papers/boier-martin/data
+  cp "$out/runs.csv" "papers/boier-martin/data/${name}_runs.csv"
+}
+
+for f in "${figures[@]}"; do
+  case $f in
+    fig1) figure fig1 fig1_constraint_level \
+            --title "One nose handle solved exactly on level 0, 1 or 3: same reach, details kept better on coarse levels (colour: displacement)" \
+            --label "edit level {input_edit_level:.0f}: detail change {detail_change:.3f}" \
+            --render "${cow_view[@]}" ;;
+    fig2) figure fig2 fig2_nose_pull \
+            --title "Nose pulled on the finest level of a Catmull-Clark hierarchy (colour: displacement)" \
+            --label "{kind}: detail change {detail_change:.2f}, constraint residual {constraint_violation:.0e}" \
+            --render "${cow_view[@]}" ;;
+    fig7) figure fig7 fig7_constraint_kinds --rest data/cow.off \
+            --title "Point, normal and curve constraints, detail-preserving energy, hooves fixed (colour: displacement)" \
+            --label "{kind} constraints: detail change {detail_change:.3f}" \
+            --render "${cow_view[@]}" ;;
+    fig9) figure fig9 fig9_annulus_twist --rest data/annulus.obj \
+            --title "Inner rim of an annulus turned 45 and 90 degrees about z and lifted by 0.4, outer rim fixed" \
+            --label "{kind}, energy {energy:.3g}, constraint residual {constraint_violation:.0e}" \
+            --render --azimuth 20 --elevation 35 --width 700 --height 600 --edges ;;
+    *) echo "unknown figure '$f' (choose from fig1 fig2 fig7 fig9)" >&2; exit 2 ;;
+  esac
+done

@@ -1,0 +1,81 @@
+#!/usr/bin/python3
+"""Side-by-side figure of a sweep's results: one rendered panel per run of runs.csv.
+
+  panels.py RUN_DIR OUT.png --title TEXT --label FORMAT [--rest MESH] [--render ARG ...]
+
+FORMAT is a Python format string over the runs.csv row, with dots in column names replaced
+by underscores and numbers parsed, e.g. "edit level {input_edit_level}: {detail_change:.2f}".
+A `{kind}` field holds the last `type:` in the swept values (the energy, or the last constraint).
+Panels are rendered by `fairshape render` (VTK offscreen) from vtk/<run_id>.vtp.
+"""
+import argparse
+import csv
+import os
+import re
+import subprocess
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.image as mpimg  # noqa: E402
+import matplotlib.pyplot as plt  # noqa: E402
+
+BIN = os.path.join(os.path.dirname(__file__), "..", "build", "bin", "fairshape")
+
+
+def fields(row):
+    out = {}
+    for key, value in row.items():
+        try:
+            value = float(value)
+        except ValueError:
+            pass
+        out[key.replace(".", "_")] = value
+    swept = list(row)[1:list(row).index("implementation")]  # run_id, the swept keys, then the rest
+    types = [m for key in swept for m in re.findall(r"type: ([\w-]+)", row[key])]
+    out["kind"] = types[-1] if types else ""
+    return out
+
+
+def render(source, png, args):
+    subprocess.run([BIN, "render", source, png] + args, check=True)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("run_dir")
+    p.add_argument("out_png")
+    p.add_argument("--title", required=True)
+    p.add_argument("--label", required=True)
+    p.add_argument("--rest", help="also show this mesh first, uncoloured")
+    p.add_argument("--render", nargs=argparse.REMAINDER, default=[], help="arguments for fairshape render")
+    a = p.parse_args()
+    rows = list(csv.DictReader(open(os.path.join(a.run_dir, "runs.csv"))))
+    failed = [r["run_id"] for r in rows if r["termination"] not in ("converged", "max_iterations", "energy_stalled")]
+    if failed:
+        sys.exit(f"panels: runs {failed} did not finish; see {a.run_dir}/runs.csv")
+    panels = []
+    if a.rest:
+        png = os.path.join(a.run_dir, "rest.png")
+        render(a.rest, png, [x for x in a.render])
+        panels.append((png, "before"))
+    for r in rows:
+        png = os.path.join(a.run_dir, f"{r['run_id']}.png")
+        render(os.path.join(a.run_dir, "vtk", f"{r['run_id']}.vtp"), png, ["--array", "displacement_norm"] + a.render)
+        panels.append((png, a.label.format(**fields(r))))
+    fig, axes = plt.subplots(1, len(panels), figsize=(6.4 * len(panels), 5.0), dpi=100, squeeze=False)
+    for ax, (png, label) in zip(axes[0], panels):
+        ax.imshow(mpimg.imread(png))
+        ax.set_title(label, fontsize=11)
+        ax.axis("off")
+    fig.suptitle(a.title, fontsize=13)
+    fig.tight_layout()
+    tmp = a.out_png + ".tmp.png"
+    fig.savefig(tmp)
+    os.replace(tmp, a.out_png)  # never a truncated figure
+    print(f"panels: wrote {a.out_png}")
+
+
+if __name__ == "__main__":
+    main()

@@ -17,6 +17,7 @@ figure() {  # name config panels-arguments...
   /usr/bin/python3 scripts/panels.py "$out" "papers/boier-martin/figures/$name.png" "$@"
   mkdir -p papers/boier-martin/data
   cp "$out/runs.csv" "papers/boier-martin/data/${name}_runs.csv"
+  cp "$out/run.json" "papers/boier-martin/data/${name}_run.json"
 }
 
 for f in "${figures[@]}"; do

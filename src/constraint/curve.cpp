@@ -88,7 +88,8 @@ class CurveConstraint : public Constraint {
 std::unique_ptr<Constraint> make_curve(Config& cfg) {
   CurveConstraint::Options o;
   o.points = points_from_config(cfg, "points", "the curve's control polygon [[x, y, z], ...], on the surface");
-  if (o.points.rows() < 2) throw InvalidConfig(cfg.key_path("points") + ": a curve needs at least 2 points");
+  if (o.points.rows() < 2 && !cfg.documenting())
+    throw InvalidConfig(cfg.key_path("points") + ": a curve needs at least 2 points");
   o.closed = cfg.get<bool>("closed", false, "the curve is a closed loop");
   o.targets = points_from_config(cfg, "target_points", "where the control points go (default: the rigid motion)");
   if (o.targets.rows() && o.targets.rows() != o.points.rows())

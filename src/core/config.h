@@ -50,6 +50,9 @@ class Config {
 
   void check_no_unknown_keys() const;  // throws InvalidConfig naming the key and valid keys
   void set_recorder(std::shared_ptr<std::vector<OptionDoc>> r) { recorder_ = std::move(r); }
+  //! True while `fairshape list` runs a factory on an empty block to collect its docs:
+  //! factories skip checks that need a real value (required keys read as empty).
+  bool documenting() const { return recorder_ != nullptr; }
 
  private:
   void mark(const std::string& key, const std::string& fallback, const std::string& doc);

@@ -259,7 +259,7 @@ TEST_CASE("rotating an annulus' inner rim: constraints met, the result keeps the
     INFO("edit level " << edit);
     DesignConstraints dc;  // the rims of the edit level: inner turned 60° and lifted, outer fixed
     const std::string level = std::to_string(edit);
-    for (const std::string yaml : {"{boundary_loop_near: [0, 0, 0], rotation: {axis: [0, 0, 1], angle_deg: 60}, "
+    for (const std::string& yaml : {"{boundary_loop_near: [0, 0, 0], rotation: {axis: [0, 0, 1], angle_deg: 60}, "
                                    "translation: [0, 0, 0.3], level: " + level + "}",
                                    "{boundary_loop_near: [1, 0, 0], level: " + level + "}"}) {
       Config cfg(YAML::Load(yaml), "constraints[0]");

@@ -19,7 +19,8 @@ RigidMotion RigidMotion::from_config(Config& cfg) {
   Config rot = cfg.child("rotation", "rotation {axis, angle_deg, center} applied before the translation");
   const Vec3 axis = get_vec3(rot, "axis", Vec3::UnitZ(), "rotation axis direction");
   const double angle = rot.get<double>("angle_deg", 0.0, "rotation angle in degrees (right-hand rule)");
-  if (rot.has("center")) m.center_ = get_vec3(rot, "center", Vec3::Zero(), "a point on the axis (default: centroid)");
+  const auto center = rot.get<std::vector<double>>("center", {}, "a point on the axis (default: the centroid)");
+  if (!center.empty()) m.center_ = get_vec3(rot, "center", Vec3::Zero(), "");
   rot.check_no_unknown_keys();
   if (axis.norm() == 0) throw InvalidConfig(rot.key_path("axis") + ": must not be zero");
   if (!std::isfinite(angle)) throw InvalidConfig(rot.key_path("angle_deg") + ": not finite");

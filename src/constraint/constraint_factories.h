@@ -11,6 +11,8 @@ namespace fairshape {
 
 //! The config path that names a constraint in error messages ("constraints[2]").
 std::string constraint_label(const Config& cfg);
+//! The `level` key of a selection-based constraint (-1: the finest).
+int level_from_config(Config& cfg);
 
 std::unique_ptr<Constraint> make_fixed(Config& cfg);
 std::unique_ptr<Constraint> make_position(Config& cfg);

@@ -46,13 +46,15 @@ class CurveConstraint : public Constraint {
     // "Leaves the surface" is judged on the finest level, the surface the designer sees.
     const SurfaceMesh& fine = mesh_at(finest);
     const double diagonal = (fine.positions().colwise().maxCoeff() - fine.positions().colwise().minCoeff()).norm();
-    project_curve(fine, o_.points, o_.closed, 0.25 * mean_edge_length(fine), o_.max_distance * diagonal, who_);
+    const CurveOnSurface on_fine =
+        project_curve(fine, o_.points, o_.closed, 0.25 * mean_edge_length(fine), o_.max_distance * diagonal, who_);
     const Vec3 centroid = o_.points.colwise().mean().transpose();
     std::string why;
     for (int level = first; level <= finest; ++level) {
       const SurfaceMesh& m = mesh_at(level);
-      const CurveOnSurface c =
-          project_curve(m, o_.points, o_.closed, 0.25 * mean_edge_length(m), std::numeric_limits<double>::infinity(), who_);
+      const CurveOnSurface c = level == finest ? on_fine
+                                               : project_curve(m, o_.points, o_.closed, 0.25 * mean_edge_length(m),
+                                                               std::numeric_limits<double>::infinity(), who_);
       const auto chain = snap_vertices(m, c, o_.snap_ratio, &why);
       if (!chain) continue;
       for (std::size_t i = 0; i < chain->vertices.size(); ++i) {

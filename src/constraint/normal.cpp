@@ -30,7 +30,7 @@ std::unique_ptr<Constraint> make_normal(Config& cfg) {
   cfg.require<std::vector<double>>("normal", "target normal direction [x, y, z] (normalized here)");  // missing: error
   const Vec3 n = cfg.documenting() ? Vec3::UnitZ() : get_vec3(cfg, "normal", Vec3::UnitZ(), "");
   if (n.norm() == 0) throw InvalidConfig(cfg.key_path("normal") + ": must not be zero");
-  const int level = cfg.get_int("level", -1, -1, 16, "hierarchy level of the selected vertices (-1: the finest)");
+  const int level = level_from_config(cfg);
   return std::make_unique<NormalDirection>(VertexSelection::from_config(cfg), n.normalized(), level,
                                            constraint_label(cfg));
 }

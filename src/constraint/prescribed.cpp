@@ -1,6 +1,7 @@
 // The `fixed` and `position` constraints: selected vertices of one level (the finest unless
 // `level` says otherwise) keep their place or move by an offset.
 #include "constraint/constraint_factories.h"
+#include "constraint/rigid_motion.h"
 #include "constraint/vertex_selection.h"
 
 namespace fairshape {
@@ -25,14 +26,9 @@ class PositionConstraint : public Constraint {
 };
 
 std::unique_ptr<Constraint> make(Config& cfg, bool with_offset) {
-  Vec3 offset = Vec3::Zero();
-  if (with_offset) {
-    const auto off = cfg.get<std::vector<double>>("offset", {0, 0, 0}, "displacement [dx, dy, dz] of the handle");
-    if (off.size() != 3) throw InvalidConfig(cfg.key_path("offset") + ": expected 3 numbers");
-    offset = Vec3(off[0], off[1], off[2]);
-    if (!offset.allFinite()) throw InvalidConfig(cfg.key_path("offset") + ": not finite");
-  }
-  const int level = cfg.get_int("level", -1, -1, 16, "hierarchy level of the selected vertices (-1: the finest)");
+  const Vec3 offset =
+      with_offset ? get_vec3(cfg, "offset", Vec3::Zero(), "displacement [dx, dy, dz] of the handle") : Vec3::Zero();
+  const int level = level_from_config(cfg);
   const bool on_limit = cfg.get<bool>("on_limit", false, "constrain the limit positions of the selected vertices");
   return std::make_unique<PositionConstraint>(VertexSelection::from_config(cfg), offset, level, on_limit,
                                               constraint_label(cfg));
@@ -46,6 +42,10 @@ int resolve_level(int level, int finest, const std::string& who) {
     throw InvalidInput(who + ": level " + std::to_string(l) + " is not in the hierarchy (levels 0.." +
                        std::to_string(finest) + ")");
   return l;
+}
+
+int level_from_config(Config& cfg) {
+  return cfg.get_int("level", -1, -1, 16, "hierarchy level of the selected vertices (-1: the finest)");
 }
 
 std::string constraint_label(const Config& cfg) { return cfg.path().empty() ? "constraint" : cfg.path(); }

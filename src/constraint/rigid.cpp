@@ -35,7 +35,7 @@ class RigidConstraint : public Constraint {
 }  // namespace
 
 std::unique_ptr<Constraint> make_rigid(Config& cfg) {
-  const int level = cfg.get_int("level", -1, -1, 16, "hierarchy level of the selected vertices (-1: the finest)");
+  const int level = level_from_config(cfg);
   RigidMotion motion = RigidMotion::from_config(cfg);
   return std::make_unique<RigidConstraint>(VertexSelection::from_config(cfg), motion, level, constraint_label(cfg));
 }

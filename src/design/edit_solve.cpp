@@ -4,6 +4,7 @@
 #include <Eigen/UmfPackSupport>
 
 #include <cmath>
+#include <optional>
 
 #include "core/timer.h"
 #include "problem/constrained_system.h"
@@ -42,11 +43,14 @@ EditSolution solve_paper(const EditProblem& p, Solver& solver, Backend backend, 
     solver.analyze(red.A);
     out.analyze_s = setup.seconds();
     // Callers see the whole deformation, not the solver's reduced unknowns.
+    // The reduced energy differs from the full one by a constant (the fixed vertices' part):
+    // measured once, so a check costs no product with the full H.
     Eigen::MatrixXd full;
+    std::optional<double> energy_offset;
     const IterationCallback expanded = [&](const IterationRecord& r) {
       full = red.expand(*r.x);
-      const double energy = std::isnan(r.energy) ? r.energy : quadratic_energy(p.H, p.g, full);
-      return cb({r.iteration, r.residual, r.seconds, energy, &full});
+      if (!std::isnan(r.energy) && !energy_offset) energy_offset = quadratic_energy(p.H, p.g, full) - r.energy;
+      return cb({r.iteration, r.residual, r.seconds, r.energy + energy_offset.value_or(0.0), &full});
     };
     Timer t;
     out.summary = solver.solve(red.A, red.b, x, cb ? expanded : IterationCallback());
@@ -117,16 +121,10 @@ EditSolution solve_kkt(const EditProblem& p, Backend backend) {
   Timer t;
   const std::vector<int> keep = independent_rows(p.constraints.A, backend);
   if (keep.size() == static_cast<std::size_t>(p.constraints.A.rows())) return out;
+  const SparseMatrix pick_t = row_picker(p.constraints.A.rows(), keep).transpose();
   EditProblem reduced{p.H, p.g, {}};
-  const RowSparseMatrix A = p.constraints.A;
-  Triplets tr;
-  reduced.constraints.C.resize(static_cast<Eigen::Index>(keep.size()), p.constraints.C.cols());
-  for (std::size_t k = 0; k < keep.size(); ++k) {
-    for (RowSparseMatrix::InnerIterator it(A, keep[k]); it; ++it) tr.emplace_back(static_cast<int>(k), static_cast<int>(it.col()), it.value());
-    reduced.constraints.C.row(static_cast<Eigen::Index>(k)) = p.constraints.C.row(keep[k]);
-  }
-  reduced.constraints.A.resize(static_cast<Eigen::Index>(keep.size()), A.cols());
-  reduced.constraints.A.setFromTriplets(tr.begin(), tr.end());
+  reduced.constraints.A = pick_t * p.constraints.A;
+  reduced.constraints.C = pick_t * p.constraints.C;
   const double qr_s = t.seconds();
   out = kkt_once(reduced, backend);
   out.analyze_s += qr_s;

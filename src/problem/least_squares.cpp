@@ -30,14 +30,6 @@ std::vector<int> independent_rows_by(const SparseMatrix& A) {
   return rows;
 }
 
-SparseMatrix row_picker(Eigen::Index m, const std::vector<int>& rows) {
-  Triplets t;
-  for (std::size_t k = 0; k < rows.size(); ++k) t.emplace_back(rows[k], static_cast<int>(k), 1.0);
-  SparseMatrix pick(m, static_cast<Eigen::Index>(rows.size()));
-  pick.setFromTriplets(t.begin(), t.end());
-  return pick;
-}
-
 template <class QR>
 LeastSquaresResult rank_deficient(const SparseMatrix& A, const Eigen::MatrixXd& C) {
   const std::vector<int> rows = independent_rows_by<QR>(A);
@@ -107,6 +99,14 @@ LeastSquaresResult sparse_least_squares(const SparseMatrix& A, const Eigen::Matr
 }
 
 }  // namespace
+
+SparseMatrix row_picker(Eigen::Index m, const std::vector<int>& rows) {
+  Triplets t;
+  for (std::size_t k = 0; k < rows.size(); ++k) t.emplace_back(rows[k], static_cast<int>(k), 1.0);
+  SparseMatrix pick(m, static_cast<Eigen::Index>(rows.size()));
+  pick.setFromTriplets(t.begin(), t.end());
+  return pick;
+}
 
 std::vector<int> independent_rows(const SparseMatrix& A, Backend backend) {
   return backend == Backend::Reference ? independent_rows_by<ReferenceQR>(A)

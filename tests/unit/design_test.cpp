@@ -26,12 +26,17 @@ std::unique_ptr<Solver> cholesky() {
   return components().solvers.create("cholesky", Backend::Optimized, none);
 }
 
-EditProblem detail_preserving(const MultiresSurface& h, int level, const std::vector<PointConstraint>& cs) {
+// Detail-preserving problem with the designer's point and normal constraints.
+EditProblem detail_preserving(const MultiresSurface& h, int level, const DesignConstraints& dc) {
   EditProblem p;
   p.H = stretch_bend_hessian(h.mesh(level), {0.1, 1.0}, Backend::Optimized);
   p.g = Eigen::MatrixXd::Zero(p.H.rows(), 3);
-  p.constraints = propagate_constraints(h, level, cs);
+  p.constraints = propagate_constraints(h, level, dc);
   return p;
+}
+
+EditProblem detail_preserving(const MultiresSurface& h, int level, const std::vector<PointConstraint>& cs) {
+  return detail_preserving(h, level, DesignConstraints{cs, {}});
 }
 
 }  // namespace
@@ -149,20 +154,11 @@ TEST_CASE("bad constraints are refused with what is wrong", "[design][bm]") {
   CHECK_THROWS_WITH(propagate_constraints(h, 0, {{1, 99999, false, Vec3::Zero(), "c"}}), Contains("vertex 99999 does not exist"));
   CHECK_THROWS_WITH(propagate_constraints(h, 0, {{3, 1, false, Vec3::Zero(), "c"}}), Contains("not in the hierarchy"));
   auto solver = cholesky();
-  CHECK_THROWS_WITH(solve_edit(detail_preserving(h, 0, {}), ConstraintMode::Paper, *solver, Backend::Optimized),
+  CHECK_THROWS_WITH(solve_edit(detail_preserving(h, 0, DesignConstraints{}), ConstraintMode::Paper, *solver, Backend::Optimized),
                     Contains("no constraint"));
 }
 
 namespace {
-
-// Detail-preserving problem with the designer's point and normal constraints.
-EditProblem detail_preserving(const MultiresSurface& h, int level, const DesignConstraints& dc) {
-  EditProblem p;
-  p.H = stretch_bend_hessian(h.mesh(level), {0.1, 1.0}, Backend::Optimized);
-  p.g = Eigen::MatrixXd::Zero(p.H.rows(), 3);
-  p.constraints = propagate_constraints(h, level, dc);
-  return p;
-}
 
 std::unique_ptr<Solver> gauss_seidel(Backend b) {
   Config cfg(YAML::Load("{tolerance: 1.0e-12, max_iterations: 200000}"), "solver");

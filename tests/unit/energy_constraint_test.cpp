@@ -66,50 +66,48 @@ TEST_CASE("no handle moved means no deformation, a common offset is a translatio
   CHECK((moved.rowwise() - t).norm() <= 1e-9);
 }
 
+namespace {
+// A constraint as a config block names it, checked like a run does.
+std::unique_ptr<Constraint> make_constraint(const std::string& type, const std::string& yaml) {
+  Config cfg(YAML::Load(yaml), "constraints[0]");
+  auto c = components().constraints.create(type, Backend::Reference, cfg);
+  cfg.check_no_unknown_keys();
+  return c;
+}
+}  // namespace
+
 TEST_CASE("constraints: selections, offsets, levels", "[constraint]") {
   const SurfaceMesh m = test::grid(4);
   const LevelMeshes one_level = [&m](int) -> const SurfaceMesh& { return m; };
-  auto make = [](const std::string& type, const std::string& yaml) {
-    Config cfg(YAML::Load(yaml), "constraints[0]");
-    auto c = components().constraints.create(type, Backend::Reference, cfg);
-    cfg.check_no_unknown_keys();
-    return c;
-  };
   DesignConstraints dc;
   std::vector<PointConstraint>& p = dc.points;
-  make("fixed", "{region: {axis: x, from: 0.0, to: 0.1}}")->add_to(one_level, 0, dc);
+  make_constraint("fixed", "{region: {axis: x, from: 0.0, to: 0.1}}")->add_to(one_level, 0, dc);
   CHECK(p.size() == 5);  // the column x = 0
   for (const auto& c : p) CHECK(c.offset == Vec3::Zero());
   p.clear();
-  make("position", "{nearest: [1, 1, 0], offset: [0, 0, 1], on_limit: true}")->add_to(one_level, 0, dc);
+  make_constraint("position", "{nearest: [1, 1, 0], offset: [0, 0, 1], on_limit: true}")->add_to(one_level, 0, dc);
   REQUIRE(p.size() == 1);
   CHECK(p[0].vertex == 24);
   CHECK(p[0].offset == Vec3(0, 0, 1));
   CHECK(p[0].on_limit);
   CHECK(p[0].label == "constraints[0]");
   p.clear();
-  make("position", "{vertices: [3], level: 1, offset: [1, 0, 0]}")->add_to(one_level, 2, dc);
+  make_constraint("position", "{vertices: [3], level: 1, offset: [1, 0, 0]}")->add_to(one_level, 2, dc);
   CHECK(p.at(0).level == 1);
-  CHECK_THROWS_WITH(make("fixed", "{vertices: [99]}")->add_to(one_level, 0, dc),
+  CHECK_THROWS_WITH(make_constraint("fixed", "{vertices: [99]}")->add_to(one_level, 0, dc),
                     Catch::Matchers::Contains("vertex 99 does not exist"));
-  CHECK_THROWS_WITH(make("fixed", "{vertices: [1], level: 3}")->add_to(one_level, 1, dc),
+  CHECK_THROWS_WITH(make_constraint("fixed", "{vertices: [1], level: 3}")->add_to(one_level, 1, dc),
                     Catch::Matchers::Contains("level 3 is not in the hierarchy"));
-  CHECK_THROWS_AS(make("fixed", "{vertices: [1], nearest: [0, 0, 0]}"), InvalidConfig);
-  CHECK_THROWS_AS(make("position", "{vertices: [1], offset: [1, 2]}"), InvalidConfig);
+  CHECK_THROWS_AS(make_constraint("fixed", "{vertices: [1], nearest: [0, 0, 0]}"), InvalidConfig);
+  CHECK_THROWS_AS(make_constraint("position", "{vertices: [1], offset: [1, 2]}"), InvalidConfig);
 }
 
 TEST_CASE("rigid, normal and curve constraints place what their configs say", "[constraint]") {
   const SurfaceMesh m = test::grid(4);  // 5 × 5 vertices on [0, 1]², spacing 0.25
   const LevelMeshes one_level = [&m](int) -> const SurfaceMesh& { return m; };
-  auto make = [](const std::string& type, const std::string& yaml) {
-    Config cfg(YAML::Load(yaml), "constraints[0]");
-    auto c = components().constraints.create(type, Backend::Reference, cfg);
-    cfg.check_no_unknown_keys();
-    return c;
-  };
   SECTION("rigid: the boundary loop turns about its centroid") {
     DesignConstraints dc;
-    make("rigid", "{boundary_loop_near: [0, 0, 0], rotation: {axis: [0, 0, 1], angle_deg: 90}, translation: [0, 0, 1]}")
+    make_constraint("rigid", "{boundary_loop_near: [0, 0, 0], rotation: {axis: [0, 0, 1], angle_deg: 90}, translation: [0, 0, 1]}")
         ->add_to(one_level, 0, dc);
     CHECK(dc.points.size() == 16);
     for (const auto& c : dc.points) {
@@ -121,16 +119,16 @@ TEST_CASE("rigid, normal and curve constraints place what their configs say", "[
   }
   SECTION("normal: unit target, selection resolved") {
     DesignConstraints dc;
-    make("normal", "{nearest: [0.5, 0.5, 0], normal: [0, 3, 4]}")->add_to(one_level, 0, dc);
+    make_constraint("normal", "{nearest: [0.5, 0.5, 0], normal: [0, 3, 4]}")->add_to(one_level, 0, dc);
     REQUIRE(dc.normals.size() == 1);
     CHECK(dc.normals[0].vertex == 12);
     CHECK((dc.normals[0].normal - Vec3(0, 0.6, 0.8)).norm() <= 1e-15);
-    CHECK_THROWS_AS(make("normal", "{vertices: [1]}"), InvalidConfig);
-    CHECK_THROWS_AS(make("normal", "{vertices: [1], normal: [0, 0, 0]}"), InvalidConfig);
+    CHECK_THROWS_AS(make_constraint("normal", "{vertices: [1]}"), InvalidConfig);
+    CHECK_THROWS_AS(make_constraint("normal", "{vertices: [1], normal: [0, 0, 0]}"), InvalidConfig);
   }
   SECTION("curve: vertices snapped in order, targets on the moved curve") {
     DesignConstraints dc;
-    make("curve", "{points: [[0, 0.55, 0], [1, 0.55, 0]], translation: [0, 0, 0.2]}")->add_to(one_level, 0, dc);
+    make_constraint("curve", "{points: [[0, 0.55, 0], [1, 0.55, 0]], translation: [0, 0, 0.2]}")->add_to(one_level, 0, dc);
     REQUIRE(dc.points.size() == 5);  // the row y = 0.5, 0.05 from the curve
     for (std::size_t i = 0; i < 5; ++i) {
       const Vec3 p = m.position(dc.points[i].vertex);
@@ -142,13 +140,13 @@ TEST_CASE("rigid, normal and curve constraints place what their configs say", "[
   }
   SECTION("curve: bad curves are refused with the reason") {
     DesignConstraints dc;
-    CHECK_THROWS_WITH(make("curve", "{points: [[0, 0.5, 0], [1, 0.5, 0.5]]}")->add_to(one_level, 0, dc),
+    CHECK_THROWS_WITH(make_constraint("curve", "{points: [[0, 0.5, 0], [1, 0.5, 0.5]]}")->add_to(one_level, 0, dc),
                       Catch::Matchers::Contains("leaves the surface"));
-    CHECK_THROWS_WITH(make("curve", "{points: [[0, 0.375, 0], [1, 0.375, 0]]}")->add_to(one_level, 0, dc),
+    CHECK_THROWS_WITH(make_constraint("curve", "{points: [[0, 0.375, 0], [1, 0.375, 0]]}")->add_to(one_level, 0, dc),
                       Catch::Matchers::Contains("no level from 0 to 0"));
-    CHECK_THROWS_AS(make("curve", "{points: [[0, 0, 0]]}"), InvalidConfig);
-    CHECK_THROWS_AS(make("curve", "{points: [[0, 0, 0], [1, 1, 0]], target_points: [[0, 0, 0]]}"), InvalidConfig);
-    CHECK_THROWS_AS(make("curve", "{points: [[0, 0, 0], [1, 1, 0]], snap_ratio: 0.9}"), InvalidConfig);
-    CHECK_THROWS_AS(make("rigid", "{vertices: [1], rotation: {axis: [0, 0, 0], angle_deg: 3}}"), InvalidConfig);
+    CHECK_THROWS_AS(make_constraint("curve", "{points: [[0, 0, 0]]}"), InvalidConfig);
+    CHECK_THROWS_AS(make_constraint("curve", "{points: [[0, 0, 0], [1, 1, 0]], target_points: [[0, 0, 0]]}"), InvalidConfig);
+    CHECK_THROWS_AS(make_constraint("curve", "{points: [[0, 0, 0], [1, 1, 0]], snap_ratio: 0.9}"), InvalidConfig);
+    CHECK_THROWS_AS(make_constraint("rigid", "{vertices: [1], rotation: {axis: [0, 0, 0], angle_deg: 3}}"), InvalidConfig);
   }
 }

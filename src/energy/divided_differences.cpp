@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <optional>
 
 #include "core/error.h"
 
@@ -61,7 +62,28 @@ Eigen::MatrixX2d polar_map(const SurfaceMesh& m, int v, const std::vector<int>& 
   return uv;
 }
 
+namespace {
+
+// (ΦᵀΦ)⁻¹Φᵀ through the 5 × 5 normal equations, columns scaled by the ring size r (u, v by
+// 1/r, the quadratic ones by 1/r²) so that the normal matrix is O(1) whatever the mesh scale.
+// Empty when the scaled matrix is near singular: the SVD route below then decides the rank.
+std::optional<Eigen::MatrixXd> full_rank_operator(const Eigen::MatrixXd& Phi) {
+  if (Phi.rows() < 5) return std::nullopt;
+  const double r = Phi.leftCols(2).rowwise().norm().maxCoeff();
+  if (!(r > 0)) return std::nullopt;
+  const Eigen::Vector<double, 5> scale(1 / r, 1 / r, 1 / (r * r), 1 / (r * r), 1 / (r * r));
+  const Eigen::MatrixXd Phi_s = Phi * scale.asDiagonal();
+  const Eigen::Matrix<double, 5, 5> N = Phi_s.transpose() * Phi_s;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 5, 5>> eig(N, Eigen::EigenvaluesOnly);
+  // σ_min/σ_max > 1e-6 (λ ratio 1e-12): well inside the SVD route's 1e-10 rank threshold.
+  if (!(eig.eigenvalues()[0] > 1e-12 * eig.eigenvalues()[4])) return std::nullopt;
+  return Eigen::MatrixXd(scale.asDiagonal() * Eigen::LLT<Eigen::Matrix<double, 5, 5>>(N).solve(Phi_s.transpose()));
+}
+
+}  // namespace
+
 Eigen::MatrixXd least_squares_operator(const Eigen::MatrixXd& Phi) {
+  if (auto D = full_rank_operator(Phi)) return *D;
   // (ΦᵀΦ)⁻¹Φᵀ when Φ has full column rank. Otherwise, among all least-squares fits, the one
   // whose second-order part (rows 3-5) is smallest: c = (I − N (S N)⁺ S) Φ⁺ d, with N a basis
   // of Φ's null space and S the second-order selector. Plain least norm would trade slope

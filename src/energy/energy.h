@@ -16,6 +16,14 @@ class Energy {
   virtual ~Energy() = default;
   //! Adds weight × H to `out`, as triplets over vertex ids of `rest`.
   virtual void add_hessian(const SurfaceMesh& rest, double weight, Triplets& out) const = 0;
+  //! weight × H as a matrix; energies with a faster route than triplets override it.
+  virtual SparseMatrix hessian(const SurfaceMesh& rest, double weight) const {
+    Triplets t;
+    add_hessian(rest, weight, t);
+    SparseMatrix H(rest.n_vertices(), rest.n_vertices());
+    H.setFromTriplets(t.begin(), t.end());
+    return H;
+  }
   //! True when the energy is of the deformed positions P_rest + u rather than of the
   //! displacement u: the problem then gains the linear term −H P_rest.
   virtual bool measures_positions() const { return false; }

@@ -4,21 +4,40 @@
 #include <tbb/parallel_for.h>
 
 #include "energy/divided_differences.h"
+#include "energy/gram_assembly.h"
 
 namespace fairshape {
+
+namespace {
+
+Eigen::Vector<double, 5> term_weights(const StretchBendWeights& w, double scale) {
+  return 2.0 * scale * Eigen::Vector<double, 5>(w.alpha, w.alpha, w.beta, 2.0 * w.beta, w.beta);
+}
+
+// G: 5 × (1 + |R|), rows g_m over (v, ring...): g_m[v] = −Σ_j D_mj, g_m[ring j] = D_mj.
+Eigen::MatrixXd difference_rows(const LocalFit& fit) {
+  const auto n = static_cast<Eigen::Index>(fit.ring.size());
+  Eigen::MatrixXd G(5, n + 1);
+  G.col(0) = -fit.D.rowwise().sum();
+  G.rightCols(n) = fit.D;
+  return G;
+}
+
+std::vector<int> stencil(int v, const LocalFit& fit) {
+  std::vector<int> ids{v};
+  ids.insert(ids.end(), fit.ring.begin(), fit.ring.end());
+  return ids;
+}
+
+}  // namespace
 
 void add_vertex_block(const SurfaceMesh& mesh, int v, const StretchBendWeights& w, double scale, Triplets& out) {
   if (mesh.is_isolated(v)) return;
   const LocalFit fit = local_fit(mesh, v);
   const int n = static_cast<int>(fit.ring.size());
-  const double weight[5] = {w.alpha, w.alpha, w.beta, 2.0 * w.beta, w.beta};
-  // G: 5 × (1 + n) rows g_m over (v, ring...): g_m[v] = −Σ_j D_mj, g_m[ring j] = D_mj.
-  Eigen::MatrixXd G(5, n + 1);
-  G.col(0) = -fit.D.rowwise().sum();
-  G.rightCols(n) = fit.D;
-  const Eigen::MatrixXd block = 2.0 * scale * G.transpose() * Eigen::Vector<double, 5>(weight).asDiagonal() * G;
-  std::vector<int> ids{v};
-  ids.insert(ids.end(), fit.ring.begin(), fit.ring.end());
+  const Eigen::MatrixXd G = difference_rows(fit);
+  const Eigen::MatrixXd block = G.transpose() * term_weights(w, scale).asDiagonal() * G;
+  const std::vector<int> ids = stencil(v, fit);
   for (int a = 0; a <= n; ++a)
     for (int b = 0; b <= n; ++b) out.emplace_back(ids[a], ids[b], block(a, b));
 }
@@ -40,9 +59,32 @@ void add_stretch_bend_hessian(const SurfaceMesh& mesh, const StretchBendWeights&
   for (auto& p : parts) out.insert(out.end(), p.begin(), p.end());  // chunk order: deterministic
 }
 
-SparseMatrix stretch_bend_hessian(const SurfaceMesh& mesh, const StretchBendWeights& w, Backend backend) {
+SparseMatrix stretch_bend_hessian(const SurfaceMesh& mesh, const StretchBendWeights& w, double scale,
+                                  Backend backend) {
+  if (backend == Backend::Optimized) {
+    // Fits in parallel chunks (each its own flat factor list, joined in chunk order), then
+    // the rows of H gathered in parallel: no triplets, no serial sort.
+    const int nv = mesh.n_vertices();
+    constexpr int kChunk = 2048;
+    const int chunks = (nv + kChunk - 1) / kChunk;
+    std::vector<GramFactors> parts(chunks);
+    tbb::parallel_for(tbb::blocked_range<int>(0, chunks, 1), [&](const tbb::blocked_range<int>& r) {
+      for (int c = r.begin(); c != r.end(); ++c) {
+        parts[c].k = 5;
+        for (int v = c * kChunk; v < std::min(nv, (c + 1) * kChunk); ++v) {
+          if (mesh.is_isolated(v)) continue;
+          const LocalFit fit = local_fit(mesh, v);
+          parts[c].append(stencil(v, fit), difference_rows(fit));
+        }
+      }
+    });
+    GramFactors all;
+    all.k = 5;
+    for (const auto& p : parts) all.append(p);
+    return assemble_gram(nv, all, term_weights(w, scale));
+  }
   Triplets t;
-  add_stretch_bend_hessian(mesh, w, 1.0, t, backend);
+  add_stretch_bend_hessian(mesh, w, scale, t, backend);
   SparseMatrix H(mesh.n_vertices(), mesh.n_vertices());
   H.setFromTriplets(t.begin(), t.end());
   return H;

@@ -21,6 +21,11 @@ void add_vertex_block(const SurfaceMesh& mesh, int v, const StretchBendWeights& 
 //! scale × H over all vertices: reference = one vertex after another; optimized = TBB chunks.
 void add_stretch_bend_hessian(const SurfaceMesh& mesh, const StretchBendWeights& w, double scale, Triplets& out,
                               Backend backend);
-SparseMatrix stretch_bend_hessian(const SurfaceMesh& mesh, const StretchBendWeights& w, Backend backend);
+//! scale × H; the optimized back end assembles compressed storage directly (gram_assembly.h).
+SparseMatrix stretch_bend_hessian(const SurfaceMesh& mesh, const StretchBendWeights& w, double scale,
+                                  Backend backend);
+inline SparseMatrix stretch_bend_hessian(const SurfaceMesh& mesh, const StretchBendWeights& w, Backend backend) {
+  return stretch_bend_hessian(mesh, w, 1.0, backend);
+}
 
 }  // namespace fairshape

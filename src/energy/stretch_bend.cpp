@@ -17,6 +17,9 @@ class StretchBend : public Energy {
   void add_hessian(const SurfaceMesh& rest, double weight, Triplets& out) const override {
     add_stretch_bend_hessian(rest, w_, weight, out, backend_);
   }
+  SparseMatrix hessian(const SurfaceMesh& rest, double weight) const override {
+    return stretch_bend_hessian(rest, w_, weight, backend_);
+  }
   bool measures_positions() const override { return positions_; }
 
  private:

@@ -42,10 +42,7 @@ EditProblem assemble(const RunSpec& spec, const MultiresSurface& h, int level, D
   p.H.resize(n, n);
   p.g = Eigen::MatrixXd::Zero(n, 3);
   for (const auto& e : spec.energies) {
-    Triplets t;
-    e.energy->add_hessian(rest, e.weight, t);
-    SparseMatrix He(n, n);
-    He.setFromTriplets(t.begin(), t.end());
+    const SparseMatrix He = e.energy->hessian(rest, e.weight);
     if (e.energy->measures_positions() || spec.formulation == Formulation::Position)
       p.g -= He * rest.positions();  // the energy of P_rest + ΔP
     p.H += He;

@@ -1,0 +1,111 @@
+#include "energy/gram_assembly.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <numeric>
+
+#include "core/error.h"
+
+namespace fairshape {
+
+void GramFactors::append(const std::vector<int>& stencil, const Eigen::MatrixXd& G) {
+  FAIRSHAPE_ASSERT(G.rows() == k && G.cols() == static_cast<Eigen::Index>(stencil.size()), "Gram factor size");
+  ids.insert(ids.end(), stencil.begin(), stencil.end());
+  factor.insert(factor.end(), G.data(), G.data() + G.size());
+  offset.push_back(static_cast<int>(ids.size()));
+}
+
+void GramFactors::append(const GramFactors& other) {
+  const int base = offset.back();
+  ids.insert(ids.end(), other.ids.begin(), other.ids.end());
+  factor.insert(factor.end(), other.factor.begin(), other.factor.end());
+  for (std::size_t v = 1; v < other.offset.size(); ++v) offset.push_back(base + other.offset[v]);
+}
+
+namespace {
+
+// For every row i, the stencil entries (flat positions into ids) that name it, by stencil order.
+void incidence(int n, const GramFactors& f, std::vector<int>& start, std::vector<int>& entries) {
+  start.assign(static_cast<std::size_t>(n) + 1, 0);
+  for (int id : f.ids) ++start[id + 1];
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  entries.resize(f.ids.size());
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (std::size_t e = 0; e < f.ids.size(); ++e) entries[fill[f.ids[e]]++] = static_cast<int>(e);
+}
+
+}  // namespace
+
+SparseMatrix assemble_gram(int n, const GramFactors& f, const Eigen::VectorXd& weights) {
+  FAIRSHAPE_ASSERT(weights.size() == f.k, "Gram weights size");
+  std::vector<int> start, entries;
+  incidence(n, f, start, entries);
+  // The stencil each flat entry belongs to.
+  std::vector<int> owner(f.ids.size());
+  for (std::size_t v = 0; v + 1 < f.offset.size(); ++v)
+    std::fill(owner.begin() + f.offset[v], owner.begin() + f.offset[v + 1], static_cast<int>(v));
+
+  // A dense accumulator per thread: a row's entries are summed in the fixed order of its
+  // contributions, whatever thread runs it. Two passes, pattern then values, write straight
+  // into H's arrays (no per-chunk buffers to join and copy).
+  struct Accumulator {
+    std::vector<double> sum;
+    std::vector<int> seen_in_row;
+    std::vector<int> cols;
+  };
+  tbb::enumerable_thread_specific<Accumulator> accumulators(
+      [n] { return Accumulator{std::vector<double>(n), std::vector<int>(n, -1), {}}; });
+  const auto gather_row = [&](int i, Accumulator& acc, bool values) {
+    acc.cols.clear();
+    for (int p = start[i]; p < start[i + 1]; ++p) {
+      const int e = entries[p], v = owner[e], first = f.offset[v], size = f.offset[v + 1] - first;
+      const double* G = f.factor.data() + static_cast<std::size_t>(f.k) * first;
+      const double* Ga = G + static_cast<std::size_t>(f.k) * (e - first);
+      for (int b = 0; b < size; ++b) {
+        const int col = f.ids[first + b];
+        if (acc.seen_in_row[col] != i) {
+          acc.seen_in_row[col] = i;
+          acc.sum[col] = 0;
+          acc.cols.push_back(col);
+        }
+        if (!values) continue;
+        const double* Gb = G + static_cast<std::size_t>(f.k) * b;
+        double s = 0;
+        for (int m = 0; m < f.k; ++m) s += weights[m] * Ga[m] * Gb[m];
+        acc.sum[col] += s;
+      }
+    }
+  };
+  SparseMatrix H(n, n);
+  int* outer = H.outerIndexPtr();
+  outer[0] = 0;
+  tbb::parallel_for(tbb::blocked_range<int>(0, n, 4096), [&](const tbb::blocked_range<int>& r) {
+    Accumulator& acc = accumulators.local();
+    for (int i = r.begin(); i != r.end(); ++i) {
+      gather_row(i, acc, false);
+      outer[i + 1] = static_cast<int>(acc.cols.size());
+    }
+  });
+  for (auto& acc : accumulators) std::fill(acc.seen_in_row.begin(), acc.seen_in_row.end(), -1);
+  std::partial_sum(outer, outer + n + 1, outer);
+  H.resizeNonZeros(outer[n]);
+  tbb::parallel_for(tbb::blocked_range<int>(0, n, 4096), [&](const tbb::blocked_range<int>& r) {
+    Accumulator& acc = accumulators.local();
+    for (int i = r.begin(); i != r.end(); ++i) {
+      gather_row(i, acc, true);
+      std::sort(acc.cols.begin(), acc.cols.end());
+      int q = outer[i];
+      for (int col : acc.cols) {
+        H.innerIndexPtr()[q] = col;
+        H.valuePtr()[q++] = acc.sum[col];
+      }
+    }
+  });
+  // H is symmetric, so its row-compressed arrays are also its column-compressed ones.
+  return H;
+}
+
+}  // namespace fairshape

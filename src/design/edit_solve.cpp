@@ -40,6 +40,11 @@ EditSolution solve_paper(const EditProblem& p, Solver& solver, Backend backend, 
   if (red.free.empty()) {
     out.summary = {Termination::Converged, 0, 0.0, "every vertex is constrained"};
   } else {
+    if (solver.uses_levels()) {
+      if (!p.levels) throw InvalidInput("edit: a multilevel solver needs a hierarchy below the edit level");
+      // The solver sees the reduced system: its finest unknowns are the free vertices.
+      solver.set_levels(p.levels, {red.free, static_cast<int>(p.H.rows() / p.levels->prolongation.back().rows())});
+    }
     solver.analyze(red.A);
     out.analyze_s = setup.seconds();
     // Callers see the whole deformation, not the solver's reduced unknowns.
@@ -122,7 +127,7 @@ EditSolution solve_kkt(const EditProblem& p, Backend backend) {
   const std::vector<int> keep = independent_rows(p.constraints.A, backend);
   if (keep.size() == static_cast<std::size_t>(p.constraints.A.rows())) return out;
   const SparseMatrix pick_t = row_picker(p.constraints.A.rows(), keep).transpose();
-  EditProblem reduced{p.H, p.g, {}};
+  EditProblem reduced{p.H, p.g, {}, nullptr};
   reduced.constraints.A = pick_t * p.constraints.A;
   reduced.constraints.C = pick_t * p.constraints.C;
   const double qr_s = t.seconds();
@@ -155,6 +160,7 @@ Eigen::MatrixXd unstack(const Eigen::MatrixXd& v) { return Eigen::Map<const Eige
 EditProblem stacked(const EditProblem& p) {
   const LinearConstraints& lc = p.constraints;
   EditProblem s;
+  s.levels = p.levels;
   s.H = block_diagonal3(p.H);
   s.g = stack(p.g);
   const SparseMatrix A3 = block_diagonal3(lc.A);

@@ -11,6 +11,7 @@
 
 #include "core/backend.h"
 #include "design/multires_constraints.h"
+#include "solver/level_operators.h"
 #include "solver/solver.h"
 
 namespace fairshape {
@@ -21,6 +22,8 @@ struct EditProblem {
   SparseMatrix H;      // n × n, shared by x, y, z
   Eigen::MatrixXd g;   // n × 3 linear term (thin plate: −H P_rest; detail-preserving: 0)
   LinearConstraints constraints;
+  //! The levels below this one, for multilevel solvers (empty: a single-level problem).
+  std::shared_ptr<const LevelOperators> levels;
 };
 
 struct EditSolution {

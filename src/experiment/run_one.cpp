@@ -47,6 +47,16 @@ EditProblem assemble(const RunSpec& spec, const MultiresSurface& h, int level, D
       p.g -= He * rest.positions();  // the energy of P_rest + ΔP
     p.H += He;
   }
+  if (level > 0) {  // the levels below, for multilevel solvers
+    auto ops = std::make_shared<LevelOperators>();
+    for (int l = 0; l < level; ++l) ops->prolongation.push_back(h.subdivision_operator(l));
+    ops->reassemble = [&spec, &h](int l) {
+      SparseMatrix H(h.mesh(l).n_vertices(), h.mesh(l).n_vertices());
+      for (const auto& e : spec.energies) H += e.energy->hessian(h.mesh(l), e.weight);
+      return H;
+    };
+    p.levels = ops;
+  }
   const LevelMeshes mesh_at = [&h](int l) -> const SurfaceMesh& { return h.mesh(l); };
   for (const auto& c : spec.constraints) c.constraint->add_to(mesh_at, h.levels(), placed);
   p.constraints = propagate_constraints(h, level, placed);

@@ -33,6 +33,9 @@ class IterationMonitor {
       : opt_(opt), cb_(cb), energy_(std::move(energy)) {}
   //! Records the residual after `iteration` sweeps; false when the loop must stop.
   bool record(int iteration, double residual, const Eigen::MatrixXd& x);
+  //! Whether record() looks at x (energy rule or a callback): solvers that keep their own
+  //! layout convert their iterate only then.
+  bool wants_iterate() const { return opt_.energy_tolerance > 0 || static_cast<bool>(cb_); }
   bool should_check(int iteration) const {
     return iteration % opt_.check_every == 0 || iteration == opt_.max_iterations;
   }

@@ -6,6 +6,8 @@ std::unique_ptr<Solver> make_cholmod_cholesky(Config& cfg);
 std::unique_ptr<Solver> make_multicolor_gauss_seidel(Config& cfg);
 std::unique_ptr<Solver> make_multicolor_sor(Config& cfg);
 std::unique_ptr<Solver> make_parallel_cg(Config& cfg);
+std::unique_ptr<Solver> make_parallel_multigrid(Config& cfg);
+std::unique_ptr<Solver> make_parallel_multigrid_cg(Config& cfg);
 
 void register_solvers(SolverRegistry& r) {
   r.add("cholesky", Backend::Optimized, "sparse Cholesky, CHOLMOD supernodal LLᵀ (factored once)",
@@ -16,6 +18,11 @@ void register_solvers(SolverRegistry& r) {
   r.add("sor", Backend::Optimized, "multicolour SOR with relaxation sor.omega, TBB-parallel", make_multicolor_sor);
   r.add("conjugate_gradient", Backend::Optimized, "Jacobi-preconditioned CG, TBB-parallel products",
         make_parallel_cg);
+  r.add("multigrid", Backend::Optimized,
+        "multigrid on the hierarchy's levels (V/W/FMG, Galerkin or re-assembled coarse operators), TBB kernels",
+        make_parallel_multigrid);
+  r.add("multigrid_cg", Backend::Optimized, "CG preconditioned by one symmetric multigrid cycle, TBB kernels",
+        make_parallel_multigrid_cg);
 #endif
 }
 

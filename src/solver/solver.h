@@ -35,9 +35,15 @@ struct IterationRecord {
 };
 using IterationCallback = std::function<bool(const IterationRecord&)>;  // false stops the solve
 
+struct LevelOperators;  // solver/level_operators.h
+struct LevelSelection;
+
 class Solver {
  public:
   virtual ~Solver() = default;
+  //! Multilevel solvers need the transfer operators of a hierarchy; the others ignore them.
+  virtual bool uses_levels() const { return false; }
+  virtual void set_levels(std::shared_ptr<const LevelOperators>, const LevelSelection&) {}
   virtual void analyze(const SparseMatrix& A) = 0;
   //! On entry x holds the initial guess (iterative solvers warm-start from it).
   virtual SolveSummary solve(const SparseMatrix& A, const Eigen::MatrixXd& b, Eigen::MatrixXd& x,

@@ -58,4 +58,18 @@ std::vector<SurfaceMesh> refine_uniform(const SurfaceMesh& base, const Subdivisi
   return out;
 }
 
+std::vector<int> extraordinary_vertices(const SurfaceMesh& mesh, SchemeType scheme) {
+  const int regular_face = scheme == SchemeType::CatmullClark ? 4 : 3;
+  const int interior = scheme == SchemeType::CatmullClark ? 4 : 6, boundary = scheme == SchemeType::CatmullClark ? 3 : 4;
+  std::vector<int> out;
+  for (int v = 0; v < mesh.n_vertices(); ++v) {
+    if (mesh.is_isolated(v)) continue;
+    bool irregular = mesh.valence(v) != (mesh.is_boundary_vertex(v) ? boundary : interior);
+    for (int h : mesh.outgoing_halfedges(v))
+      if (!mesh.is_boundary_halfedge(h) && mesh.face_size(mesh.face(h)) != regular_face) irregular = true;
+    if (irregular) out.push_back(v);
+  }
+  return out;
+}
+
 }  // namespace fairshape

@@ -40,6 +40,11 @@ std::unique_ptr<Subdivider> make_subdivider(Backend backend);
 void subdivide_positions_matrix_free(const SurfaceMesh& coarse, const SubdivisionOptions& opt, const MatrixX3& X,
                                      MatrixX3& Y);
 
+//! Vertices whose valence differs from the scheme's regular one (Catmull-Clark: 4 inside, 3 on
+//! a boundary; Loop: 6 and 4) or that touch a polygon the scheme does not produce (a triangle
+//! for Catmull-Clark): where subdivision reproduces only linear functions.
+std::vector<int> extraordinary_vertices(const SurfaceMesh& mesh, SchemeType scheme);
+
 //! The child faces, written out plainly: the specification refine_topology is tested against.
 PolygonList child_faces(const SurfaceMesh& coarse, SchemeType scheme);
 int child_vertex_count(const SurfaceMesh& coarse, SchemeType scheme);

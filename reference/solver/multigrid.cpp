@@ -1,0 +1,85 @@
+// Reference `multigrid` and `multigrid_cg`: the shared cycle (multigrid.h) over plain serial
+// Eigen — lexicographic Gauss-Seidel/SOR sweeps (forward before, backward after the coarse
+// correction), products with P and Pᵀ, Eigen's LDLᵀ on the coarsest level.
+#include <Eigen/SparseCholesky>
+
+#include "solver/multigrid.h"
+
+namespace fairshape::reference {
+namespace {
+
+class SerialKernels {
+ public:
+  using Block = Eigen::MatrixXd;
+
+  void setup(const MultigridLevels& levels, double omega) {
+    omega_ = omega;
+    levels_ = levels;
+    rows_.clear();
+    patches_.assign(levels_.size(), {});
+    for (std::size_t l = 0; l < levels_.size(); ++l) {
+      rows_.emplace_back(levels_[l].A);
+      patches_[l].setup(levels_[l].A, levels_[l].patches);
+    }
+    coarse_.compute(levels_[0].A);
+  }
+
+  int levels() const { return static_cast<int>(levels_.size()); }
+  Block zeros(int l, Eigen::Index cols) const { return Block::Zero(levels_[l].A.rows(), cols); }
+  void smooth(int l, Block& x, const Block& b, int sweeps, bool forward) const {
+    const RowSparseMatrix& A = rows_[l];
+    if (!forward) patches_[l].apply(A, x, b, false);
+    gauss_seidel(A, x, b, sweeps, forward);
+    if (forward) patches_[l].apply(A, x, b, true);
+  }
+  void gauss_seidel(const RowSparseMatrix& A, Block& x, const Block& b, int sweeps, bool forward) const {
+    const Eigen::Index n = A.rows();
+    for (int s = 0; s < sweeps; ++s)
+      for (Eigen::Index k = 0; k < n; ++k) {
+        const Eigen::Index i = forward ? k : n - 1 - k;
+        Eigen::RowVectorXd sigma = Eigen::RowVectorXd::Zero(x.cols());
+        double diag = 0;
+        for (RowSparseMatrix::InnerIterator e(A, i); e; ++e)
+          if (e.col() == i) diag = e.value();
+          else sigma += e.value() * x.row(e.col());
+        x.row(i) = (1 - omega_) * x.row(i) + omega_ * (b.row(i) - sigma) / diag;
+      }
+  }
+  Block residual(int l, const Block& x, const Block& b) const { return b - levels_[l].A * x; }
+  Block multiply(int l, const Block& x) const { return levels_[l].A * x; }
+  Block restrict_down(int l, const Block& r) const { return levels_[l].P.transpose() * r; }
+  void prolong_add(int l, const Block& e, Block& x) const { x += levels_[l].P * e; }
+  bool coarse_solve(const Block& b, Block& x) {
+    if (coarse_.info() != Eigen::Success) return false;
+    x = coarse_.solve(b);
+    return x.allFinite() && coarse_solve_accurate(levels_[0].A, b, x);
+  }
+  Eigen::VectorXd column_dots(const Block& a, const Block& c) const { return a.cwiseProduct(c).colwise().sum().transpose(); }
+  Block to_block(const Eigen::MatrixXd& m) const { return m; }
+  Eigen::MatrixXd from_block(const Block& m) const { return m; }
+
+  std::string diagonal_problem_text() const {
+    for (std::size_t l = 1; l < levels_.size(); ++l)
+      if (auto p = diagonal_problem(levels_[l].A.diagonal()); !p.empty()) return p;
+    return "";
+  }
+
+ private:
+  MultigridLevels levels_;
+  std::vector<RowSparseMatrix> rows_;
+  std::vector<PatchSmoother> patches_;
+  Eigen::SimplicialLDLT<SparseMatrix> coarse_;
+  double omega_ = 1.0;
+};
+
+}  // namespace
+
+std::unique_ptr<Solver> make_multigrid(Config& cfg) {
+  return make_multigrid_solver<SerialKernels>(cfg, false, serial_galerkin_product);
+}
+
+std::unique_ptr<Solver> make_multigrid_cg(Config& cfg) {
+  return make_multigrid_solver<SerialKernels>(cfg, true, serial_galerkin_product);
+}
+
+}  // namespace fairshape::reference

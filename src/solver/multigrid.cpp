@@ -1,0 +1,197 @@
+#include "solver/multigrid.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+
+namespace fairshape {
+
+MultigridOptions MultigridOptions::from_config(Config& cfg) {
+  MultigridOptions o;
+  Config sub = cfg.child("multigrid", "options of the multigrid solvers");
+  const std::string cycle = sub.get_choice("cycle", "v", {"v", "w", "fmg"},
+                                           "v / w cycles, or full multigrid (fmg: coarse-to-fine start, then v-cycles)");
+  o.cycle = cycle == "w" ? Cycle::W : cycle == "fmg" ? Cycle::Fmg : Cycle::V;
+  const std::string coarse = sub.get_choice("coarse_operator", "galerkin", {"galerkin", "reassembly"},
+                                            "coarse operators: Galerkin product PᵀAP, or the energy re-assembled on "
+                                            "each coarser mesh");
+  o.coarse_operator = coarse == "reassembly" ? CoarseOperator::Reassembly : CoarseOperator::Galerkin;
+  o.pre_smooth = sub.get_int("pre_smooth", o.pre_smooth, 0, 1000, "forward smoothing sweeps before the coarse correction");
+  o.post_smooth = sub.get_int("post_smooth", o.post_smooth, 0, 1000, "backward smoothing sweeps after it");
+  o.omega = sub.get<double>("omega", o.omega, "smoother relaxation in (0, 2): 1 = Gauss-Seidel, else SOR");
+  if (!(o.omega > 0.0 && o.omega < 2.0))
+    throw InvalidConfig(sub.key_path("omega") + ": " + std::to_string(o.omega) + " is outside (0, 2), where SOR diverges");
+  o.patch_smoothing = sub.get<bool>("patch_smoothing", o.patch_smoothing,
+                                    "exact solves on patches around extraordinary vertices after each sweep set");
+  o.max_levels = sub.get_int("max_levels", o.max_levels, 0, 64, "coarse levels to use (0: all the hierarchy has)");
+  if (o.pre_smooth + o.post_smooth == 0 && !sub.documenting())
+    throw InvalidConfig(sub.path() + ": pre_smooth and post_smooth are both 0: the cycle would not smooth");
+  sub.check_no_unknown_keys();
+  return o;
+}
+
+void PatchSmoother::setup(const SparseMatrix& A, const std::vector<std::vector<int>>& patches) {
+  patches_ = patches;
+  factors_.clear();
+  for (const auto& patch : patches_) {
+    const auto m = static_cast<Eigen::Index>(patch.size());
+    Eigen::MatrixXd Apq(m, m);
+    for (Eigen::Index a = 0; a < m; ++a)
+      for (Eigen::Index c = 0; c < m; ++c) Apq(a, c) = A.coeff(patch[a], patch[c]);
+    factors_.emplace_back(Apq);
+  }
+}
+
+bool coarse_solve_accurate(const SparseMatrix& A, const Eigen::MatrixXd& b, const Eigen::MatrixXd& x) {
+  const double scale = b.norm() > 0 ? b.norm() : 1.0;
+  return (b - A * x).norm() <= 1e-8 * scale;
+}
+
+SparseMatrix serial_galerkin_product(const SparseMatrix& A, const SparseMatrix& P) {
+  return SparseMatrix(SparseMatrix(P.transpose()) * (A * P));
+}
+
+namespace {
+
+SparseMatrix repeat_blocks(const SparseMatrix& M, int blocks) {
+  if (blocks == 1) return M;
+  Triplets t;
+  t.reserve(static_cast<std::size_t>(blocks) * M.nonZeros());
+  for (int d = 0; d < blocks; ++d)
+    for (int c = 0; c < M.outerSize(); ++c)
+      for (SparseMatrix::InnerIterator it(M, c); it; ++it)
+        t.emplace_back(static_cast<int>(d * M.rows() + it.row()), static_cast<int>(d * M.cols() + c), it.value());
+  SparseMatrix out(blocks * M.rows(), blocks * M.cols());
+  out.setFromTriplets(t.begin(), t.end());
+  return out;
+}
+
+// M[rows, cols] with the kept ids renumbered 0..; `col_of` maps an old column to its new id or −1.
+SparseMatrix select(const SparseMatrix& M, const std::vector<int>& rows, const std::vector<int>& col_of, int n_cols) {
+  const RowSparseMatrix R(M);
+  Triplets t;
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    for (RowSparseMatrix::InnerIterator it(R, rows[i]); it; ++it)
+      if (col_of[it.col()] >= 0) t.emplace_back(static_cast<int>(i), col_of[it.col()], it.value());
+  SparseMatrix out(static_cast<Eigen::Index>(rows.size()), n_cols);
+  out.setFromTriplets(t.begin(), t.end());
+  return out;
+}
+
+// A reproducible vector with entries in [−1, 1] (a plain LCG: no dependence on the library's RNG).
+Eigen::VectorXd probe(Eigen::Index n) {
+  Eigen::VectorXd v(n);
+  std::uint64_t s = 0x9e3779b97f4a7c15ull;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    s = s * 6364136223846793005ull + 1442695040888963407ull;
+    v[i] = static_cast<double>(s >> 11) / static_cast<double>(1ull << 53) * 2.0 - 1.0;
+  }
+  return v;
+}
+
+// One patch per singular vertex of hierarchy level `level` that the system keeps: the
+// unknown and its neighbours in A (per coordinate block).
+std::vector<std::vector<int>> singular_patches(const SparseMatrix& A, const std::vector<int>& kept, int level,
+                                               const LevelOperators& ops, int blocks) {
+  if (level >= static_cast<int>(ops.singular.size()) || ops.singular[level].empty()) return {};
+  const Eigen::Index n_vertices = level == 0 ? ops.prolongation[0].cols() : ops.prolongation[level - 1].rows();
+  std::vector<int> local(static_cast<std::size_t>(blocks * n_vertices), -1);
+  for (std::size_t i = 0; i < kept.size(); ++i) local[kept[i]] = static_cast<int>(i);
+  const RowSparseMatrix R(A);
+  std::vector<std::vector<int>> patches;
+  for (int b = 0; b < blocks; ++b)
+    for (int v : ops.singular[level]) {
+      const int row = local[b * n_vertices + v];
+      if (row < 0) continue;
+      std::vector<int> patch;
+      for (RowSparseMatrix::InnerIterator it(R, row); it; ++it) patch.push_back(static_cast<int>(it.col()));
+      patches.push_back(std::move(patch));
+    }
+  return patches;
+}
+
+// Rows next to the constrained unknowns lose the interpolation weight of the coarse unknowns
+// the system dropped: there the coarse space misses the local behaviour of a fourth-order
+// solution at its pinned boundary, as it does at extraordinary vertices. One patch per
+// such row (its neighbours in A).
+std::vector<std::vector<int>> truncated_patches(const SparseMatrix& A, const SparseMatrix& P_full,
+                                                const std::vector<int>& kept, const SparseMatrix& P) {
+  const Eigen::VectorXd full_sums = P_full * Eigen::VectorXd::Ones(P_full.cols());
+  const Eigen::VectorXd kept_sums = P * Eigen::VectorXd::Ones(P.cols());
+  const RowSparseMatrix R(A);
+  std::vector<std::vector<int>> patches;
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    if (std::abs(full_sums[kept[i]] - kept_sums[static_cast<Eigen::Index>(i)]) <= 1e-12) continue;
+    std::vector<int> patch;
+    for (RowSparseMatrix::InnerIterator it(R, static_cast<Eigen::Index>(i)); it; ++it) patch.push_back(static_cast<int>(it.col()));
+    patches.push_back(std::move(patch));
+  }
+  return patches;
+}
+
+}  // namespace
+
+MultigridLevels build_multigrid_levels(const SparseMatrix& A, const LevelOperators& ops, const LevelSelection& selection,
+                                       const MultigridOptions& opt, const GalerkinProduct& galerkin) {
+  const int available = ops.coarse_levels();
+  if (available == 0)
+    throw InvalidInput("multigrid: the hierarchy has no coarser level (set input.levels >= 1 and edit a finer level)");
+  const int used = opt.max_levels > 0 ? std::min(opt.max_levels, available) : available;
+  if (opt.coarse_operator == MultigridOptions::CoarseOperator::Reassembly && !ops.reassemble)
+    throw InvalidInput("multigrid: coarse_operator reassembly needs the energy on every level, which this problem does not provide");
+  const Eigen::Index n_full = selection.blocks * ops.prolongation.back().rows();
+  std::vector<int> kept = selection.kept;
+  if (kept.empty())
+    for (int i = 0; i < n_full; ++i) kept.push_back(i);
+  if (static_cast<Eigen::Index>(kept.size()) != A.rows())
+    throw InvalidInput("multigrid: the system has " + std::to_string(A.rows()) + " unknowns, the hierarchy's kept set " +
+                       std::to_string(kept.size()));
+  MultigridLevels levels(used + 1);
+  levels[used].A = A;
+  for (int k = used; k > 0; --k) {
+    const int level = available - (used - k) - 1;  // the hierarchy's level below level k's
+    const SparseMatrix P_full = repeat_blocks(ops.prolongation[level], selection.blocks);
+    // The coarse unknowns: the coarse vertices whose own fine vertex is kept (ids nest). Taking
+    // every column that reaches a kept row instead leaves, next to the constrained region,
+    // columns that differ only on rows the system dropped: a singular coarse operator.
+    const Eigen::Index nf = ops.prolongation[level].rows(), ncv = ops.prolongation[level].cols();
+    std::vector<int> col_of(P_full.cols(), -1);
+    std::vector<int> coarse_kept;
+    for (int i : kept) {
+      const Eigen::Index block = i / nf, vertex = i % nf;
+      if (vertex < ncv) {
+        col_of[block * ncv + vertex] = static_cast<int>(coarse_kept.size());
+        coarse_kept.push_back(static_cast<int>(block * ncv + vertex));
+      }
+    }
+    const int nc = static_cast<int>(coarse_kept.size());
+    levels[k].P = select(P_full, kept, col_of, nc);
+    if (opt.coarse_operator == MultigridOptions::CoarseOperator::Galerkin) {
+      levels[k - 1].A = galerkin(levels[k].A, levels[k].P);
+    } else {
+      const SparseMatrix H = select(repeat_blocks(ops.reassemble(level), selection.blocks), coarse_kept, col_of, nc);
+      // The re-assembled energy differs from the Galerkin operator by a level-dependent factor
+      // (it counts each level's vertices once): match their Rayleigh quotients on a smooth-ish
+      // vector (a random one after damped Jacobi steps with H; on a rough one the ratio is that
+      // of the high frequencies).
+      Eigen::VectorXd v = probe(nc);
+      const Eigen::VectorXd inv_diag = H.diagonal().cwiseInverse();
+      for (int step = 0; step < 30; ++step) v -= 0.5 * inv_diag.cwiseProduct(H * v);
+      const Eigen::VectorXd Pv = levels[k].P * v;
+      const double scale = Pv.dot(levels[k].A * Pv) / v.dot(H * v);
+      if (!(scale > 0 && std::isfinite(scale)))
+        throw InvalidInput("multigrid: the re-assembled operator of level " + std::to_string(level) +
+                           " is not positive on the coarse space");
+      levels[k - 1].A = scale * H;
+    }
+    if (opt.patch_smoothing) {
+      levels[k].patches = singular_patches(levels[k].A, kept, level + 1, ops, selection.blocks);
+      for (auto& patch : truncated_patches(levels[k].A, P_full, kept, levels[k].P)) levels[k].patches.push_back(std::move(patch));
+    }
+    kept = coarse_kept;
+  }
+  return levels;
+}
+
+}  // namespace fairshape

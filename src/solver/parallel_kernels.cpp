@@ -1,0 +1,149 @@
+#include "solver/parallel_kernels.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+#include <tbb/partitioner.h>
+
+#include <algorithm>
+#include <numeric>
+
+#include "solver/graph_coloring.h"
+
+namespace fairshape {
+
+void MulticolorSmoother::analyze(const RowSparseMatrix& A) {
+  classes_ = color_rows(A);
+  diag_ = A.diagonal();
+}
+
+void MulticolorSmoother::sweep(const RowSparseMatrix& A, RowBlock& x, const RowBlock& b, double omega,
+                               bool forward) const {
+  const int cols = static_cast<int>(x.cols());
+  const int n_classes = colors();
+  for (int k = 0; k < n_classes; ++k) {
+    const std::vector<int>& rows = classes_[forward ? k : n_classes - 1 - k];
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, rows.size(), 256),
+        [&](const tbb::blocked_range<std::size_t>& r) {
+          for (std::size_t q = r.begin(); q != r.end(); ++q) {
+            const int i = rows[q];
+            double sigma[3] = {0, 0, 0};
+            for (RowSparseMatrix::InnerIterator it(A, i); it; ++it)
+              if (it.col() != i)
+                for (int c = 0; c < cols; ++c) sigma[c] += it.value() * x(it.col(), c);
+            for (int c = 0; c < cols; ++c) x(i, c) = (1 - omega) * x(i, c) + omega * (b(i, c) - sigma[c]) / diag_[i];
+          }
+        },
+        tbb::static_partitioner());
+  }
+}
+
+namespace {
+
+template <class RowOp>
+void for_rows(Eigen::Index n, const RowOp& op) {
+  tbb::parallel_for(
+      tbb::blocked_range<Eigen::Index>(0, n, 1024),
+      [&](const tbb::blocked_range<Eigen::Index>& r) {
+        for (Eigen::Index i = r.begin(); i != r.end(); ++i) op(i);
+      },
+      tbb::static_partitioner());
+}
+
+}  // namespace
+
+void parallel_multiply(const RowSparseMatrix& A, const RowBlock& x, RowBlock& y) {
+  y.resize(A.rows(), x.cols());
+  for_rows(A.rows(), [&](Eigen::Index i) {
+    double s[3] = {0, 0, 0};
+    for (RowSparseMatrix::InnerIterator it(A, i); it; ++it)
+      for (Eigen::Index c = 0; c < x.cols(); ++c) s[c] += it.value() * x(it.col(), c);
+    for (Eigen::Index c = 0; c < x.cols(); ++c) y(i, c) = s[c];
+  });
+}
+
+void parallel_residual(const RowSparseMatrix& A, const RowBlock& x, const RowBlock& b, RowBlock& r) {
+  r.resize(A.rows(), x.cols());
+  for_rows(A.rows(), [&](Eigen::Index i) {
+    double s[3] = {0, 0, 0};
+    for (RowSparseMatrix::InnerIterator it(A, i); it; ++it)
+      for (Eigen::Index c = 0; c < x.cols(); ++c) s[c] += it.value() * x(it.col(), c);
+    for (Eigen::Index c = 0; c < x.cols(); ++c) r(i, c) = b(i, c) - s[c];
+  });
+}
+
+void parallel_multiply_add(const RowSparseMatrix& M, const RowBlock& x, RowBlock& y) {
+  for_rows(M.rows(), [&](Eigen::Index i) {
+    for (RowSparseMatrix::InnerIterator it(M, i); it; ++it)
+      for (Eigen::Index c = 0; c < x.cols(); ++c) y(i, c) += it.value() * x(it.col(), c);
+  });
+}
+
+Eigen::VectorXd parallel_column_dots(const RowBlock& a, const RowBlock& c) {
+  const Eigen::Index cols = a.cols();
+  return tbb::parallel_deterministic_reduce(
+      tbb::blocked_range<Eigen::Index>(0, a.rows(), 4096), Eigen::VectorXd(Eigen::VectorXd::Zero(cols)),
+      [&](const tbb::blocked_range<Eigen::Index>& r, Eigen::VectorXd acc) {
+        for (Eigen::Index i = r.begin(); i != r.end(); ++i)
+          for (Eigen::Index j = 0; j < cols; ++j) acc[j] += a(i, j) * c(i, j);
+        return acc;
+      },
+      [](const Eigen::VectorXd& x, const Eigen::VectorXd& y) { return Eigen::VectorXd(x + y); });
+}
+
+SparseMatrix parallel_galerkin_product(const SparseMatrix& A_in, const SparseMatrix& P_in) {
+  // Row I of PᵀAP = Σ_{i ∈ column I of P} P_iI Σ_j A_ij P_j: gathered with a dense
+  // accumulator per thread, pattern first, then values straight into the result's arrays.
+  const RowSparseMatrix A(A_in), P(P_in), PT(P_in.transpose());
+  const int n = static_cast<int>(P.cols());
+  struct Accumulator {
+    std::vector<double> sum;
+    std::vector<int> seen;
+    std::vector<int> cols;
+  };
+  tbb::enumerable_thread_specific<Accumulator> accs([n] { return Accumulator{std::vector<double>(n), std::vector<int>(n, -1), {}}; });
+  const auto gather = [&](int I, Accumulator& acc, bool values) {
+    acc.cols.clear();
+    for (RowSparseMatrix::InnerIterator pi(PT, I); pi; ++pi)
+      for (RowSparseMatrix::InnerIterator a(A, pi.col()); a; ++a)
+        for (RowSparseMatrix::InnerIterator pj(P, a.col()); pj; ++pj) {
+          const int J = static_cast<int>(pj.col());
+          if (acc.seen[J] != I) {
+            acc.seen[J] = I;
+            acc.sum[J] = 0;
+            acc.cols.push_back(J);
+          }
+          if (values) acc.sum[J] += pi.value() * a.value() * pj.value();
+        }
+  };
+  SparseMatrix out(n, n);
+  int* outer = out.outerIndexPtr();
+  outer[0] = 0;
+  tbb::parallel_for(tbb::blocked_range<int>(0, n, 512), [&](const tbb::blocked_range<int>& r) {
+    Accumulator& acc = accs.local();
+    for (int I = r.begin(); I != r.end(); ++I) {
+      gather(I, acc, false);
+      outer[I + 1] = static_cast<int>(acc.cols.size());
+    }
+  });
+  for (auto& acc : accs) std::fill(acc.seen.begin(), acc.seen.end(), -1);
+  std::partial_sum(outer, outer + n + 1, outer);
+  out.resizeNonZeros(outer[n]);
+  tbb::parallel_for(tbb::blocked_range<int>(0, n, 512), [&](const tbb::blocked_range<int>& r) {
+    Accumulator& acc = accs.local();
+    for (int I = r.begin(); I != r.end(); ++I) {
+      gather(I, acc, true);
+      std::sort(acc.cols.begin(), acc.cols.end());
+      int q = outer[I];
+      for (int J : acc.cols) {
+        out.innerIndexPtr()[q] = J;
+        out.valuePtr()[q++] = acc.sum[J];
+      }
+    }
+  });
+  return out;  // symmetric: the row-compressed arrays are the column-compressed ones
+}
+
+}  // namespace fairshape

@@ -1,0 +1,40 @@
+// The TBB kernels the optimized iterative solvers share, on a row-major matrix and row-major
+// blocks (the x, y, z of one unknown side by side, so a row touches one cache line per
+// neighbour). Every reduction is deterministic for a fixed thread count.
+#pragma once
+
+#include <vector>
+
+#include "core/types.h"
+
+namespace fairshape {
+
+using RowBlock = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+//! Multicolour Gauss-Seidel / SOR: rows of one colour share no off-diagonal entry, so each
+//! colour is one parallel loop; `forward` = false runs the colours in reverse (the adjoint
+//! sweep, which makes a pre/post pair symmetric).
+class MulticolorSmoother {
+ public:
+  void analyze(const RowSparseMatrix& A);
+  void sweep(const RowSparseMatrix& A, RowBlock& x, const RowBlock& b, double omega, bool forward) const;
+  const Eigen::VectorXd& diagonal() const { return diag_; }
+  int colors() const { return static_cast<int>(classes_.size()); }
+
+ private:
+  Eigen::VectorXd diag_;
+  std::vector<std::vector<int>> classes_;
+};
+
+//! y = A x
+void parallel_multiply(const RowSparseMatrix& A, const RowBlock& x, RowBlock& y);
+//! r = b − A x
+void parallel_residual(const RowSparseMatrix& A, const RowBlock& x, const RowBlock& b, RowBlock& r);
+//! Σ_i a_ij c_ij for every column j.
+Eigen::VectorXd parallel_column_dots(const RowBlock& a, const RowBlock& c);
+//! y += M x (M row-major: P for prolongation, Pᵀ stored row-major for restriction).
+void parallel_multiply_add(const RowSparseMatrix& M, const RowBlock& x, RowBlock& y);
+//! Pᵀ A P for symmetric A (rows of the result gathered in parallel, deterministic).
+SparseMatrix parallel_galerkin_product(const SparseMatrix& A, const SparseMatrix& P);
+
+}  // namespace fairshape

@@ -27,6 +27,11 @@ std::string num(double v) {
   return os.str();
 }
 
+double relative_error(const Eigen::MatrixXd& d, const Eigen::MatrixXd& ref) {
+  const double scale = ref.norm() > 0 ? ref.norm() : 1.0;
+  return (d - ref).norm() / scale;
+}
+
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const std::size_t n = v.size();
@@ -50,6 +55,7 @@ EditProblem assemble(const RunSpec& spec, const MultiresSurface& h, int level, D
   if (level > 0) {  // the levels below, for multilevel solvers
     auto ops = std::make_shared<LevelOperators>();
     for (int l = 0; l < level; ++l) ops->prolongation.push_back(h.subdivision_operator(l));
+    for (int l = 0; l <= level; ++l) ops->singular.push_back(extraordinary_vertices(h.mesh(l), h.options().scheme));
     ops->reassemble = [&spec, &h](int l) {
       SparseMatrix H(h.mesh(l).n_vertices(), h.mesh(l).n_vertices());
       for (const auto& e : spec.energies) H += e.energy->hessian(h.mesh(l), e.weight);
@@ -107,16 +113,22 @@ std::string detail_change(const MultiresSurface& before, const SurfaceMesh& edit
   return size > 0 ? num(std::sqrt(change / size)) : "";
 }
 
+ConstraintMode mode_of(const RunSpec& spec) {
+  return spec.constraint_mode == "kkt" ? ConstraintMode::Kkt : ConstraintMode::Paper;
+}
+
 // Writes iterations.csv rows and VTK snapshots of the edit level while a solve runs.
 class IterationSink {
  public:
   IterationSink(const RunSpec& spec, const RunOutputs& out, const SurfaceMesh& rest, int level,
-                const DesignConstraints& placed)
-      : spec_(spec), out_(out), rest_(rest), level_(level), placed_(placed) {
+                const DesignConstraints& placed, const Eigen::MatrixXd* reference)
+      : spec_(spec), out_(out), rest_(rest), level_(level), placed_(placed), reference_(reference) {
     if (spec.output.iterations) csv_ = std::make_unique<CsvAppender>((fs::path(out.dir) / "iterations.csv").string());
   }
   bool operator()(const IterationRecord& r) {
-    if (csv_) csv_->append({out_.run_id, std::to_string(r.iteration), num(r.residual), num(r.energy), num(r.seconds)});
+    if (csv_)
+      csv_->append({out_.run_id, std::to_string(r.iteration), num(r.residual), num(r.energy), num(r.seconds),
+                    reference_ ? num(relative_error(*r.x, *reference_)) : ""});
     if (spec_.output.vtk == "every_iteration" && r.iteration % spec_.output.vtk_every == 0) {
       const std::string file = out_.run_id + "_it" + std::to_string(r.iteration) + ".vtp";
       write_vtp(result_mesh(rest_, rest_.positions() + MatrixX3(*r.x), level_, placed_),
@@ -135,32 +147,29 @@ class IterationSink {
   const SurfaceMesh& rest_;
   int level_;
   const DesignConstraints& placed_;
+  const Eigen::MatrixXd* reference_;
   std::unique_ptr<CsvAppender> csv_;
   std::vector<std::pair<double, std::string>> steps_;
 };
 
-ConstraintMode mode_of(const RunSpec& spec) {
-  return spec.constraint_mode == "kkt" ? ConstraintMode::Kkt : ConstraintMode::Paper;
+// The same problem solved by CHOLMOD (KKT mode: the optimized LU), cached per system: the
+// yardstick of error_vs_reference and of the per-iteration error in iterations.csv.
+const Eigen::MatrixXd* reference_solution(const RunSpec& spec, RunCache& cache, const EditProblem& p) {
+  if (!spec.output.reference_solution) return nullptr;
+  const std::string key = spec.system_key + spec.constraint_mode;
+  if (const Eigen::MatrixXd* ref = cache.reference_solution(key)) return ref;
+  Config none;
+  auto direct = components().solvers.create("cholesky", Backend::Optimized, none);
+  const EditSolution exact = solve_edit(p, mode_of(spec), *direct, Backend::Optimized);
+  if (exact.summary.termination != Termination::Converged) return nullptr;
+  cache.store_reference_solution(key, exact.delta);
+  return cache.reference_solution(key);
 }
 
-void measure_accuracy(const RunSpec& spec, RunCache& cache, const EditProblem& p, const EditSolution& sol,
-                      MetricRow& row) {
-  const Eigen::MatrixXd& d = sol.delta;
-  row["energy"] = num(quadratic_energy(p.H, p.g, d));
+void measure_accuracy(const EditProblem& p, const EditSolution& sol, const Eigen::MatrixXd* ref, MetricRow& row) {
+  row["energy"] = num(quadratic_energy(p.H, p.g, sol.delta));
   row["constraint_violation"] = num(sol.constraint_residual);
-  if (!spec.output.reference_solution) return;
-  const std::string key = spec.system_key + spec.constraint_mode;
-  const Eigen::MatrixXd* ref = cache.reference_solution(key);
-  if (!ref) {  // the same problem, solved directly by the reference back end
-    Config none;
-    auto direct = components().solvers.create("cholesky", Backend::Reference, none);
-    const EditSolution exact = solve_edit(p, mode_of(spec), *direct, Backend::Reference);
-    if (exact.summary.termination != Termination::Converged) return;
-    cache.store_reference_solution(key, exact.delta);
-    ref = cache.reference_solution(key);
-  }
-  const double scale = ref->norm() > 0 ? ref->norm() : 1.0;
-  row["error_vs_reference"] = num((d - *ref).norm() / scale);
+  if (ref) row["error_vs_reference"] = num(relative_error(sol.delta, *ref));
 }
 
 void write_geometry(const RunSpec& spec, const RunOutputs& out, const SurfaceMesh& result, const MultiresSurface& h) {
@@ -234,7 +243,9 @@ MetricRow execute_run(RunSpec& spec, RunCache& cache, const RunOutputs& out) {
     row["n_fine"] = std::to_string(rest.mesh(rest.levels()).n_vertices());
     row["n_constrained"] = std::to_string(problem.constraints.A.rows() + problem.constraints.A_coupled.rows());
     const Eigen::MatrixXd start = spec.initial_guess == "random" ? random_start(spec, problem.H.rows()) : Eigen::MatrixXd();
-    IterationSink sink(spec, out, rest.mesh(level), level, placed);
+    const Eigen::MatrixXd* reference = reference_solution(spec, cache, problem);
+    reset_peak_rss();  // peak_rss_mb: the solve's peak, not the yardstick's
+    IterationSink sink(spec, out, rest.mesh(level), level, placed, reference);
     std::vector<double> times;
     EditSolution sol;
     for (int r = 0; r < spec.repeat; ++r) {
@@ -251,7 +262,7 @@ MetricRow execute_run(RunSpec& spec, RunCache& cache, const RunOutputs& out) {
     row["termination"] = std::string(to_string(sol.summary.termination));
     row["message"] = sol.summary.message;
     if (sol.delta.allFinite() && sol.summary.termination != Termination::NumericalFailure) {
-      measure_accuracy(spec, cache, problem, sol, row);
+      measure_accuracy(problem, sol, reference, row);
       MultiresSurface edited = rest;
       edited.set_level_positions(level, rest.mesh(level).positions() + MatrixX3(sol.delta));
       edited.synthesize_from(level, DetailSpace::Local);

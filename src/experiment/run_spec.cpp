@@ -64,7 +64,7 @@ void read_output(Config& root, OutputOptions& o) {
   o.iterations = oc.get<bool>("iterations", o.iterations, "write iterations.csv (residual history)");
   o.final_mesh = oc.get<bool>("final_mesh", o.final_mesh, "write final.obj (final/<run_id>.obj in sweeps)");
   o.reference_solution = oc.get<bool>("reference_solution", o.reference_solution,
-                                      "compute error_vs_reference with a tight direct solve");
+                                      "compute error_vs_reference against CHOLMOD's solution of the same system");
   oc.check_no_unknown_keys();
 }
 

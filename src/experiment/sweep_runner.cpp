@@ -117,7 +117,7 @@ std::set<std::string> prepare_out_dir(const SweepOptions& opt, const Plan& plan,
   }
   const fs::path it_csv = fs::path(dir) / "iterations.csv";
   if (fs::exists(it_csv)) truncate_partial_tail(it_csv.string());
-  else write_atomically(it_csv, [](std::ostream& os) { os << csv_record({"run_id", "iteration", "residual", "energy", "seconds"}); });
+  else write_atomically(it_csv, [](std::ostream& os) { os << csv_record({"run_id", "iteration", "residual", "energy", "seconds", "error_vs_reference"}); });
   return done;
 }
 

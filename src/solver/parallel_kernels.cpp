@@ -18,23 +18,35 @@ void MulticolorSmoother::analyze(const RowSparseMatrix& A) {
   diag_ = A.diagonal();
 }
 
+namespace {
+
+// x_i ← (1 − ω) x_i + ω (b_i − Σ_{j≠i} a_ij x_j) / a_ii
+inline void relax_row(const RowSparseMatrix& A, const Eigen::VectorXd& diag, int i, RowBlock& x, const RowBlock& b,
+                      double omega) {
+  const auto cols = x.cols();
+  double sigma[3] = {0, 0, 0};
+  for (RowSparseMatrix::InnerIterator it(A, i); it; ++it)
+    if (it.col() != i)
+      for (Eigen::Index c = 0; c < cols; ++c) sigma[c] += it.value() * x(it.col(), c);
+  for (Eigen::Index c = 0; c < cols; ++c) x(i, c) = (1 - omega) * x(i, c) + omega * (b(i, c) - sigma[c]) / diag[i];
+}
+
+}  // namespace
+
 void MulticolorSmoother::sweep(const RowSparseMatrix& A, RowBlock& x, const RowBlock& b, double omega,
                                bool forward) const {
-  const int cols = static_cast<int>(x.cols());
   const int n_classes = colors();
   for (int k = 0; k < n_classes; ++k) {
     const std::vector<int>& rows = classes_[forward ? k : n_classes - 1 - k];
+    // A colour of a small (coarse) level is not worth a parallel loop's synchronization.
+    if (rows.size() < kParallelRows) {
+      for (int i : rows) relax_row(A, diag_, i, x, b, omega);
+      continue;
+    }
     tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, rows.size(), 256),
+        tbb::blocked_range<std::size_t>(0, rows.size(), 512),
         [&](const tbb::blocked_range<std::size_t>& r) {
-          for (std::size_t q = r.begin(); q != r.end(); ++q) {
-            const int i = rows[q];
-            double sigma[3] = {0, 0, 0};
-            for (RowSparseMatrix::InnerIterator it(A, i); it; ++it)
-              if (it.col() != i)
-                for (int c = 0; c < cols; ++c) sigma[c] += it.value() * x(it.col(), c);
-            for (int c = 0; c < cols; ++c) x(i, c) = (1 - omega) * x(i, c) + omega * (b(i, c) - sigma[c]) / diag_[i];
-          }
+          for (std::size_t q = r.begin(); q != r.end(); ++q) relax_row(A, diag_, rows[q], x, b, omega);
         },
         tbb::static_partitioner());
   }

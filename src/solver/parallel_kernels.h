@@ -22,6 +22,7 @@ class MulticolorSmoother {
   int colors() const { return static_cast<int>(classes_.size()); }
 
  private:
+  static constexpr std::size_t kParallelRows = 512;
   Eigen::VectorXd diag_;
   std::vector<std::vector<int>> classes_;
 };

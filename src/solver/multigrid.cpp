@@ -33,13 +33,19 @@ MultigridOptions MultigridOptions::from_config(Config& cfg) {
 
 void PatchSmoother::setup(const SparseMatrix& A, const std::vector<std::vector<int>>& patches) {
   patches_ = patches;
-  factors_.clear();
+  inverses_.clear();
+  offsets_.clear();
+  max_size_ = 0;
   for (const auto& patch : patches_) {
     const auto m = static_cast<Eigen::Index>(patch.size());
     Eigen::MatrixXd Apq(m, m);
     for (Eigen::Index a = 0; a < m; ++a)
       for (Eigen::Index c = 0; c < m; ++c) Apq(a, c) = A.coeff(patch[a], patch[c]);
-    factors_.emplace_back(Apq);
+    // A principal block of a positive definite matrix: LDLᵀ gives its inverse stably.
+    const Eigen::MatrixXd inverse = Eigen::LDLT<Eigen::MatrixXd>(Apq).solve(Eigen::MatrixXd::Identity(m, m));
+    offsets_.push_back(inverses_.size());
+    inverses_.insert(inverses_.end(), inverse.data(), inverse.data() + inverse.size());
+    max_size_ = std::max(max_size_, m);
   }
 }
 
@@ -188,6 +194,9 @@ MultigridLevels build_multigrid_levels(const SparseMatrix& A, const LevelOperato
     if (opt.patch_smoothing) {
       levels[k].patches = singular_patches(levels[k].A, kept, level + 1, ops, selection.blocks);
       for (auto& patch : truncated_patches(levels[k].A, P_full, kept, levels[k].P)) levels[k].patches.push_back(std::move(patch));
+      // Where singular vertices are dense (the first levels above a triangle mesh) the patches
+      // would cost many sweeps and overlap everywhere: those levels rely on the sweeps alone.
+      if (levels[k].patches.size() * 8 > kept.size()) levels[k].patches.clear();
     }
     kept = coarse_kept;
   }

@@ -53,7 +53,8 @@ struct MultigridLevel {
 };
 
 //! Multiplicative Schwarz on small overlapping patches: x_p += A_pp⁻¹ (b − A x)_p, patch by
-//! patch (in reverse order for the adjoint pass), each A_pp factored once.
+//! patch (in reverse order for the adjoint pass). The inverses are formed once (patches are
+//! a few dozen unknowns), so a pass allocates nothing.
 class PatchSmoother {
  public:
   void setup(const SparseMatrix& A, const std::vector<std::vector<int>>& patches);
@@ -61,22 +62,29 @@ class PatchSmoother {
   template <class Block>
   void apply(const RowSparseMatrix& A, Block& x, const Block& b, bool forward) const {
     const std::size_t n = patches_.size();
+    if (n == 0) return;
+    Eigen::MatrixXd r(max_size_, x.cols()), e(max_size_, x.cols());
     for (std::size_t q = 0; q < n; ++q) {
       const std::size_t k = forward ? q : n - 1 - q;
       const std::vector<int>& patch = patches_[k];
-      Eigen::MatrixXd r(static_cast<Eigen::Index>(patch.size()), x.cols());
-      for (std::size_t a = 0; a < patch.size(); ++a) {
-        r.row(static_cast<Eigen::Index>(a)) = b.row(patch[a]);
-        for (RowSparseMatrix::InnerIterator it(A, patch[a]); it; ++it) r.row(static_cast<Eigen::Index>(a)) -= it.value() * x.row(it.col());
+      const auto m = static_cast<Eigen::Index>(patch.size());
+      for (Eigen::Index a = 0; a < m; ++a) {
+        for (Eigen::Index c = 0; c < x.cols(); ++c) r(a, c) = b(patch[a], c);
+        for (RowSparseMatrix::InnerIterator it(A, patch[a]); it; ++it)
+          for (Eigen::Index c = 0; c < x.cols(); ++c) r(a, c) -= it.value() * x(it.col(), c);
       }
-      const Eigen::MatrixXd e = factors_[k].solve(r);
-      for (std::size_t a = 0; a < patch.size(); ++a) x.row(patch[a]) += e.row(static_cast<Eigen::Index>(a));
+      const Eigen::Map<const Eigen::MatrixXd> inverse(inverses_.data() + offsets_[k], m, m);
+      e.topRows(m).noalias() = inverse * r.topRows(m);
+      for (Eigen::Index a = 0; a < m; ++a)
+        for (Eigen::Index c = 0; c < x.cols(); ++c) x(patch[a], c) += e(a, c);
     }
   }
 
  private:
   std::vector<std::vector<int>> patches_;
-  std::vector<Eigen::LDLT<Eigen::MatrixXd>> factors_;
+  std::vector<double> inverses_;  // A_pp⁻¹ of every patch, column-major, back to back
+  std::vector<std::size_t> offsets_;
+  Eigen::Index max_size_ = 0;
 };
 
 //! A direct solve is trusted when its relative residual is small: a semidefinite coarsest

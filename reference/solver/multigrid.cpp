@@ -58,11 +58,6 @@ class SerialKernels {
   Block to_block(const Eigen::MatrixXd& m) const { return m; }
   Eigen::MatrixXd from_block(const Block& m) const { return m; }
 
-  std::string diagonal_problem_text() const {
-    for (std::size_t l = 1; l < levels_.size(); ++l)
-      if (auto p = diagonal_problem(levels_[l].A.diagonal()); !p.empty()) return p;
-    return "";
-  }
 
  private:
   MultigridLevels levels_;

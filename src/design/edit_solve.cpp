@@ -139,18 +139,6 @@ EditSolution solve_kkt(const EditProblem& p, Backend backend) {
   return out;
 }
 
-SparseMatrix block_diagonal3(const SparseMatrix& M) {
-  Triplets t;
-  t.reserve(3 * static_cast<std::size_t>(M.nonZeros()));
-  for (int d = 0; d < 3; ++d)
-    for (int c = 0; c < M.outerSize(); ++c)
-      for (SparseMatrix::InnerIterator it(M, c); it; ++it)
-        t.emplace_back(static_cast<int>(d * M.rows() + it.row()), static_cast<int>(d * M.cols() + c), it.value());
-  SparseMatrix out(3 * M.rows(), 3 * M.cols());
-  out.setFromTriplets(t.begin(), t.end());
-  return out;
-}
-
 // Columns x, y, z stacked into one: an n × 3 matrix is, column-major, already [x; y; z].
 Eigen::VectorXd stack(const Eigen::MatrixXd& M) { return Eigen::Map<const Eigen::VectorXd>(M.data(), M.size()); }
 Eigen::MatrixXd unstack(const Eigen::MatrixXd& v) { return Eigen::Map<const Eigen::MatrixXd>(v.data(), v.size() / 3, 3); }
@@ -161,9 +149,9 @@ EditProblem stacked(const EditProblem& p) {
   const LinearConstraints& lc = p.constraints;
   EditProblem s;
   s.levels = p.levels;
-  s.H = block_diagonal3(p.H);
+  s.H = block_diagonal(p.H, 3);
   s.g = stack(p.g);
-  const SparseMatrix A3 = block_diagonal3(lc.A);
+  const SparseMatrix A3 = block_diagonal(lc.A, 3);
   SparseMatrix A(A3.rows() + lc.A_coupled.rows(), A3.cols());
   Triplets t;
   for (const SparseMatrix* part : {&A3, &lc.A_coupled})

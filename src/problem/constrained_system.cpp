@@ -65,4 +65,17 @@ double relative_residual(const SparseMatrix& A, const Eigen::MatrixXd& b, const 
   return nb > 0 ? r / nb : r;
 }
 
+SparseMatrix block_diagonal(const SparseMatrix& M, int copies) {
+  if (copies == 1) return M;
+  Triplets t;
+  t.reserve(static_cast<std::size_t>(copies) * M.nonZeros());
+  for (int d = 0; d < copies; ++d)
+    for (int c = 0; c < M.outerSize(); ++c)
+      for (SparseMatrix::InnerIterator it(M, c); it; ++it)
+        t.emplace_back(static_cast<int>(d * M.rows() + it.row()), static_cast<int>(d * M.cols() + c), it.value());
+  SparseMatrix out(copies * M.rows(), copies * M.cols());
+  out.setFromTriplets(t.begin(), t.end());
+  return out;
+}
+
 }  // namespace fairshape

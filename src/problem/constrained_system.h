@@ -33,6 +33,9 @@ struct ReducedSystem {
 ReducedSystem reduce(const ConstrainedSystem& s);
 //! ½ Σ_c u_cᵀ H u_c − Σ_c g_cᵀ u_c, the objective of a ConstrainedSystem or an edit problem.
 double quadratic_energy(const SparseMatrix& H, const Eigen::MatrixXd& g, const Eigen::MatrixXd& u);
+//! diag(M, ..., M) with `copies` blocks: M acting on every coordinate of the stacked
+//! unknowns [x; y; z] (the coupled system of normal constraints, multigrid on it).
+SparseMatrix block_diagonal(const SparseMatrix& M, int copies);
 //! ‖b − A x‖_F / ‖b‖_F (or ‖b − A x‖_F when b = 0).
 double relative_residual(const SparseMatrix& A, const Eigen::MatrixXd& b, const Eigen::MatrixXd& x);
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "problem/constrained_system.h"
 
 namespace fairshape {
 
@@ -59,19 +60,6 @@ SparseMatrix serial_galerkin_product(const SparseMatrix& A, const SparseMatrix& 
 }
 
 namespace {
-
-SparseMatrix repeat_blocks(const SparseMatrix& M, int blocks) {
-  if (blocks == 1) return M;
-  Triplets t;
-  t.reserve(static_cast<std::size_t>(blocks) * M.nonZeros());
-  for (int d = 0; d < blocks; ++d)
-    for (int c = 0; c < M.outerSize(); ++c)
-      for (SparseMatrix::InnerIterator it(M, c); it; ++it)
-        t.emplace_back(static_cast<int>(d * M.rows() + it.row()), static_cast<int>(d * M.cols() + c), it.value());
-  SparseMatrix out(blocks * M.rows(), blocks * M.cols());
-  out.setFromTriplets(t.begin(), t.end());
-  return out;
-}
 
 // M[rows, cols] with the kept ids renumbered 0..; `col_of` maps an old column to its new id or −1.
 SparseMatrix select(const SparseMatrix& M, const std::vector<int>& rows, const std::vector<int>& col_of, int n_cols) {
@@ -157,7 +145,7 @@ MultigridLevels build_multigrid_levels(const SparseMatrix& A, const LevelOperato
   levels[used].A = A;
   for (int k = used; k > 0; --k) {
     const int level = available - (used - k) - 1;  // the hierarchy's level below level k's
-    const SparseMatrix P_full = repeat_blocks(ops.prolongation[level], selection.blocks);
+    const SparseMatrix P_full = block_diagonal(ops.prolongation[level], selection.blocks);
     // The coarse unknowns: the coarse vertices whose own fine vertex is kept (ids nest). Taking
     // every column that reaches a kept row instead leaves, next to the constrained region,
     // columns that differ only on rows the system dropped: a singular coarse operator.
@@ -176,7 +164,7 @@ MultigridLevels build_multigrid_levels(const SparseMatrix& A, const LevelOperato
     if (opt.coarse_operator == MultigridOptions::CoarseOperator::Galerkin) {
       levels[k - 1].A = galerkin(levels[k].A, levels[k].P);
     } else {
-      const SparseMatrix H = select(repeat_blocks(ops.reassemble(level), selection.blocks), coarse_kept, col_of, nc);
+      const SparseMatrix H = select(block_diagonal(ops.reassemble(level), selection.blocks), coarse_kept, col_of, nc);
       // The re-assembled energy differs from the Galerkin operator by a level-dependent factor
       // (it counts each level's vertices once): match their Rayleigh quotients on a smooth-ish
       // vector (a random one after damped Jacobi steps with H; on a rough one the ratio is that

@@ -238,8 +238,7 @@ SolveSummary run_multigrid(Kernels& k, const MultigridOptions& mg, const Iterati
 }
 
 //! The solver: builds the levels in analyze() (the hierarchy comes from set_levels), then
-//! runs cycles or preconditioned CG. Kernels also provide setup(levels, omega) and
-//! diagonal_problem_text() (a non-positive diagonal on a smoothed level).
+//! runs cycles or preconditioned CG. Kernels also provide setup(levels, omega).
 template <class Kernels>
 class MultigridSolver : public Solver {
  public:
@@ -253,16 +252,21 @@ class MultigridSolver : public Solver {
 
   void analyze(const SparseMatrix& A) override {
     if (!ops_) throw InvalidInput("multigrid: no hierarchy was given (the problem has no levels below the solve level)");
-    kernels_.setup(build_multigrid_levels(A, *ops_, selection_, mg_, galerkin_), mg_.omega);
+    const MultigridLevels levels = build_multigrid_levels(A, *ops_, selection_, mg_, galerkin_);
+    // Gauss-Seidel needs a positive diagonal on every smoothed level (not the coarsest).
+    diagonal_problem_.clear();
+    for (std::size_t l = 1; l < levels.size() && diagonal_problem_.empty(); ++l)
+      diagonal_problem_ = diagonal_problem(levels[l].A.diagonal());
+    kernels_.setup(levels, mg_.omega);
     analyzed_rows_ = A.rows();
   }
 
   SolveSummary solve(const SparseMatrix& A, const Eigen::MatrixXd& b, Eigen::MatrixXd& x,
                      const IterationCallback& cb) override {
     if (analyzed_rows_ != A.rows()) analyze(A);
-    if (const auto problem = kernels_.diagonal_problem_text(); !problem.empty()) {
+    if (!diagonal_problem_.empty()) {
       SolveSummary s;
-      s.message = "multigrid: " + problem;
+      s.message = "multigrid: " + diagonal_problem_;
       return s;
     }
     return run_multigrid(kernels_, mg_, opt_, krylov_, system_energy(A, b), b, x, cb);
@@ -276,6 +280,7 @@ class MultigridSolver : public Solver {
   std::shared_ptr<const LevelOperators> ops_;
   LevelSelection selection_;
   Kernels kernels_;
+  std::string diagonal_problem_;
   Eigen::Index analyzed_rows_ = -1;
 };
 

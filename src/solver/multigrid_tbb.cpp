@@ -35,11 +35,6 @@ class ParallelKernels {
     coarse_.compute(coarse_A_);
   }
 
-  std::string diagonal_problem_text() const {
-    for (std::size_t l = 1; l < smoothers_.size(); ++l)
-      if (auto p = diagonal_problem(smoothers_[l].diagonal()); !p.empty()) return p;
-    return "";
-  }
 
   int levels() const { return static_cast<int>(A_.size()); }
   Block zeros(int l, Eigen::Index cols) const { return Block::Zero(A_[l].rows(), cols); }

@@ -1,13 +1,10 @@
 #include "energy/gram_assembly.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <numeric>
 
 #include "core/error.h"
+#include "core/parallel_row_assembly.h"
 
 namespace fairshape {
 
@@ -48,64 +45,21 @@ SparseMatrix assemble_gram(int n, const GramFactors& f, const Eigen::VectorXd& w
   for (std::size_t v = 0; v + 1 < f.offset.size(); ++v)
     std::fill(owner.begin() + f.offset[v], owner.begin() + f.offset[v + 1], static_cast<int>(v));
 
-  // A dense accumulator per thread: a row's entries are summed in the fixed order of its
-  // contributions, whatever thread runs it. Two passes, pattern then values, write straight
-  // into H's arrays (no per-chunk buffers to join and copy).
-  struct Accumulator {
-    std::vector<double> sum;
-    std::vector<int> seen_in_row;
-    std::vector<int> cols;
-  };
-  tbb::enumerable_thread_specific<Accumulator> accumulators(
-      [n] { return Accumulator{std::vector<double>(n), std::vector<int>(n, -1), {}}; });
-  const auto gather_row = [&](int i, Accumulator& acc, bool values) {
-    acc.cols.clear();
+  return assemble_symmetric_by_rows(n, 4096, [&](int i, const auto& add, bool values) {
     for (int p = start[i]; p < start[i + 1]; ++p) {
       const int e = entries[p], v = owner[e], first = f.offset[v], size = f.offset[v + 1] - first;
       const double* G = f.factor.data() + static_cast<std::size_t>(f.k) * first;
       const double* Ga = G + static_cast<std::size_t>(f.k) * (e - first);
       for (int b = 0; b < size; ++b) {
-        const int col = f.ids[first + b];
-        if (acc.seen_in_row[col] != i) {
-          acc.seen_in_row[col] = i;
-          acc.sum[col] = 0;
-          acc.cols.push_back(col);
-        }
-        if (!values) continue;
-        const double* Gb = G + static_cast<std::size_t>(f.k) * b;
         double s = 0;
-        for (int m = 0; m < f.k; ++m) s += weights[m] * Ga[m] * Gb[m];
-        acc.sum[col] += s;
-      }
-    }
-  };
-  SparseMatrix H(n, n);
-  int* outer = H.outerIndexPtr();
-  outer[0] = 0;
-  tbb::parallel_for(tbb::blocked_range<int>(0, n, 4096), [&](const tbb::blocked_range<int>& r) {
-    Accumulator& acc = accumulators.local();
-    for (int i = r.begin(); i != r.end(); ++i) {
-      gather_row(i, acc, false);
-      outer[i + 1] = static_cast<int>(acc.cols.size());
-    }
-  });
-  for (auto& acc : accumulators) std::fill(acc.seen_in_row.begin(), acc.seen_in_row.end(), -1);
-  std::partial_sum(outer, outer + n + 1, outer);
-  H.resizeNonZeros(outer[n]);
-  tbb::parallel_for(tbb::blocked_range<int>(0, n, 4096), [&](const tbb::blocked_range<int>& r) {
-    Accumulator& acc = accumulators.local();
-    for (int i = r.begin(); i != r.end(); ++i) {
-      gather_row(i, acc, true);
-      std::sort(acc.cols.begin(), acc.cols.end());
-      int q = outer[i];
-      for (int col : acc.cols) {
-        H.innerIndexPtr()[q] = col;
-        H.valuePtr()[q++] = acc.sum[col];
+        if (values) {
+          const double* Gb = G + static_cast<std::size_t>(f.k) * b;
+          for (int m = 0; m < f.k; ++m) s += weights[m] * Ga[m] * Gb[m];
+        }
+        add(f.ids[first + b], s);
       }
     }
   });
-  // H is symmetric, so its row-compressed arrays are also its column-compressed ones.
-  return H;
 }
 
 }  // namespace fairshape

@@ -1,14 +1,11 @@
 #include "solver/parallel_kernels.h"
 
 #include <tbb/blocked_range.h>
-#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 #include <tbb/partitioner.h>
 
-#include <algorithm>
-#include <numeric>
-
+#include "core/parallel_row_assembly.h"
 #include "solver/graph_coloring.h"
 
 namespace fairshape {
@@ -106,56 +103,14 @@ Eigen::VectorXd parallel_column_dots(const RowBlock& a, const RowBlock& c) {
 }
 
 SparseMatrix parallel_galerkin_product(const SparseMatrix& A_in, const SparseMatrix& P_in) {
-  // Row I of PᵀAP = Σ_{i ∈ column I of P} P_iI Σ_j A_ij P_j: gathered with a dense
-  // accumulator per thread, pattern first, then values straight into the result's arrays.
+  // Row I of PᵀAP = Σ_{i ∈ column I of P} P_iI Σ_j A_ij P_j.
   const RowSparseMatrix A(A_in), P(P_in), PT(P_in.transpose());
-  const int n = static_cast<int>(P.cols());
-  struct Accumulator {
-    std::vector<double> sum;
-    std::vector<int> seen;
-    std::vector<int> cols;
-  };
-  tbb::enumerable_thread_specific<Accumulator> accs([n] { return Accumulator{std::vector<double>(n), std::vector<int>(n, -1), {}}; });
-  const auto gather = [&](int I, Accumulator& acc, bool values) {
-    acc.cols.clear();
+  return assemble_symmetric_by_rows(static_cast<int>(P.cols()), 512, [&](int I, const auto& add, bool values) {
     for (RowSparseMatrix::InnerIterator pi(PT, I); pi; ++pi)
       for (RowSparseMatrix::InnerIterator a(A, pi.col()); a; ++a)
-        for (RowSparseMatrix::InnerIterator pj(P, a.col()); pj; ++pj) {
-          const int J = static_cast<int>(pj.col());
-          if (acc.seen[J] != I) {
-            acc.seen[J] = I;
-            acc.sum[J] = 0;
-            acc.cols.push_back(J);
-          }
-          if (values) acc.sum[J] += pi.value() * a.value() * pj.value();
-        }
-  };
-  SparseMatrix out(n, n);
-  int* outer = out.outerIndexPtr();
-  outer[0] = 0;
-  tbb::parallel_for(tbb::blocked_range<int>(0, n, 512), [&](const tbb::blocked_range<int>& r) {
-    Accumulator& acc = accs.local();
-    for (int I = r.begin(); I != r.end(); ++I) {
-      gather(I, acc, false);
-      outer[I + 1] = static_cast<int>(acc.cols.size());
-    }
+        for (RowSparseMatrix::InnerIterator pj(P, a.col()); pj; ++pj)
+          add(static_cast<int>(pj.col()), values ? pi.value() * a.value() * pj.value() : 0.0);
   });
-  for (auto& acc : accs) std::fill(acc.seen.begin(), acc.seen.end(), -1);
-  std::partial_sum(outer, outer + n + 1, outer);
-  out.resizeNonZeros(outer[n]);
-  tbb::parallel_for(tbb::blocked_range<int>(0, n, 512), [&](const tbb::blocked_range<int>& r) {
-    Accumulator& acc = accs.local();
-    for (int I = r.begin(); I != r.end(); ++I) {
-      gather(I, acc, true);
-      std::sort(acc.cols.begin(), acc.cols.end());
-      int q = outer[I];
-      for (int J : acc.cols) {
-        out.innerIndexPtr()[q] = J;
-        out.valuePtr()[q++] = acc.sum[J];
-      }
-    }
-  });
-  return out;  // symmetric: the row-compressed arrays are the column-compressed ones
 }
 
 }  // namespace fairshape

@@ -1,6 +1,6 @@
-// Reference `gauss_seidel` and `sor`: lexicographic sweeps, straight from the textbook
-//   x_i ← (1 − ω) x_i + ω (b_i − Σ_{j≠i} a_ij x_j) / a_ii,   i = 0, 1, …, n − 1.
+// Reference `gauss_seidel` and `sor`: lexicographic sweeps (lexicographic_sweep.h).
 #include "problem/constrained_system.h"
+#include "reference/solver/lexicographic_sweep.h"
 #include "solver/iterative.h"
 
 namespace fairshape::reference {
@@ -22,12 +22,7 @@ class LexicographicSor : public Solver {
     }
     if (!monitor.record(0, relative_residual(A, b, x), x)) return monitor.summary();
     for (int it = 1;; ++it) {
-      for (Eigen::Index i = 0; i < A_.rows(); ++i) {
-        Eigen::RowVectorXd sigma = Eigen::RowVectorXd::Zero(x.cols());
-        for (RowSparseMatrix::InnerIterator e(A_, i); e; ++e)
-          if (e.col() != i) sigma += e.value() * x.row(e.col());
-        x.row(i) = (1 - omega_) * x.row(i) + omega_ * (b.row(i) - sigma) / diag[i];
-      }
+      lexicographic_sweep(A_, diag, x, b, omega_);
       if (monitor.should_check(it) && !monitor.record(it, relative_residual(A, b, x), x)) break;
     }
     return monitor.summary();

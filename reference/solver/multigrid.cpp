@@ -3,6 +3,7 @@
 // correction), products with P and Pᵀ, Eigen's LDLᵀ on the coarsest level.
 #include <Eigen/SparseCholesky>
 
+#include "reference/solver/lexicographic_sweep.h"
 #include "solver/multigrid.h"
 
 namespace fairshape::reference {
@@ -16,9 +17,11 @@ class SerialKernels {
     omega_ = omega;
     levels_ = levels;
     rows_.clear();
+    diagonals_.clear();
     patches_.assign(levels_.size(), {});
     for (std::size_t l = 0; l < levels_.size(); ++l) {
       rows_.emplace_back(levels_[l].A);
+      diagonals_.push_back(levels_[l].A.diagonal());
       patches_[l].setup(levels_[l].A, levels_[l].patches);
     }
     coarse_.compute(levels_[0].A);
@@ -29,21 +32,8 @@ class SerialKernels {
   void smooth(int l, Block& x, const Block& b, int sweeps, bool forward) const {
     const RowSparseMatrix& A = rows_[l];
     if (!forward) patches_[l].apply(A, x, b, false);
-    gauss_seidel(A, x, b, sweeps, forward);
+    for (int s = 0; s < sweeps; ++s) lexicographic_sweep(A, diagonals_[l], x, b, omega_, forward);
     if (forward) patches_[l].apply(A, x, b, true);
-  }
-  void gauss_seidel(const RowSparseMatrix& A, Block& x, const Block& b, int sweeps, bool forward) const {
-    const Eigen::Index n = A.rows();
-    for (int s = 0; s < sweeps; ++s)
-      for (Eigen::Index k = 0; k < n; ++k) {
-        const Eigen::Index i = forward ? k : n - 1 - k;
-        Eigen::RowVectorXd sigma = Eigen::RowVectorXd::Zero(x.cols());
-        double diag = 0;
-        for (RowSparseMatrix::InnerIterator e(A, i); e; ++e)
-          if (e.col() == i) diag = e.value();
-          else sigma += e.value() * x.row(e.col());
-        x.row(i) = (1 - omega_) * x.row(i) + omega_ * (b.row(i) - sigma) / diag;
-      }
   }
   Block residual(int l, const Block& x, const Block& b) const { return b - levels_[l].A * x; }
   Block multiply(int l, const Block& x) const { return levels_[l].A * x; }
@@ -62,6 +52,7 @@ class SerialKernels {
  private:
   MultigridLevels levels_;
   std::vector<RowSparseMatrix> rows_;
+  std::vector<Eigen::VectorXd> diagonals_;
   std::vector<PatchSmoother> patches_;
   Eigen::SimplicialLDLT<SparseMatrix> coarse_;
   double omega_ = 1.0;

@@ -5,6 +5,7 @@
 #include <tbb/parallel_reduce.h>
 #include <tbb/partitioner.h>
 
+#include "core/error.h"
 #include "core/parallel_row_assembly.h"
 #include "solver/graph_coloring.h"
 
@@ -17,21 +18,32 @@ void MulticolorSmoother::analyze(const RowSparseMatrix& A) {
 
 namespace {
 
+// The kernels keep a row's partial sums in registers: one per coordinate, at most x, y, z.
+constexpr Eigen::Index kMaxColumns = 3;
+void check_columns(const RowBlock& x) { FAIRSHAPE_ASSERT(x.cols() <= kMaxColumns, "row kernels take at most 3 columns"); }
+
+// s = Σ_j a_ij x_j over row i (without the diagonal term when `skip_diagonal`).
+inline void row_product(const RowSparseMatrix& A, Eigen::Index i, const RowBlock& x, bool skip_diagonal,
+                        double (&s)[kMaxColumns]) {
+  s[0] = s[1] = s[2] = 0;
+  for (RowSparseMatrix::InnerIterator it(A, i); it; ++it)
+    if (!skip_diagonal || it.col() != i)
+      for (Eigen::Index c = 0; c < x.cols(); ++c) s[c] += it.value() * x(it.col(), c);
+}
+
 // x_i ← (1 − ω) x_i + ω (b_i − Σ_{j≠i} a_ij x_j) / a_ii
 inline void relax_row(const RowSparseMatrix& A, const Eigen::VectorXd& diag, int i, RowBlock& x, const RowBlock& b,
                       double omega) {
-  const auto cols = x.cols();
-  double sigma[3] = {0, 0, 0};
-  for (RowSparseMatrix::InnerIterator it(A, i); it; ++it)
-    if (it.col() != i)
-      for (Eigen::Index c = 0; c < cols; ++c) sigma[c] += it.value() * x(it.col(), c);
-  for (Eigen::Index c = 0; c < cols; ++c) x(i, c) = (1 - omega) * x(i, c) + omega * (b(i, c) - sigma[c]) / diag[i];
+  double sigma[kMaxColumns];
+  row_product(A, i, x, true, sigma);
+  for (Eigen::Index c = 0; c < x.cols(); ++c) x(i, c) = (1 - omega) * x(i, c) + omega * (b(i, c) - sigma[c]) / diag[i];
 }
 
 }  // namespace
 
 void MulticolorSmoother::sweep(const RowSparseMatrix& A, RowBlock& x, const RowBlock& b, double omega,
                                bool forward) const {
+  check_columns(x);
   const int n_classes = colors();
   for (int k = 0; k < n_classes; ++k) {
     const std::vector<int>& rows = classes_[forward ? k : n_classes - 1 - k];
@@ -64,21 +76,21 @@ void for_rows(Eigen::Index n, const RowOp& op) {
 }  // namespace
 
 void parallel_multiply(const RowSparseMatrix& A, const RowBlock& x, RowBlock& y) {
+  check_columns(x);
   y.resize(A.rows(), x.cols());
   for_rows(A.rows(), [&](Eigen::Index i) {
-    double s[3] = {0, 0, 0};
-    for (RowSparseMatrix::InnerIterator it(A, i); it; ++it)
-      for (Eigen::Index c = 0; c < x.cols(); ++c) s[c] += it.value() * x(it.col(), c);
+    double s[kMaxColumns];
+    row_product(A, i, x, false, s);
     for (Eigen::Index c = 0; c < x.cols(); ++c) y(i, c) = s[c];
   });
 }
 
 void parallel_residual(const RowSparseMatrix& A, const RowBlock& x, const RowBlock& b, RowBlock& r) {
+  check_columns(x);
   r.resize(A.rows(), x.cols());
   for_rows(A.rows(), [&](Eigen::Index i) {
-    double s[3] = {0, 0, 0};
-    for (RowSparseMatrix::InnerIterator it(A, i); it; ++it)
-      for (Eigen::Index c = 0; c < x.cols(); ++c) s[c] += it.value() * x(it.col(), c);
+    double s[kMaxColumns];
+    row_product(A, i, x, false, s);
     for (Eigen::Index c = 0; c < x.cols(); ++c) r(i, c) = b(i, c) - s[c];
   });
 }

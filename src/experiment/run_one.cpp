@@ -52,7 +52,7 @@ EditProblem assemble(const RunSpec& spec, const MultiresSurface& h, int level, D
       p.g -= He * rest.positions();  // the energy of P_rest + ΔP
     p.H += He;
   }
-  if (level > 0) {  // the levels below, for multilevel solvers
+  if (level > 0 && spec.solver->uses_levels()) {  // the levels below, only a multilevel solver reads them
     auto ops = std::make_shared<LevelOperators>();
     for (int l = 0; l < level; ++l) ops->prolongation.push_back(h.subdivision_operator(l));
     for (int l = 0; l <= level; ++l) ops->singular.push_back(extraordinary_vertices(h.mesh(l), h.options().scheme));

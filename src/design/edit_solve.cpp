@@ -13,58 +13,6 @@
 namespace fairshape {
 namespace {
 
-EditSolution solve_paper(const EditProblem& p, Solver& solver, Backend backend, const IterationCallback& cb,
-                         const Eigen::MatrixXd* initial) {
-  Timer setup;
-  const SparseMatrix& A = p.constraints.A;
-  std::vector<int> touched;  // vertices that appear in some constraint row
-  std::vector<int> column_of(A.cols(), -1);
-  for (int c = 0; c < A.outerSize(); ++c)
-    if (SparseMatrix::InnerIterator(A, c)) {
-      column_of[c] = static_cast<int>(touched.size());
-      touched.push_back(c);
-    }
-  Triplets t;
-  for (int c = 0; c < A.outerSize(); ++c)
-    for (SparseMatrix::InnerIterator it(A, c); it; ++it) t.emplace_back(static_cast<int>(it.row()), column_of[c], it.value());
-  SparseMatrix Ac(A.rows(), static_cast<Eigen::Index>(touched.size()));
-  Ac.setFromTriplets(t.begin(), t.end());
-  const LeastSquaresResult ls = min_norm_least_squares(Ac, p.constraints.C, backend);
-
-  ConstrainedSystem sys{p.H, p.g, touched, ls.X};
-  const ReducedSystem red = reduce(sys);
-  EditSolution out;
-  out.constrained_vertices = static_cast<int>(touched.size());
-  Eigen::MatrixXd x = initial ? red.restrict_to_free(*initial)
-                              : Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(red.free.size()), p.g.cols());
-  if (red.free.empty()) {
-    out.summary = {Termination::Converged, 0, 0.0, "every vertex is constrained"};
-  } else {
-    if (solver.uses_levels()) {
-      if (!p.levels) throw InvalidInput("edit: a multilevel solver needs a hierarchy below the edit level");
-      // The solver sees the reduced system: its finest unknowns are the free vertices.
-      solver.set_levels(p.levels, {red.free, static_cast<int>(p.H.rows() / p.levels->prolongation.back().rows())});
-    }
-    solver.analyze(red.A);
-    out.analyze_s = setup.seconds();
-    // Callers see the whole deformation, not the solver's reduced unknowns.
-    // The reduced energy differs from the full one by a constant (the fixed vertices' part):
-    // measured once, so a check costs no product with the full H.
-    Eigen::MatrixXd full;
-    std::optional<double> energy_offset;
-    const IterationCallback expanded = [&](const IterationRecord& r) {
-      full = red.expand(*r.x);
-      if (!std::isnan(r.energy) && !energy_offset) energy_offset = quadratic_energy(p.H, p.g, full) - r.energy;
-      return cb({r.iteration, r.residual, r.seconds, r.energy + energy_offset.value_or(0.0), &full});
-    };
-    Timer t;
-    out.summary = solver.solve(red.A, red.b, x, cb ? expanded : IterationCallback());
-    out.solve_s = t.seconds();
-  }
-  out.delta = red.expand(x);
-  return out;
-}
-
 EditSolution kkt_once(const EditProblem& p, Backend backend) {
   Timer setup;
   const SparseMatrix& A = p.constraints.A;
@@ -160,32 +108,11 @@ EditProblem stacked(const EditProblem& p) {
         t.emplace_back(static_cast<int>(it.row() + (part == &A3 ? 0 : A3.rows())), c, it.value());
   A.setFromTriplets(t.begin(), t.end());
   s.constraints.A = A;
-  s.constraints.C.resize(A.rows(), 1);
-  s.constraints.C << stack(lc.C), lc.C_coupled;
+  s.constraints.C = stacked_targets(lc, lc.C);
   return s;
 }
 
-EditSolution solve_coupled(const EditProblem& p, ConstraintMode mode, Solver& solver, Backend backend,
-                           const IterationCallback& cb, const Eigen::MatrixXd* initial) {
-  const EditProblem s = stacked(p);
-  Eigen::MatrixXd full;
-  const IterationCallback unstacked = [&](const IterationRecord& r) {
-    full = unstack(*r.x);
-    return cb({r.iteration, r.residual, r.seconds, r.energy, &full});
-  };
-  const Eigen::MatrixXd start = initial ? Eigen::MatrixXd(stack(*initial)) : Eigen::MatrixXd();
-  EditSolution out = mode == ConstraintMode::Kkt
-                         ? solve_kkt(s, backend)
-                         : solve_paper(s, solver, backend, cb ? unstacked : IterationCallback(), initial ? &start : nullptr);
-  out.constraint_residual = (s.constraints.A * out.delta - s.constraints.C).norm();
-  out.delta = unstack(out.delta);
-  return out;
-}
-
-}  // namespace
-
-EditSolution solve_edit(const EditProblem& p, ConstraintMode mode, Solver& free_solver, Backend backend,
-                        const IterationCallback& cb, const Eigen::MatrixXd* initial) {
+void check_sizes(const EditProblem& p) {
   if (p.constraints.A.rows() == 0)
     throw InvalidInput(p.constraints.coupled()
                            ? "edit: normal constraints fix no position: add a point or fixed constraint"
@@ -193,10 +120,102 @@ EditSolution solve_edit(const EditProblem& p, ConstraintMode mode, Solver& free_
   if (p.H.rows() != p.H.cols() || p.g.rows() != p.H.rows() || p.constraints.A.cols() != p.H.rows() ||
       (p.constraints.coupled() && p.constraints.A_coupled.cols() != 3 * p.H.rows()))
     throw InvalidInput("edit: H, g and the constraints disagree in size");
-  if (p.constraints.coupled()) return solve_coupled(p, mode, free_solver, backend, cb, initial);
-  EditSolution out =
-      mode == ConstraintMode::Kkt ? solve_kkt(p, backend) : solve_paper(p, free_solver, backend, cb, initial);
-  out.constraint_residual = (p.constraints.A * out.delta - p.constraints.C).norm();
+}
+
+// The vertices some constraint row touches, and A restricted to them.
+SparseMatrix touched_columns(const SparseMatrix& A, std::vector<int>& touched) {
+  std::vector<int> column_of(A.cols(), -1);
+  for (int c = 0; c < A.outerSize(); ++c)
+    if (SparseMatrix::InnerIterator(A, c)) {
+      column_of[c] = static_cast<int>(touched.size());
+      touched.push_back(c);
+    }
+  Triplets t;
+  for (int c = 0; c < A.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(A, c); it; ++it) t.emplace_back(static_cast<int>(it.row()), column_of[c], it.value());
+  SparseMatrix Ac(A.rows(), static_cast<Eigen::Index>(touched.size()));
+  Ac.setFromTriplets(t.begin(), t.end());
+  return Ac;
+}
+
+}  // namespace
+
+Eigen::MatrixXd stacked_targets(const LinearConstraints& lc, const Eigen::MatrixXd& C) {
+  Eigen::MatrixXd out(3 * C.rows() + lc.C_coupled.rows(), 1);
+  out << stack(C), lc.C_coupled;
+  return out;
+}
+
+PreparedEdit::PreparedEdit(const EditProblem& p, Solver& solver, Backend backend) : solver_(solver) {
+  Timer setup;
+  check_sizes(p);
+  original_ = &p;
+  if (p.constraints.coupled()) stacked_ = stacked(p);
+  const EditProblem& s = solved();
+  ls_ = std::make_unique<MinNormLeastSquares>(touched_columns(s.constraints.A, touched_), backend);
+  red_ = reduce({s.H, s.g, touched_, Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(touched_.size()), s.g.cols())});
+  if (!red_.free.empty()) {
+    if (solver.uses_levels()) {
+      if (!s.levels) throw InvalidInput("edit: a multilevel solver needs a hierarchy below the edit level");
+      // The solver sees the reduced system: its finest unknowns are the free vertices.
+      solver.set_levels(s.levels, {red_.free, static_cast<int>(s.H.rows() / s.levels->prolongation.back().rows())});
+    }
+    solver.analyze(red_.A);
+  }
+  analyze_s_ = setup.seconds();
+}
+
+PreparedEdit::~PreparedEdit() = default;
+
+EditSolution PreparedEdit::solve(const Eigen::MatrixXd& C, const IterationCallback& cb, const Eigen::MatrixXd* initial) {
+  const EditProblem& s = solved();
+  const bool coupled = stacked_.has_value();
+  const Eigen::MatrixXd targets = coupled ? stacked_targets(original_->constraints, C) : C;
+  red_.set_fixed_values(ls_->solve(targets).X);
+  EditSolution out;
+  out.analyze_s = analyze_s_;
+  out.constrained_vertices = static_cast<int>(touched_.size());
+  const Eigen::MatrixXd start = initial ? (coupled ? Eigen::MatrixXd(stack(*initial)) : *initial) : Eigen::MatrixXd();
+  Eigen::MatrixXd x = initial ? red_.restrict_to_free(start)
+                              : Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(red_.free.size()), s.g.cols());
+  if (red_.free.empty()) {
+    out.summary = {Termination::Converged, 0, 0.0, "every vertex is constrained"};
+  } else {
+    // Callers see the whole n × 3 deformation, not the solver's reduced unknowns. The
+    // reduced energy differs from the full one by a constant (the fixed vertices' part):
+    // measured once, so a check costs no product with the full H.
+    Eigen::MatrixXd full;
+    std::optional<double> energy_offset;
+    const IterationCallback expanded = [&](const IterationRecord& r) {
+      full = red_.expand(*r.x);
+      if (coupled) full = unstack(full);
+      if (!std::isnan(r.energy) && !energy_offset)
+        energy_offset = quadratic_energy(original_->H, original_->g, full) - r.energy;
+      return cb({r.iteration, r.residual, r.seconds, r.energy + energy_offset.value_or(0.0), &full});
+    };
+    Timer t;
+    out.summary = solver_.solve(red_.A, red_.b, x, cb ? expanded : IterationCallback());
+    out.solve_s = t.seconds();
+  }
+  out.delta = red_.expand(x);
+  out.constraint_residual = (s.constraints.A * out.delta - targets).norm();
+  if (coupled) out.delta = unstack(out.delta);
+  return out;
+}
+
+EditSolution solve_edit(const EditProblem& p, ConstraintMode mode, Solver& free_solver, Backend backend,
+                        const IterationCallback& cb, const Eigen::MatrixXd* initial) {
+  if (mode == ConstraintMode::Paper) return PreparedEdit(p, free_solver, backend).solve(p.constraints.C, cb, initial);
+  check_sizes(p);
+  if (!p.constraints.coupled()) {
+    EditSolution out = solve_kkt(p, backend);
+    out.constraint_residual = (p.constraints.A * out.delta - p.constraints.C).norm();
+    return out;
+  }
+  const EditProblem s = stacked(p);
+  EditSolution out = solve_kkt(s, backend);
+  out.constraint_residual = (s.constraints.A * out.delta - s.constraints.C).norm();
+  out.delta = unstack(out.delta);
   return out;
 }
 

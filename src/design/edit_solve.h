@@ -9,9 +9,14 @@
 // normal constraints couple them, and both modes then solve the one 3n × 3n system of §5.
 #pragma once
 
+#include <memory>
+#include <optional>
+#include <vector>
+
 #include "core/backend.h"
 #include "design/multires_constraints.h"
 #include "solver/level_operators.h"
+#include "problem/constrained_system.h"
 #include "solver/solver.h"
 
 namespace fairshape {
@@ -40,5 +45,34 @@ struct EditSolution {
 //! the full n × 3 deformation as its iterate.
 EditSolution solve_edit(const EditProblem& p, ConstraintMode mode, Solver& free_solver, Backend backend,
                         const IterationCallback& cb = {}, const Eigen::MatrixXd* initial = nullptr);
+
+class MinNormLeastSquares;
+
+//! solve_edit's paper mode split where a drag splits it: what depends only on H and the
+//! constraint rows (the least-squares factorization of the constrained vertices, the reduced
+//! system, the solver's analysis) is done once; then any targets of the same rows are solved.
+//! `p` and `solver` must outlive this object.
+class PreparedEdit {
+ public:
+  //! \throw InvalidInput like solve_edit.
+  PreparedEdit(const EditProblem& p, Solver& solver, Backend backend);
+  ~PreparedEdit();
+  //! C: targets of p.constraints.A (m × 3); normal constraints keep their own.
+  EditSolution solve(const Eigen::MatrixXd& C, const IterationCallback& cb = {}, const Eigen::MatrixXd* initial = nullptr);
+  double analyze_s() const { return analyze_s_; }
+
+ private:
+  const EditProblem& solved() const { return stacked_ ? *stacked_ : *original_; }
+  const EditProblem* original_ = nullptr;
+  std::optional<EditProblem> stacked_;  // the coupled 3n system when there are normal constraints
+  Solver& solver_;
+  std::vector<int> touched_;  // vertices some constraint row reaches: fixed by least squares
+  std::unique_ptr<MinNormLeastSquares> ls_;
+  ReducedSystem red_;
+  double analyze_s_ = 0;
+};
+
+//! [C stacked by coordinate; the coupled targets]: the right-hand side of the coupled system.
+Eigen::MatrixXd stacked_targets(const LinearConstraints& lc, const Eigen::MatrixXd& C);
 
 }  // namespace fairshape

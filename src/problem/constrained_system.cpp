@@ -16,7 +16,6 @@ ReducedSystem reduce(const ConstrainedSystem& s) {
   ReducedSystem r;
   r.n_full = n;
   r.fixed = s.fixed;
-  r.fixed_values = s.fixed_values;
   std::vector<int> slot(n, -1);  // index among free unknowns, or -1 for fixed
   std::vector<char> is_fixed(n, 0);
   for (int v : s.fixed) {
@@ -28,19 +27,32 @@ ReducedSystem reduce(const ConstrainedSystem& s) {
       slot[v] = static_cast<int>(r.free.size());
       r.free.push_back(v);
     }
-  Eigen::MatrixXd u_fixed_full = Eigen::MatrixXd::Zero(n, s.g.cols());
-  for (std::size_t k = 0; k < s.fixed.size(); ++k) u_fixed_full.row(s.fixed[k]) = s.fixed_values.row(k);
-  const Eigen::MatrixXd coupling = s.H * u_fixed_full;  // H_·c u_c
-  Triplets t;
+  std::vector<int> fixed_slot(n, -1);
+  for (std::size_t k = 0; k < s.fixed.size(); ++k) fixed_slot[s.fixed[k]] = static_cast<int>(k);
+  Triplets t, t_coupling;
   for (int k = 0; k < s.H.outerSize(); ++k)
-    for (SparseMatrix::InnerIterator it(s.H, k); it; ++it)
-      if (slot[it.row()] >= 0 && slot[it.col()] >= 0) t.emplace_back(slot[it.row()], slot[it.col()], it.value());
-  r.A.resize(static_cast<Eigen::Index>(r.free.size()), static_cast<Eigen::Index>(r.free.size()));
+    for (SparseMatrix::InnerIterator it(s.H, k); it; ++it) {
+      if (slot[it.row()] < 0) continue;
+      if (slot[it.col()] >= 0) t.emplace_back(slot[it.row()], slot[it.col()], it.value());
+      else t_coupling.emplace_back(slot[it.row()], fixed_slot[it.col()], it.value());
+    }
+  const auto n_free = static_cast<Eigen::Index>(r.free.size());
+  r.A.resize(n_free, n_free);
   r.A.setFromTriplets(t.begin(), t.end());
-  r.b.resize(static_cast<Eigen::Index>(r.free.size()), s.g.cols());
-  for (std::size_t i = 0; i < r.free.size(); ++i)
-    r.b.row(static_cast<Eigen::Index>(i)) = s.g.row(r.free[i]) - coupling.row(r.free[i]);
+  r.coupling.resize(n_free, static_cast<Eigen::Index>(s.fixed.size()));
+  r.coupling.setFromTriplets(t_coupling.begin(), t_coupling.end());
+  r.g_free = r.restrict_to_free(s.g);
+  r.set_fixed_values(s.fixed_values);
   return r;
+}
+
+void ReducedSystem::set_fixed_values(const Eigen::MatrixXd& values) {
+  const bool none = fixed.empty() && values.size() == 0;
+  if (!none && (values.rows() != static_cast<Eigen::Index>(fixed.size()) || values.cols() != g_free.cols() || !values.allFinite()))
+    throw InvalidInput("reduce: " + std::to_string(values.rows()) + " fixed values for " + std::to_string(fixed.size()) +
+                       " fixed unknowns, or a value is not finite");
+  fixed_values = values;
+  b = none ? g_free : Eigen::MatrixXd(g_free - coupling * values);
 }
 
 Eigen::MatrixXd ReducedSystem::expand(const Eigen::MatrixXd& u_free) const {

@@ -23,6 +23,12 @@ struct ReducedSystem {
   Eigen::MatrixXd fixed_values;
   int n_full = 0;
 
+  SparseMatrix coupling;   // H_fc: #free × #fixed
+  Eigen::MatrixXd g_free;  // g_f
+
+  //! New values of the fixed unknowns (same ids): b = g_f − H_fc u_c, A kept (a drag step).
+  //! \throw InvalidInput for a count mismatch or non-finite values.
+  void set_fixed_values(const Eigen::MatrixXd& values);
   //! The full #V × 3 solution from the free unknowns.
   Eigen::MatrixXd expand(const Eigen::MatrixXd& u_free) const;
   //! The free unknowns of a full solution.

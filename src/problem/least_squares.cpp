@@ -1,15 +1,34 @@
 #include "problem/least_squares.h"
 
 #include <algorithm>
+#include <cmath>
+#include <random>
 
-#include <Eigen/SparseQR>
 #include <Eigen/CholmodSupport>
 #include <Eigen/SPQRSupport>
+#include <Eigen/SparseQR>
 
 #include "core/error.h"
 
 namespace fairshape {
+
+// One factored route to A⁺: solve(C) applies it to a block of targets.
+struct MinNormLeastSquares::Factorization {
+  virtual ~Factorization() = default;
+  virtual Eigen::MatrixXd solve(const Eigen::MatrixXd& C) const = 0;
+  int rank = 0;
+};
+
 namespace {
+
+using ReferenceQR = Eigen::SparseQR<SparseMatrix, Eigen::COLAMDOrdering<int>>;
+using OptimizedQR = Eigen::SPQR<SparseMatrix>;
+using Factorization = MinNormLeastSquares::Factorization;
+
+SparseMatrix compressed(SparseMatrix M) {
+  M.makeCompressed();
+  return M;
+}
 
 // Dependent rows (a fixed region propagated to a coarse level gives many more rows than the
 // vertices they touch). With A_I a maximal independent set of A's rows (the first `rank`
@@ -18,9 +37,7 @@ namespace {
 // the least-squares solution of least norm, A⁺C, and stays sparse whatever the size.
 template <class QR>
 std::vector<int> independent_rows_by(const SparseMatrix& A) {
-  SparseMatrix At = A.transpose();
-  At.makeCompressed();
-  QR qr(At);
+  QR qr(compressed(A.transpose()));
   if (qr.info() != Eigen::Success) throw SolverError("least squares: QR of the constraint rows failed");
   const auto permutation = qr.colsPermutation();  // SPQR returns it by value: keep it alive
   const auto& perm = permutation.indices();
@@ -31,74 +48,121 @@ std::vector<int> independent_rows_by(const SparseMatrix& A) {
 }
 
 template <class QR>
-LeastSquaresResult rank_deficient(const SparseMatrix& A, const Eigen::MatrixXd& C) {
-  const std::vector<int> rows = independent_rows_by<QR>(A);
-  const SparseMatrix AIt = SparseMatrix(A.transpose()) * row_picker(A.rows(), rows);  // A_Iᵀ
-  SparseMatrix B = A * AIt;
-  B.makeCompressed();
-  QR b_qr(B);
-  if (b_qr.info() != Eigen::Success) throw SolverError("least squares: QR of the reduced constraint system failed");
-  const Eigen::MatrixXd w = b_qr.solve(C);
-  LeastSquaresResult r;
-  r.X = AIt * w;
-  r.rank = static_cast<int>(rows.size());
-  return r;
-}
-
-using ReferenceQR = Eigen::SparseQR<SparseMatrix, Eigen::COLAMDOrdering<int>>;
-
-// Reference: Eigen's SparseQR. m >= k: least squares through A P = Q R. m < k: minimum norm
-// through the QR of Aᵀ: Aᵀ P = Q R gives A = P Rᵀ Qᵀ, so x = Q [R₁⁻ᵀ Pᵀ C; 0].
-LeastSquaresResult sparse_qr(const SparseMatrix& A, const Eigen::MatrixXd& C) {
-  LeastSquaresResult r;
-  const bool wide = A.rows() < A.cols();
-  SparseMatrix M = wide ? SparseMatrix(A.transpose()) : A;
-  M.makeCompressed();
-  ReferenceQR qr(M);
-  if (qr.info() != Eigen::Success) throw SolverError("least squares: sparse QR failed on the constraint system");
-  r.rank = static_cast<int>(qr.rank());
-  if (r.rank < std::min(A.rows(), A.cols())) return rank_deficient<ReferenceQR>(A, C);
-  if (!wide) {
-    r.X = qr.solve(C);
-    return r;
+struct RankDeficient final : Factorization {
+  SparseMatrix AIt;  // A_Iᵀ
+  QR b_qr;           // of B = A A_Iᵀ
+  explicit RankDeficient(const SparseMatrix& A) {
+    const std::vector<int> rows = independent_rows_by<QR>(A);
+    AIt = SparseMatrix(A.transpose()) * row_picker(A.rows(), rows);
+    b_qr.compute(compressed(A * AIt));
+    if (b_qr.info() != Eigen::Success) throw SolverError("least squares: QR of the reduced constraint system failed");
+    rank = static_cast<int>(rows.size());
   }
-  const Eigen::Index m = A.rows();
-  const Eigen::MatrixXd PtC = qr.colsPermutation().transpose() * C;
-  const SparseMatrix R = qr.matrixR().topLeftCorner(m, m);
-  Eigen::MatrixXd y = Eigen::MatrixXd::Zero(A.cols(), C.cols());
-  y.topRows(m) = SparseMatrix(R.transpose()).triangularView<Eigen::Lower>().solve(PtC);
-  r.X = qr.matrixQ() * y;
-  return r;
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& C) const override { return AIt * Eigen::MatrixXd(b_qr.solve(C)); }
+};
+
+// Reference, m >= k and full rank: least squares through A P = Q R.
+struct ReferenceTall final : Factorization {
+  ReferenceQR qr;
+  explicit ReferenceTall(const SparseMatrix& A) : qr(compressed(A)) { rank = static_cast<int>(qr.rank()); }
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& C) const override { return qr.solve(C); }
+};
+
+// Reference, m < k and full rank: minimum norm through the QR of Aᵀ: Aᵀ P = Q R gives
+// A = P Rᵀ Qᵀ, so x = Q [R₁⁻ᵀ Pᵀ C; 0].
+struct ReferenceWide final : Factorization {
+  ReferenceQR qr;
+  SparseMatrix Rt;  // R₁ᵀ, lower triangular
+  explicit ReferenceWide(const SparseMatrix& A) : qr(compressed(A.transpose())) {
+    rank = static_cast<int>(qr.rank());
+    Rt = SparseMatrix(qr.matrixR().topLeftCorner(A.rows(), A.rows())).transpose();
+  }
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& C) const override {
+    Eigen::MatrixXd y = Eigen::MatrixXd::Zero(qr.rows(), C.cols());
+    const Eigen::MatrixXd PtC = qr.colsPermutation().transpose() * C;
+    y.topRows(Rt.rows()) = Rt.triangularView<Eigen::Lower>().solve(PtC);
+    return qr.matrixQ() * y;
+  }
+};
+
+// Optimized, m < k (the usual case for propagated constraints): CHOLMOD on the small m × m
+// system A Aᵀ, x = Aᵀ (A Aᵀ)⁻¹ C.
+struct OptimizedWide final : Factorization {
+  SparseMatrix At;
+  Eigen::CholmodSupernodalLLT<SparseMatrix> llt;
+  explicit OptimizedWide(const SparseMatrix& A) : At(A.transpose()) { llt.compute(A * At); }
+  // CHOLMOD may factor a numerically singular A Aᵀ (dependent rows): a probe solve decides.
+  bool usable(const SparseMatrix& A) const {
+    if (llt.info() != Eigen::Success) return false;
+    std::mt19937 gen(7);
+    std::uniform_real_distribution<double> d(-1, 1);
+    Eigen::VectorXd probe(A.cols());
+    for (auto& v : probe) v = d(gen);
+    const Eigen::VectorXd c = A * probe, y = llt.solve(c);
+    return llt.info() == Eigen::Success && y.allFinite() && (A * (At * y) - c).norm() <= 1e-8 * c.norm();
+  }
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& C) const override { return At * Eigen::MatrixXd(llt.solve(C)); }
+};
+
+// Optimized, m >= k and full column rank: SuiteSparseQR (its basic solution of a
+// rank-deficient A is not the minimum norm one: that goes through RankDeficient).
+struct OptimizedTall final : Factorization {
+  OptimizedQR qr;
+  explicit OptimizedTall(const SparseMatrix& A) : qr(compressed(A)) {
+    if (qr.info() != Eigen::Success) throw SolverError("least squares: SuiteSparseQR failed on the constraint system");
+    rank = static_cast<int>(qr.rank());
+  }
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& C) const override { return qr.solve(C); }
+};
+
+std::unique_ptr<Factorization> factor_reference(const SparseMatrix& A) {
+  std::unique_ptr<Factorization> f;
+  if (A.rows() < A.cols()) f = std::make_unique<ReferenceWide>(A);
+  else f = std::make_unique<ReferenceTall>(A);
+  if (f->rank < std::min(A.rows(), A.cols())) f = std::make_unique<RankDeficient<ReferenceQR>>(A);
+  return f;
 }
 
-// Optimized: underdetermined (m < k, the usual case for propagated constraints) via CHOLMOD on
-// the small m × m system A Aᵀ; otherwise SuiteSparseQR. Dependent rows: rank_deficient.
-LeastSquaresResult sparse_least_squares(const SparseMatrix& A, const Eigen::MatrixXd& C) {
-  LeastSquaresResult r;
+std::unique_ptr<Factorization> factor_optimized(const SparseMatrix& A) {
   if (A.rows() < A.cols()) {
-    const SparseMatrix AAt = A * SparseMatrix(A.transpose());
-    Eigen::CholmodSupernodalLLT<SparseMatrix> llt(AAt);
-    if (llt.info() == Eigen::Success) {
-      const Eigen::MatrixXd Y = llt.solve(C);
-      if (llt.info() == Eigen::Success && Y.allFinite()) {
-        r.X = SparseMatrix(A.transpose()) * Y;
-        r.rank = static_cast<int>(A.rows());
-        return r;
-      }
+    auto wide = std::make_unique<OptimizedWide>(A);
+    if (wide->usable(A)) {
+      wide->rank = static_cast<int>(A.rows());
+      return wide;
     }
-    return rank_deficient<Eigen::SPQR<SparseMatrix>>(A, C);
+    return std::make_unique<RankDeficient<OptimizedQR>>(A);
   }
-  SparseMatrix Ac = A;
-  Ac.makeCompressed();
-  Eigen::SPQR<SparseMatrix> qr(Ac);
-  if (qr.info() != Eigen::Success) throw SolverError("least squares: SuiteSparseQR failed on the constraint system");
-  r.X = qr.solve(C);
-  r.rank = static_cast<int>(qr.rank());
-  if (r.rank < A.cols()) return rank_deficient<Eigen::SPQR<SparseMatrix>>(A, C);  // SPQR's basic solution is not minimum norm
-  return r;
+  auto tall = std::make_unique<OptimizedTall>(A);
+  if (tall->rank < A.cols()) return std::make_unique<RankDeficient<OptimizedQR>>(A);
+  return tall;
 }
 
 }  // namespace
+
+MinNormLeastSquares::MinNormLeastSquares(const SparseMatrix& A, Backend backend) : A_(A) {
+  for (int c = 0; c < A.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(A, c); it; ++it)
+      if (!std::isfinite(it.value())) throw InvalidInput("least squares: a constraint coefficient is not finite");
+  f_ = backend == Backend::Reference ? factor_reference(A) : factor_optimized(A);
+}
+
+MinNormLeastSquares::~MinNormLeastSquares() = default;
+MinNormLeastSquares::MinNormLeastSquares(MinNormLeastSquares&&) noexcept = default;
+MinNormLeastSquares& MinNormLeastSquares::operator=(MinNormLeastSquares&&) noexcept = default;
+
+int MinNormLeastSquares::rank() const { return f_->rank; }
+
+LeastSquaresResult MinNormLeastSquares::solve(const Eigen::MatrixXd& C) const {
+  if (A_.rows() != C.rows())
+    throw InvalidInput("least squares: " + std::to_string(A_.rows()) + " constraint rows but " +
+                       std::to_string(C.rows()) + " targets");
+  if (!C.allFinite()) throw InvalidInput("least squares: a constraint target is not finite");
+  LeastSquaresResult r;
+  r.X = f_->solve(C);
+  r.rank = f_->rank;
+  r.residual = (A_ * r.X - C).norm();
+  return r;
+}
 
 SparseMatrix row_picker(Eigen::Index m, const std::vector<int>& rows) {
   Triplets t;
@@ -109,18 +173,11 @@ SparseMatrix row_picker(Eigen::Index m, const std::vector<int>& rows) {
 }
 
 std::vector<int> independent_rows(const SparseMatrix& A, Backend backend) {
-  return backend == Backend::Reference ? independent_rows_by<ReferenceQR>(A)
-                                       : independent_rows_by<Eigen::SPQR<SparseMatrix>>(A);
+  return backend == Backend::Reference ? independent_rows_by<ReferenceQR>(A) : independent_rows_by<OptimizedQR>(A);
 }
 
 LeastSquaresResult min_norm_least_squares(const SparseMatrix& A, const Eigen::MatrixXd& C, Backend backend) {
-  if (A.rows() != C.rows())
-    throw InvalidInput("least squares: " + std::to_string(A.rows()) + " constraint rows but " +
-                       std::to_string(C.rows()) + " targets");
-  if (!C.allFinite()) throw InvalidInput("least squares: a constraint target is not finite");
-  LeastSquaresResult r = backend == Backend::Reference ? sparse_qr(A, C) : sparse_least_squares(A, C);
-  r.residual = (A * r.X - C).norm();
-  return r;
+  return MinNormLeastSquares(A, backend).solve(C);
 }
 
 }  // namespace fairshape

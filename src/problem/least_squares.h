@@ -5,6 +5,7 @@
 // underdetermined case (minimum norm) is the common one.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,26 @@ struct LeastSquaresResult {
   Eigen::MatrixXd X;  // k × columns of C
   int rank = 0;
   double residual = 0;  // ‖A X − C‖_F: nonzero when the constraints are inconsistent
+};
+
+//! A⁺ of one constraint matrix, factored once and applied to many targets: a drag moves the
+//! targets of an unchanged constraint set, so only this solve is paid per step.
+class MinNormLeastSquares {
+ public:
+  //! \throw InvalidInput for non-finite entries; SolverError when a factorization fails.
+  MinNormLeastSquares(const SparseMatrix& A, Backend backend);
+  ~MinNormLeastSquares();
+  MinNormLeastSquares(MinNormLeastSquares&&) noexcept;
+  MinNormLeastSquares& operator=(MinNormLeastSquares&&) noexcept;
+  //! A⁺C. \throw InvalidInput when C's rows are not A's or C is not finite.
+  LeastSquaresResult solve(const Eigen::MatrixXd& C) const;
+  int rank() const;
+
+  struct Factorization;  // least_squares.cpp: one per route (wide, tall, rank-deficient)
+
+ private:
+  SparseMatrix A_;
+  std::unique_ptr<Factorization> f_;
 };
 
 //! Reference: Eigen SparseQR (of Aᵀ when m < k, for the minimum norm). Optimized: CHOLMOD on

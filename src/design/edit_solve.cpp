@@ -4,7 +4,10 @@
 #include <Eigen/UmfPackSupport>
 
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <optional>
+#include <random>
 
 #include "core/timer.h"
 #include "problem/constrained_system.h"
@@ -13,79 +16,104 @@
 namespace fairshape {
 namespace {
 
-EditSolution kkt_once(const EditProblem& p, Backend backend) {
-  Timer setup;
-  const SparseMatrix& A = p.constraints.A;
-  const Eigen::Index n = p.H.rows(), m = A.rows();
-  // Constraint rows scaled to H's size: on remeshed levels H's diagonal spans 1e8..1e14, and
-  // an unscaled [H Aᵀ; A 0] loses most digits in the LU. (λ is scaled too; it is not used.)
-  const double diag_max = p.H.diagonal().cwiseAbs().maxCoeff();
-  const double s = diag_max > 0 ? diag_max : 1.0;
-  Triplets t;
-  for (int c = 0; c < p.H.outerSize(); ++c)
-    for (SparseMatrix::InnerIterator it(p.H, c); it; ++it) t.emplace_back(static_cast<int>(it.row()), c, it.value());
-  for (int c = 0; c < A.outerSize(); ++c)
-    for (SparseMatrix::InnerIterator it(A, c); it; ++it) {
-      t.emplace_back(static_cast<int>(n + it.row()), c, s * it.value());
-      t.emplace_back(c, static_cast<int>(n + it.row()), s * it.value());
-    }
-  SparseMatrix K(n + m, n + m);
-  K.setFromTriplets(t.begin(), t.end());
-  Eigen::MatrixXd rhs(n + m, p.g.cols());
-  rhs.topRows(n) = p.g;
-  rhs.bottomRows(m) = s * p.constraints.C;
-  EditSolution out;
-  Eigen::MatrixXd sol;
-  bool ok = false;
-  auto factor_and_solve = [&](auto& lu) {
-    lu.compute(K);
-    ok = lu.info() == Eigen::Success;
-    out.analyze_s = setup.seconds();
-    Timer t;
-    if (ok) sol = lu.solve(rhs);
-    out.solve_s = t.seconds();
-  };
-  if (backend == Backend::Reference) {
-    Eigen::SparseLU<SparseMatrix> lu;
-    factor_and_solve(lu);
-  } else {
-    Eigen::UmfPackLU<SparseMatrix> lu;
-    factor_and_solve(lu);
+}  // namespace
+
+// The Lagrange system [H s Aᵀ; s A 0] of one constraint set, factored once. Constraint rows
+// are scaled by s = max diag H: on remeshed levels H's diagonal spans 1e8..1e14, and an
+// unscaled K loses most digits in the LU (λ is scaled too; it is not used). Dependent rows (a
+// fixed region propagated to a coarser level) make K singular: a maximal independent set is
+// kept (rank-revealing sparse QR) and the message says how many rows were dropped; if the
+// dropped rows disagree with the kept ones, constraint_residual shows it.
+class KktFactorization {
+ public:
+  KktFactorization(const EditProblem& p, Backend backend) : H_(p.H), g_(p.g), backend_(backend) {
+    const double diag_max = p.H.diagonal().cwiseAbs().maxCoeff();
+    scale_ = diag_max > 0 ? diag_max : 1.0;
+    factor(p.constraints.A);
+    if (usable(p.constraints.A.rows(), p.g.cols())) return;
+    const std::vector<int> keep = independent_rows(p.constraints.A, backend);
+    if (keep.size() == static_cast<std::size_t>(p.constraints.A.rows())) return;
+    pick_t_ = row_picker(p.constraints.A.rows(), keep).transpose();
+    factor(pick_t_ * p.constraints.A);
+    dropped_ = p.constraints.A.rows() - static_cast<Eigen::Index>(keep.size());
   }
-  // UMFPACK can "succeed" on a numerically singular K and return huge values: check the residual.
-  const double residual = ok && sol.allFinite() ? relative_residual(K, rhs, sol) : 0.0;
-  if (!ok || !sol.allFinite() || residual > 1e-6) {
-    out.summary.message = "KKT system is singular (nothing pins the deformation?)";
-    out.delta = Eigen::MatrixXd::Zero(n, p.g.cols());
+
+  EditSolution solve(const Eigen::MatrixXd& C) const {
+    const Eigen::Index n = H_.rows();
+    EditSolution out;
+    Eigen::MatrixXd sol, rhs;
+    const double residual = solve_system(C, sol, rhs);
+    const std::string dropped = dropped_ ? std::to_string(dropped_) + " dependent constraint rows" : "";
+    if (!(residual <= 1e-6)) {
+      out.summary.message = "KKT system is singular (nothing pins the deformation?)";
+      if (dropped_) out.summary.message.append(" after dropping ").append(dropped);
+      out.delta = Eigen::MatrixXd::Zero(n, g_.cols());
+      return out;
+    }
+    out.delta = sol.topRows(n);
+    out.summary = {Termination::Converged, 1, residual, dropped_ ? "dropped " + dropped : ""};
+    out.constrained_vertices = static_cast<int>(K_.rows() - n);
     return out;
   }
-  out.delta = sol.topRows(n);
-  out.summary = {Termination::Converged, 1, residual, ""};
-  out.constrained_vertices = static_cast<int>(m);
-  return out;
-}
 
-// Dependent rows (a fixed region propagated to a coarser level) make K singular: keep a
-// maximal independent set (rank-revealing sparse QR) and say how many rows were dropped; if
-// the dropped rows disagree with the kept ones, constraint_residual shows it.
-EditSolution solve_kkt(const EditProblem& p, Backend backend) {
-  EditSolution out = kkt_once(p, backend);
-  if (out.summary.termination == Termination::Converged) return out;
-  Timer t;
-  const std::vector<int> keep = independent_rows(p.constraints.A, backend);
-  if (keep.size() == static_cast<std::size_t>(p.constraints.A.rows())) return out;
-  const SparseMatrix pick_t = row_picker(p.constraints.A.rows(), keep).transpose();
-  EditProblem reduced{p.H, p.g, {}, nullptr};
-  reduced.constraints.A = pick_t * p.constraints.A;
-  reduced.constraints.C = pick_t * p.constraints.C;
-  const double qr_s = t.seconds();
-  out = kkt_once(reduced, backend);
-  out.analyze_s += qr_s;
-  const std::string dropped = std::to_string(p.constraints.A.rows() - static_cast<Eigen::Index>(keep.size()));
-  out.summary.message = out.summary.message.empty() ? "dropped " + dropped + " dependent constraint rows"
-                                                    : out.summary.message.append(" after dropping ").append(dropped).append(" dependent constraint rows");
-  return out;
-}
+ private:
+  void factor(const SparseMatrix& A) {
+    const Eigen::Index n = H_.rows(), m = A.rows();
+    Triplets t;
+    for (int c = 0; c < H_.outerSize(); ++c)
+      for (SparseMatrix::InnerIterator it(H_, c); it; ++it) t.emplace_back(static_cast<int>(it.row()), c, it.value());
+    for (int c = 0; c < A.outerSize(); ++c)
+      for (SparseMatrix::InnerIterator it(A, c); it; ++it) {
+        t.emplace_back(static_cast<int>(n + it.row()), c, scale_ * it.value());
+        t.emplace_back(c, static_cast<int>(n + it.row()), scale_ * it.value());
+      }
+    K_.resize(n + m, n + m);
+    K_.setFromTriplets(t.begin(), t.end());
+    if (backend_ == Backend::Reference) lu_ = factored<Eigen::SparseLU<SparseMatrix>>(K_);
+    else lu_ = factored<Eigen::UmfPackLU<SparseMatrix>>(K_);
+  }
+
+  template <class LU>
+  static std::function<bool(const Eigen::MatrixXd&, Eigen::MatrixXd&)> factored(const SparseMatrix& K) {
+    auto lu = std::make_shared<LU>();
+    lu->compute(K);
+    if (lu->info() != Eigen::Success) return {};
+    return [lu](const Eigen::MatrixXd& rhs, Eigen::MatrixXd& x) {
+      x = lu->solve(rhs);
+      return lu->info() == Eigen::Success;
+    };
+  }
+
+  // The relative residual of the solve (NaN when it failed). UMFPACK can "succeed" on a
+  // numerically singular K and return huge values: the residual tells.
+  double solve_system(const Eigen::MatrixXd& C, Eigen::MatrixXd& sol, Eigen::MatrixXd& rhs) const {
+    const Eigen::Index n = H_.rows();
+    rhs.resize(K_.rows(), g_.cols());
+    rhs.topRows(n) = g_;
+    rhs.bottomRows(K_.rows() - n) = scale_ * (pick_t_.size() ? Eigen::MatrixXd(pick_t_ * C) : C);
+    if (!lu_ || !lu_(rhs, sol) || !sol.allFinite()) return std::numeric_limits<double>::quiet_NaN();
+    return relative_residual(K_, rhs, sol);
+  }
+
+  // A random right-hand side: inconsistent for dependent rows, so their singularity shows.
+  bool usable(Eigen::Index rows, Eigen::Index cols) const {
+    std::mt19937 gen(11);
+    std::uniform_real_distribution<double> d(-1, 1);
+    Eigen::MatrixXd C(rows, cols), sol, rhs;
+    for (Eigen::Index i = 0; i < C.size(); ++i) C.data()[i] = d(gen);
+    return solve_system(C, sol, rhs) <= 1e-6;
+  }
+
+  const SparseMatrix& H_;
+  const Eigen::MatrixXd& g_;
+  Backend backend_;
+  double scale_ = 1;
+  SparseMatrix K_, pick_t_;  // pick_t_: the kept rows (empty: all)
+  Eigen::Index dropped_ = 0;
+  std::function<bool(const Eigen::MatrixXd&, Eigen::MatrixXd&)> lu_;
+};
+
+namespace {
 
 // Columns x, y, z stacked into one: an n × 3 matrix is, column-major, already [x; y; z].
 Eigen::VectorXd stack(const Eigen::MatrixXd& M) { return Eigen::Map<const Eigen::VectorXd>(M.data(), M.size()); }
@@ -146,12 +174,18 @@ Eigen::MatrixXd stacked_targets(const LinearConstraints& lc, const Eigen::Matrix
   return out;
 }
 
-PreparedEdit::PreparedEdit(const EditProblem& p, Solver& solver, Backend backend) : solver_(solver) {
+PreparedEdit::PreparedEdit(const EditProblem& p, ConstraintMode mode, Solver& solver, Backend backend)
+    : solver_(solver) {
   Timer setup;
   check_sizes(p);
   original_ = &p;
   if (p.constraints.coupled()) stacked_ = stacked(p);
   const EditProblem& s = solved();
+  if (mode == ConstraintMode::Kkt) {
+    kkt_ = std::make_unique<KktFactorization>(s, backend);
+    analyze_s_ = setup.seconds();
+    return;
+  }
   ls_ = std::make_unique<MinNormLeastSquares>(touched_columns(s.constraints.A, touched_), backend);
   red_ = reduce({s.H, s.g, touched_, Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(touched_.size()), s.g.cols())});
   if (!red_.free.empty()) {
@@ -167,17 +201,45 @@ PreparedEdit::PreparedEdit(const EditProblem& p, Solver& solver, Backend backend
 
 PreparedEdit::~PreparedEdit() = default;
 
-EditSolution PreparedEdit::solve(const Eigen::MatrixXd& C, const IterationCallback& cb, const Eigen::MatrixXd* initial) {
+EditSolution PreparedEdit::solve(const Eigen::MatrixXd& C, const IterationCallback& cb, const Eigen::MatrixXd* initial,
+                                 ConstrainedStart constrained) {
   const EditProblem& s = solved();
   const bool coupled = stacked_.has_value();
   const Eigen::MatrixXd targets = coupled ? stacked_targets(original_->constraints, C) : C;
-  red_.set_fixed_values(ls_->solve(targets).X);
-  EditSolution out;
-  out.analyze_s = analyze_s_;
-  out.constrained_vertices = static_cast<int>(touched_.size());
   const Eigen::MatrixXd start = initial ? (coupled ? Eigen::MatrixXd(stack(*initial)) : *initial) : Eigen::MatrixXd();
-  Eigen::MatrixXd x = initial ? red_.restrict_to_free(start)
-                              : Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(red_.free.size()), s.g.cols());
+  EditSolution out;
+  if (kkt_) {
+    Timer t;
+    out = kkt_->solve(targets);
+    out.solve_s = t.seconds();
+  } else {
+    out = solve_paper(targets, initial ? &start : nullptr, constrained, cb);
+  }
+  out.analyze_s = analyze_s_;
+  out.constraint_residual = (s.constraints.A * out.delta - targets).norm();
+  if (coupled) out.delta = unstack(out.delta);
+  return out;
+}
+
+EditSolution PreparedEdit::solve_paper(const Eigen::MatrixXd& targets, const Eigen::MatrixXd* start,
+                                       ConstrainedStart constrained, const IterationCallback& cb) {
+  const EditProblem& s = solved();
+  const bool coupled = stacked_.has_value();
+  // Minimum norm: the paper's A⁺C. Nearest to the start: start + A⁺(C − A·start), the
+  // smallest change that satisfies the rows (a prolongated coarse solution keeps its shape).
+  Eigen::MatrixXd fixed;
+  if (constrained == ConstrainedStart::NearestToInitial && start) {
+    Eigen::MatrixXd on_touched(static_cast<Eigen::Index>(touched_.size()), start->cols());
+    for (std::size_t k = 0; k < touched_.size(); ++k) on_touched.row(static_cast<Eigen::Index>(k)) = start->row(touched_[k]);
+    fixed = on_touched + ls_->solve(targets - s.constraints.A * *start).X;
+  } else {
+    fixed = ls_->solve(targets).X;
+  }
+  red_.set_fixed_values(fixed);
+  EditSolution out;
+  out.constrained_vertices = static_cast<int>(touched_.size());
+  Eigen::MatrixXd x = start ? red_.restrict_to_free(*start)
+                            : Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(red_.free.size()), s.g.cols());
   if (red_.free.empty()) {
     out.summary = {Termination::Converged, 0, 0.0, "every vertex is constrained"};
   } else {
@@ -198,25 +260,12 @@ EditSolution PreparedEdit::solve(const Eigen::MatrixXd& C, const IterationCallba
     out.solve_s = t.seconds();
   }
   out.delta = red_.expand(x);
-  out.constraint_residual = (s.constraints.A * out.delta - targets).norm();
-  if (coupled) out.delta = unstack(out.delta);
   return out;
 }
 
 EditSolution solve_edit(const EditProblem& p, ConstraintMode mode, Solver& free_solver, Backend backend,
                         const IterationCallback& cb, const Eigen::MatrixXd* initial) {
-  if (mode == ConstraintMode::Paper) return PreparedEdit(p, free_solver, backend).solve(p.constraints.C, cb, initial);
-  check_sizes(p);
-  if (!p.constraints.coupled()) {
-    EditSolution out = solve_kkt(p, backend);
-    out.constraint_residual = (p.constraints.A * out.delta - p.constraints.C).norm();
-    return out;
-  }
-  const EditProblem s = stacked(p);
-  EditSolution out = solve_kkt(s, backend);
-  out.constraint_residual = (s.constraints.A * out.delta - s.constraints.C).norm();
-  out.delta = unstack(out.delta);
-  return out;
+  return PreparedEdit(p, mode, free_solver, backend).solve(p.constraints.C, cb, initial);
 }
 
 }  // namespace fairshape

@@ -47,26 +47,37 @@ EditSolution solve_edit(const EditProblem& p, ConstraintMode mode, Solver& free_
                         const IterationCallback& cb = {}, const Eigen::MatrixXd* initial = nullptr);
 
 class MinNormLeastSquares;
+class KktFactorization;
 
-//! solve_edit's paper mode split where a drag splits it: what depends only on H and the
-//! constraint rows (the least-squares factorization of the constrained vertices, the reduced
-//! system, the solver's analysis) is done once; then any targets of the same rows are solved.
-//! `p` and `solver` must outlive this object.
+//! How the paper mode sets the constrained vertices: the minimum-norm solution of their rows
+//! (§4.3), or the one nearest to the initial guess (a prolongated coarse solution, whose
+//! shape the minimum-norm one would replace by a spike on coarse levels).
+enum class ConstrainedStart { MinimumNorm, NearestToInitial };
+
+//! solve_edit split where a drag splits it: what depends only on H and the constraint rows
+//! (paper: the least-squares factorization of the constrained vertices, the reduced system,
+//! the solver's analysis; kkt: the factored Lagrange system) is done once; then any targets
+//! of the same rows are solved. `p` and `solver` must outlive this object.
 class PreparedEdit {
  public:
   //! \throw InvalidInput like solve_edit.
-  PreparedEdit(const EditProblem& p, Solver& solver, Backend backend);
+  PreparedEdit(const EditProblem& p, ConstraintMode mode, Solver& solver, Backend backend);
   ~PreparedEdit();
-  //! C: targets of p.constraints.A (m × 3); normal constraints keep their own.
-  EditSolution solve(const Eigen::MatrixXd& C, const IterationCallback& cb = {}, const Eigen::MatrixXd* initial = nullptr);
+  //! C: targets of p.constraints.A (m × 3); normal constraints keep their own. The KKT mode
+  //! is direct: it ignores `cb` and `initial`.
+  EditSolution solve(const Eigen::MatrixXd& C, const IterationCallback& cb = {}, const Eigen::MatrixXd* initial = nullptr,
+                     ConstrainedStart constrained = ConstrainedStart::MinimumNorm);
   double analyze_s() const { return analyze_s_; }
 
  private:
   const EditProblem& solved() const { return stacked_ ? *stacked_ : *original_; }
+  EditSolution solve_paper(const Eigen::MatrixXd& targets, const Eigen::MatrixXd* start, ConstrainedStart constrained,
+                           const IterationCallback& cb);
   const EditProblem* original_ = nullptr;
   std::optional<EditProblem> stacked_;  // the coupled 3n system when there are normal constraints
   Solver& solver_;
-  std::vector<int> touched_;  // vertices some constraint row reaches: fixed by least squares
+  std::unique_ptr<KktFactorization> kkt_;
+  std::vector<int> touched_;  // paper: vertices some constraint row reaches, fixed by least squares
   std::unique_ptr<MinNormLeastSquares> ls_;
   ReducedSystem red_;
   double analyze_s_ = 0;

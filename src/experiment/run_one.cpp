@@ -8,6 +8,9 @@
 #include "core/error.h"
 #include "core/memory.h"
 #include "core/timer.h"
+#include "experiment/assemble_problem.h"
+#include "experiment/drag_run.h"
+#include "experiment/metric_format.h"
 #include "io/csv.h"
 #include "io/mesh_io.h"
 #include "io/vtk_io.h"
@@ -20,53 +23,10 @@ namespace fairshape {
 namespace fs = std::filesystem;
 namespace {
 
-std::string num(double v) {
-  std::ostringstream os;
-  os.precision(10);
-  os << v;
-  return os.str();
-}
-
-double relative_error(const Eigen::MatrixXd& d, const Eigen::MatrixXd& ref) {
-  const double scale = ref.norm() > 0 ? ref.norm() : 1.0;
-  return (d - ref).norm() / scale;
-}
-
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const std::size_t n = v.size();
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-// The problem at the edit level: H and the linear term from the energies, the designer's
-// constraints propagated from their levels (Boier-Martin et al. §4.2).
-EditProblem assemble(const RunSpec& spec, const MultiresSurface& h, int level, DesignConstraints& placed) {
-  const SurfaceMesh& rest = h.mesh(level);
-  const int n = rest.n_vertices();
-  EditProblem p;
-  p.H.resize(n, n);
-  p.g = Eigen::MatrixXd::Zero(n, 3);
-  for (const auto& e : spec.energies) {
-    const SparseMatrix He = e.energy->hessian(rest, e.weight);
-    if (e.energy->measures_positions() || spec.formulation == Formulation::Position)
-      p.g -= He * rest.positions();  // the energy of P_rest + ΔP
-    p.H += He;
-  }
-  if (level > 0 && spec.solver->uses_levels()) {  // the levels below, only a multilevel solver reads them
-    auto ops = std::make_shared<LevelOperators>();
-    for (int l = 0; l < level; ++l) ops->prolongation.push_back(h.subdivision_operator(l));
-    for (int l = 0; l <= level; ++l) ops->singular.push_back(extraordinary_vertices(h.mesh(l), h.options().scheme));
-    ops->reassemble = [&spec, &h](int l) {
-      SparseMatrix H(h.mesh(l).n_vertices(), h.mesh(l).n_vertices());
-      for (const auto& e : spec.energies) H += e.energy->hessian(h.mesh(l), e.weight);
-      return H;
-    };
-    p.levels = ops;
-  }
-  const LevelMeshes mesh_at = [&h](int l) -> const SurfaceMesh& { return h.mesh(l); };
-  for (const auto& c : spec.constraints) c.constraint->add_to(mesh_at, h.levels(), placed);
-  p.constraints = propagate_constraints(h, level, placed);
-  return p;
 }
 
 Eigen::MatrixXd random_start(const RunSpec& spec, Eigen::Index rows) {
@@ -152,24 +112,36 @@ class IterationSink {
   std::vector<std::pair<double, std::string>> steps_;
 };
 
-// The same problem solved by CHOLMOD (KKT mode: the optimized LU), cached per system: the
-// yardstick of error_vs_reference and of the per-iteration error in iterations.csv.
-const Eigen::MatrixXd* reference_solution(const RunSpec& spec, RunCache& cache, const EditProblem& p) {
-  if (!spec.output.reference_solution) return nullptr;
-  const std::string key = spec.system_key + spec.constraint_mode;
-  if (const Eigen::MatrixXd* ref = cache.reference_solution(key)) return ref;
+// The same problem solved by CHOLMOD (KKT mode: the optimized LU), cached per system and
+// drag step: the yardstick of error_vs_reference and of the per-iteration error in
+// iterations.csv. One factorization serves every step that is missing.
+std::vector<const ReferenceSolution*> reference_solutions(const RunSpec& spec, RunCache& cache, const EditProblem& p,
+                                                         const std::vector<double>& scales) {
+  std::vector<const ReferenceSolution*> refs(scales.size(), nullptr);
+  if (!spec.output.reference_solution) return refs;
+  const auto key = [&](std::size_t s) {
+    std::string k = spec.system_key + spec.constraint_mode;
+    return s + 1 == scales.size() ? k : k.append("|scale ").append(num(scales[s]));
+  };
   Config none;
   auto direct = components().solvers.create("cholesky", Backend::Optimized, none);
-  const EditSolution exact = solve_edit(p, mode_of(spec), *direct, Backend::Optimized);
-  if (exact.summary.termination != Termination::Converged) return nullptr;
-  cache.store_reference_solution(key, exact.delta);
-  return cache.reference_solution(key);
+  std::unique_ptr<PreparedEdit> exact;
+  for (std::size_t s = 0; s < scales.size(); ++s) {
+    if (!cache.reference_solution(key(s))) {
+      if (!exact) exact = std::make_unique<PreparedEdit>(p, mode_of(spec), *direct, Backend::Optimized);
+      const EditSolution sol = exact->solve(scales[s] * p.constraints.C);
+      if (sol.summary.termination != Termination::Converged) continue;
+      cache.store_reference_solution(key(s), {sol.delta, sol.solve_s});
+    }
+    refs[s] = cache.reference_solution(key(s));
+  }
+  return refs;
 }
 
-void measure_accuracy(const EditProblem& p, const EditSolution& sol, const Eigen::MatrixXd* ref, MetricRow& row) {
+void measure_accuracy(const EditProblem& p, const EditSolution& sol, const ReferenceSolution* ref, MetricRow& row) {
   row["energy"] = num(quadratic_energy(p.H, p.g, sol.delta));
   row["constraint_violation"] = num(sol.constraint_residual);
-  if (ref) row["error_vs_reference"] = num(relative_error(sol.delta, *ref));
+  if (ref) row["error_vs_reference"] = num(relative_error(sol.delta, ref->u));
 }
 
 void write_geometry(const RunSpec& spec, const RunOutputs& out, const SurfaceMesh& result, const MultiresSurface& h) {
@@ -186,7 +158,33 @@ void write_geometry(const RunSpec& spec, const RunOutputs& out, const SurfaceMes
   if (h.levels() > 0) h.save((fs::path(out.dir) / "vtk" / (out.run_id + "_levels.vtm")).string());
 }
 
+// Figure 8 (d–f): each level of the ladder with its deformation and the vertices the
+// propagated constraints reach there.
+void write_ladder(const RunSpec& spec, const RunOutputs& out, const MultiresSurface& rest, const EditLadder& ladder,
+                  int coarse, const std::vector<Eigen::MatrixXd>& solutions) {
+  if (spec.output.vtk == "none") return;
+  for (std::size_t k = 0; k < solutions.size(); ++k) {
+    if (solutions[k].size() == 0) continue;  // a level the mode did not solve on
+    const int l = coarse + static_cast<int>(k);
+    SurfaceMesh m = rest.mesh(l);
+    m.positions() += MatrixX3(solutions[k]);
+    m.vertex_data["displacement_norm"] = solutions[k].rowwise().norm();
+    const SparseMatrix& A = ladder.problems[k].constraints.A;
+    Eigen::MatrixXd constrained = Eigen::MatrixXd::Zero(m.n_vertices(), 1);
+    for (int c = 0; c < A.outerSize(); ++c)
+      if (SparseMatrix::InnerIterator(A, c)) constrained(c, 0) = 1.0;
+    m.vertex_data["constrained"] = constrained;
+    write_vtp(m, (fs::path(out.dir) / "vtk" / (out.run_id + "_ladder_level" + std::to_string(l) + ".vtp")).string());
+  }
+}
+
 }  // namespace
+
+const std::vector<std::string>& step_columns() {
+  static const std::vector<std::string> cols{"run_id", "step", "scale", "accuracy", "solve_s", "iterations",
+                                             "error_vs_reference", "constraint_violation", "reference_solve_s"};
+  return cols;
+}
 
 const std::vector<std::string>& metric_columns() {
   static const std::vector<std::string> cols{
@@ -217,12 +215,12 @@ const MultiresSurface& RunCache::hierarchy(const RunSpec& spec, double* build_s)
   return it->second.first;
 }
 
-const Eigen::MatrixXd* RunCache::reference_solution(const std::string& key) const {
+const ReferenceSolution* RunCache::reference_solution(const std::string& key) const {
   auto it = references_.find(key);
   return it == references_.end() ? nullptr : &it->second;
 }
 
-void RunCache::store_reference_solution(const std::string& key, Eigen::MatrixXd u) { references_[key] = std::move(u); }
+void RunCache::store_reference_solution(const std::string& key, ReferenceSolution r) { references_[key] = std::move(r); }
 
 MetricRow execute_run(RunSpec& spec, RunCache& cache, const RunOutputs& out) {
   MetricRow row;
@@ -237,20 +235,30 @@ MetricRow execute_run(RunSpec& spec, RunCache& cache, const RunOutputs& out) {
     const int level = spec.edit_level < 0 ? rest.levels() : spec.edit_level;
     Timer t;
     DesignConstraints placed;
-    const EditProblem problem = assemble(spec, rest, level, placed);
+    const int coarse = spec.accuracy.multilevel() ? spec.accuracy.coarse_level : level;
+    const EditLadder ladder = assemble_ladder(spec, rest, coarse, level, placed);
+    const EditProblem& problem = ladder.problems.back();
     row["assemble_s"] = num(t.seconds());
     row["n_dofs"] = std::to_string(problem.H.rows());
     row["n_fine"] = std::to_string(rest.mesh(rest.levels()).n_vertices());
     row["n_constrained"] = std::to_string(problem.constraints.A.rows() + problem.constraints.A_coupled.rows());
     const Eigen::MatrixXd start = spec.initial_guess == "random" ? random_start(spec, problem.H.rows()) : Eigen::MatrixXd();
-    const Eigen::MatrixXd* reference = reference_solution(spec, cache, problem);
+    const auto references = reference_solutions(spec, cache, problem, drag_scales(spec.accuracy.drag_steps));
+    const ReferenceSolution* reference = references.back();
     reset_peak_rss();  // peak_rss_mb: the solve's peak, not the yardstick's
-    IterationSink sink(spec, out, rest.mesh(level), level, placed, reference);
+    IterationSink sink(spec, out, rest.mesh(level), level, placed, reference ? &reference->u : nullptr);
     std::vector<double> times;
     EditSolution sol;
+    std::vector<Eigen::MatrixXd> level_solutions;
     for (int r = 0; r < spec.repeat; ++r) {
-      sol = solve_edit(problem, mode_of(spec), *spec.solver, spec.implementation,
-                       r == 0 ? IterationCallback(std::ref(sink)) : IterationCallback(), start.size() ? &start : nullptr);
+      const IterationCallback cb = r == 0 ? IterationCallback(std::ref(sink)) : IterationCallback();
+      if (spec.accuracy.multilevel()) {
+        DragOutcome drag = run_drag(spec, out, ladder, references, cb, r == 0);
+        sol = std::move(drag.last);
+        level_solutions = std::move(drag.level_solutions);
+      } else {
+        sol = solve_edit(problem, mode_of(spec), *spec.solver, spec.implementation, cb, start.size() ? &start : nullptr);
+      }
       times.push_back(sol.solve_s);
     }
     sink.finish();
@@ -269,6 +277,7 @@ MetricRow execute_run(RunSpec& spec, RunCache& cache, const RunOutputs& out) {
       const SurfaceMesh& finest = edited.mesh(edited.levels());
       row["detail_change"] = detail_change(rest, finest, spec.implementation);
       write_geometry(spec, out, result_mesh(rest.mesh(rest.levels()), finest.positions(), rest.levels(), placed), edited);
+      write_ladder(spec, out, rest, ladder, coarse, level_solutions);
     }
   } catch (const SolverError& e) {
     row["termination"] = std::string(to_string(Termination::NumericalFailure));

@@ -15,18 +15,28 @@ const std::vector<std::string>& metric_columns();
 
 using MetricRow = std::map<std::string, std::string>;
 
+// Columns of steps.csv: one row per design step of a drag (problem.drag_steps), the
+// yardstick's prefactored solve time beside each step's.
+const std::vector<std::string>& step_columns();
+
+// CHOLMOD's solution of a run's system and the time of its solve with the factor in hand.
+struct ReferenceSolution {
+  Eigen::MatrixXd u;
+  double solve_s = 0;
+};
+
 // What runs of one sweep share: meshes read once, reference solutions solved once per system.
 class RunCache {
  public:
   //! The hierarchy a run works on: the input mesh (0 levels), its subdivision (zero details)
   //! or its remesh (details); *build_s is the time it took to make.
   const MultiresSurface& hierarchy(const RunSpec& spec, double* build_s);
-  const Eigen::MatrixXd* reference_solution(const std::string& key) const;
-  void store_reference_solution(const std::string& key, Eigen::MatrixXd u);
+  const ReferenceSolution* reference_solution(const std::string& key) const;
+  void store_reference_solution(const std::string& key, ReferenceSolution r);
 
  private:
   std::map<std::string, std::pair<MultiresSurface, double>> hierarchies_;
-  std::map<std::string, Eigen::MatrixXd> references_;
+  std::map<std::string, ReferenceSolution> references_;
 };
 
 struct RunOutputs {

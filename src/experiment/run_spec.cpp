@@ -68,6 +68,34 @@ void read_output(Config& root, OutputOptions& o) {
   oc.check_no_unknown_keys();
 }
 
+void read_accuracy(Config& pc, RunSpec& s) {
+  AccuracyOptions& a = s.accuracy;
+  a.mode = pc.get_choice("accuracy", a.mode, {"single-level", "interactive", "improved", "converged"},
+                         "single-level: the solver on the edit level alone; interactive | improved | converged: "
+                         "Boier-Martin et al. §5's ladder from problem.coarse_level");
+  const int edit_level = s.edit_level < 0 ? s.levels : s.edit_level;
+  a.coarse_level = pc.get_int("coarse_level", a.coarse_level, 0, 8, "level of the ladder's direct coarse solve");
+  a.coarse_constraint_mode = pc.get_choice(
+      "coarse_constraint_mode", a.coarse_constraint_mode, {"kkt", "paper"},
+      "the ladder's coarse solve: kkt (exact minimizer) or paper (minimum-norm constrained vertices, which "
+      "turns a fine handle into a spike on a coarse level)");
+  a.relaxation = pc.get_choice("relaxation", a.relaxation, {"gauss_seidel", "sor"}, "improved: the cascade's smoother");
+  a.relaxation_sweeps = pc.get_int("relaxation_sweeps", a.relaxation_sweeps, 1, 1000000, "improved: sweeps per level");
+  a.relaxation_omega = pc.get_number("relaxation_omega", a.relaxation_omega, 1e-3, 1.999, "improved with sor: ω");
+  a.drag_steps = pc.get_int("drag_steps", a.drag_steps, 1, 100000,
+                            "solve the edit as a drag in this many steps, each warm-started from the last");
+  if (!a.multilevel()) {
+    if (a.drag_steps > 1) throw InvalidConfig(pc.key_path("drag_steps") + ": a drag needs problem.accuracy "
+                                              "interactive, improved or converged");
+    return;
+  }
+  if (a.coarse_level > edit_level)
+    throw InvalidConfig(pc.key_path("coarse_level") + ": " + std::to_string(a.coarse_level) +
+                        " is above the edit level " + std::to_string(edit_level));
+  if (s.constraint_mode != "paper")
+    throw InvalidConfig(pc.key_path("accuracy") + ": " + a.mode + " needs problem.constraint_mode paper");
+}
+
 }  // namespace
 
 std::vector<std::string> input_search_dirs(const std::string& config_path) {
@@ -121,6 +149,7 @@ RunSpec RunSpec::from_config(const YAML::Node& run_config, const Components& c,
   s.constraint_mode = pc.get_choice("constraint_mode", "paper", {"paper", "kkt"},
                                     "paper: least-squares constrained vertices then the solver (§4.3); kkt: exact "
                                     "Lagrange system");
+  read_accuracy(pc, s);
   pc.check_no_unknown_keys();
   read_solver(root, c, s.implementation, s);
   read_output(root, s.output);

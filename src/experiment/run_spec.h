@@ -35,6 +35,19 @@ struct OutputOptions {
   bool reference_solution = true;  // error_vs_reference against a tight direct solve
 };
 
+// problem.accuracy: Boier-Martin et al. §5's ladder (design/multilevel_edit.h), or the
+// configured solver on the edit level alone.
+struct AccuracyOptions {
+  std::string mode = "single-level";  // single-level | interactive | improved | converged
+  int coarse_level = 0;               // where interactive solves directly
+  std::string coarse_constraint_mode = "kkt";  // kkt | paper, on the coarse level
+  std::string relaxation = "gauss_seidel";  // improved: gauss_seidel | sor
+  int relaxation_sweeps = 10;               // improved: sweeps per level
+  double relaxation_omega = 1.5;            // improved with sor
+  int drag_steps = 1;                       // > 1: the handles dragged in this many steps
+  bool multilevel() const { return mode != "single-level"; }
+};
+
 struct RunSpec {
   std::string name;
   int seed = 0, threads = 0, repeat = 1;
@@ -44,6 +57,7 @@ struct RunSpec {
   int remesh_base_faces = 0;               // > 0: remesh the input into a hierarchy with details
   int edit_level = -1;                     // where the problem is solved (-1: the finest)
   std::string constraint_mode = "paper";   // paper | kkt
+  AccuracyOptions accuracy;
   std::string boundary = "edge-only", loop_weights = "loop";
   std::vector<EnergyTerm> energies;
   std::vector<ConstraintTerm> constraints;

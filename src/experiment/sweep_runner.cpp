@@ -98,7 +98,7 @@ std::set<std::string> prepare_out_dir(const SweepOptions& opt, const Plan& plan,
   if (fs::exists(runs_csv) && !opt.resume) {
     if (!opt.force)
       throw InvalidConfig(dir + " already holds results (runs.csv): use --resume to continue or --force to start over");
-    for (const char* f : {"runs.csv", "iterations.csv", "run.json", "config.resolved.yaml", "final.obj"})
+    for (const char* f : {"runs.csv", "iterations.csv", "steps.csv", "run.json", "config.resolved.yaml", "final.obj"})
       fs::remove(fs::path(dir) / f);
     fs::remove_all(fs::path(dir) / "vtk");
     fs::remove_all(fs::path(dir) / "final");
@@ -118,6 +118,9 @@ std::set<std::string> prepare_out_dir(const SweepOptions& opt, const Plan& plan,
   const fs::path it_csv = fs::path(dir) / "iterations.csv";
   if (fs::exists(it_csv)) truncate_partial_tail(it_csv.string());
   else write_atomically(it_csv, [](std::ostream& os) { os << csv_record({"run_id", "iteration", "residual", "energy", "seconds", "error_vs_reference"}); });
+  const fs::path steps_csv = fs::path(dir) / "steps.csv";
+  if (fs::exists(steps_csv)) truncate_partial_tail(steps_csv.string());
+  else write_atomically(steps_csv, [](std::ostream& os) { os << csv_record(step_columns()); });
   return done;
 }
 

@@ -72,6 +72,11 @@ double quadratic_energy(const SparseMatrix& H, const Eigen::MatrixXd& g, const E
   return 0.5 * (u.transpose() * (H * u)).trace() - (g.transpose() * u).trace();
 }
 
+double relative_error(const Eigen::MatrixXd& x, const Eigen::MatrixXd& reference) {
+  const double scale = reference.norm() > 0 ? reference.norm() : 1.0;
+  return (x - reference).norm() / scale;
+}
+
 double relative_residual(const SparseMatrix& A, const Eigen::MatrixXd& b, const Eigen::MatrixXd& x) {
   const double r = (b - A * x).norm(), nb = b.norm();
   return nb > 0 ? r / nb : r;

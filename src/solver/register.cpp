@@ -12,7 +12,6 @@ std::unique_ptr<Solver> make_parallel_multigrid_cg(Config& cfg);
 void register_solvers(SolverRegistry& r) {
   r.add("cholesky", Backend::Optimized, "sparse Cholesky, CHOLMOD supernodal LLᵀ (factored once)",
         make_cholmod_cholesky);
-#ifdef FAIRSHAPE_WITH_TBB
   r.add("gauss_seidel", Backend::Optimized, "multicolour Gauss-Seidel, TBB-parallel per colour",
         make_multicolor_gauss_seidel);
   r.add("sor", Backend::Optimized, "multicolour SOR with relaxation sor.omega, TBB-parallel", make_multicolor_sor);
@@ -23,7 +22,6 @@ void register_solvers(SolverRegistry& r) {
         make_parallel_multigrid);
   r.add("multigrid_cg", Backend::Optimized, "CG preconditioned by one symmetric multigrid cycle, TBB kernels",
         make_parallel_multigrid_cg);
-#endif
 }
 
 }  // namespace fairshape

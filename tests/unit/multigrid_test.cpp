@@ -78,7 +78,6 @@ Outcome run(const TestSystem& t, const std::string& solver, Backend backend, con
   return o;
 }
 
-double relative_error(const Eigen::MatrixXd& x, const Eigen::MatrixXd& ref) { return (x - ref).norm() / ref.norm(); }
 
 }  // namespace
 

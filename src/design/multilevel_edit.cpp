@@ -1,0 +1,115 @@
+#include "design/multilevel_edit.h"
+
+#include "core/error.h"
+#include "core/timer.h"
+#include "solver/parallel_kernels.h"
+
+namespace fairshape {
+
+std::string_view to_string(Accuracy a) {
+  switch (a) {
+    case Accuracy::Interactive: return "interactive";
+    case Accuracy::Improved: return "improved";
+    case Accuracy::Converged: return "converged";
+  }
+  return "?";
+}
+
+Accuracy accuracy_from_string(std::string_view s) {
+  for (Accuracy a : {Accuracy::Interactive, Accuracy::Improved, Accuracy::Converged})
+    if (s == to_string(a)) return a;
+  throw InvalidInput("accuracy '" + std::string(s) + "' is not one of interactive, improved, converged");
+}
+
+MultilevelEdit::MultilevelEdit(const EditLadder& ladder, Accuracy accuracy, const SolverFactory& direct,
+                               const SolverFactory& relaxer, Solver& finest, Backend backend, ConstraintMode coarse_mode)
+    : ladder_(ladder), accuracy_(accuracy), backend_(backend) {
+  Timer setup;
+  const std::size_t levels = ladder.problems.size();
+  if (levels == 0) throw InvalidInput("multilevel edit: no level to solve on");
+  if (ladder.prolongations.size() + 1 != levels)
+    throw InvalidInput("multilevel edit: " + std::to_string(levels) + " levels need " + std::to_string(levels - 1) +
+                       " prolongations, got " + std::to_string(ladder.prolongations.size()));
+  for (std::size_t k = 0; k + 1 < levels; ++k) {
+    const SparseMatrix& S = ladder.prolongations[k];
+    if (S.cols() != ladder.problems[k].H.rows() || S.rows() != ladder.problems[k + 1].H.rows())
+      throw InvalidInput("multilevel edit: prolongation " + std::to_string(k) + " does not map level " +
+                         std::to_string(k) + " to level " + std::to_string(k + 1));
+    rows_.emplace_back(S);
+  }
+  prepared_.resize(levels);
+  const auto prepare = [&](std::size_t k, std::unique_ptr<Solver> s, ConstraintMode mode) {
+    solvers_.push_back(std::move(s));
+    prepared_[k] = std::make_unique<PreparedEdit>(ladder.problems[k], mode, *solvers_.back(), backend);
+  };
+  prepare(0, direct(), coarse_mode);
+  if (accuracy == Accuracy::Improved)
+    for (std::size_t k = 1; k < levels; ++k) prepare(k, relaxer(), ConstraintMode::Paper);
+  if (accuracy == Accuracy::Converged && levels > 1)
+    prepared_.back() = std::make_unique<PreparedEdit>(ladder.problems.back(), ConstraintMode::Paper, finest, backend);
+  current_.resize(levels);
+  analyze_s_ = setup.seconds();
+}
+
+MultilevelEdit::~MultilevelEdit() = default;
+
+Eigen::MatrixXd MultilevelEdit::prolongate(std::size_t from, std::size_t to, const Eigen::MatrixXd& x) const {
+  if (backend_ == Backend::Reference) {
+    Eigen::MatrixXd y = x;
+    for (std::size_t k = from; k < to; ++k) y = ladder_.prolongations[k] * y;
+    return y;
+  }
+  RowBlock y = x, next;
+  for (std::size_t k = from; k < to; ++k) {
+    next.resize(rows_[k].rows(), y.cols());
+    parallel_multiply(rows_[k], y, next);
+    std::swap(y, next);
+  }
+  return y;
+}
+
+EditSolution MultilevelEdit::solve(double scale, const IterationCallback& cb) {
+  Timer step;
+  const std::size_t last = ladder_.problems.size() - 1;
+  const auto targets = [&](std::size_t k) { return Eigen::MatrixXd(scale * ladder_.problems[k].constraints.C); };
+  const bool warm = !previous_.empty();
+  // The start on level `to`: the previous step's solution there plus the prolongated change
+  // of level `from`'s solution (nested iteration for the first step).
+  const auto start = [&](std::size_t from, std::size_t to) {
+    if (!warm) return prolongate(from, to, current_[from]);
+    return Eigen::MatrixXd(previous_[to] + prolongate(from, to, current_[from] - previous_[from]));
+  };
+  EditSolution out = prepared_[0]->solve(targets(0), last == 0 ? cb : IterationCallback());
+  current_[0] = out.delta;
+  int iterations = 0;
+  if (last > 0) {
+    switch (accuracy_) {
+      case Accuracy::Interactive:
+        out.delta = prolongate(0, last, current_[0]);
+        out.summary = {Termination::MaxIterations, 0, -1, "interactive: coarse solve subdivided to the edit level"};
+        out.constraint_residual = (ladder_.problems[last].constraints.A * out.delta - targets(last)).norm();
+        break;
+      case Accuracy::Improved:
+        for (std::size_t k = 1; k <= last; ++k) {
+          const Eigen::MatrixXd x0 = start(k - 1, k);
+          out = prepared_[k]->solve(targets(k), k == last ? cb : IterationCallback(), &x0, ConstrainedStart::NearestToInitial);
+          current_[k] = out.delta;
+          iterations += out.summary.iterations;
+        }
+        out.summary.iterations = iterations;
+        break;
+      case Accuracy::Converged: {
+        const Eigen::MatrixXd x0 = start(0, last);
+        out = prepared_[last]->solve(targets(last), cb, &x0, ConstrainedStart::NearestToInitial);
+        break;
+      }
+    }
+    current_[last] = out.delta;
+  }
+  out.analyze_s = analyze_s_;
+  out.solve_s = step.seconds();
+  previous_ = current_;
+  return out;
+}
+
+}  // namespace fairshape

@@ -1,0 +1,57 @@
+#include "experiment/drag_run.h"
+
+#include <filesystem>
+
+#include "core/config.h"
+#include "experiment/metric_format.h"
+#include "io/csv.h"
+#include "problem/constrained_system.h"
+
+namespace fairshape {
+
+std::vector<double> drag_scales(int steps) {
+  std::vector<double> s;
+  for (int k = 1; k <= steps; ++k) s.push_back(static_cast<double>(k) / steps);
+  return s;
+}
+
+DragOutcome run_drag(const RunSpec& spec, const RunOutputs& out, const EditLadder& ladder,
+                     const std::vector<const ReferenceSolution*>& references, const IterationCallback& last_step,
+                     bool write_steps) {
+  const AccuracyOptions& a = spec.accuracy;
+  const Backend backend = spec.implementation;
+  const SolverFactory direct = [backend] {
+    Config none;
+    return components().solvers.create("cholesky", backend, none);
+  };
+  // The cascade's smoother: a fixed count, no residual checks (the paper's fixed iterations).
+  const SolverFactory relaxer = [&a, backend] {
+    YAML::Node n;
+    n["max_iterations"] = a.relaxation_sweeps;
+    n["check_every"] = a.relaxation_sweeps;
+    n["tolerance"] = 0.0;
+    n["sor"]["omega"] = a.relaxation_omega;
+    Config c(n, "problem.relaxation");
+    return components().solvers.create(a.relaxation, backend, c);
+  };
+  MultilevelEdit edit(ladder, accuracy_from_string(a.mode), direct, relaxer, *spec.solver, backend,
+                      a.coarse_constraint_mode == "kkt" ? ConstraintMode::Kkt : ConstraintMode::Paper);
+  std::unique_ptr<CsvAppender> csv;
+  if (write_steps) csv = std::make_unique<CsvAppender>((std::filesystem::path(out.dir) / "steps.csv").string());
+  const std::vector<double> scales = drag_scales(a.drag_steps);
+  DragOutcome result;
+  for (std::size_t s = 0; s < scales.size(); ++s) {
+    const bool last = s + 1 == scales.size();
+    result.last = edit.solve(scales[s], last ? last_step : IterationCallback());
+    const ReferenceSolution* ref = references[s];
+    if (csv)
+      csv->append({out.run_id, std::to_string(s + 1), num(scales[s]), a.mode, num(result.last.solve_s),
+                   std::to_string(result.last.summary.iterations),
+                   ref ? num(relative_error(result.last.delta, ref->u)) : "", num(result.last.constraint_residual),
+                   ref ? num(ref->solve_s) : ""});
+  }
+  result.level_solutions = edit.level_solutions();
+  return result;
+}
+
+}  // namespace fairshape

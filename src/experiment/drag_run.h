@@ -1,0 +1,28 @@
+// A run of the accuracy ladder (problem.accuracy, design/multilevel_edit.h) as a drag: the
+// handles move from the rest shape to their configured offsets in problem.drag_steps equal
+// steps, each solved with the same constraint set and warm-started from the last. Every
+// step is a row of steps.csv beside CHOLMOD's prefactored solve of the same step.
+#pragma once
+
+#include <vector>
+
+#include "design/multilevel_edit.h"
+#include "experiment/run_one.h"
+
+namespace fairshape {
+
+//! s / steps for s = 1..steps.
+std::vector<double> drag_scales(int steps);
+
+struct DragOutcome {
+  EditSolution last;                            // the final step (scale 1)
+  std::vector<Eigen::MatrixXd> level_solutions;  // its deformation on each level of the ladder
+};
+
+//! `references[s]` is CHOLMOD's solution of step s (or null); `last_step` receives the final
+//! step's iterations. steps.csv gets a row per step when `write_steps`.
+DragOutcome run_drag(const RunSpec& spec, const RunOutputs& out, const EditLadder& ladder,
+                     const std::vector<const ReferenceSolution*>& references, const IterationCallback& last_step,
+                     bool write_steps);
+
+}  // namespace fairshape

@@ -11,6 +11,10 @@ expect_error 2 "config file not found" -- "$FS" run nowhere.yaml
 expect_error 2 "colour: unknown key" -- "$FS" run configs/smoke/cow_nose_pull.yaml --set colour=red --out "$SCRATCH/x"
 expect_error 2 "unknown value 'multigrd'" -- "$FS" run configs/smoke/cow_nose_pull.yaml --set solver.type=multigrd --out "$SCRATCH/x"
 expect_error 2 "solver.sor.omega" -- "$FS" run configs/smoke/cow_nose_pull.yaml --set solver.sor.omega=2.5 --out "$SCRATCH/x"
+expect_error 2 "problem.drag_steps: a drag needs problem.accuracy" -- "$FS" run configs/smoke/cow_nose_pull.yaml --set problem.drag_steps=4 --out "$SCRATCH/x"
+expect_error 2 "problem.coarse_level: 3 is above the edit level" -- "$FS" run configs/smoke/cow_nose_pull.yaml --set problem.accuracy=interactive --set problem.coarse_level=3 --out "$SCRATCH/x"
+expect_error 2 "interactive needs problem.constraint_mode paper" -- "$FS" run configs/smoke/cow_nose_pull.yaml --set problem.accuracy=interactive --set problem.constraint_mode=kkt --out "$SCRATCH/x"
+expect_error 2 "problem.accuracy: unknown value 'fast' (valid: single-level, interactive" -- "$FS" run configs/smoke/cow_nose_pull.yaml --set problem.accuracy=fast --out "$SCRATCH/x"
 expect_error 2 "expected key.path=value" -- "$FS" run configs/smoke/cow_nose_pull.yaml --set oops
 expect_error 2 "--resume needs --out" -- "$FS" run configs/smoke/cow_nose_pull.yaml --resume
 expect_error 2 "expected i/n" -- "$FS" run configs/smoke/cow_nose_pull.yaml --shard 3 --out "$SCRATCH/x"

@@ -2,6 +2,10 @@
 """Side-by-side figure of a sweep's results: one rendered panel per run of runs.csv.
 
   panels.py RUN_DIR OUT.png --title TEXT --label FORMAT [--rest MESH] [--render ARG ...]
+  panels.py RUN_DIR OUT.png --title TEXT --ladder RUN_ID [--render ARG ...]
+
+--ladder shows one run's accuracy ladder instead (vtk/<RUN_ID>_ladder_level<l>.vtp: each
+level's deformed control mesh, coloured by the vertices the propagated constraints reach).
 
 FORMAT is a Python format string over the runs.csv row, with dots in column names replaced
 by underscores and numbers parsed, e.g. "edit level {input_edit_level}: {detail_change:.2f}".
@@ -47,10 +51,42 @@ def main():
     p.add_argument("run_dir")
     p.add_argument("out_png")
     p.add_argument("--title", required=True)
-    p.add_argument("--label", required=True)
+    p.add_argument("--label", help="panel label format (required unless --ladder)")
+    p.add_argument("--ladder", metavar="RUN_ID", help="show this run's ladder levels instead of every run")
     p.add_argument("--rest", help="also show this mesh first, uncoloured")
     p.add_argument("--render", nargs=argparse.REMAINDER, default=[], help="arguments for fairshape render")
     a = p.parse_args()
+    panels = ladder_panels(a) if a.ladder else run_panels(a)
+    fig, axes = plt.subplots(1, len(panels), figsize=(6.4 * len(panels), 5.0), dpi=100, squeeze=False)
+    for ax, (png, label) in zip(axes[0], panels):
+        ax.imshow(mpimg.imread(png))
+        ax.set_title(label, fontsize=11)
+        ax.axis("off")
+    fig.suptitle(a.title, fontsize=13)
+    fig.tight_layout()
+    tmp = a.out_png + ".tmp.png"
+    fig.savefig(tmp)
+    os.replace(tmp, a.out_png)  # never a truncated figure
+    print(f"panels: wrote {a.out_png}")
+
+
+def ladder_panels(a):
+    vtk = os.path.join(a.run_dir, "vtk")
+    files = sorted(f for f in os.listdir(vtk) if f.startswith(a.ladder + "_ladder_level") and f.endswith(".vtp"))
+    if not files:
+        sys.exit(f"panels: no ladder levels of run {a.ladder} in {vtk}")
+    panels = []
+    for f in files:
+        level = f[len(a.ladder + "_ladder_level"):-len(".vtp")]
+        png = os.path.join(a.run_dir, f[:-len(".vtp")] + ".png")
+        render(os.path.join(vtk, f), png, ["--array", "constrained", "--edges"] + a.render)
+        panels.append((png, f"level {level}: control mesh, constrained vertices in red"))
+    return panels
+
+
+def run_panels(a):
+    if not a.label:
+        sys.exit("panels: --label is required (or --ladder RUN_ID)")
     rows = list(csv.DictReader(open(os.path.join(a.run_dir, "runs.csv"))))
     failed = [r["run_id"] for r in rows if r["termination"] not in ("converged", "max_iterations", "energy_stalled")]
     if failed:
@@ -64,17 +100,7 @@ def main():
         png = os.path.join(a.run_dir, f"{r['run_id']}.png")
         render(os.path.join(a.run_dir, "vtk", f"{r['run_id']}.vtp"), png, ["--array", "displacement_norm"] + a.render)
         panels.append((png, a.label.format(**fields(r))))
-    fig, axes = plt.subplots(1, len(panels), figsize=(6.4 * len(panels), 5.0), dpi=100, squeeze=False)
-    for ax, (png, label) in zip(axes[0], panels):
-        ax.imshow(mpimg.imread(png))
-        ax.set_title(label, fontsize=11)
-        ax.axis("off")
-    fig.suptitle(a.title, fontsize=13)
-    fig.tight_layout()
-    tmp = a.out_png + ".tmp.png"
-    fig.savefig(tmp)
-    os.replace(tmp, a.out_png)  # never a truncated figure
-    print(f"panels: wrote {a.out_png}")
+    return panels
 
 
 if __name__ == "__main__":

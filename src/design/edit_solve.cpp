@@ -22,20 +22,32 @@ namespace {
 // are scaled by s = max diag H: on remeshed levels H's diagonal spans 1e8..1e14, and an
 // unscaled K loses most digits in the LU (λ is scaled too; it is not used). Dependent rows (a
 // fixed region propagated to a coarser level) make K singular: a maximal independent set is
-// kept (rank-revealing sparse QR) and the message says how many rows were dropped; if the
-// dropped rows disagree with the kept ones, constraint_residual shows it.
+// kept (rank-revealing sparse QR), or, when the kept rows are still nearly dependent, the
+// system is regularized; the message says which. If the dropped rows disagree with the kept
+// ones, constraint_residual shows it.
 class KktFactorization {
  public:
   KktFactorization(const EditProblem& p, Backend backend) : H_(p.H), g_(p.g), backend_(backend) {
     const double diag_max = p.H.diagonal().cwiseAbs().maxCoeff();
     scale_ = diag_max > 0 ? diag_max : 1.0;
-    factor(p.constraints.A);
-    if (usable(p.constraints.A.rows(), p.g.cols())) return;
-    const std::vector<int> keep = independent_rows(p.constraints.A, backend);
-    if (keep.size() == static_cast<std::size_t>(p.constraints.A.rows())) return;
-    pick_t_ = row_picker(p.constraints.A.rows(), keep).transpose();
-    factor(pick_t_ * p.constraints.A);
-    dropped_ = p.constraints.A.rows() - static_cast<Eigen::Index>(keep.size());
+    const SparseMatrix& A = p.constraints.A;
+    factor(A);
+    if (usable(static_cast<std::size_t>(A.rows()), p.g.cols())) return;
+    const std::vector<int> keep = independent_rows(A, backend);
+    if (keep.size() < static_cast<std::size_t>(A.rows())) {
+      pick_t_ = row_picker(A.rows(), keep).transpose();
+      dropped_ = A.rows() - static_cast<Eigen::Index>(keep.size());
+      factor(pick_t_ * A);
+      if (usable(keep.size(), p.g.cols())) return;
+    }
+    // Nearly dependent rows (a fine fixed region two levels down) defeat the QR's rank test:
+    // the kept rows leave the dropped ones violated. All rows then go into the regularized
+    // [H Aᵀ; A −δI], nonsingular whatever the rows, penalizing the constraints with weight
+    // s²/δ = 1e10·s, far above H's scale s.
+    regularization_ = 1e-10 * scale_;
+    pick_t_ = SparseMatrix();
+    dropped_ = 0;
+    factor(A);
   }
 
   EditSolution solve(const Eigen::MatrixXd& C) const {
@@ -51,7 +63,9 @@ class KktFactorization {
       return out;
     }
     out.delta = sol.topRows(n);
-    out.summary = {Termination::Converged, 1, residual, dropped_ ? "dropped " + dropped : ""};
+    std::string note = dropped_ ? "dropped " + dropped : "";
+    if (regularization_ > 0) note.append(note.empty() ? "" : ", ").append("regularized (nearly dependent constraint rows)");
+    out.summary = {Termination::Converged, 1, residual, note};
     out.constrained_vertices = static_cast<int>(K_.rows() - n);
     return out;
   }
@@ -67,6 +81,8 @@ class KktFactorization {
         t.emplace_back(static_cast<int>(n + it.row()), c, scale_ * it.value());
         t.emplace_back(c, static_cast<int>(n + it.row()), scale_ * it.value());
       }
+    if (regularization_ > 0)
+      for (Eigen::Index i = 0; i < m; ++i) t.emplace_back(static_cast<int>(n + i), static_cast<int>(n + i), -regularization_);
     K_.resize(n + m, n + m);
     K_.setFromTriplets(t.begin(), t.end());
     if (backend_ == Backend::Reference) lu_ = factored<Eigen::SparseLU<SparseMatrix>>(K_);
@@ -96,10 +112,10 @@ class KktFactorization {
   }
 
   // A random right-hand side: inconsistent for dependent rows, so their singularity shows.
-  bool usable(Eigen::Index rows, Eigen::Index cols) const {
+  bool usable(std::size_t rows, Eigen::Index cols) const {
     std::mt19937 gen(11);
     std::uniform_real_distribution<double> d(-1, 1);
-    Eigen::MatrixXd C(rows, cols), sol, rhs;
+    Eigen::MatrixXd C(static_cast<Eigen::Index>(rows), cols), sol, rhs;
     for (Eigen::Index i = 0; i < C.size(); ++i) C.data()[i] = d(gen);
     return solve_system(C, sol, rhs) <= 1e-6;
   }
@@ -110,6 +126,7 @@ class KktFactorization {
   double scale_ = 1;
   SparseMatrix K_, pick_t_;  // pick_t_: the kept rows (empty: all)
   Eigen::Index dropped_ = 0;
+  double regularization_ = 0;  // δ of the regularized system (0: the exact Lagrange system)
   std::function<bool(const Eigen::MatrixXd&, Eigen::MatrixXd&)> lu_;
 };
 

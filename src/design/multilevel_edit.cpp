@@ -81,6 +81,10 @@ EditSolution MultilevelEdit::solve(double scale, const IterationCallback& cb) {
   };
   EditSolution out = prepared_[0]->solve(targets(0), last == 0 ? cb : IterationCallback());
   current_[0] = out.delta;
+  if (out.summary.termination == Termination::NumericalFailure) {  // nothing to build on
+    out.summary.message = "coarse level: " + out.summary.message;
+    return out;
+  }
   int iterations = 0;
   if (last > 0) {
     switch (accuracy_) {

@@ -1,11 +1,23 @@
-// Micro-benchmarks of the solver kernels on the thin-plate system of the cow (reduced, 30% of
-// the vertices fixed): one Gauss-Seidel sweep, reference (lexicographic) vs optimized
-// (multicolour, TBB) over thread counts, and the CHOLMOD vs Eigen LDLT factorization.
+// Benchmarks of the solver kernels (issue 5), each beside the peer it is judged against:
+//   - Gauss-Seidel sweeps on the thin-plate system of the base cow (in cache), reference
+//     (lexicographic) vs optimized (multicolour, TBB), and CHOLMOD vs Eigen LDLT factoring;
+//   - STREAM triad (a = b + s·c) and one multicolour sweep of the level-3 cow edit
+//     (278,594 free unknowns, out of cache), both as bytes/s: the sweep's share of triad;
+//   - the stretch+bend H of a cow level assembled by the reference and optimized back ends;
+//   - the level-2 edit converged from scratch (analysis included) by CHOLMOD and by
+//     multigrid-preconditioned CG (V-cycles alone: configs/boier-martin/solvers.yaml).
+// Arguments: /threads, or /level/threads.
 //   build/bin/solver_kernels_benchmark --benchmark_format=csv > kernels.csv
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "cow_edit_problem.h"
 #include "energy/laplacian.h"
+#include "energy/local_quadratic.h"
+#include "solver/parallel_kernels.h"
 #include "experiment/components.h"
 #include "io/mesh_io.h"
 #include "problem/constrained_system.h"
@@ -60,6 +72,82 @@ void BM_CholeskyAnalyzeFactor_EigenLDLT(benchmark::State& s) { run_factor(s, Bac
 void BM_CholeskyAnalyzeFactor_CHOLMOD(benchmark::State& s) { run_factor(s, Backend::Optimized); }
 BENCHMARK(BM_CholeskyAnalyzeFactor_EigenLDLT)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CholeskyAnalyzeFactor_CHOLMOD)->Unit(benchmark::kMillisecond);
+
+// STREAM triad over three 8M-double arrays (192 MB: far beyond any cache); 24 bytes move
+// per element, STREAM's own count.
+void BM_StreamTriad(benchmark::State& state) {
+  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(state.range(0)));
+  const std::size_t n = 8u << 20;
+  std::vector<double> a(n), b(n, 1.0), c(n, 2.0);
+  for (auto _ : state) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1 << 16), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i < r.end(); ++i) a[i] = b[i] + 3.0 * c[i];
+    });
+    benchmark::DoNotOptimize(a.data());
+  }
+  state.counters["bytes_per_second"] = benchmark::Counter(24.0 * n * state.iterations(), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_StreamTriad)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// One forward multicolour sweep of the reduced level-L system. Bytes: the least a sweep must
+// move — A's values and column indices once (12 bytes per entry, 4 per row pointer), x read
+// and written and b read once (3 doubles each per row).
+void BM_MulticolorSweep_CowEdit(benchmark::State& state) {
+  const int level = static_cast<int>(state.range(0));
+  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(state.range(1)));
+  const EditProblem& p = bench::cow_edit(level, level).ladder.problems.back();
+  std::vector<int> fixed;
+  for (int c = 0; c < p.constraints.A.outerSize(); ++c)
+    if (SparseMatrix::InnerIterator(p.constraints.A, c)) fixed.push_back(c);
+  const ReducedSystem r =
+      reduce({p.H, p.g, fixed, Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(fixed.size()), 3)});
+  const RowSparseMatrix A = r.A;
+  MulticolorSmoother smoother;
+  smoother.analyze(A);
+  RowBlock x = RowBlock::Zero(A.rows(), 3), b = RowBlock::Ones(A.rows(), 3);
+  for (auto _ : state) {
+    smoother.sweep(A, x, b, 1.0, true);
+    benchmark::DoNotOptimize(x.data());
+  }
+  const double bytes = 12.0 * static_cast<double>(A.nonZeros()) + (4.0 + 3 * 24.0) * static_cast<double>(A.rows());
+  state.counters["rows"] = static_cast<double>(A.rows());
+  state.counters["colors"] = smoother.colors();
+  state.counters["bytes_per_second"] = benchmark::Counter(bytes * state.iterations(), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_MulticolorSweep_CowEdit)->Args({3, 1})->Args({3, 2})->Args({4, 2})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void run_assembly(benchmark::State& state, Backend backend) {
+  const int level = static_cast<int>(state.range(0));
+  const SurfaceMesh& m = bench::cow_edit(level, level).hierarchy->mesh(level);
+  for (auto _ : state) benchmark::DoNotOptimize(stretch_bend_hessian(m, {0.1, 1.0}, backend).nonZeros());
+  state.counters["vertices"] = m.n_vertices();
+}
+void BM_StretchBendAssembly_Reference(benchmark::State& s) { run_assembly(s, Backend::Reference); }
+void BM_StretchBendAssembly_Optimized(benchmark::State& s) { run_assembly(s, Backend::Optimized); }
+BENCHMARK(BM_StretchBendAssembly_Reference)->Arg(3)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_StretchBendAssembly_Optimized)->Arg(3)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// From scratch, as a user meets it: the solver's analysis (factorization, hierarchy set-up)
+// and the solve, to a 1e-10 relative residual for the iterative ones.
+void run_converged(benchmark::State& state, const std::string& solver) {
+  const int level = static_cast<int>(state.range(0));
+  const bench::CowEdit& e = bench::cow_edit(level, level, solver);
+  const EditProblem& p = e.ladder.problems.back();
+  int iterations = 0;
+  for (auto _ : state) {
+    Config cfg(YAML::Load("{tolerance: 1.0e-10, max_iterations: 1000}"), "solver");
+    auto s = components().solvers.create(solver, Backend::Optimized, cfg);
+    const EditSolution sol = solve_edit(p, ConstraintMode::Paper, *s, Backend::Optimized);
+    iterations = sol.summary.iterations;
+    benchmark::DoNotOptimize(sol.delta.data());
+  }
+  state.counters["iterations"] = iterations;
+  state.counters["unknowns"] = static_cast<double>(p.H.rows());
+}
+void BM_ConvergedEdit_CHOLMOD(benchmark::State& s) { run_converged(s, "cholesky"); }
+void BM_ConvergedEdit_MultigridCG(benchmark::State& s) { run_converged(s, "multigrid_cg"); }
+BENCHMARK(BM_ConvergedEdit_CHOLMOD)->Arg(2)->Iterations(1)->Repetitions(3)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ConvergedEdit_MultigridCG)->Arg(2)->Iterations(1)->Repetitions(3)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 }  // namespace fairshape

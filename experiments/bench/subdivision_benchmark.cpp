@@ -6,7 +6,10 @@
 //              prebuilt operators S_l applied level by level (row-parallel), and vs its
 //              matrix-free step (stencils generated on the fly, like OpenSubdiv), 1 and 2 threads;
 //   stencils:  OpenSubdiv StencilTable::UpdateValues (level 0 -> L in one table) vs
-//              fairshape's composed operator S_{L-1}...S_0 applied once.
+//              fairshape's composed operator S_{L-1}...S_0 applied once;
+//   interactive: one drag step of Boier-Martin et al.'s interactive mode (the Figure 2 edit
+//              solved on level 0, factored once, its deformation subdivided to level L),
+//              the work OpenSubdiv's primvar refinement of the same ladder is judged against.
 // Arguments: /level/threads.
 #include <benchmark/benchmark.h>
 #include <opensubdiv/far/primvarRefiner.h>
@@ -17,6 +20,8 @@
 
 #include <map>
 
+#include "cow_edit_problem.h"
+#include "design/multilevel_edit.h"
 #include "io/mesh_io.h"
 #include "subdivision/apply.h"
 #include "subdivision/subdivider.h"
@@ -189,6 +194,26 @@ void BM_Stencils_Fairshape(benchmark::State& state) {
   set_counters(state, levels);
 }
 
+void BM_InteractiveDragStep_Fairshape(benchmark::State& state) {
+  const int levels = static_cast<int>(state.range(0));
+  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(state.range(1)));
+  const bench::CowEdit& e = bench::cow_edit(levels, 0);
+  const auto make = [](const char* name) {
+    return [name] {
+      Config none;
+      return components().solvers.create(name, Backend::Optimized, none);
+    };
+  };
+  auto finest = make("cholesky")();
+  MultilevelEdit edit(e.ladder, Accuracy::Interactive, make("cholesky"), make("gauss_seidel"), *finest, Backend::Optimized);
+  double scale = 0;
+  for (auto _ : state) {
+    scale = scale >= 1 ? 0.1 : scale + 0.1;  // the handle keeps moving
+    benchmark::DoNotOptimize(edit.solve(scale).delta.data());
+  }
+  set_counters(state, levels);
+}
+
 void levels_and_threads(benchmark::internal::Benchmark* b) {
   for (int level = 1; level <= 4; ++level)
     for (int threads : {1, 2}) b->Args({level, threads});
@@ -204,6 +229,7 @@ BENCHMARK(BM_Primvar_Fairshape)->Apply(levels_and_threads)->Unit(benchmark::kMil
 BENCHMARK(BM_PrimvarMatrixFree_Fairshape)->Apply(levels_and_threads)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Stencils_OpenSubdiv)->Apply(levels_only)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Stencils_Fairshape)->Apply(levels_and_threads)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_InteractiveDragStep_Fairshape)->Args({2, 2})->Args({4, 1})->Args({4, 2})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 }  // namespace fairshape

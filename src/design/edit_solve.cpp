@@ -1,6 +1,8 @@
 #include "design/edit_solve.h"
 
+#include <Eigen/SPQRSupport>
 #include <Eigen/SparseLU>
+#include <Eigen/SparseQR>
 #include <Eigen/UmfPackSupport>
 
 #include <cmath>
@@ -18,6 +20,17 @@ namespace {
 
 }  // namespace
 
+namespace {
+using ReferenceQR = Eigen::SparseQR<SparseMatrix, Eigen::COLAMDOrdering<int>>;
+
+std::vector<int> reached_unknowns(const SparseMatrix& A) {
+  std::vector<int> reached;
+  for (int c = 0; c < A.outerSize(); ++c)
+    if (SparseMatrix::InnerIterator(A, c)) reached.push_back(c);
+  return reached;
+}
+}  // namespace
+
 // The Lagrange system [H s Aᵀ; s A 0] of one constraint set, factored once. Constraint rows
 // are scaled by s = max diag H: on remeshed levels H's diagonal spans 1e8..1e14, and an
 // unscaled K loses most digits in the LU (λ is scaled too; it is not used). Dependent rows (a
@@ -31,6 +44,18 @@ class KktFactorization {
     const double diag_max = p.H.diagonal().cwiseAbs().maxCoeff();
     scale_ = diag_max > 0 ? diag_max : 1.0;
     const SparseMatrix& A = p.constraints.A;
+    const std::vector<int> reached = reached_unknowns(A);
+    if (A.rows() > static_cast<Eigen::Index>(reached.size())) {
+      // More rows than the unknowns they reach (a fine fixed region on a coarse level: on
+      // the cow, 330k rows over 1k vertices) cannot be independent, and a KKT system that
+      // size is slow to factor. With Ā = A on the reached unknowns, Ā P = Q R: a consistent
+      // A x = C holds exactly when R₁ Pᵀ x = Q₁ᵀ C (the first rank(R) rows), which are
+      // independent and as well conditioned as A.
+      if (backend == Backend::Reference) compress_rows<ReferenceQR>(A, reached);
+      else compress_rows<Eigen::SPQR<SparseMatrix>>(A, reached);
+      factor(rows_);
+      return;
+    }
     factor(A);
     if (usable(static_cast<std::size_t>(A.rows()), p.g.cols())) return;
     const std::vector<int> keep = independent_rows(A, backend);
@@ -64,7 +89,8 @@ class KktFactorization {
     }
     out.delta = sol.topRows(n);
     std::string note = dropped_ ? "dropped " + dropped : "";
-    if (regularization_ > 0) note.append(note.empty() ? "" : ", ").append("regularized (nearly dependent constraint rows)");
+    if (compressed_targets_) note = std::to_string(K_.rows() - n) + " independent constraint rows from a QR of the " + std::to_string(original_rows_);
+    else if (regularization_ > 0) note.append(note.empty() ? "" : ", ").append("regularized (nearly dependent constraint rows)");
     out.summary = {Termination::Converged, 1, residual, note};
     out.constrained_vertices = static_cast<int>(K_.rows() - n);
     return out;
@@ -89,6 +115,29 @@ class KktFactorization {
     else lu_ = factored<Eigen::UmfPackLU<SparseMatrix>>(K_);
   }
 
+  template <class QR>
+  void compress_rows(const SparseMatrix& A, const std::vector<int>& reached) {
+    original_rows_ = A.rows();
+    auto qr = std::make_shared<QR>();
+    SparseMatrix on_reached = A * row_picker(A.cols(), reached);
+    on_reached.makeCompressed();
+    qr->compute(on_reached);
+    if (qr->info() != Eigen::Success) throw SolverError("KKT: QR of the constraint rows failed");
+    const Eigen::Index rank = qr->rank();
+    const auto permutation = qr->colsPermutation();  // SPQR returns it by value: keep it alive
+    const SparseMatrix R = SparseMatrix(qr->matrixR()).topRows(rank);
+    Triplets t;
+    for (int c = 0; c < R.outerSize(); ++c)
+      for (SparseMatrix::InnerIterator it(R, c); it; ++it)
+        t.emplace_back(static_cast<int>(it.row()), reached[permutation.indices()[c]], it.value());
+    rows_.resize(rank, A.cols());
+    rows_.setFromTriplets(t.begin(), t.end());
+    compressed_targets_ = [qr, rank](const Eigen::MatrixXd& C) {
+      const Eigen::MatrixXd QtC = qr->matrixQ().transpose() * C;
+      return Eigen::MatrixXd(QtC.topRows(rank));
+    };
+  }
+
   template <class LU>
   static std::function<bool(const Eigen::MatrixXd&, Eigen::MatrixXd&)> factored(const SparseMatrix& K) {
     auto lu = std::make_shared<LU>();
@@ -106,7 +155,8 @@ class KktFactorization {
     const Eigen::Index n = H_.rows();
     rhs.resize(K_.rows(), g_.cols());
     rhs.topRows(n) = g_;
-    rhs.bottomRows(K_.rows() - n) = scale_ * (pick_t_.size() ? Eigen::MatrixXd(pick_t_ * C) : C);
+    if (compressed_targets_) rhs.bottomRows(K_.rows() - n) = scale_ * compressed_targets_(C);
+    else rhs.bottomRows(K_.rows() - n) = scale_ * (pick_t_.size() ? Eigen::MatrixXd(pick_t_ * C) : C);
     if (!lu_ || !lu_(rhs, sol) || !sol.allFinite()) return std::numeric_limits<double>::quiet_NaN();
     return relative_residual(K_, rhs, sol);
   }
@@ -125,8 +175,11 @@ class KktFactorization {
   Backend backend_;
   double scale_ = 1;
   SparseMatrix K_, pick_t_;  // pick_t_: the kept rows (empty: all)
+  SparseMatrix rows_;        // R₁ Pᵀ on the full unknowns, when A's rows are compressed
+  std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)> compressed_targets_;  // C ↦ Q₁ᵀ C
   Eigen::Index dropped_ = 0;
   double regularization_ = 0;  // δ of the regularized system (0: the exact Lagrange system)
+  Eigen::Index original_rows_ = 0;
   std::function<bool(const Eigen::MatrixXd&, Eigen::MatrixXd&)> lu_;
 };
 

@@ -104,4 +104,19 @@ Polyline reconstruct(const PolylineHierarchy& h, int level, Backend backend) {
   return out;
 }
 
+SparseMatrix synthesis_operator(int coarse_points, bool closed) {
+  const int n = coarse_points, fine = closed ? 2 * n : 2 * n - 1;
+  Triplets t;
+  for (int i = 0; i < n; ++i) {
+    t.emplace_back(2 * i, i, 1.0);
+    if (2 * i + 1 < fine) {  // odd points: the midpoint of their coarse neighbours
+      t.emplace_back(2 * i + 1, i, 0.5);
+      t.emplace_back(2 * i + 1, (i + 1) % n, 0.5);
+    }
+  }
+  SparseMatrix S(fine, n);
+  S.setFromTriplets(t.begin(), t.end());
+  return S;
+}
+
 }  // namespace fairshape

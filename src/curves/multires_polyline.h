@@ -31,5 +31,8 @@ Polyline reconstruct(const PolylineHierarchy& h, int level, Backend backend);
 // One filter-bank step, exposed for solvers that work level by level.
 void analysis_step(const MatrixX3& fine, bool closed, MatrixX3& coarse, MatrixX3& detail, Backend backend);
 MatrixX3 synthesis_step(const MatrixX3& coarse, const MatrixX3& detail, bool closed, Backend backend);
+//! synthesis_step with zero details as a matrix (fine × coarse points): the prolongation of
+//! a multilevel solver between polyline levels (solver/level_operators.h).
+SparseMatrix synthesis_operator(int coarse_points, bool closed);
 
 }  // namespace fairshape

@@ -118,7 +118,7 @@ class KktFactorization {
   template <class QR>
   void compress_rows(const SparseMatrix& A, const std::vector<int>& reached) {
     original_rows_ = A.rows();
-    auto qr = std::make_shared<QR>();
+    auto qr = std::make_unique<QR>();
     SparseMatrix on_reached = A * row_picker(A.cols(), reached);
     on_reached.makeCompressed();
     qr->compute(on_reached);
@@ -132,9 +132,16 @@ class KktFactorization {
         t.emplace_back(static_cast<int>(it.row()), reached[permutation.indices()[c]], it.value());
     rows_.resize(rank, A.cols());
     rows_.setFromTriplets(t.begin(), t.end());
-    compressed_targets_ = [qr, rank](const Eigen::MatrixXd& C) {
-      const Eigen::MatrixXd QtC = qr->matrixQ().transpose() * C;
-      return Eigen::MatrixXd(QtC.topRows(rank));
+    // Q₁ᵀ = R₁₁⁻ᵀ (Ā P₁)ᵀ (P₁: the first rank columns of P), so a drag step pays one product
+    // with Āᵀ and one sparse triangular solve instead of applying Q's Householder vectors.
+    const SparseMatrix R11t = SparseMatrix(R.leftCols(rank)).transpose();
+    std::vector<int> leading(static_cast<std::size_t>(rank));
+    for (Eigen::Index k = 0; k < rank; ++k) leading[static_cast<std::size_t>(k)] = permutation.indices()[k];
+    const SparseMatrix AP1t = SparseMatrix(row_picker(on_reached.cols(), leading).transpose()) *
+                              SparseMatrix(on_reached.transpose());
+    compressed_targets_ = [R11t, AP1t](const Eigen::MatrixXd& C) {
+      const Eigen::MatrixXd y = AP1t * C;
+      return Eigen::MatrixXd(R11t.triangularView<Eigen::Lower>().solve(y));
     };
   }
 

@@ -34,7 +34,7 @@ energy: [ { type: detail-preserving, alpha: 0.1, beta: 1.0 } ]
 constraints:
   - { type: fixed, region: { axis: x, from: 0.0, to: 0.3 } }
   - { type: position, nearest: [0.5, 0.0, 0.0], offset: [0.15, 0.0, 0.08] }
-solver: { type: )" + solver + R"(, tolerance: 1.0e-10, max_iterations: 1000 }
+solver: { type: )" + solver + R"( }
 )";
   auto e = std::make_unique<CowEdit>();
   e->spec = RunSpec::from_config(YAML::Load(yaml), components(), {FAIRSHAPE_SOURCE_DIR});

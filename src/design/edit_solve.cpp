@@ -57,13 +57,13 @@ class KktFactorization {
       return;
     }
     factor(A);
-    if (usable(static_cast<std::size_t>(A.rows()), p.g.cols())) return;
+    if (usable(A.rows(), p.g.cols())) return;
     const std::vector<int> keep = independent_rows(A, backend);
     if (keep.size() < static_cast<std::size_t>(A.rows())) {
       pick_t_ = row_picker(A.rows(), keep).transpose();
       dropped_ = A.rows() - static_cast<Eigen::Index>(keep.size());
       factor(pick_t_ * A);
-      if (usable(keep.size(), p.g.cols())) return;
+      if (usable(A.rows(), p.g.cols())) return;  // targets are A's rows; K keeps the picked ones
     }
     // Nearly dependent rows (a fine fixed region two levels down) defeat the QR's rank test:
     // the kept rows leave the dropped ones violated. All rows then go into the regularized
@@ -169,10 +169,10 @@ class KktFactorization {
   }
 
   // A random right-hand side: inconsistent for dependent rows, so their singularity shows.
-  bool usable(std::size_t rows, Eigen::Index cols) const {
+  bool usable(Eigen::Index rows, Eigen::Index cols) const {
     std::mt19937 gen(11);
     std::uniform_real_distribution<double> d(-1, 1);
-    Eigen::MatrixXd C(static_cast<Eigen::Index>(rows), cols), sol, rhs;
+    Eigen::MatrixXd C(rows, cols), sol, rhs;
     for (Eigen::Index i = 0; i < C.size(); ++i) C.data()[i] = d(gen);
     return solve_system(C, sol, rhs) <= 1e-6;
   }

@@ -21,6 +21,7 @@
 #include "experiment/components.h"
 #include "io/mesh_io.h"
 #include "problem/constrained_system.h"
+#include "problem/least_squares.h"
 
 namespace fairshape {
 namespace {
@@ -96,9 +97,7 @@ void BM_MulticolorSweep_CowEdit(benchmark::State& state) {
   const int level = static_cast<int>(state.range(0));
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(state.range(1)));
   const EditProblem& p = bench::cow_edit(level, level).ladder.problems.back();
-  std::vector<int> fixed;
-  for (int c = 0; c < p.constraints.A.outerSize(); ++c)
-    if (SparseMatrix::InnerIterator(p.constraints.A, c)) fixed.push_back(c);
+  const std::vector<int> fixed = reached_columns(p.constraints.A);
   const ReducedSystem r =
       reduce({p.H, p.g, fixed, Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(fixed.size()), 3)});
   const RowSparseMatrix A = r.A;

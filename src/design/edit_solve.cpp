@@ -17,18 +17,7 @@
 
 namespace fairshape {
 namespace {
-
-}  // namespace
-
-namespace {
 using ReferenceQR = Eigen::SparseQR<SparseMatrix, Eigen::COLAMDOrdering<int>>;
-
-std::vector<int> reached_unknowns(const SparseMatrix& A) {
-  std::vector<int> reached;
-  for (int c = 0; c < A.outerSize(); ++c)
-    if (SparseMatrix::InnerIterator(A, c)) reached.push_back(c);
-  return reached;
-}
 }  // namespace
 
 // The Lagrange system [H s Aᵀ; s A 0] of one constraint set, factored once. Constraint rows
@@ -44,7 +33,7 @@ class KktFactorization {
     const double diag_max = p.H.diagonal().cwiseAbs().maxCoeff();
     scale_ = diag_max > 0 ? diag_max : 1.0;
     const SparseMatrix& A = p.constraints.A;
-    const std::vector<int> reached = reached_unknowns(A);
+    const std::vector<int> reached = reached_columns(A);
     if (A.rows() > static_cast<Eigen::Index>(reached.size())) {
       // More rows than the unknowns they reach (a fine fixed region on a coarse level: on
       // the cow, 330k rows over 1k vertices) cannot be independent, and a KKT system that
@@ -227,22 +216,6 @@ void check_sizes(const EditProblem& p) {
     throw InvalidInput("edit: H, g and the constraints disagree in size");
 }
 
-// The vertices some constraint row touches, and A restricted to them.
-SparseMatrix touched_columns(const SparseMatrix& A, std::vector<int>& touched) {
-  std::vector<int> column_of(A.cols(), -1);
-  for (int c = 0; c < A.outerSize(); ++c)
-    if (SparseMatrix::InnerIterator(A, c)) {
-      column_of[c] = static_cast<int>(touched.size());
-      touched.push_back(c);
-    }
-  Triplets t;
-  for (int c = 0; c < A.outerSize(); ++c)
-    for (SparseMatrix::InnerIterator it(A, c); it; ++it) t.emplace_back(static_cast<int>(it.row()), column_of[c], it.value());
-  SparseMatrix Ac(A.rows(), static_cast<Eigen::Index>(touched.size()));
-  Ac.setFromTriplets(t.begin(), t.end());
-  return Ac;
-}
-
 }  // namespace
 
 Eigen::MatrixXd stacked_targets(const LinearConstraints& lc, const Eigen::MatrixXd& C) {
@@ -263,7 +236,8 @@ PreparedEdit::PreparedEdit(const EditProblem& p, ConstraintMode mode, Solver& so
     analyze_s_ = setup.seconds();
     return;
   }
-  ls_ = std::make_unique<MinNormLeastSquares>(touched_columns(s.constraints.A, touched_), backend);
+  touched_ = reached_columns(s.constraints.A);
+  ls_ = std::make_unique<MinNormLeastSquares>(s.constraints.A * row_picker(s.constraints.A.cols(), touched_), backend);
   red_ = reduce({s.H, s.g, touched_, Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(touched_.size()), s.g.cols())});
   if (!red_.free.empty()) {
     if (solver.uses_levels()) {

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <filesystem>
 #include <random>
-#include <sstream>
 
 #include "core/error.h"
 #include "core/memory.h"
@@ -16,6 +15,7 @@
 #include "io/vtk_io.h"
 #include "design/edit_solve.h"
 #include "problem/constrained_system.h"
+#include "problem/least_squares.h"
 #include "remesh/remesh.h"
 #include "subdivision/subdivider.h"
 
@@ -123,12 +123,15 @@ std::vector<const ReferenceSolution*> reference_solutions(const RunSpec& spec, R
     std::string k = spec.system_key + spec.constraint_mode;
     return s + 1 == scales.size() ? k : k.append("|scale ").append(num(scales[s]));
   };
-  Config none;
-  auto direct = components().solvers.create("cholesky", Backend::Optimized, none);
-  std::unique_ptr<PreparedEdit> exact;
+  std::unique_ptr<Solver> direct;
+  std::unique_ptr<PreparedEdit> exact;  // factored on the first step the cache lacks
   for (std::size_t s = 0; s < scales.size(); ++s) {
     if (!cache.reference_solution(key(s))) {
-      if (!exact) exact = std::make_unique<PreparedEdit>(p, mode_of(spec), *direct, Backend::Optimized);
+      if (!exact) {
+        Config none;
+        direct = components().solvers.create("cholesky", Backend::Optimized, none);
+        exact = std::make_unique<PreparedEdit>(p, mode_of(spec), *direct, Backend::Optimized);
+      }
       const EditSolution sol = exact->solve(scales[s] * p.constraints.C);
       if (sol.summary.termination != Termination::Converged) continue;
       cache.store_reference_solution(key(s), {sol.delta, sol.solve_s});
@@ -171,8 +174,7 @@ void write_ladder(const RunSpec& spec, const RunOutputs& out, const MultiresSurf
     m.vertex_data["displacement_norm"] = solutions[k].rowwise().norm();
     const SparseMatrix& A = ladder.problems[k].constraints.A;
     Eigen::MatrixXd constrained = Eigen::MatrixXd::Zero(m.n_vertices(), 1);
-    for (int c = 0; c < A.outerSize(); ++c)
-      if (SparseMatrix::InnerIterator(A, c)) constrained(c, 0) = 1.0;
+    for (int v : reached_columns(A)) constrained(v, 0) = 1.0;
     m.vertex_data["constrained"] = constrained;
     write_vtp(m, (fs::path(out.dir) / "vtk" / (out.run_id + "_ladder_level" + std::to_string(l) + ".vtp")).string());
   }

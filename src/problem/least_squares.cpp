@@ -164,6 +164,13 @@ LeastSquaresResult MinNormLeastSquares::solve(const Eigen::MatrixXd& C) const {
   return r;
 }
 
+std::vector<int> reached_columns(const SparseMatrix& A) {
+  std::vector<int> reached;
+  for (int c = 0; c < A.outerSize(); ++c)
+    if (SparseMatrix::InnerIterator(A, c)) reached.push_back(c);
+  return reached;
+}
+
 SparseMatrix row_picker(Eigen::Index m, const std::vector<int>& rows) {
   Triplets t;
   for (std::size_t k = 0; k < rows.size(); ++k) t.emplace_back(rows[k], static_cast<int>(k), 1.0);

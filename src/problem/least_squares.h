@@ -50,6 +50,9 @@ LeastSquaresResult min_norm_least_squares(const SparseMatrix& A, const Eigen::Ma
 //! (reference Eigen SparseQR, optimized SuiteSparseQR).
 std::vector<int> independent_rows(const SparseMatrix& A, Backend backend);
 
+//! The columns of A with at least one entry (ascending): the unknowns its rows reach.
+std::vector<int> reached_columns(const SparseMatrix& A);
+
 //! The m × |rows| 0/1 matrix whose column k picks row rows[k]: pickᵀ A keeps those rows of A.
 SparseMatrix row_picker(Eigen::Index m, const std::vector<int>& rows);
 

@@ -1,0 +1,93 @@
+#include "curve_design/editing_loop.h"
+
+#include "core/timer.h"
+#include "curves/multires_polyline.h"
+
+namespace fairshape {
+namespace {
+
+MatrixX3 synthesize(MatrixX3 c, const PolylineHierarchy& h, int from, int to, Backend backend) {
+  for (int j = from; j < to; ++j) c = synthesis_step(c, h.details[j], h.closed, backend);
+  return c;
+}
+
+void check_levels(const CurveEdit& e, int levels) {
+  if (e.edit_level < 0 || e.edit_level > levels)
+    throw InvalidInput("edit level e = " + std::to_string(e.edit_level) + " is outside the hierarchy (0.." +
+                       std::to_string(levels) + ")");
+  if (e.wrinkle_level != -1 && (e.wrinkle_level < e.edit_level || e.wrinkle_level >= levels))
+    throw InvalidInput("wrinkle level w = " + std::to_string(e.wrinkle_level) + " must lie in [e, levels-1] = [" +
+                       std::to_string(e.edit_level) + ", " + std::to_string(levels - 1) + "] (or -1: no explicit step)");
+}
+
+// Applies the moves to the level-e points; returns the level-e indices moved.
+std::vector<int> apply_moves(MatrixX3& c, const std::vector<CurveMove>& moves) {
+  const int m = static_cast<int>(c.rows());
+  std::vector<int> moved;
+  const MatrixX3 before = c;
+  for (const auto& mv : moves) {
+    const int i = mv.index < 0 ? m + mv.index : mv.index;
+    if (i < 0 || i >= m)
+      throw InvalidInput("move: control point " + std::to_string(mv.index) + " is not on the level-e polygon (" +
+                         std::to_string(m) + " points; negative indices count from the end)");
+    if (mv.chord_scale > 0) c.row(i) = before.row(0) + mv.chord_scale * (before.row(i) - before.row(0));
+    else c.row(i) += mv.offset.transpose();
+    moved.push_back(i);
+  }
+  return moved;
+}
+
+}  // namespace
+
+std::vector<WeightedStencils> paper_objective(const CurveObjective& o, int n, bool closed) {
+  if (!(o.beta >= 0 && o.beta <= 1)) throw InvalidInput("beta = " + std::to_string(o.beta) + " is outside [0, 1]");
+  std::vector<WeightedStencils> terms;
+  terms.push_back({"smoothness", 1 - o.beta, o.smoothness->stencils(n, closed)});
+  std::vector<CurveStencil> distance;
+  for (int i = 0; i < n; ++i) distance.push_back({1, {i, 0, 0}, {1.0, 0, 0}, i});
+  terms.push_back({"attractor_distance", std::max(o.beta, kMinimumAttractorWeight), std::move(distance)});
+  return terms;
+}
+
+EditStages run_editing_loop(const Polyline& reference, int levels, const CurveEdit& edit, const CurveObjective& objective,
+                            const LengthSolver& solver, Backend backend) {
+  const Timer total;
+  check_levels(edit, levels);
+  const bool closed = reference.closed;
+  const int n = reference.n_points();
+  EditStages out;
+  out.reference = reference.points;
+
+  const PolylineHierarchy h = decompose(reference, levels, backend);
+  MatrixX3 ce = reconstruct(h, edit.edit_level, backend).points;
+  const std::vector<int> moved = apply_moves(ce, edit.moves);
+  const int stride_e = 1 << (levels - edit.edit_level);
+  for (int i : moved) out.moved_points.push_back(i * stride_e);
+  out.edited = synthesize(ce, h, edit.edit_level, levels, backend);
+
+  const Timer explicit_timer;
+  if (edit.wrinkle_level >= 0) {
+    const int w = edit.wrinkle_level;
+    MatrixX3 cw = synthesize(ce, h, edit.edit_level, w, backend), dw = h.details[w];
+    const Eigen::VectorXd target = segment_lengths(reconstruct(h, w + 1, backend).points, closed);
+    const int anchor = moved.empty() ? 0 : moved.front() << (w - edit.edit_level);
+    out.explicit_step = preserve_lengths_explicitly(cw, dw, target, closed, anchor, backend);
+    out.attracting = synthesize(synthesis_step(cw, dw, closed, backend), h, w + 1, levels, backend);
+  } else {
+    out.attracting = out.edited;
+  }
+  out.explicit_s = explicit_timer.seconds();
+
+  const CurveEditContext context{reference, out.edited, out.moved_points};
+  std::vector<std::unique_ptr<CurveConstraint>> constraints;
+  for (const auto* kind : objective.constraints) constraints.push_back(kind->build(context));
+  const LengthProblem problem(out.attracting, closed, paper_objective(objective, n, closed), std::move(constraints));
+  const Timer solve_timer;
+  out.solve = solver.solve(problem, out.attracting);
+  out.solve_s = solve_timer.seconds();
+  out.final = out.solve.points;
+  out.total_s = total.seconds();
+  return out;
+}
+
+}  // namespace fairshape

@@ -1,0 +1,55 @@
+// The editing loop of Sauvage, Hahmann and Bonneau, "Length preserving multiresolution
+// editing of curves" (§4.1, Figure 2): decompose the reference curve C_R at the edit level e,
+// move control points there, reconstruct C_D; reconstruct to the wrinkle level w, fix the
+// level-(w+1) lengths explicitly (explicit_length.h) and reconstruct the attracting curve C_A;
+// finally smooth C_A into C_F by the length-constrained optimization (§3).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/backend.h"
+#include "curve_design/curve_components.h"
+#include "curve_design/explicit_length.h"
+#include "curve_design/length_solver.h"
+#include "mesh/polyline.h"
+
+namespace fairshape {
+
+struct CurveMove {
+  int index = 0;              // level-e control point; negative counts from the end (−1: last)
+  Vec3 offset = Vec3::Zero();
+  // > 0: instead of `offset`, move the point along the chord from the first control point
+  // so the chord becomes this many times as long (< 1 compresses, > 1 stretches).
+  double chord_scale = 0;
+};
+
+struct CurveEdit {
+  int edit_level = 0;      // e
+  int wrinkle_level = -1;  // w in [e, levels − 1]; −1: no explicit step (§3's method alone)
+  std::vector<CurveMove> moves;
+};
+
+struct CurveObjective {
+  const CurveEnergy* smoothness = nullptr;  // the paper's bending, or another registered energy
+  double beta = 0.5;                        // (1−β)·smoothness + β·D
+  std::vector<const CurveConstraintKind*> constraints;
+};
+
+struct EditStages {
+  MatrixX3 reference, edited, attracting, final;  // C_R, C_D, C_A, C_F
+  std::vector<int> moved_points;                  // fine-level indices
+  ExplicitLengthReport explicit_step;
+  LengthSolveReport solve;
+  double explicit_s = 0, solve_s = 0, total_s = 0;
+};
+
+//! \throw InvalidInput for levels outside the hierarchy, moves off the level-e polygon, an
+//! infeasible edit or zero-length segments (before anything is solved).
+EditStages run_editing_loop(const Polyline& reference, int levels, const CurveEdit& edit, const CurveObjective& objective,
+                            const LengthSolver& solver, Backend backend);
+
+//! The §3 objective of an edit: (1−β)·smoothness + max(β, kMinimumAttractorWeight)·D.
+std::vector<WeightedStencils> paper_objective(const CurveObjective& o, int n_points, bool closed);
+
+}  // namespace fairshape

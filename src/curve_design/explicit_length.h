@@ -1,0 +1,37 @@
+// The explicit length-preserving step of Sauvage, Hahmann and Bonneau, "Length preserving
+// multiresolution editing of curves" (§4.1): at level w, replace the details d^w so that every
+// edge of the level-(w+1) polygon gets the reference length again, which turns excess length
+// into one wrinkle per level-w segment.
+//
+// Choices the paper leaves open (its reference [16] is an unpublished thesis):
+//  * the new midpoint m of segment [P, Q] lies on the circle (a sphere intersection in 3D)
+//    of points a from P and b from Q (a, b: the reference lengths of its two children); we take
+//    the point of that circle nearest to the current midpoint, so untouched parts of the curve
+//    keep their details exactly and wrinkles bulge on the side the old detail was on. A
+//    midpoint exactly on PQ (a straight reference) bulges to the left of PQ in the xy plane.
+//  * when |PQ| > a + b (stretching) no midpoint reaches: level-w points are pulled in along
+//    the polygon, follow-the-leader, outwards from the anchor (the first moved control point),
+//    so what the user dragged stays where it was put and the far parts follow like a rope.
+//    On a closed curve the two sweeps meet opposite the anchor; the segment where they meet
+//    is left to the optimization.
+//  * |PQ| < |a − b| (no intersection): the midpoint goes on the line PQ at distance a from P.
+#pragma once
+
+#include "core/backend.h"
+#include "core/types.h"
+
+namespace fairshape {
+
+struct ExplicitLengthReport {
+  int shortened_segments = 0;  // level-w segments pulled in (stretching)
+  int moved_midpoints = 0;     // level-(w+1) midpoints that had to move
+};
+
+//! \param coarse level-w points; moved in the stretching case.
+//! \param detail d^w, replaced.
+//! \param target the reference lengths of the level-(w+1) edges (2 per level-w segment).
+//! \param anchor level-w index kept in place when segments are pulled in.
+ExplicitLengthReport preserve_lengths_explicitly(MatrixX3& coarse, MatrixX3& detail, const Eigen::VectorXd& target,
+                                                 bool closed, int anchor, Backend backend);
+
+}  // namespace fairshape

@@ -1,0 +1,52 @@
+// Solvers of the length-constrained problem (length_problem.h): the linearized Lagrange loop
+// of Sauvage et al. §3 and an exact augmented-Lagrangian solve over Ceres. Registered by
+// name, each with reference and optimized back ends where they differ.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/registry.h"
+#include "core/types.h"
+#include "curve_design/length_problem.h"
+
+namespace fairshape {
+
+struct LengthSolveStep {
+  int solves = 0;            // linear solves so far
+  double length_error = 0;   // max relative segment-length error after them
+  double stationarity = 0;   // LengthProblem::stationarity-style measure (solver's estimate)
+  double seconds = 0;
+};
+
+struct LengthSolveReport {
+  MatrixX3 points;
+  bool converged = false;
+  int solves = 0;            // linear systems solved (Ceres: its inner Gauss-Newton steps)
+  int outer_iterations = 0;  // linearizations, or augmented-Lagrangian rounds
+  double length_error = 0, pin_error = 0;
+  std::string message;       // why it stopped
+  std::vector<LengthSolveStep> history;
+};
+
+// Stopping rule shared by the solvers.
+struct LengthTolerances {
+  double length = 1e-12;       // max relative segment-length error
+  double stationarity = 1e-8;  // 0: stop on lengths alone, as the paper does
+  int max_solves = 200;
+};
+
+class LengthSolver {
+ public:
+  virtual ~LengthSolver() = default;
+  //! Never throws for numerical failure: the report says converged = false and why.
+  virtual LengthSolveReport solve(const LengthProblem& problem, const MatrixX3& start) const = 0;
+  virtual const LengthTolerances& tolerances() const = 0;
+};
+
+using LengthSolverRegistry = Registry<LengthSolver>;
+//! linearized (reference: block KKT + SparseLU each solve; optimized: per-point ordering,
+//! one symbolic analysis, banded LDLᵀ, TBB-parallel value updates) and ceres.
+void register_length_solvers(LengthSolverRegistry& r);
+
+}  // namespace fairshape

@@ -1,0 +1,36 @@
+// The linearized Lagrange loop of Sauvage, Hahmann and Bonneau, "Length preserving
+// multiresolution editing of curves" (§3, eq. 3–4): linearize every constraint at the current
+// curve, solve the KKT system for the next curve and the multipliers, repeat until the
+// lengths (and, optionally, stationarity) meet the tolerances.
+#pragma once
+
+#include "curve_design/kkt_factor.h"
+#include "curve_design/length_solver.h"
+
+namespace fairshape {
+
+struct LinearizedOptions {
+  LengthTolerances tolerances;
+  // paper: W = Q (the published system; converges linearly). newton: W = Q + Σλ_r∇²f_r with
+  // the previous multipliers (the Lagrangian's Hessian: quadratic convergence near the
+  // solution), used once the length error is below newton_switch. Far from the lengths that
+  // W can be indefinite and full Newton steps diverge (measured: the Figure 1 edit blows up
+  // from a 12% error), so the paper's steps bring the curve close first.
+  bool newton = false;
+  double newton_switch = 1e-3;
+  KktMethod kkt = KktMethod::Direct;
+  double minres_tolerance = 1e-13;
+  Backend backend = Backend::Optimized;
+};
+
+class LinearizedLengthSolver final : public LengthSolver {
+ public:
+  explicit LinearizedLengthSolver(LinearizedOptions o) : o_(o) {}
+  LengthSolveReport solve(const LengthProblem& problem, const MatrixX3& start) const override;
+  const LengthTolerances& tolerances() const override { return o_.tolerances; }
+
+ private:
+  LinearizedOptions o_;
+};
+
+}  // namespace fairshape

@@ -19,14 +19,16 @@ LengthSolverRegistry::Factory linearized(Backend backend) {
     LinearizedOptions o;
     o.backend = backend;
     o.tolerances = read_tolerances(c);
-    o.newton = c.get_choice("linearization", "paper", {"paper", "newton"},
+    Config own = c.child("linearized", "options of the linearized loop");
+    o.newton = own.get_choice("linearization", "paper", {"paper", "newton"},
                             "paper: W = Q as published; newton: W = Q + sum lambda Hess f (quadratic convergence)") == "newton";
-    o.newton_switch = c.get_number("newton_switch", o.newton_switch, 0, 1,
+    o.newton_switch = own.get_number("newton_switch", o.newton_switch, 0, 1,
                                    "newton: use the Lagrangian Hessian once the length error is below this");
-    o.kkt = c.get_choice("kkt", "direct", {"direct", "minres"}, "KKT solve: sparse direct or MINRES") == "minres"
+    o.kkt = own.get_choice("kkt", "direct", {"direct", "minres"}, "KKT solve: sparse direct or MINRES") == "minres"
                 ? KktMethod::Minres
                 : KktMethod::Direct;
-    o.minres_tolerance = c.get_number("minres_tolerance", o.minres_tolerance, 1e-16, 1e-2, "MINRES relative residual");
+    o.minres_tolerance = own.get_number("minres_tolerance", o.minres_tolerance, 1e-16, 1e-2, "MINRES relative residual");
+    own.check_no_unknown_keys();
     return std::make_unique<LinearizedLengthSolver>(o);
   };
 }
@@ -42,9 +44,11 @@ void register_length_solvers(LengthSolverRegistry& r) {
   const auto ceres = [](Config& c) {
     CeresOptions o;
     o.tolerances = read_tolerances(c);
-    o.initial_penalty = c.get_number("initial_penalty", o.initial_penalty, 1e-6, 1e12, "mu_0 relative to the objective's curvature");
-    o.max_rounds = c.get_int("max_rounds", o.max_rounds, 1, 1000, "augmented-Lagrangian rounds");
-    o.threads = c.get_int("threads", o.threads, 1, 256, "Ceres threads");
+    Config own = c.child("ceres", "options of the augmented-Lagrangian Ceres solve");
+    o.initial_penalty = own.get_number("initial_penalty", o.initial_penalty, 1e-6, 1e12, "mu_0 relative to the objective's curvature");
+    o.max_rounds = own.get_int("max_rounds", o.max_rounds, 1, 1000, "augmented-Lagrangian rounds");
+    o.threads = own.get_int("threads", o.threads, 1, 256, "Ceres threads");
+    own.check_no_unknown_keys();
     return std::make_unique<CeresLengthSolver>(o);
   };
   for (Backend b : {Backend::Reference, Backend::Optimized})

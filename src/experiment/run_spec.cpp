@@ -6,7 +6,6 @@
 
 namespace fairshape {
 namespace fs = std::filesystem;
-namespace {
 
 std::string resolve_input(const std::string& path, const std::vector<std::string>& dirs, const std::string& key) {
   if (fs::path(path).is_absolute()) {
@@ -18,6 +17,8 @@ std::string resolve_input(const std::string& path, const std::vector<std::string
   throw InvalidConfig(key + ": input file '" + path + "' not found (looked in the current directory and "
                       "beside the config)");
 }
+
+namespace {
 
 void read_energies(Config& root, const Components& c, Backend backend, RunSpec& s) {
   for (Config e : root.child_list("energy", "energy terms: [{type, weight, options...}]")) {

@@ -75,5 +75,7 @@ struct RunSpec {
 //! The current directory, then `config_path`'s folder and its parents (so configs can name
 //! `data/cow.off` from anywhere inside the repository).
 std::vector<std::string> input_search_dirs(const std::string& config_path);
+//! `path` as found in `dirs`. \throw InvalidConfig naming `key` when it is nowhere.
+std::string resolve_input(const std::string& path, const std::vector<std::string>& dirs, const std::string& key);
 
 }  // namespace fairshape

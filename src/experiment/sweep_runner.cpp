@@ -14,6 +14,7 @@
 #include "core/config.h"
 #include "core/error.h"
 #include "experiment/config_loader.h"
+#include "experiment/curve_run.h"
 #include "experiment/run_metadata.h"
 #include "experiment/progress.h"
 #include "experiment/run_one.h"
@@ -30,6 +31,7 @@ namespace {
 struct Plan {
   YAML::Node root;
   std::string name;
+  bool curve = false;  // curve runs (input.curve) or surface runs (input.mesh)
   std::vector<std::string> search_dirs, columns;
   std::map<std::string, std::string> swept_key_of;  // CSV column -> swept key (they differ by a prefix)
   std::vector<RunPoint> runs;  // after --filter
@@ -50,11 +52,12 @@ Plan make_plan(const SweepOptions& opt) {
   Plan plan;
   plan.root = load_experiment_config(opt.config_path, opt.sets);
   plan.search_dirs = input_search_dirs(opt.config_path);
+  plan.curve = is_curve_config(plan.root);
   std::set<std::string> problems;
   for (auto& p : expand_sweep(plan.root)) {
     try {
-      const RunSpec spec = RunSpec::from_config(p.config, components(), plan.search_dirs);
-      plan.name = spec.name;
+      plan.name = plan.curve ? CurveRunSpec::from_config(p.config, plan.search_dirs).name
+                             : RunSpec::from_config(p.config, components(), plan.search_dirs).name;
     } catch (const InvalidConfig& e) {
       problems.insert(e.what());
       continue;
@@ -70,14 +73,14 @@ Plan make_plan(const SweepOptions& opt) {
     throw InvalidConfig(msg);
   }
   plan.columns = {"run_id"};
-  const auto& metrics = metric_columns();
+  const auto& metrics = plan.curve ? curve_metric_columns() : metric_columns();
   for (const auto& k : swept_keys(plan.root)) {  // a swept key named like a metric (energy) gets a prefix
     plan.columns.push_back(std::find(metrics.begin(), metrics.end(), k) == metrics.end() ? k : "param." + k);
     plan.swept_key_of[plan.columns.back()] = k;
   }
   for (const char* k : {"implementation", "solver.type"})
     if (std::find(plan.columns.begin(), plan.columns.end(), k) == plan.columns.end()) plan.columns.push_back(k);
-  for (const auto& m : metric_columns()) plan.columns.push_back(m);
+  for (const auto& m : metrics) plan.columns.push_back(m);
   return plan;
 }
 
@@ -101,6 +104,7 @@ std::set<std::string> prepare_out_dir(const SweepOptions& opt, const Plan& plan,
     for (const char* f : {"runs.csv", "iterations.csv", "steps.csv", "run.json", "config.resolved.yaml", "final.obj"})
       fs::remove(fs::path(dir) / f);
     fs::remove_all(fs::path(dir) / "vtk");
+    fs::remove_all(fs::path(dir) / "curves");
     fs::remove_all(fs::path(dir) / "final");
   }
   fs::create_directories(fs::path(dir) / "vtk");
@@ -120,7 +124,7 @@ std::set<std::string> prepare_out_dir(const SweepOptions& opt, const Plan& plan,
   else write_atomically(it_csv, [](std::ostream& os) { os << csv_record({"run_id", "iteration", "residual", "energy", "seconds", "error_vs_reference"}); });
   const fs::path steps_csv = fs::path(dir) / "steps.csv";
   if (fs::exists(steps_csv)) truncate_partial_tail(steps_csv.string());
-  else write_atomically(steps_csv, [](std::ostream& os) { os << csv_record(step_columns()); });
+  else write_atomically(steps_csv, [&](std::ostream& os) { os << csv_record(plan.curve ? curve_step_columns() : step_columns()); });
   return done;
 }
 
@@ -141,16 +145,35 @@ void write_metadata(const SweepOptions& opt, const Plan& plan, const std::string
                    [&](std::ostream& os) { os << YAML::Dump(plan.root) << '\n'; });
 }
 
-std::vector<std::string> row_fields(const Plan& plan, const RunPoint& p, const RunSpec& spec, const MetricRow& m) {
+// `m` carries the metrics plus implementation and solver.type.
+std::vector<std::string> row_fields(const Plan& plan, const RunPoint& p, const MetricRow& m) {
   std::vector<std::string> out;
   for (const auto& c : plan.columns) {
     if (c == "run_id") out.push_back(p.run_id);
     else if (m.count(c)) out.push_back(m.at(c));
-    else if (c == "implementation") out.push_back(std::string(to_string(spec.implementation)));
-    else if (c == "solver.type") out.push_back(spec.solver_type);
     else out.push_back(yaml_to_string(get_by_path(p.config, plan.swept_key_of.at(c))));
   }
   return out;
+}
+
+std::unique_ptr<tbb::global_control> limit_threads(int threads) {
+  if (threads <= 0) return nullptr;
+  return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
+}
+
+MetricRow execute_surface(const RunPoint& p, const Plan& plan, RunCache& cache, const std::string& dir, bool single) {
+  RunSpec spec = RunSpec::from_config(p.config, components(), plan.search_dirs);
+  const auto threads = limit_threads(spec.threads);
+  MetricRow m = execute_run(spec, cache, {dir, p.run_id, single});
+  m["implementation"] = std::string(to_string(spec.implementation));
+  m["solver.type"] = spec.solver_type;
+  return m;
+}
+
+MetricRow execute_curve(const RunPoint& p, const Plan& plan, const std::string& dir, bool single) {
+  CurveRunSpec spec = CurveRunSpec::from_config(p.config, plan.search_dirs);
+  const auto threads = limit_threads(spec.threads);
+  return execute_curve_run(spec, {dir, p.run_id, single});
 }
 
 int run_in_process(const SweepOptions& opt, const Plan& plan, const std::vector<const RunPoint*>& todo,
@@ -162,12 +185,8 @@ int run_in_process(const SweepOptions& opt, const Plan& plan, const std::vector<
   int failed = 0, done = 0;
   const bool single = plan.runs.size() == 1;
   for (const RunPoint* p : todo) {
-    RunSpec spec = RunSpec::from_config(p->config, components(), plan.search_dirs);
-    std::unique_ptr<tbb::global_control> threads;
-    if (spec.threads > 0)
-      threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, spec.threads);
-    const MetricRow m = execute_run(spec, cache, {dir, p->run_id, single});
-    rows.append(row_fields(plan, *p, spec, m));
+    const MetricRow m = plan.curve ? execute_curve(*p, plan, dir, single) : execute_surface(*p, plan, cache, dir, single);
+    rows.append(row_fields(plan, *p, m));
     const std::string& term = m.at("termination");
     if (term != "converged" && term != "max_iterations") {
       ++failed;

@@ -1,0 +1,268 @@
+#include "experiment/curve_run.h"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "core/config.h"
+#include "core/timer.h"
+#include "curve_design/curve_metrics.h"
+#include "curves/multires_polyline.h"
+#include "experiment/metric_format.h"
+#include "io/csv.h"
+#include "io/mesh_io.h"
+#include "io/vtk_io.h"
+
+namespace fairshape {
+namespace fs = std::filesystem;
+namespace {
+
+int polygon_points(int n_points, bool closed, int levels, int level) {
+  const int segments = (closed ? n_points : n_points - 1) >> (levels - level);
+  return closed ? segments : segments + 1;
+}
+
+CurveEdit read_edit(Config& ec, const CurveRunSpec& s) {
+  CurveEdit e;
+  const std::string counts = "an open curve of 2^L·k + 1 points (a closed one of 2^L·k, k ≥ 3) has levels 0..L; " +
+                             s.curve_path + " has " + std::to_string(s.curve.n_points()) + " points and " +
+                             std::to_string(s.levels) + " levels";
+  e.edit_level = ec.require<int>("level", "e: the level whose control points are moved (0 = coarsest)");
+  e.wrinkle_level = ec.get_int("wrinkle_level", -1, -1, 64,
+                               "w in [e, levels-1]: explicit length preservation at level w+1 (-1: none, §3 alone)");
+  if (e.edit_level < 0 || e.edit_level > s.levels)
+    throw InvalidConfig(ec.key_path("level") + ": " + std::to_string(e.edit_level) + " is outside the hierarchy (" + counts + ")");
+  if (e.wrinkle_level != -1 && (e.wrinkle_level < e.edit_level || e.wrinkle_level >= s.levels))
+    throw InvalidConfig(ec.key_path("wrinkle_level") + ": " + std::to_string(e.wrinkle_level) + " must lie in [e, levels-1] = [" +
+                        std::to_string(e.edit_level) + ", " + std::to_string(s.levels - 1) + "] or be -1 (" + counts + ")");
+  const int m = polygon_points(s.curve.n_points(), s.curve.closed, s.levels, e.edit_level);
+  for (Config mc : ec.child_list("moves", "control points moved at level e: [{index, by: [x, y, z]} | {index, chord_scale}]")) {
+    CurveMove mv;
+    mv.index = mc.require<int>("index", "level-e control point (negative: from the end, -1 = last)");
+    if (mv.index >= m || mv.index < -m)
+      throw InvalidConfig(mc.key_path("index") + ": " + std::to_string(mv.index) + " is not on the level-" +
+                          std::to_string(e.edit_level) + " polygon of " + std::to_string(m) + " points");
+    const auto by = mc.get<std::vector<double>>("by", {}, "offset [x, y, z] (or [x, y])");
+    mv.chord_scale = mc.get_number("chord_scale", 0, 0, 1e6,
+                                   "move along the chord from control point 0 so the chord becomes this many times "
+                                   "as long (< 1 compresses, > 1 stretches)");
+    mc.check_no_unknown_keys();
+    if (by.empty() == (mv.chord_scale == 0))
+      throw InvalidConfig(mc.path() + ": give exactly one of `by` and `chord_scale`");
+    if (!by.empty() && by.size() != 2 && by.size() != 3)
+      throw InvalidConfig(mc.key_path("by") + ": expected [x, y] or [x, y, z]");
+    for (std::size_t c = 0; c < by.size(); ++c) mv.offset[static_cast<int>(c)] = by[c];
+    e.moves.push_back(mv);
+  }
+  ec.check_no_unknown_keys();
+  return e;
+}
+
+// The solver block: common tolerances, then one sub-block per solver name; every present
+// sub-block is validated so sweeping solver.type stays valid.
+void read_solver(Config& oc, CurveRunSpec& s) {
+  const auto& reg = curve_components().solvers;
+  Config sc = oc.child("solver", "length solver: {type, length_tolerance, stationarity_tolerance, max_solves, <type>: {...}}");
+  s.solver_type = sc.get_choice("type", "linearized", reg.names(), "length solver");
+  for (const auto& name : reg.names())
+    if (name != s.solver_type && sc.has(name)) (void)reg.create(name, s.implementation, sc);
+  s.solver = reg.create(s.solver_type, s.implementation, sc);
+  sc.check_no_unknown_keys();
+}
+
+void read_optimization(Config& root, CurveRunSpec& s) {
+  const CurveComponents& cc = curve_components();
+  Config oc = root.child("optimization", "the length-constrained smoothing that ends every editing loop");
+  s.beta = oc.get_number("beta", 0.5, 0, 1, "Sauvage et al. eq. 2: (1-beta)·smoothness + beta·distance to C_A");
+  std::vector<std::string> smooth = cc.energies.names();
+  smooth.erase(std::remove(smooth.begin(), smooth.end(), "attractor_distance"), smooth.end());
+  const std::string sm = oc.get_choice("smoothness", "bending", smooth, "the smoothness energy");
+  Config none;
+  s.smoothness = cc.energies.create(sm, s.implementation, none);
+  bool has_lengths = false;
+  for (Config k : oc.child_list("constraints", "constraints: [{type: segment_lengths}, {type: pin, points: ...}]")) {
+    const std::string type = k.get_choice("type", "segment_lengths", cc.constraints.names(), "constraint kind");
+    s.constraints.push_back(cc.constraints.create(type, s.implementation, k));
+    k.check_no_unknown_keys();
+    has_lengths |= type == "segment_lengths";
+  }
+  if (s.constraints.empty()) {
+    s.constraints.push_back(cc.constraints.create("segment_lengths", s.implementation, none));
+    has_lengths = true;
+  }
+  if (!has_lengths)
+    throw InvalidConfig(oc.key_path("constraints") + ": lengths are what this editor preserves; include {type: segment_lengths}");
+  read_solver(oc, s);
+  oc.check_no_unknown_keys();
+}
+
+}  // namespace
+
+bool is_curve_config(const YAML::Node& c) { return c["input"] && c["input"].IsMap() && c["input"]["curve"]; }
+
+CurveObjective CurveRunSpec::objective() const {
+  CurveObjective o;
+  o.smoothness = smoothness.get();
+  o.beta = beta;
+  for (const auto& k : constraints) o.constraints.push_back(k.get());
+  return o;
+}
+
+CurveRunSpec CurveRunSpec::from_config(const YAML::Node& run_config, const std::vector<std::string>& dirs) {
+  Config root(run_config, "");
+  CurveRunSpec s;
+  s.name = root.require<std::string>("name", "experiment name (names the results folder)");
+  root.get<std::string>("description", "", "free text");
+  root.get_int("seed", 0, 0, INT32_MAX, "random seed (curve runs are deterministic)");
+  s.threads = root.get_int("threads", 0, 0, 4096, "TBB threads for optimized back ends (0 = all cores)");
+  s.repeat = root.get_int("repeat", 1, 1, 1000, "timing repeats per edit (the median is reported)");
+  s.implementation = backend_from_string(root.get_choice("implementation", "optimized", {"reference", "optimized"},
+                                                         "back end of every component"));
+  Config in = root.child("input", "input curve");
+  s.curve_path = resolve_input(in.require<std::string>("curve", "polyline OBJ (v and l lines)"), dirs, in.key_path("curve"));
+  const int levels = in.get_int("levels", -1, -1, 62, "hierarchy depth (-1: as many as the point count allows)");
+  in.check_no_unknown_keys();
+  try {
+    s.curve = read_polyline(s.curve_path);
+  } catch (const Error& e) {
+    throw InvalidConfig(in.key_path("curve") + ": " + e.what());
+  }
+  const int most = max_polyline_levels(s.curve.n_points(), s.curve.closed);
+  s.levels = levels < 0 ? most : levels;
+  if (s.levels > most)
+    throw InvalidConfig(in.key_path("levels") + ": " + std::to_string(s.levels) + " levels need " +
+                        (s.curve.closed ? "2^L·k points (k ≥ 3)" : "2^L·k + 1 points") + "; " + s.curve_path + " has " +
+                        std::to_string(s.curve.n_points()) + " points, which allow " + std::to_string(most));
+  for (Config ec : root.child_list("edits", "editing loops applied in order: [{level, wrinkle_level, moves}]"))
+    s.edits.push_back(read_edit(ec, s));
+  if (s.edits.empty()) throw InvalidConfig("edits: at least one edit is required");
+  read_optimization(root, s);
+  Config out = root.child("output", "what each run writes");
+  s.vtk = out.get_choice("vtk", s.vtk, {"none", "final", "stages"}, "VTK polylines: none, the final curve, or every stage");
+  s.final_curve = out.get<bool>("final_curve", true, "write final.obj (final/<run_id>.obj in sweeps)");
+  out.check_no_unknown_keys();
+  root.check_no_unknown_keys();
+  return s;
+}
+
+const std::vector<std::string>& curve_metric_columns() {
+  static const std::vector<std::string> cols{
+      "n_points", "edits", "length_error_max", "length_error_rms", "total_length_change", "bending_energy",
+      "distance_to_attractor", "wrinkles", "attractor_length_error", "solves", "outer_iterations", "stationarity",
+      "explicit_s", "solve_s", "time_s", "termination", "message"};
+  return cols;
+}
+
+const std::vector<std::string>& curve_step_columns() {
+  static const std::vector<std::string> cols{
+      "run_id", "edit", "stage", "length_error_max", "length_error_rms", "total_length_change", "bending_energy",
+      "distance_to_attractor", "wrinkles", "solves", "time_s"};
+  return cols;
+}
+
+namespace {
+
+const char* const kStages[] = {"reference", "edited", "attracting", "final"};
+
+void write_stage(const CurveRunSpec& spec, const RunOutputs& out, int edit, const char* stage, const MatrixX3& X,
+                 const MatrixX3& reference) {
+  const std::string stem = out.run_id + "_edit" + std::to_string(edit) + "_" + stage;
+  const Polyline c{X, spec.curve.closed};
+  const fs::path curves = fs::path(out.dir) / "curves";
+  fs::create_directories(curves);
+  write_polyline(c, (curves / (stem + ".obj")).string());
+  if (spec.vtk == "stages" || (spec.vtk == "final" && std::string(stage) == "final"))
+    write_vtp(c, {{"displacement", Eigen::MatrixXd(X - reference)}}, (fs::path(out.dir) / "vtk" / (stem + ".vtp")).string());
+}
+
+std::vector<std::string> step_row(const std::string& run_id, int edit, const char* stage, const CurveMetrics& m,
+                                  const std::string& solves, const std::string& time) {
+  return {run_id, std::to_string(edit), stage, num(m.length_error_max), num(m.length_error_rms),
+          num(m.total_length_change), num(m.bending_energy), num(m.distance_to_attractor), std::to_string(m.wrinkles),
+          solves, time};
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+}  // namespace
+
+MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
+  MetricRow row;
+  for (const auto& c : curve_metric_columns()) row[c] = "";
+  row["implementation"] = std::string(to_string(spec.implementation));
+  row["solver.type"] = spec.solver_type;
+  row["n_points"] = std::to_string(spec.curve.n_points());
+  row["termination"] = "converged";
+  const Timer wall;
+  double time_s = 0, explicit_s = 0, solve_s = 0;
+  int solves = 0, outer = 0, done = 0;
+  try {
+    const Eigen::VectorXd original = segment_lengths(spec.curve.points, spec.curve.closed);
+    Polyline current = spec.curve;
+    EditStages last;
+    CsvAppender steps((fs::path(out.dir) / "steps.csv").string());
+    for (std::size_t k = 0; k < spec.edits.size(); ++k) {
+      std::vector<double> totals;
+      for (int r = 0; r < spec.repeat; ++r) {
+        last = run_editing_loop(current, spec.levels, spec.edits[k], spec.objective(), *spec.solver, spec.implementation);
+        totals.push_back(last.total_s);
+      }
+      const int edit = static_cast<int>(k);
+      time_s += median(totals);
+      explicit_s += last.explicit_s;
+      solve_s += last.solve_s;
+      solves += last.solve.solves;
+      outer += last.solve.outer_iterations;
+      ++done;
+      const Eigen::VectorXd lengths = segment_lengths(current.points, current.closed);
+      const MatrixX3* stage_points[] = {&last.reference, &last.edited, &last.attracting, &last.final};
+      for (int st = 0; st < 4; ++st) {
+        const CurveMetrics m = measure_curve(*stage_points[st], current.closed, lengths, last.attracting);
+        const bool fin = st == 3;
+        steps.append(step_row(out.run_id, edit, kStages[st], m, fin ? std::to_string(last.solve.solves) : "",
+                              fin ? num(median(totals)) : ""));
+        if (spec.vtk != "none") write_stage(spec, out, edit, kStages[st], *stage_points[st], last.reference);
+      }
+      current.points = last.final;
+      if (!last.solve.converged) {
+        row["termination"] = "max_iterations";
+        row["message"] = "edit " + std::to_string(k) + ": " + last.solve.message;
+        break;
+      }
+    }
+    const CurveMetrics m = measure_curve(current.points, current.closed, original, last.attracting);
+    row["length_error_max"] = num(m.length_error_max);
+    row["length_error_rms"] = num(m.length_error_rms);
+    row["total_length_change"] = num(m.total_length_change);
+    row["bending_energy"] = num(m.bending_energy);
+    row["distance_to_attractor"] = num(m.distance_to_attractor);
+    row["wrinkles"] = std::to_string(m.wrinkles);
+    row["attractor_length_error"] =
+        num(measure_curve(last.attracting, current.closed, segment_lengths(last.reference, current.closed), last.attracting)
+                .length_error_max);
+    if (!last.solve.history.empty()) row["stationarity"] = num(last.solve.history.back().stationarity);
+    if (row["message"].empty()) row["message"] = last.solve.message;
+    if (spec.final_curve) {
+      fs::path p = fs::path(out.dir) / "final.obj";
+      if (!out.single_run) {
+        fs::create_directories(fs::path(out.dir) / "final");
+        p = fs::path(out.dir) / "final" / (out.run_id + ".obj");
+      }
+      write_polyline(current, p.string());
+    }
+  } catch (const Error& e) {
+    row["termination"] = "invalid_input";
+    row["message"] = "edit " + std::to_string(done) + ": " + e.what();
+  }
+  row["edits"] = std::to_string(done);
+  row["solves"] = std::to_string(solves);
+  row["outer_iterations"] = std::to_string(outer);
+  row["explicit_s"] = num(explicit_s);
+  row["solve_s"] = num(solve_s);
+  row["time_s"] = num(done ? time_s : wall.seconds());
+  return row;
+}
+
+}  // namespace fairshape

@@ -1,0 +1,46 @@
+// Curve experiments (configs/sauvage): a polyline, a list of edits each run through the
+// editing loop of Sauvage, Hahmann and Bonneau (§4.1), and the length-constrained
+// optimization that ends every loop. A config is a curve run when it has `input.curve`.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "curve_design/editing_loop.h"
+#include "experiment/run_one.h"
+
+namespace fairshape {
+
+struct CurveRunSpec {
+  std::string name, curve_path, solver_type;
+  int threads = 0, repeat = 1, levels = 0;
+  Backend implementation = Backend::Optimized;
+  Polyline curve;
+  std::vector<CurveEdit> edits;
+  double beta = 0.5;
+  std::unique_ptr<CurveEnergy> smoothness;
+  std::vector<std::unique_ptr<CurveConstraintKind>> constraints;
+  std::unique_ptr<LengthSolver> solver;
+  std::string vtk = "stages";  // none | final | stages
+  bool final_curve = true;
+
+  CurveObjective objective() const;
+  //! Reads and checks everything, the curve file included (its point count against the
+  //! hierarchy, every edit's levels and control points). \throw InvalidConfig naming the key.
+  static CurveRunSpec from_config(const YAML::Node& run_config, const std::vector<std::string>& search_dirs);
+};
+
+bool is_curve_config(const YAML::Node& run_config);
+
+const std::vector<std::string>& curve_metric_columns();  // runs.csv
+const std::vector<std::string>& curve_step_columns();    // steps.csv: one row per edit and stage
+
+//! Runs every edit in order (each on the previous result), writes the stages' curves (VTK
+//! polylines and OBJ under curves/), steps.csv rows and final.obj. Never throws for problems
+//! of the input or the numerics: they become the row's termination and message.
+MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out);
+
+}  // namespace fairshape

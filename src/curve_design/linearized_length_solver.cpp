@@ -1,5 +1,6 @@
 #include "curve_design/linearized_length_solver.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/config.h"
@@ -18,6 +19,43 @@ double stationarity_estimate(const LengthProblem& p, const MatrixX3& X, const Ei
   return (flat(G) + J.transpose() * lambda).norm() / std::max(scale, 1e-300);
 }
 
+double l1_violation(const std::vector<ConstraintRow>& rows) {
+  double s = 0;
+  for (const auto& r : rows) s += std::abs(r.value);
+  return s;
+}
+
+// Backtracks from the full step X → X̂ until the ℓ1 merit φ = F + ν Σ|f_r| falls below the
+// largest of its last few values by the Armijo fraction of its directional derivative
+// (non-monotone, Grippo–Lampariello–Lucidi: full steps are kept whenever they do not undo
+// recent progress, which a monotone search would refuse near the solution). With W positive
+// definite and ν above every |λ̂_r| the step is a descent direction.
+struct MeritHistory {
+  double nu = 0;               // never decreased
+  std::vector<double> recent;  // merit values of the last iterates (at the current ν)
+};
+
+double merit_step(const LengthProblem& p, const MatrixX3& X, const std::vector<ConstraintRow>& rows, const MatrixX3& full,
+                  MeritHistory& h, const Eigen::VectorXd& lambda, MatrixX3& out) {
+  const double nu = std::max(h.nu, 1.1 * lambda.cwiseAbs().maxCoeff());
+  if (nu != h.nu) h.recent.clear();  // values at another ν are not comparable
+  h.nu = nu;
+  const MatrixX3 step = full - X;
+  const double c0 = l1_violation(rows), phi0 = p.objective(X) + nu * c0;
+  h.recent.push_back(phi0);
+  if (h.recent.size() > 5) h.recent.erase(h.recent.begin());
+  const double reference = *std::max_element(h.recent.begin(), h.recent.end());
+  const double slope = (p.objective_gradient(X).array() * step.array()).sum() - nu * c0;
+  double alpha = 1;
+  for (int k = 0; k < 40; ++k, alpha *= 0.5) {
+    out = X + alpha * step;
+    const double phi = p.objective(out) + nu * l1_violation(p.rows(out));
+    if (slope >= 0 || phi <= reference + 1e-4 * alpha * slope) return alpha;
+  }
+  out = full;  // no decrease found (not a descent direction): take the paper's full step
+  return 1;
+}
+
 }  // namespace
 
 LengthSolveReport LinearizedLengthSolver::solve(const LengthProblem& p, const MatrixX3& start) const {
@@ -27,6 +65,7 @@ LengthSolveReport LinearizedLengthSolver::solve(const LengthProblem& p, const Ma
   LengthSolveReport rep;
   rep.points = start;
   Eigen::VectorXd lambda = Eigen::VectorXd::Zero(m);
+  MeritHistory merit;
   const MatrixX3& b = p.objective_linear_term();
   while (rep.solves < o_.tolerances.max_solves) {
     const MatrixX3& X = rep.points;
@@ -61,8 +100,15 @@ LengthSolveReport LinearizedLengthSolver::solve(const LengthProblem& p, const Ma
       rep.message = "solve " + std::to_string(rep.solves) + " produced NaN or infinite values";
       return rep;
     }
-    rep.points = Eigen::Map<const MatrixX3>(sol.data(), p.n_points(), 3);
+    const MatrixX3 full = Eigen::Map<const MatrixX3>(sol.data(), p.n_points(), 3);
     lambda = sol.tail(m);
+    if (o_.line_search) {
+      MatrixX3 next;
+      merit_step(p, X, rows, full, merit, lambda, next);
+      rep.points = std::move(next);
+    } else {
+      rep.points = full;
+    }
     rep.length_error = p.max_relative_length_error(rep.points);
     rep.pin_error = p.max_relative_pin_error(rep.points);
     const double stat = o_.tolerances.stationarity > 0 ? stationarity_estimate(p, rep.points, lambda) : 0.0;

@@ -24,6 +24,8 @@ LengthSolverRegistry::Factory linearized(Backend backend) {
                             "paper: W = Q as published; newton: W = Q + sum lambda Hess f (quadratic convergence)") == "newton";
     o.newton_switch = own.get_number("newton_switch", o.newton_switch, 0, 1,
                                    "newton: use the Lagrangian Hessian once the length error is below this");
+    o.line_search = own.get<bool>("line_search", o.line_search,
+                                  "shorten steps until the l1 merit decreases (false: the paper's full steps, which can cycle)");
     o.kkt = own.get_choice("kkt", "direct", {"direct", "minres"}, "KKT solve: sparse direct or MINRES") == "minres"
                 ? KktMethod::Minres
                 : KktMethod::Direct;

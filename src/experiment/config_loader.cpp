@@ -66,27 +66,45 @@ static std::vector<std::string> split_path(const std::string& dotted) {
   return parts;
 }
 
+namespace {
+// A path part naming an existing list element ("edits.0.level"): its index, else −1.
+int list_index(const YAML::Node& n, const std::string& part) {
+  if (!n.IsSequence() || part.empty() || part.find_first_not_of("0123456789") != std::string::npos) return -1;
+  const std::size_t i = std::stoul(part);
+  return i < n.size() ? static_cast<int>(i) : -1;
+}
+}  // namespace
+
 void set_by_path(YAML::Node root, const std::string& dotted, const YAML::Node& value) {
   const auto parts = split_path(dotted);
   for (const auto& p : parts)
     if (p.empty()) throw InvalidConfig("--set " + dotted + ": empty key in the path");
   YAML::Node cur = root;
   for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    if (const int k = list_index(cur, parts[i]); k >= 0) {
+      cur.reset(cur[k]);
+      continue;
+    }
     YAML::Node next = cur[parts[i]];
     if (!next || next.IsNull()) {
       cur[parts[i]] = YAML::Node(YAML::NodeType::Map);
       next = cur[parts[i]];
-    } else if (!next.IsMap()) {
+    } else if (!next.IsMap() && list_index(next, parts[i + 1]) < 0) {
       throw InvalidConfig("--set " + dotted + ": '" + parts[i] + "' holds a value, not a map of keys");
     }
     cur.reset(next);
   }
-  cur[parts.back()] = value;
+  if (const int k = list_index(cur, parts.back()); k >= 0) cur[k] = value;
+  else cur[parts.back()] = value;
 }
 
 YAML::Node get_by_path(const YAML::Node& root, const std::string& dotted) {
   YAML::Node cur = YAML::Clone(root);
   for (const auto& p : split_path(dotted)) {
+    if (const int k = list_index(cur, p); k >= 0) {
+      cur.reset(cur[k]);
+      continue;
+    }
     if (!cur.IsMap() || !cur[p]) return YAML::Node(YAML::NodeType::Undefined);
     cur.reset(cur[p]);
   }

@@ -1,0 +1,119 @@
+// Sauvage et al.'s length-preserving curve editing: one 129-point edit end to end (reference
+// vs optimized, paper vs Newton linearization), cost growth from 2^7+1 to 2^20+1 points, and
+// Ceres vs the linearized loop at several length tolerances (time to accuracy).
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+
+#include "core/config.h"
+#include "curve_design/editing_loop.h"
+#include "io/mesh_io.h"
+
+using namespace fairshape;
+
+namespace {
+
+// The wave of data/curves/wave129.obj at any resolution 2^k + 1.
+Polyline wave(int k) {
+  const int n = (1 << k) + 1;
+  Polyline c;
+  c.points.resize(n, 3);
+  for (int i = 0; i < n; ++i) {
+    const double t = static_cast<double>(i) / (n - 1);
+    c.points.row(i) << 2 * t, 0.12 * std::sin(2 * M_PI * t) + 0.015 * std::sin(14 * M_PI * t), 0.0;
+  }
+  return c;
+}
+
+struct Setup {
+  std::unique_ptr<CurveEnergy> bending;
+  std::unique_ptr<CurveConstraintKind> lengths;
+  std::unique_ptr<LengthSolver> solver;
+  CurveObjective objective;
+  Setup(const std::string& type, Backend b, const std::string& options) {
+    Config none;
+    bending = curve_components().energies.create("bending", b, none);
+    lengths = curve_components().constraints.create("segment_lengths", b, none);
+    Config sc(YAML::Load(options), "solver");
+    solver = curve_components().solvers.create(type, b, sc);
+    objective.smoothness = bending.get();
+    objective.beta = 0.01;
+    objective.constraints = {lengths.get()};
+  }
+};
+
+// Figure 3's edit (configs/sauvage/fig3.yaml): e = 2, w = 3, the right part pinched.
+CurveEdit pinch() {
+  CurveEdit e;
+  e.edit_level = 2;
+  e.wrinkle_level = 3;
+  CurveMove a, b;
+  a.index = 3;
+  a.offset = Vec3(-0.06, 0.03, 0);
+  b.index = 4;
+  b.offset = Vec3(-0.3, 0, 0);
+  e.moves = {a, b};
+  return e;
+}
+
+void run(benchmark::State& state, const Polyline& curve, int levels, const CurveEdit& edit, Setup& s, Backend b) {
+  int solves = 0;
+  double error = 0;
+  for (auto _ : state) {
+    const EditStages st = run_editing_loop(curve, levels, edit, s.objective, *s.solver, b);
+    if (!st.solve.converged) state.SkipWithError(st.solve.message.c_str());
+    solves = st.solve.solves;
+    error = st.solve.length_error;
+    benchmark::DoNotOptimize(st.final.data());
+  }
+  state.counters["solves"] = solves;
+  state.counters["length_error"] = error;
+  state.counters["points"] = curve.n_points();
+}
+
+// arg 0: backend (0 reference, 1 optimized); arg 1: 0 paper, 1 newton.
+void BM_Edit129(benchmark::State& state) {
+  const Backend b = state.range(0) ? Backend::Optimized : Backend::Reference;
+  Setup s("linearized", b, state.range(1) ? "{linearized: {linearization: newton}}" : "{}");
+  run(state, wave(7), 7, pinch(), s, b);
+}
+BENCHMARK(BM_Edit129)->ArgNames({"optimized", "newton"})->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMicrosecond);
+
+// Cost growth: the same relative edit (coarsest level compressed to 90%, wrinkles three levels
+// below the finest, so the attracting curve starts equally near the lengths at every size).
+void BM_EditScaling(benchmark::State& state) {
+  const int k = static_cast<int>(state.range(0));
+  const Backend b = state.range(1) ? Backend::Optimized : Backend::Reference;
+  Setup s("linearized", b, "{linearized: {linearization: newton}, stationarity_tolerance: 1.0e-8}");
+  CurveEdit e;
+  e.edit_level = 0;
+  e.wrinkle_level = k - 3;
+  CurveMove mv;
+  mv.index = -1;
+  mv.chord_scale = 0.9;
+  e.moves = {mv};
+  run(state, wave(k), k, e, s, b);
+}
+BENCHMARK(BM_EditScaling)->ArgNames({"log2_segments", "optimized"})
+    ->ArgsProduct({benchmark::CreateDenseRange(7, 20, 1), {1}})
+    ->ArgsProduct({benchmark::CreateDenseRange(7, 14, 1), {0}})
+    ->Unit(benchmark::kMillisecond);
+
+// Time to accuracy: the Figure 1 edit (§3 alone, β = 0.01) to 10^-arg relative length error.
+void BM_TimeToAccuracy(benchmark::State& state, const std::string& type) {
+  const std::string options = "{length_tolerance: 1.0e-" + std::to_string(state.range(0)) +
+                              ", stationarity_tolerance: 0, max_solves: 100000, linearized: {linearization: newton}}";
+  Setup s(type, Backend::Optimized, options);
+  CurveEdit e;
+  CurveMove mv;
+  mv.index = -1;
+  mv.chord_scale = 0.7;
+  e.moves = {mv};
+  run(state, wave(7), 7, e, s, Backend::Optimized);
+}
+BENCHMARK_CAPTURE(BM_TimeToAccuracy, linearized, std::string("linearized"))->DenseRange(2, 12, 2)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_TimeToAccuracy, ceres, std::string("ceres"))->DenseRange(2, 12, 2)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "core/error.h"
+#include "curve_design/curve_components.h"
 #include "experiment/components.h"
 #include "energy/local_quadratic.h"
 #include "io/matrix_market.h"
@@ -164,6 +165,10 @@ int cmd_list() {
   list_registry("energies", c.energies);
   list_registry("constraints", c.constraints);
   list_registry("solvers", c.solvers);
+  const CurveComponents& curves = curve_components();  // configs with input.curve
+  list_registry("curve energies (optimization.smoothness)", curves.energies);
+  list_registry("curve constraints (optimization.constraints)", curves.constraints);
+  list_registry("length solvers (optimization.solver)", curves.solvers);
   return 0;
 }
 

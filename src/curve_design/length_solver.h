@@ -31,7 +31,7 @@ struct LengthSolveReport {
 
 // Stopping rule shared by the solvers.
 struct LengthTolerances {
-  double length = 1e-12;       // max relative segment-length error
+  double length = 1e-10;       // max relative segment-length error (the floor grows like n·ε)
   double stationarity = 1e-8;  // 0: stop on lengths alone, as the paper does
   int max_solves = 200;
 };

@@ -187,8 +187,8 @@ TEST_CASE("the explicit step brings the attracting curve near the lengths and cu
 TEST_CASE("newton linearization and MINRES reach the same curve as the paper's direct loop", "[sauvage]") {
   const Polyline wave = bundled("wave129.obj");
   const Recipe recipe(0.05);
-  const auto paper = make_solver("linearized", Backend::Optimized);
-  const auto newton = make_solver("linearized", Backend::Optimized, "{linearized: {linearization: newton}}");
+  const auto paper = make_solver("linearized", Backend::Optimized, "{length_tolerance: 1e-12}");
+  const auto newton = make_solver("linearized", Backend::Optimized, "{length_tolerance: 1e-12, linearized: {linearization: newton}}");
   const auto minres = make_solver("linearized", Backend::Reference, "{linearized: {kkt: minres}, length_tolerance: 1e-10, stationarity_tolerance: 1e-7}");
   const EditStages a = run_editing_loop(wave, 7, compress(0.85, 0, 3), recipe.objective, *paper, Backend::Optimized);
   const EditStages b = run_editing_loop(wave, 7, compress(0.85, 0, 3), recipe.objective, *newton, Backend::Optimized);

@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "experiment/config_loader.h"
 #include "experiment/curve_run.h"
+#include "experiment/sheet_run.h"
 #include "experiment/run_metadata.h"
 #include "experiment/progress.h"
 #include "experiment/run_one.h"
@@ -32,6 +33,7 @@ struct Plan {
   YAML::Node root;
   std::string name;
   bool curve = false;  // curve runs (input.curve) or surface runs (input.mesh)
+  bool sheet = false;  // B-spline sheet runs (sheets:)
   std::vector<std::string> search_dirs, columns;
   std::map<std::string, std::string> swept_key_of;  // CSV column -> swept key (they differ by a prefix)
   std::vector<RunPoint> runs;  // after --filter
@@ -53,11 +55,13 @@ Plan make_plan(const SweepOptions& opt) {
   plan.root = load_experiment_config(opt.config_path, opt.sets);
   plan.search_dirs = input_search_dirs(opt.config_path);
   plan.curve = is_curve_config(plan.root);
+  plan.sheet = is_sheet_config(plan.root);
   std::set<std::string> problems;
   for (auto& p : expand_sweep(plan.root)) {
     try {
-      plan.name = plan.curve ? CurveRunSpec::from_config(p.config, plan.search_dirs).name
-                             : RunSpec::from_config(p.config, components(), plan.search_dirs).name;
+      plan.name = plan.sheet   ? SheetRunSpec::from_config(p.config).name
+                  : plan.curve ? CurveRunSpec::from_config(p.config, plan.search_dirs).name
+                               : RunSpec::from_config(p.config, components(), plan.search_dirs).name;
     } catch (const InvalidConfig& e) {
       problems.insert(e.what());
       continue;
@@ -73,7 +77,7 @@ Plan make_plan(const SweepOptions& opt) {
     throw InvalidConfig(msg);
   }
   plan.columns = {"run_id"};
-  const auto& metrics = plan.curve ? curve_metric_columns() : metric_columns();
+  const auto& metrics = plan.sheet ? sheet_metric_columns() : plan.curve ? curve_metric_columns() : metric_columns();
   for (const auto& k : swept_keys(plan.root)) {  // a swept key named like a metric (energy) gets a prefix
     plan.columns.push_back(std::find(metrics.begin(), metrics.end(), k) == metrics.end() ? k : "param." + k);
     plan.swept_key_of[plan.columns.back()] = k;
@@ -101,7 +105,7 @@ std::set<std::string> prepare_out_dir(const SweepOptions& opt, const Plan& plan,
   if (fs::exists(runs_csv) && !opt.resume) {
     if (!opt.force)
       throw InvalidConfig(dir + " already holds results (runs.csv): use --resume to continue or --force to start over");
-    for (const char* f : {"runs.csv", "iterations.csv", "steps.csv", "run.json", "config.resolved.yaml", "final.obj"})
+    for (const char* f : {"runs.csv", "iterations.csv", "steps.csv", "cells.csv", "run.json", "config.resolved.yaml", "final.obj"})
       fs::remove(fs::path(dir) / f);
     fs::remove_all(fs::path(dir) / "vtk");
     fs::remove_all(fs::path(dir) / "curves");
@@ -124,7 +128,7 @@ std::set<std::string> prepare_out_dir(const SweepOptions& opt, const Plan& plan,
   else write_atomically(it_csv, [](std::ostream& os) { os << csv_record({"run_id", "iteration", "residual", "energy", "seconds", "error_vs_reference"}); });
   const fs::path steps_csv = fs::path(dir) / "steps.csv";
   if (fs::exists(steps_csv)) truncate_partial_tail(steps_csv.string());
-  else write_atomically(steps_csv, [&](std::ostream& os) { os << csv_record(plan.curve ? curve_step_columns() : step_columns()); });
+  else write_atomically(steps_csv, [&](std::ostream& os) { os << csv_record(plan.sheet ? sheet_step_columns() : plan.curve ? curve_step_columns() : step_columns()); });
   return done;
 }
 
@@ -176,6 +180,12 @@ MetricRow execute_curve(const RunPoint& p, const Plan& plan, const std::string& 
   return execute_curve_run(spec, {dir, p.run_id, single});
 }
 
+MetricRow execute_sheet(const RunPoint& p, const std::string& dir, bool single) {
+  SheetRunSpec spec = SheetRunSpec::from_config(p.config);
+  const auto threads = limit_threads(spec.threads);
+  return execute_sheet_run(spec, {dir, p.run_id, single});
+}
+
 int run_in_process(const SweepOptions& opt, const Plan& plan, const std::vector<const RunPoint*>& todo,
                    const std::string& dir) {
   CsvAppender rows((fs::path(dir) / "runs.csv").string());
@@ -185,7 +195,9 @@ int run_in_process(const SweepOptions& opt, const Plan& plan, const std::vector<
   int failed = 0, done = 0;
   const bool single = plan.runs.size() == 1;
   for (const RunPoint* p : todo) {
-    const MetricRow m = plan.curve ? execute_curve(*p, plan, dir, single) : execute_surface(*p, plan, cache, dir, single);
+    const MetricRow m = plan.sheet   ? execute_sheet(*p, dir, single)
+                        : plan.curve ? execute_curve(*p, plan, dir, single)
+                                     : execute_surface(*p, plan, cache, dir, single);
     rows.append(row_fields(plan, *p, m));
     const std::string& term = m.at("termination");
     if (term != "converged" && term != "max_iterations") {

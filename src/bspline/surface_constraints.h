@@ -1,0 +1,60 @@
+// The geometric constraints of Welch & Witkin §4.2 as linear rows on a hierarchical B-spline
+// surface's control vector, shared by x, y and z (A p = C, C with three columns):
+//   point     w(u₀, v₀) = x                                     one row
+//   tangent   D_u w or D_v w at (u₀, v₀) = t                    one row
+//   normal    both tangents at (u₀, v₀) set to the current ones projected onto the plane
+//             normal to n: two rows; uncoupled (per coordinate) like every constraint of §4.2,
+//             at the price of also fixing the tangents' lengths (a documented choice)
+//   curve     the transfinite constraint of eq. 7 in its gradient form: one row per control
+//             point the (u, v) curve reaches, ∫ b_k(c(s)) b(c(s))ᵀ ds · p = ∫ D(s) b_k(c(s)) ds,
+//             integrated over the uv arc length piece by piece between leaf-cell crossings,
+//             exactly (r+1 Gauss points) or with reduced quadrature (⌈(r+1)/2⌉ points), which
+//             §4.2.2 proposes against locking. Rows are dependent in general (an isoparametric
+//             line yields r+1 independent rows per span): the solvers handle that.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "bspline/hierarchical_surface.h"
+#include "core/types.h"
+
+namespace fairshape::bspline {
+
+struct ConstraintRows {
+  SparseMatrix A;      // m × dofs
+  Eigen::MatrixXd C;   // m × 3
+};
+
+//! A curve in the parameter domain (a polyline in (u, v)) and the space curve it must follow,
+//! both parameterized by t ∈ [0, 1] with their points equally spaced in t.
+struct CurveAttachment {
+  std::vector<Eigen::Vector2d> uv;
+  std::vector<Vec3> space;
+};
+
+enum class CurveQuadrature { Exact, Reduced };
+
+//! \throw InvalidInput naming `what` and the point when (u, v) leaves the domain.
+void check_in_domain(const HierarchicalSurface& s, double u, double v, const std::string& what);
+
+ConstraintRows point_rows(const HierarchicalSurface& s, double u, double v, const Vec3& target);
+//! direction 0: D_u, 1: D_v.
+ConstraintRows tangent_rows(const HierarchicalSurface& s, double u, double v, int direction, const Vec3& target);
+//! \throw InvalidInput for a zero normal or a degenerate current tangent plane.
+ConstraintRows normal_rows(const HierarchicalSurface& s, const Eigen::MatrixXd& P, double u, double v, const Vec3& normal);
+//! \throw InvalidInput for fewer than two points or a uv point outside the domain.
+ConstraintRows curve_rows(const HierarchicalSurface& s, const CurveAttachment& curve, CurveQuadrature quadrature);
+
+//! The space curve the surface currently traces along a uv polyline (a surface curve
+//! "promoted" to a space curve, Figure 1), sampled at `samples` equally spaced t.
+std::vector<Vec3> surface_curve(const HierarchicalSurface& s, const Eigen::MatrixXd& P,
+                                const std::vector<Eigen::Vector2d>& uv, int samples);
+//! The point of a polyline with equally spaced parameters at t ∈ [0, 1].
+template <class Point>
+Point polyline_at(const std::vector<Point>& pts, double t);
+
+//! Stacks rows (the order of the list).
+ConstraintRows stack(const std::vector<ConstraintRows>& parts, int dofs);
+
+}  // namespace fairshape::bspline

@@ -1,0 +1,167 @@
+#include "bspline/thin_plate_energy.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "bspline/uniform_basis.h"
+#include "core/error.h"
+
+namespace fairshape::bspline {
+
+void validate(const TensionWeights& w) {
+  const auto fail = [](const std::string& what) { throw InvalidInput("thin plate weights: " + what); };
+  if (!w.alpha.allFinite() || !w.beta.allFinite()) fail("alpha and beta must be finite");
+  if (std::abs(w.alpha(0, 1) - w.alpha(1, 0)) > 1e-14 * (1 + w.alpha.cwiseAbs().maxCoeff()))
+    fail("alpha must be symmetric (alpha_12 = alpha_21)");
+  if (std::abs(w.beta(0, 1) - w.beta(1, 0)) > 1e-14 * (1 + w.beta.cwiseAbs().maxCoeff()))
+    fail("beta must be symmetric (beta_12 = beta_21)");
+  if (Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(w.alpha).eigenvalues().minCoeff() < -1e-14)
+    fail("alpha must be positive semi-definite (alpha_12^2 <= alpha_11 alpha_22, alpha_ii >= 0)");
+  if ((w.beta.array() < 0).any()) fail("every beta_ij must be >= 0");
+}
+
+namespace {
+
+// Each term of Q at one point is (cᵀ d)² for d = (w_u, w_v, w_uu, w_uv, w_vv): the rows c of
+// the weight's square root. ½ pᵀHp = Σ_q W_q Σ_terms (cᵀ d_q)², so the rows of K carry √(2 W_q).
+struct TermRows {
+  std::vector<Eigen::Matrix<double, 5, 1>> rows;
+};
+TermRows term_rows(const TensionWeights& w) {
+  TermRows t;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(w.alpha);
+  for (int k = 0; k < 2; ++k) {
+    const double lambda = eig.eigenvalues()(k);
+    if (lambda <= 0) continue;
+    Eigen::Matrix<double, 5, 1> c = Eigen::Matrix<double, 5, 1>::Zero();
+    c.head<2>() = std::sqrt(lambda) * eig.eigenvectors().col(k);
+    t.rows.push_back(c);
+  }
+  const double bending[3] = {w.beta(0, 0), 2 * w.beta(0, 1), w.beta(1, 1)};  // w_uv appears twice
+  for (int k = 0; k < 3; ++k) {
+    if (bending[k] <= 0) continue;
+    Eigen::Matrix<double, 5, 1> c = Eigen::Matrix<double, 5, 1>::Zero();
+    c(2 + k) = std::sqrt(bending[k]);
+    t.rows.push_back(c);
+  }
+  return t;
+}
+
+double term_value(const Eigen::Matrix<double, 5, 1>& c, const BasisEntry& e) {
+  return c(0) * e.du + c(1) * e.dv + c(2) * e.duu + c(3) * e.duv + c(4) * e.dvv;
+}
+
+// Quadrature points of one leaf cell: (u, v, weight·area).
+struct CellPoint {
+  double u, v, weight;
+};
+std::vector<CellPoint> cell_points(const SpanId& c, const GaussRule& g) {
+  const double h = std::ldexp(1.0, -c.level);
+  std::vector<CellPoint> pts;
+  for (std::size_t a = 0; a < g.nodes.size(); ++a)
+    for (std::size_t b = 0; b < g.nodes.size(); ++b)
+      pts.push_back({(c.i + g.nodes[a]) * h, (c.j + g.nodes[b]) * h, g.weights[a] * g.weights[b] * h * h});
+  return pts;
+}
+
+SparseMatrix hessian_reference(const HierarchicalSurface& s, const TensionWeights& w) {
+  // A plain transcription of eq. 5: H = 2 ∫ Σ α_ij D_i b ⊗ D_j b + β_ij D_iD_j b ⊗ D_iD_j b.
+  const GaussRule g = gauss_legendre(s.degree() + 1);
+  Triplets t;
+  BasisRow row;
+  for (const SpanId& cell : s.leaf_cells())
+    for (const CellPoint& q : cell_points(cell, g)) {
+      s.basis(q.u, q.v, row);
+      for (const BasisEntry& a : row)
+        for (const BasisEntry& b : row) {
+          const double stretch = w.alpha(0, 0) * a.du * b.du + w.alpha(0, 1) * (a.du * b.dv + a.dv * b.du) +
+                                 w.alpha(1, 1) * a.dv * b.dv;
+          const double bend = w.beta(0, 0) * a.duu * b.duu + 2 * w.beta(0, 1) * a.duv * b.duv + w.beta(1, 1) * a.dvv * b.dvv;
+          t.emplace_back(a.dof, b.dof, 2 * q.weight * (stretch + bend));
+        }
+    }
+  SparseMatrix H(s.dof_count(), s.dof_count());
+  H.setFromTriplets(t.begin(), t.end());
+  return H;
+}
+
+SparseMatrix hessian_optimized(const HierarchicalSurface& s, const TensionWeights& w) {
+  const GaussRule g = gauss_legendre(s.degree() + 1);
+  const TermRows terms = term_rows(w);
+  const std::vector<SpanId> cells = s.leaf_cells();
+  // Every quadrature point of a leaf cell reaches the same functions, in the same order: one
+  // dense local matrix (Kᵀ_cell K_cell) per cell, written into its own slice of the triplets.
+  std::vector<Triplets> per_cell(cells.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 16), [&](const tbb::blocked_range<std::size_t>& range) {
+    BasisRow row;
+    Eigen::MatrixXd Kc, local;
+    for (std::size_t c = range.begin(); c != range.end(); ++c) {
+      const std::vector<CellPoint> pts = cell_points(cells[c], g);
+      std::vector<int> dofs;
+      for (std::size_t q = 0; q < pts.size(); ++q) {
+        s.basis(pts[q].u, pts[q].v, row);
+        if (q == 0) {
+          for (const BasisEntry& e : row) dofs.push_back(e.dof);
+          Kc.setZero(static_cast<Eigen::Index>(pts.size() * terms.rows.size()), static_cast<Eigen::Index>(dofs.size()));
+        }
+        FAIRSHAPE_ASSERT(row.size() == dofs.size(), "basis support changed inside a leaf cell");
+        const double scale = std::sqrt(2 * pts[q].weight);
+        for (std::size_t k = 0; k < terms.rows.size(); ++k)
+          for (std::size_t e = 0; e < row.size(); ++e)
+            Kc(static_cast<Eigen::Index>(q * terms.rows.size() + k), static_cast<Eigen::Index>(e)) =
+                scale * term_value(terms.rows[k], row[e]);
+      }
+      local.noalias() = Kc.transpose() * Kc;
+      Triplets& out = per_cell[c];
+      out.reserve(dofs.size() * dofs.size());
+      for (std::size_t a = 0; a < dofs.size(); ++a)
+        for (std::size_t b = 0; b < dofs.size(); ++b) out.emplace_back(dofs[a], dofs[b], local(a, b));
+    }
+  });
+  std::size_t total = 0;
+  for (const auto& t : per_cell) total += t.size();
+  Triplets all;
+  all.reserve(total);
+  for (const auto& t : per_cell) all.insert(all.end(), t.begin(), t.end());
+  SparseMatrix H(s.dof_count(), s.dof_count());
+  H.setFromTriplets(all.begin(), all.end());
+  return H;
+}
+
+}  // namespace
+
+SparseMatrix thin_plate_hessian(const HierarchicalSurface& s, const TensionWeights& w, Backend backend) {
+  validate(w);
+  return backend == Backend::Reference ? hessian_reference(s, w) : hessian_optimized(s, w);
+}
+
+SparseMatrix thin_plate_square_root(const HierarchicalSurface& s, const TensionWeights& w) {
+  validate(w);
+  const GaussRule g = gauss_legendre(s.degree() + 1);
+  const TermRows terms = term_rows(w);
+  Triplets t;
+  BasisRow row;
+  Eigen::Index r = 0;
+  for (const SpanId& cell : s.leaf_cells())
+    for (const CellPoint& q : cell_points(cell, g)) {
+      s.basis(q.u, q.v, row);
+      const double scale = std::sqrt(2 * q.weight);
+      for (const auto& c : terms.rows) {
+        for (const BasisEntry& e : row) {
+          const double value = scale * term_value(c, e);
+          if (value != 0) t.emplace_back(r, e.dof, value);
+        }
+        ++r;
+      }
+    }
+  SparseMatrix K(r, s.dof_count());
+  K.setFromTriplets(t.begin(), t.end());
+  return K;
+}
+
+}  // namespace fairshape::bspline

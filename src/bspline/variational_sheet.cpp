@@ -1,0 +1,159 @@
+#include "bspline/variational_sheet.h"
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <tuple>
+
+#include "core/error.h"
+#include "core/timer.h"
+
+namespace fairshape::bspline {
+
+VariationalSheet::VariationalSheet(const SheetShape& shape, Eigen::MatrixXd initial) : surface_(shape) {
+  if (initial.rows() != surface_.dof_count() || initial.cols() != 3)
+    throw InvalidInput("initial control points: expected " + std::to_string(surface_.dof_count()) + " x 3");
+  P_ = std::move(initial);
+  rest_ = remembered_ = P_;
+}
+
+void VariationalSheet::set_coefficients(Eigen::MatrixXd P) {
+  FAIRSHAPE_ASSERT(P.rows() == surface_.dof_count() && P.cols() == 3, "coefficients do not match the surface");
+  P_ = std::move(P);
+}
+
+int VariationalSheet::refine(const std::vector<SpanId>& spans) {
+  std::size_t before = 0;
+  for (int l = 0; l < surface_.level_count(); ++l) before += surface_.span_count(l);
+  const SparseMatrix T = surface_.refine(spans);
+  P_ = T * P_;
+  rest_ = T * rest_;
+  remembered_ = T * remembered_;
+  std::size_t after = 0;
+  for (int l = 0; l < surface_.level_count(); ++l) after += surface_.span_count(l);
+  return static_cast<int>(after - before);
+}
+
+qp::QuadraticProgram assemble(const VariationalSheet& sheet, const SheetEnergy& energy,
+                              const std::vector<SheetConstraint>& constraints, Backend backend) {
+  const HierarchicalSurface& s = sheet.surface();
+  qp::QuadraticProgram p;
+  if (energy.metric == ShapeMetric::Displacement) {
+    p.H.resize(s.dof_count(), s.dof_count());
+    p.H.setIdentity();
+    p.K = p.H;
+    p.f = sheet.rest();
+  } else {
+    p.H = thin_plate_hessian(s, energy.weights, backend);
+    p.K = thin_plate_square_root(s, energy.weights);
+    p.f = energy.rest_shape ? Eigen::MatrixXd(p.H * sheet.rest()) : Eigen::MatrixXd::Zero(s.dof_count(), 3);
+  }
+  std::vector<ConstraintRows> rows;
+  for (const SheetConstraint& c : constraints) {
+    try {
+      switch (c.kind) {
+        case SheetConstraint::Kind::Point: rows.push_back(point_rows(s, c.u, c.v, c.target)); break;
+        case SheetConstraint::Kind::Tangent: rows.push_back(tangent_rows(s, c.u, c.v, c.direction, c.target)); break;
+        case SheetConstraint::Kind::Normal: rows.push_back(normal_rows(s, sheet.coefficients(), c.u, c.v, c.target)); break;
+        case SheetConstraint::Kind::Curve: rows.push_back(curve_rows(s, c.curve, c.quadrature)); break;
+      }
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(c.label.empty() ? std::string(e.what()) : c.label + ": " + e.what());
+    }
+  }
+  const ConstraintRows all = stack(rows, s.dof_count());
+  p.A = all.A;
+  p.b = all.C;
+  return p;
+}
+
+namespace {
+struct CellKey {
+  bool operator()(const SpanId& a, const SpanId& b) const {
+    return std::tie(a.level, a.i, a.j) < std::tie(b.level, b.i, b.j);
+  }
+};
+}  // namespace
+
+std::vector<CellError> constraint_errors(const VariationalSheet& sheet, const std::vector<SheetConstraint>& constraints) {
+  const HierarchicalSurface& s = sheet.surface();
+  const Eigen::MatrixXd& P = sheet.coefficients();
+  std::map<SpanId, double, CellKey> worst;
+  const auto record = [&](double u, double v, double e) {
+    double& w = worst[s.leaf_cell_at(u, v)];
+    w = std::max(w, e);
+  };
+  for (const SheetConstraint& c : constraints) {
+    if (c.kind == SheetConstraint::Kind::Point) record(c.u, c.v, (s.position(P, c.u, c.v) - c.target).norm());
+    if (c.kind != SheetConstraint::Kind::Curve) continue;
+    // Samples dense enough to see every finest cell the curve crosses several times.
+    double length = 0;
+    for (std::size_t k = 0; k + 1 < c.curve.uv.size(); ++k) length += (c.curve.uv[k + 1] - c.curve.uv[k]).norm();
+    const int samples = std::max(64, static_cast<int>(8 * length * std::ldexp(1.0, s.level_count())));
+    for (int k = 0; k <= samples; ++k) {
+      const double t = static_cast<double>(k) / samples;
+      const Eigen::Vector2d uv = polyline_at(c.curve.uv, t);
+      record(uv.x(), uv.y(), (s.position(P, uv.x(), uv.y()) - polyline_at(c.curve.space, t)).norm());
+    }
+  }
+  std::vector<CellError> out;
+  for (const auto& [cell, e] : worst) out.push_back({cell, e});
+  return out;
+}
+
+double max_error(const std::vector<CellError>& errors) {
+  double m = 0;
+  for (const CellError& e : errors) m = std::max(m, e.error);
+  return m;
+}
+
+DesignReport solve_sheet(VariationalSheet& sheet, const SheetEnergy& energy, const std::vector<SheetConstraint>& constraints,
+                         qp::QpSolver& solver, const RefinementOptions& refinement, Backend backend) {
+  DesignReport report;
+  for (;;) {
+    const qp::QuadraticProgram program = assemble(sheet, energy, constraints, backend);
+    solver.analyze(program);
+    report.analyze_s += solver.analyze_seconds();
+    const Timer timer;
+    report.qp = solver.solve(program.f, program.b);
+    report.solve_s += timer.seconds();
+    ++report.rounds;
+    if (report.qp.termination != Termination::Converged) {
+      report.message = report.qp.message;
+      return report;
+    }
+    sheet.set_coefficients(report.qp.p);
+    report.energy = qp::objective(program, report.qp.p) +
+                    (energy.rest_shape || energy.metric == ShapeMetric::Displacement
+                         ? 0.5 * (sheet.rest().transpose() * (program.H * sheet.rest())).trace()
+                         : 0.0);  // Q as a distance from the rest shape: ½(p − p̂)ᵀH(p − p̂)
+    report.errors_after = constraint_errors(sheet, constraints);
+    if (report.rounds == 1) report.errors_before = report.errors_after;
+    report.max_constraint_error = max_error(report.errors_after);
+    if (refinement.tolerance <= 0 || report.max_constraint_error <= refinement.tolerance) break;
+    if (report.rounds > refinement.max_rounds) {
+      report.message = "refinement stopped after " + std::to_string(refinement.max_rounds) + " rounds above the tolerance";
+      break;
+    }
+    // Refine the layer span holding each offending cell (a cell outside Ω_L is refined
+    // through its parent span).
+    std::vector<SpanId> spans;
+    std::set<SpanId, CellKey> seen;
+    for (const CellError& e : report.errors_after) {
+      if (e.error <= refinement.tolerance) continue;
+      SpanId span = sheet.surface().has_span(e.cell) ? e.cell : SpanId{e.cell.level - 1, e.cell.i / 2, e.cell.j / 2};
+      if (span.level + 1 > refinement.max_level) continue;
+      if (seen.insert(span).second) spans.push_back(span);
+    }
+    if (spans.empty()) {
+      report.message = "constraint error " + std::to_string(report.max_constraint_error) + " above the tolerance at the maximum depth " +
+                       std::to_string(refinement.max_level);
+      break;
+    }
+    report.spans_refined += sheet.refine(spans);
+  }
+  if (!report.qp.message.empty()) report.message = report.message.empty() ? report.qp.message : report.qp.message + "; " + report.message;
+  return report;
+}
+
+}  // namespace fairshape::bspline

@@ -1,0 +1,90 @@
+// One variational sheet of Welch & Witkin: a hierarchical B-spline surface with its current
+// and rest control vectors, the objective of §4.1 and the constraints of §4.2 assembled into
+// a QuadraticProgram, and the automatic refinement of §4.4 driven by constraint error.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "bspline/hierarchical_surface.h"
+#include "bspline/surface_constraints.h"
+#include "bspline/thin_plate_energy.h"
+#include "qp/qp_solver.h"
+
+namespace fairshape::bspline {
+
+enum class ShapeMetric {
+  ThinPlate,     // eq. 4 (with rest_shape: eq. 6)
+  Displacement,  // |p − p̂|², the control-point metric §4.1 criticizes
+};
+
+struct SheetEnergy {
+  TensionWeights weights;
+  ShapeMetric metric = ShapeMetric::ThinPlate;
+  bool rest_shape = false;  // eq. 6 about the stored rest shape instead of eq. 4 about 0
+};
+
+struct SheetConstraint {
+  enum class Kind { Point, Tangent, Normal, Curve } kind = Kind::Point;
+  double u = 0, v = 0;
+  int direction = 0;  // tangent: 0 = D_u, 1 = D_v
+  Vec3 target = Vec3::Zero();  // point / tangent target, normal direction
+  CurveAttachment curve;
+  CurveQuadrature quadrature = CurveQuadrature::Exact;
+  std::string label;  // for messages: "constraints[2]"
+};
+
+class VariationalSheet {
+ public:
+  VariationalSheet(const SheetShape& shape, Eigen::MatrixXd initial);
+  const HierarchicalSurface& surface() const { return surface_; }
+  const Eigen::MatrixXd& coefficients() const { return P_; }
+  void set_coefficients(Eigen::MatrixXd P);
+  const Eigen::MatrixXd& rest() const { return rest_; }
+  //! "Install the current shape as rest shape" (§5); melt() goes back to a remembered one.
+  void install_rest_shape() { rest_ = P_; }
+  void remember_rest_shape() { remembered_ = rest_; }
+  void melt() { rest_ = remembered_; }
+  //! Refines the given spans (widened as HierarchicalSurface::refine documents); every stored
+  //! control vector is carried into the new basis exactly. Returns the spans added.
+  int refine(const std::vector<SpanId>& spans);
+
+ private:
+  HierarchicalSurface surface_;
+  Eigen::MatrixXd P_, rest_, remembered_;
+};
+
+//! The program of one sheet: H, f of the energy and the stacked constraint rows.
+//! \throw InvalidInput from the constraints (domain, degenerate normals, ...).
+qp::QuadraticProgram assemble(const VariationalSheet& sheet, const SheetEnergy& energy,
+                              const std::vector<SheetConstraint>& constraints, Backend backend);
+
+//! Constraint error per leaf cell (§4.4): point-to-point distances at the points, and
+//! curve-to-curve distances |w(c(t)) − D(t)| sampled along each curve, the largest per cell.
+struct CellError {
+  SpanId cell;
+  double error;
+};
+std::vector<CellError> constraint_errors(const VariationalSheet& sheet, const std::vector<SheetConstraint>& constraints);
+double max_error(const std::vector<CellError>& errors);
+
+struct RefinementOptions {
+  double tolerance = 0;  // 0: no refinement
+  int max_level = 4;
+  int max_rounds = 8;
+};
+
+struct DesignReport {
+  qp::QpReport qp;
+  double energy = 0, analyze_s = 0, solve_s = 0, max_constraint_error = 0;
+  int rounds = 0, spans_refined = 0;
+  std::vector<CellError> errors_before, errors_after;  // first and last solve
+  std::string message;
+};
+
+//! Solve; then, while some cell's constraint error exceeds the tolerance and the depth allows,
+//! refine those cells' spans and solve again (warm: the refined sheet keeps its shape).
+DesignReport solve_sheet(VariationalSheet& sheet, const SheetEnergy& energy, const std::vector<SheetConstraint>& constraints,
+                         qp::QpSolver& solver, const RefinementOptions& refinement, Backend backend);
+
+}  // namespace fairshape::bspline

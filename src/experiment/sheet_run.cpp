@@ -1,0 +1,516 @@
+#include "experiment/sheet_run.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+#include <Eigen/Geometry>
+
+#include "core/config.h"
+#include "core/timer.h"
+#include "experiment/metric_format.h"
+#include "io/csv.h"
+#include "io/mesh_io.h"
+#include "io/vtk_io.h"
+#include "mesh/polyline.h"
+#include "mesh/surface_mesh.h"
+
+namespace fairshape {
+namespace fs = std::filesystem;
+using bspline::SheetConstraint;
+
+namespace {
+
+Vec3 read_vec3(Config& c, const std::string& key, const Vec3& fallback, const std::string& doc) {
+  const std::vector<double> v = c.get<std::vector<double>>(key, {fallback.x(), fallback.y(), fallback.z()}, doc);
+  if (v.size() != 3 || !std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
+    throw InvalidConfig(c.key_path(key) + ": expected three finite numbers [x, y, z]");
+  return {v[0], v[1], v[2]};
+}
+
+Eigen::Vector2d read_uv(Config& c, const std::string& key, const std::string& doc) {
+  const std::vector<double> v = c.require<std::vector<double>>(key, doc);
+  if (c.documenting()) return Eigen::Vector2d::Zero();
+  if (v.size() != 2) throw InvalidConfig(c.key_path(key) + ": expected [u, v]");
+  return {v[0], v[1]};
+}
+
+std::vector<Eigen::Vector2d> read_uv_list(Config& c, const std::string& key, const std::string& doc) {
+  const auto list = c.get<std::vector<std::vector<double>>>(key, {}, doc);
+  std::vector<Eigen::Vector2d> out;
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    if (list[k].size() != 2) throw InvalidConfig(c.key_path(key) + "[" + std::to_string(k) + "]: expected [u, v]");
+    out.emplace_back(list[k][0], list[k][1]);
+  }
+  return out;
+}
+
+// A number (times `isotropic`) or a symmetric 2 × 2 matrix [[w11, w12], [w21, w22]].
+Eigen::Matrix2d read_weights(Config& c, const std::string& key, double fallback, const Eigen::Matrix2d& isotropic,
+                             const std::string& doc) {
+  if (!c.has(key)) {
+    c.get<double>(key, fallback, doc);
+    return fallback * isotropic;
+  }
+  if (c.node()[key].IsScalar()) return c.get_number(key, fallback, 0, 1e12, doc) * isotropic;
+  const auto m = c.get<std::vector<std::vector<double>>>(key, {}, doc);
+  if (m.size() != 2 || m[0].size() != 2 || m[1].size() != 2)
+    throw InvalidConfig(c.key_path(key) + ": expected a number or [[w11, w12], [w21, w22]]");
+  Eigen::Matrix2d w;
+  w << m[0][0], m[0][1], m[1][0], m[1][1];
+  return w;
+}
+
+SheetSpec read_sheet(Config& c) {
+  SheetSpec s;
+  s.name = c.get<std::string>("name", "sheet", "name constraints and curves refer to");
+  const std::vector<int> spans = c.get<std::vector<int>>("spans", {4, 4}, "base spans [u, v]");
+  if (spans.size() != 2) throw InvalidConfig(c.key_path("spans") + ": expected [spans_u, spans_v]");
+  s.shape.spans_u = spans[0];
+  s.shape.spans_v = spans[1];
+  s.shape.degree = c.get_int("degree", 3, bspline::kMinDegree, bspline::kMaxDegree, "B-spline degree r");
+  s.geometry = c.get_choice("geometry", "plane", {"plane", "cylinder"}, "initial shape (a cylinder is periodic in u)");
+  s.shape.periodic_u = s.geometry == "cylinder";
+  s.origin = read_vec3(c, "origin", s.origin, "plane: corner at (0, 0); cylinder: center of the base circle");
+  s.u_axis = read_vec3(c, "u_axis", s.u_axis, "world direction of u (plane) / first radial axis (cylinder)");
+  s.v_axis = read_vec3(c, "v_axis", s.v_axis, "world direction of v (plane and cylinder axis)");
+  const std::vector<double> size = c.get<std::vector<double>>("size", {1, 1}, "plane: extent [u, v]; cylinder: [radius, height]");
+  if (size.size() != 2 || !(size[0] > 0) || !(size[1] > 0)) throw InvalidConfig(c.key_path("size") + ": expected two positive numbers");
+  s.size_u = size[0];
+  s.size_v = size[1];
+  if (s.u_axis.norm() == 0 || s.v_axis.norm() == 0 || s.u_axis.cross(s.v_axis).norm() < 1e-9 * s.u_axis.norm() * s.v_axis.norm())
+    throw InvalidConfig(c.key_path("u_axis") + ", " + c.key_path("v_axis") + ": must be nonzero and not parallel");
+  for (const auto& r : c.get<std::vector<std::vector<int>>>("refine", {}, "spans refined up front: [[level, i, j], ...]")) {
+    if (r.size() != 3) throw InvalidConfig(c.key_path("refine") + ": expected [level, i, j] entries");
+    s.refine.push_back({r[0], r[1], r[2]});
+  }
+  c.check_no_unknown_keys();
+  try {
+    bspline::HierarchicalSurface probe(s.shape);
+  } catch (const InvalidInput& e) {
+    throw InvalidConfig(c.key_path("spans") + ": " + e.what());
+  }
+  return s;
+}
+
+// The initial control points: Greville abscissae mapped onto the plane (linear precision
+// makes the surface exactly that plane), or around a circle scaled so the periodic cubic
+// passes through radius R at the control points' parameters.
+Eigen::MatrixXd initial_coefficients(const SheetSpec& s, const bspline::HierarchicalSurface& surface) {
+  Eigen::MatrixXd P(surface.dof_count(), 3);
+  const double shift = (s.shape.degree - 1) / 2.0;
+  const Vec3 a = s.u_axis.normalized(), n = s.v_axis.normalized();
+  const Vec3 b = n.cross(a).normalized();
+  for (int k = 0; k < surface.dof_count(); ++k) {
+    const bspline::ControlId c = surface.dofs()[k];
+    const double v = c.j - shift;
+    if (s.geometry == "plane") {
+      P.row(k) = (s.origin + (c.i - shift) * (s.size_u / s.shape.spans_u) * a + v * (s.size_v / s.shape.spans_v) * n).transpose();
+    } else {
+      const int m = s.shape.spans_u;
+      const double theta = 2 * M_PI * (c.i - shift) / m;
+      double blend = 0;  // the periodic B-spline's value at the node, relative to its control point
+      const bspline::SpanBasis sb = bspline::uniform_span_basis(s.shape.degree, 0);
+      for (int i = 0; i <= s.shape.degree; ++i) blend += sb.value[i] * std::cos(2 * M_PI * (i - shift) / m);
+      const double radius = s.size_u / blend;
+      P.row(k) = (s.origin + radius * (std::cos(theta) * a + std::sin(theta) * b) + v * (s.size_v / s.shape.spans_v) * n).transpose();
+    }
+  }
+  return P;
+}
+
+SpaceCurveSpec read_curve(Config& c) {
+  SpaceCurveSpec s;
+  s.name = c.require<std::string>("name", "name curve constraints refer to");
+  s.samples = c.get_int("samples", s.samples, 2, 100000, "points of the space curve (equally spaced in t)");
+  Config fs_ = c.child("from_surface", "trace the curve on a sheet's initial surface: {sheet, uv: [[u, v], ...]}");
+  if (fs_.has("sheet") || fs_.has("uv") || fs_.documenting()) {
+    s.from_sheet = fs_.require<std::string>("sheet", "sheet name");
+    s.uv = read_uv_list(fs_, "uv", "uv polyline on that sheet");
+    if (!fs_.documenting() && s.uv.size() < 2) throw InvalidConfig(fs_.key_path("uv") + ": at least two [u, v] points");
+  }
+  fs_.check_no_unknown_keys();
+  for (const auto& p : c.get<std::vector<std::vector<double>>>("points", {}, "explicit points [[x, y, z], ...]")) {
+    if (p.size() != 3) throw InvalidConfig(c.key_path("points") + ": expected [x, y, z] entries");
+    s.points.emplace_back(p[0], p[1], p[2]);
+  }
+  if (!c.documenting() && (s.from_sheet.empty() == s.points.empty() || (s.from_sheet.empty() && s.points.size() < 2)))
+    throw InvalidConfig(c.key_path("points") + ": give either from_surface or at least two points");
+  for (Config e : c.child_list("edits", "smooth displacements [{step, t, radius, by: [x, y, z]}] (cosine bump in t)")) {
+    SpaceCurveEdit ed;
+    ed.step = e.get_int("step", 1, 0, 1000, "design step from which the edit applies");
+    ed.t = e.get_number("t", 0.5, 0, 1, "center of the bump along the curve");
+    ed.radius = e.get_number("radius", 0.25, 1e-6, 2, "half-width of the bump in t");
+    ed.by = read_vec3(e, "by", ed.by, "displacement at the center");
+    e.check_no_unknown_keys();
+    s.edits.push_back(ed);
+  }
+  c.check_no_unknown_keys();
+  return s;
+}
+
+const std::vector<std::string> kConstraintTypes{"point", "tangent", "normal", "curve"};
+
+SheetConstraintSpec read_constraint(Config& c, const std::string& label, const std::string& first_sheet) {
+  SheetConstraintSpec s;
+  s.label = label;
+  s.constraint.label = label;
+  const std::string type = c.get_choice("type", "point", kConstraintTypes, "constraint kind (Welch & Witkin §4.2)");
+  s.sheet = c.get<std::string>("sheet", first_sheet, "sheet it acts on (default: the first)");
+  s.step = c.get_int("step", 0, 0, 1000, "design step from which it is active");
+  SheetConstraint& k = s.constraint;
+  if (type == "curve") {
+    k.kind = SheetConstraint::Kind::Curve;
+    s.curve = c.require<std::string>("curve", "space curve name");
+    k.curve.uv = read_uv_list(c, "uv", "uv polyline on the sheet (default: the curve's from_surface uv)");
+    k.quadrature = c.get_choice("quadrature", "exact", {"exact", "reduced"}, "eq. 7 integration: exact, or reduced against locking") ==
+                           "exact"
+                       ? bspline::CurveQuadrature::Exact
+                       : bspline::CurveQuadrature::Reduced;
+  } else {
+    const Eigen::Vector2d uv = read_uv(c, "uv", "parameter point [u, v]");
+    k.u = uv.x();
+    k.v = uv.y();
+    if (type == "point") {
+      k.kind = SheetConstraint::Kind::Point;
+      s.relative = c.has("by");
+      if (s.relative && c.has("target")) throw InvalidConfig(c.key_path("by") + ": give target or by, not both");
+      k.target = s.relative ? read_vec3(c, "by", Vec3::Zero(), "offset from the initial surface point")
+                            : read_vec3(c, "target", Vec3::Zero(), "world position (or give `by`: offset from the initial point)");
+      if (!s.relative) (void)c.get<std::vector<double>>("by", {0, 0, 0}, "offset from the initial surface point");
+    } else if (type == "tangent") {
+      k.kind = SheetConstraint::Kind::Tangent;
+      k.direction = c.get_choice("direction", "u", {"u", "v"}, "parametric derivative D_u or D_v") == "u" ? 0 : 1;
+      k.target = read_vec3(c, "target", Vec3::UnitX(), "the derivative vector");
+    } else {
+      k.kind = SheetConstraint::Kind::Normal;
+      k.target = read_vec3(c, "normal", Vec3::UnitZ(), "normal direction");
+    }
+  }
+  c.check_no_unknown_keys();
+  return s;
+}
+
+}  // namespace
+
+bool is_sheet_config(const YAML::Node& c) { return c.IsMap() && c["sheets"].IsDefined(); }
+
+int SheetRunSpec::steps() const {
+  int n = 1;
+  for (const auto& c : constraints) n = std::max(n, c.step + 1);
+  for (const auto& c : curves)
+    for (const auto& e : c.edits) n = std::max(n, e.step + 1);
+  return n;
+}
+
+SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config) {
+  Config root(run_config, "");
+  SheetRunSpec s;
+  s.name = root.require<std::string>("name", "experiment name (names the results folder)");
+  root.get<std::string>("description", "", "free text");
+  root.get_int("seed", 0, 0, INT32_MAX, "random seed (sheet runs are deterministic)");
+  s.threads = root.get_int("threads", 0, 0, 4096, "TBB threads for optimized back ends (0 = all cores)");
+  s.repeat = root.get_int("repeat", 1, 1, 1000, "timing repeats of each solve (the median is reported)");
+  s.implementation = backend_from_string(root.get_choice("implementation", "optimized", {"reference", "optimized"},
+                                                         "back end of the energy assembly and the solver"));
+  for (Config c : root.child_list("sheets", "hierarchical B-spline sheets")) s.sheets.push_back(read_sheet(c));
+  if (s.sheets.empty()) throw InvalidConfig("sheets: at least one sheet");
+  const auto sheet_index = [&](const std::string& name, const std::string& key) {
+    for (std::size_t k = 0; k < s.sheets.size(); ++k)
+      if (s.sheets[k].name == name) return static_cast<int>(k);
+    std::string names;
+    for (const auto& sh : s.sheets) names += (names.empty() ? "" : ", ") + sh.name;
+    throw InvalidConfig(key + ": no sheet named '" + name + "' (sheets: " + names + ")");
+  };
+  int k = 0;
+  for (Config c : root.child_list("curves", "space curves [{name, from_surface | points, samples, edits}]")) {
+    s.curves.push_back(read_curve(c));
+    if (!s.curves.back().from_sheet.empty()) sheet_index(s.curves.back().from_sheet, "curves[" + std::to_string(k) + "].from_surface.sheet");
+    ++k;
+  }
+  k = 0;
+  for (Config c : root.child_list("constraints", "[{type: point|tangent|normal|curve, sheet, uv, ...}]")) {
+    const std::string label = "constraints[" + std::to_string(k++) + "]";
+    SheetConstraintSpec cs = read_constraint(c, label, s.sheets.front().name);
+    sheet_index(cs.sheet, label + ".sheet");
+    if (!cs.curve.empty()) {
+      const auto it = std::find_if(s.curves.begin(), s.curves.end(), [&](const auto& cv) { return cv.name == cs.curve; });
+      if (it == s.curves.end()) throw InvalidConfig(label + ".curve: no space curve named '" + cs.curve + "'");
+      if (cs.constraint.curve.uv.empty()) {
+        if (it->from_sheet != cs.sheet) throw InvalidConfig(label + ".uv: required (the curve is not traced on this sheet)");
+        cs.constraint.curve.uv = it->uv;
+      }
+      if (cs.constraint.curve.uv.size() < 2) throw InvalidConfig(label + ".uv: at least two [u, v] points");
+    }
+    s.constraints.push_back(std::move(cs));
+  }
+  Config ec = root.child("energy", "objective (§4.1): {metric, alpha, beta, rest_shape}");
+  s.energy.metric = ec.get_choice("metric", "thin_plate", {"thin_plate", "displacement"},
+                                  "thin plate under tension (eq. 4/6) or control-point displacement |p - p0|^2") == "thin_plate"
+                        ? bspline::ShapeMetric::ThinPlate
+                        : bspline::ShapeMetric::Displacement;
+  s.energy.weights.alpha = read_weights(ec, "alpha", 0.0, Eigen::Matrix2d::Identity(),
+                                           "stretching weights alpha_ij: a number a (a·I: membrane) or a 2x2 matrix");
+  s.energy.weights.beta = read_weights(ec, "beta", 1.0, Eigen::Matrix2d::Ones(),
+                                          "bending weights beta_ij: a number b (all b: thin plate) or a 2x2 matrix");
+  s.energy.rest_shape = ec.get<bool>("rest_shape", false, "eq. 6: deform away from the initial shape instead of eq. 4");
+  ec.check_no_unknown_keys();
+  try {
+    bspline::validate(s.energy.weights);
+  } catch (const InvalidInput& e) {
+    throw InvalidConfig(ec.key_path("alpha") + "/" + ec.key_path("beta") + ": " + e.what());
+  }
+  Config sc = root.child("solver", "constrained solver: {type, <type>: {...}}");
+  const auto& reg = qp::qp_solver_registry();
+  s.solver_type = sc.get_choice("type", "kkt", reg.names(), "kkt (eq. 9), qr_penalty (eq. 10) or range_space (CHOLMOD)");
+  for (const auto& name : reg.names())
+    if (name != s.solver_type && sc.has(name)) {
+      Config sub = sc.child(name, "options of " + name);
+      if (reg.has(name, s.implementation)) (void)reg.create(name, s.implementation, sub);
+      sub.check_no_unknown_keys();
+    }
+  {
+    Config sub = sc.child(s.solver_type, "options of the chosen solver");
+    s.solver = reg.create(s.solver_type, s.implementation, sub);
+    sub.check_no_unknown_keys();
+  }
+  sc.check_no_unknown_keys();
+  Config rc = root.child("refinement", "automatic refinement (§4.4): {tolerance, max_level, max_rounds}");
+  s.refinement.tolerance = rc.get_number("tolerance", 0, 0, 1e12, "constraint error per leaf cell above which it is refined (0: off)");
+  s.refinement.max_level = rc.get_int("max_level", 4, 1, bspline::HierarchicalSurface::kMaxLevel, "deepest layer");
+  s.refinement.max_rounds = rc.get_int("max_rounds", 8, 1, 100, "refine-and-solve rounds at most");
+  rc.check_no_unknown_keys();
+  Config oc = root.child("output", "what each run writes");
+  s.samples_per_span = oc.get_int("samples_per_span", 6, 1, 64, "tessellation of final.obj and the VTK per base span");
+  s.vtk = oc.get<bool>("vtk", true, "write vtk/<run>_step<k>_<sheet>.vtp");
+  oc.check_no_unknown_keys();
+  root.check_no_unknown_keys();
+  return s;
+}
+
+const std::vector<std::string>& sheet_metric_columns() {
+  static const std::vector<std::string> cols{
+      "sheets", "steps", "dofs", "levels", "constraint_rows", "dropped_rows", "constraint_residual", "max_constraint_error",
+      "energy", "spans_refined", "refinement_rounds", "condition_estimate", "analyze_s", "solve_s", "time_s", "termination",
+      "message"};
+  return cols;
+}
+
+const std::vector<std::string>& sheet_step_columns() {
+  static const std::vector<std::string> cols{"run_id", "step", "sheet", "dofs", "levels", "constraint_rows", "dropped_rows",
+                                             "constraint_residual", "max_constraint_error", "energy", "spans_refined",
+                                             "refinement_rounds", "analyze_s", "solve_s"};
+  return cols;
+}
+
+namespace {
+
+std::vector<Vec3> curve_at_step(const SpaceCurveSpec& c, const std::vector<Vec3>& base, int step) {
+  std::vector<Vec3> pts = base;
+  for (const SpaceCurveEdit& e : c.edits) {
+    if (e.step > step) continue;
+    for (std::size_t k = 0; k < pts.size(); ++k) {
+      const double t = static_cast<double>(k) / (pts.size() - 1), d = std::abs(t - e.t) / e.radius;
+      if (d < 1) pts[k] += 0.5 * (1 + std::cos(M_PI * d)) * e.by;
+    }
+  }
+  return pts;
+}
+
+SurfaceMesh tessellate(const bspline::VariationalSheet& sheet, int per_span, const Eigen::MatrixXd& initial_P,
+                       const bspline::HierarchicalSurface& initial_surface) {
+  const bspline::HierarchicalSurface& s = sheet.surface();
+  const bool periodic = s.shape().periodic_u;
+  const int nu = s.shape().spans_u * per_span, nv = s.shape().spans_v * per_span;
+  const int cols = periodic ? nu : nu + 1;
+  MatrixX3 V(cols * (nv + 1), 3);
+  Eigen::MatrixXd displacement(V.rows(), 1);
+  for (int i = 0; i < cols; ++i)
+    for (int j = 0; j <= nv; ++j) {
+      const double u = static_cast<double>(i) / per_span, v = static_cast<double>(j) / per_span;
+      const Vec3 x = s.position(sheet.coefficients(), u, v);
+      V.row(i * (nv + 1) + j) = x.transpose();
+      displacement(i * (nv + 1) + j) = (x - initial_surface.position(initial_P, u, v)).norm();
+    }
+  PolygonList faces;
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      const int i1 = periodic ? (i + 1) % nu : i + 1;
+      faces.push_back({i * (nv + 1) + j, i1 * (nv + 1) + j, i1 * (nv + 1) + j + 1, i * (nv + 1) + j + 1});
+    }
+  SurfaceMesh m = SurfaceMesh::from_polygons(V, faces);
+  m.vertex_data["displacement_norm"] = displacement;
+  return m;
+}
+
+MatrixX3 concat(const std::vector<SurfaceMesh>& meshes, PolygonList& faces) {
+  Eigen::Index n = 0;
+  for (const auto& m : meshes) n += m.n_vertices();
+  MatrixX3 V(n, 3);
+  Eigen::Index offset = 0;
+  for (const auto& m : meshes) {
+    V.middleRows(offset, m.n_vertices()) = m.positions();
+    for (auto f : m.polygons()) {
+      for (int& v : f) v += static_cast<int>(offset);
+      faces.push_back(f);
+    }
+    offset += m.n_vertices();
+  }
+  return V;
+}
+
+}  // namespace
+
+MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
+  MetricRow row;
+  for (const auto& c : sheet_metric_columns()) row[c] = "";
+  row["implementation"] = std::string(to_string(spec.implementation));
+  row["solver.type"] = spec.solver_type;
+  row["sheets"] = std::to_string(spec.sheets.size());
+  row["steps"] = std::to_string(spec.steps());
+  row["termination"] = "converged";
+  const Timer wall;
+  int step = 0;
+  try {
+    // Sheets, refined up front; curves traced on the initial surfaces.
+    std::vector<bspline::VariationalSheet> sheets;
+    std::vector<bspline::HierarchicalSurface> initial_surfaces;
+    std::vector<Eigen::MatrixXd> initial_P;
+    for (const SheetSpec& ss : spec.sheets) {
+      bspline::HierarchicalSurface surface(ss.shape);
+      sheets.emplace_back(ss.shape, initial_coefficients(ss, surface));
+      if (!ss.refine.empty()) sheets.back().refine(ss.refine);
+      initial_surfaces.push_back(sheets.back().surface());
+      initial_P.push_back(sheets.back().coefficients());
+    }
+    const auto sheet_of = [&](const std::string& name) {
+      for (std::size_t k = 0; k < spec.sheets.size(); ++k)
+        if (spec.sheets[k].name == name) return k;
+      return std::size_t{0};
+    };
+    std::map<std::string, std::vector<Vec3>> base_curves;
+    for (const SpaceCurveSpec& c : spec.curves) {
+      const std::size_t k = sheet_of(c.from_sheet);
+      base_curves[c.name] = c.from_sheet.empty() ? c.points
+                                                 : bspline::surface_curve(sheets[k].surface(), sheets[k].coefficients(), c.uv, c.samples);
+    }
+    CsvAppender steps((fs::path(out.dir) / "steps.csv").string());
+    double analyze_s = 0, solve_s = 0, energy = 0, residual = 0, max_err = 0, cond = 0;
+    int dofs = 0, rows = 0, dropped = 0, refined = 0, rounds = 0, levels = 0;
+    std::vector<std::vector<bspline::CellError>> before(sheets.size()), after(sheets.size());
+    for (step = 0; step < spec.steps(); ++step) {
+      std::map<std::string, std::vector<Vec3>> curves_now;
+      for (const SpaceCurveSpec& c : spec.curves) curves_now[c.name] = curve_at_step(c, base_curves.at(c.name), step);
+      for (std::size_t k = 0; k < sheets.size(); ++k) {
+        std::vector<SheetConstraint> active;
+        for (const SheetConstraintSpec& cs : spec.constraints) {
+          if (cs.step > step || cs.sheet != spec.sheets[k].name) continue;
+          SheetConstraint c = cs.constraint;
+          if (!cs.curve.empty()) c.curve.space = curves_now.at(cs.curve);
+          if (cs.relative) {
+            bspline::check_in_domain(initial_surfaces[k], c.u, c.v, cs.label);
+            c.target += initial_surfaces[k].position(initial_P[k], c.u, c.v);
+          }
+          active.push_back(std::move(c));
+        }
+        if (active.empty()) continue;  // nothing acts on this sheet yet: it keeps its shape
+        bspline::DesignReport r;
+        std::vector<double> times;
+        for (int rep = 0; rep < spec.repeat; ++rep) {
+          bspline::VariationalSheet trial = sheets[k];
+          r = bspline::solve_sheet(trial, spec.energy, active, *spec.solver, spec.refinement, spec.implementation);
+          times.push_back(r.solve_s);
+          if (rep + 1 == spec.repeat) sheets[k] = std::move(trial);
+        }
+        std::sort(times.begin(), times.end());
+        r.solve_s = times[times.size() / 2];
+        const auto& s = sheets[k].surface();
+        const qp::QuadraticProgram program = bspline::assemble(sheets[k], spec.energy, active, spec.implementation);
+        steps.append({out.run_id, std::to_string(step), spec.sheets[k].name, std::to_string(s.dof_count()),
+                      std::to_string(s.level_count()), std::to_string(program.A.rows()), std::to_string(r.qp.dropped_rows),
+                      num(r.qp.constraint_residual), num(r.max_constraint_error), num(r.energy),
+                      std::to_string(r.spans_refined), std::to_string(r.rounds), num(r.analyze_s), num(r.solve_s)});
+        if (r.qp.termination != Termination::Converged) {
+          row["termination"] = std::string(to_string(r.qp.termination));
+          row["message"] = "step " + std::to_string(step) + ", sheet " + spec.sheets[k].name + ": " + r.message;
+          step = spec.steps();
+          break;
+        }
+        if (!r.message.empty()) row["message"] = spec.sheets[k].name + ": " + r.message;
+        before[k] = r.errors_before;  // the last step's solve wins (Figure 3: before/after refinement)
+        after[k] = r.errors_after;
+        analyze_s += r.analyze_s;
+        solve_s += r.solve_s;
+        refined += r.spans_refined;
+        rounds += r.rounds;
+        if (step + 1 == spec.steps()) {
+          energy += r.energy;
+          residual = std::hypot(residual, r.qp.constraint_residual);
+          max_err = std::max(max_err, r.max_constraint_error);
+          dofs += s.dof_count();
+          rows += static_cast<int>(program.A.rows());
+          dropped += r.qp.dropped_rows;
+          levels = std::max(levels, s.level_count());
+          if (std::isfinite(r.qp.condition_estimate)) cond = std::max(cond, r.qp.condition_estimate);
+        }
+      }
+      // Per step: the sheets and the space curves.
+      if (spec.vtk || step + 1 >= spec.steps()) {
+        fs::create_directories(fs::path(out.dir) / "vtk");
+        fs::create_directories(fs::path(out.dir) / "curves");
+        for (std::size_t k = 0; k < sheets.size() && step < spec.steps(); ++k) {
+          const SurfaceMesh m = tessellate(sheets[k], spec.samples_per_span, initial_P[k], initial_surfaces[k]);
+          if (spec.vtk) write_vtp(m, (fs::path(out.dir) / "vtk" / (out.run_id + "_step" + std::to_string(step) + "_" + spec.sheets[k].name + ".vtp")).string());
+        }
+        for (const auto& [name, pts] : curves_now) {
+          MatrixX3 X(static_cast<Eigen::Index>(pts.size()), 3);
+          for (std::size_t i = 0; i < pts.size(); ++i) X.row(static_cast<Eigen::Index>(i)) = pts[i].transpose();
+          write_polyline(Polyline{X, false}, (fs::path(out.dir) / "curves" / (out.run_id + "_step" + std::to_string(step) + "_" + name + ".obj")).string());
+        }
+      }
+    }
+    // Constraint error per leaf cell, first and last solve of the last step (Figure 3).
+    const fs::path cells_csv = fs::path(out.dir) / "cells.csv";
+    const bool new_cells = !fs::exists(cells_csv);
+    CsvAppender cells(cells_csv.string());
+    if (new_cells) cells.append({"run_id", "sheet", "when", "level", "u0", "v0", "size", "error"});
+    for (std::size_t k = 0; k < sheets.size(); ++k)
+      for (const auto& [list, when] : {std::pair{&before[k], "before"}, std::pair{&after[k], "after"}})
+        for (const bspline::CellError& e : *list) {
+          const double h = std::ldexp(1.0, -e.cell.level);
+          cells.append({out.run_id, spec.sheets[k].name, when, std::to_string(e.cell.level), num(e.cell.i * h), num(e.cell.j * h),
+                        num(h), num(e.error)});
+        }
+    std::vector<SurfaceMesh> meshes;
+    for (std::size_t k = 0; k < sheets.size(); ++k)
+      meshes.push_back(tessellate(sheets[k], spec.samples_per_span, initial_P[k], initial_surfaces[k]));
+    PolygonList faces;
+    const MatrixX3 V = concat(meshes, faces);
+    fs::path p = fs::path(out.dir) / "final.obj";
+    if (!out.single_run) {
+      fs::create_directories(fs::path(out.dir) / "final");
+      p = fs::path(out.dir) / "final" / (out.run_id + ".obj");
+    }
+    write_mesh(SurfaceMesh::from_polygons(V, faces), p.string());
+    row["dofs"] = std::to_string(dofs);
+    row["levels"] = std::to_string(levels);
+    row["constraint_rows"] = std::to_string(rows);
+    row["dropped_rows"] = std::to_string(dropped);
+    row["constraint_residual"] = num(residual);
+    row["max_constraint_error"] = num(max_err);
+    row["energy"] = num(energy);
+    row["spans_refined"] = std::to_string(refined);
+    row["refinement_rounds"] = std::to_string(rounds);
+    if (cond > 0) row["condition_estimate"] = num(cond);
+    row["analyze_s"] = num(analyze_s);
+    row["solve_s"] = num(solve_s);
+  } catch (const Error& e) {
+    row["termination"] = "invalid_input";
+    row["message"] = "step " + std::to_string(step) + ": " + e.what();
+  }
+  row["time_s"] = num(wall.seconds());
+  return row;
+}
+
+}  // namespace fairshape

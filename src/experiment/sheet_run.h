@@ -1,0 +1,78 @@
+// Variational sheet experiments (configs/welch-witkin): hierarchical B-spline sheets, space
+// curves shared between them, constraints that switch on at design steps (a push-pin at step
+// 0, a curve edited at step 2, ...), a constrained solver and automatic refinement. A config
+// is a sheet run when it has `sheets:`.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "bspline/uniform_basis.h"
+#include "bspline/variational_sheet.h"
+#include "experiment/run_one.h"
+#include "qp/qp_solver.h"
+
+namespace fairshape {
+
+struct SheetSpec {
+  std::string name;
+  bspline::SheetShape shape;
+  std::string geometry = "plane";  // plane | cylinder
+  Vec3 origin = Vec3::Zero(), u_axis = Vec3::UnitX(), v_axis = Vec3::UnitY();
+  double size_u = 1, size_v = 1;  // plane: world extent; cylinder: radius (size_u) and height (size_v)
+  std::vector<bspline::SpanId> refine;
+};
+
+struct SpaceCurveEdit {
+  int step = 0;
+  double t = 0.5, radius = 0.25;
+  Vec3 by = Vec3::Zero();
+};
+
+struct SpaceCurveSpec {
+  std::string name;
+  std::string from_sheet;                 // non-empty: traced on this sheet's initial surface
+  std::vector<Eigen::Vector2d> uv;        // ... along this uv polyline
+  std::vector<Vec3> points;               // or given explicitly
+  int samples = 65;
+  std::vector<SpaceCurveEdit> edits;
+};
+
+struct SheetConstraintSpec {
+  std::string sheet, curve, label;
+  int step = 0;
+  bool relative = false;  // point: target is an offset from the initial surface point
+  bspline::SheetConstraint constraint;
+};
+
+struct SheetRunSpec {
+  std::string name, solver_type;
+  int threads = 0, repeat = 1;
+  Backend implementation = Backend::Optimized;
+  std::vector<SheetSpec> sheets;
+  std::vector<SpaceCurveSpec> curves;
+  std::vector<SheetConstraintSpec> constraints;
+  bspline::SheetEnergy energy;
+  bspline::RefinementOptions refinement;
+  std::unique_ptr<qp::QpSolver> solver;
+  int samples_per_span = 6;
+  bool vtk = true;
+  int steps() const;
+
+  //! \throw InvalidConfig naming the key (unknown sheets or curves, uv outside the domain, ...).
+  static SheetRunSpec from_config(const YAML::Node& run_config);
+};
+
+bool is_sheet_config(const YAML::Node& run_config);
+const std::vector<std::string>& sheet_metric_columns();  // runs.csv
+const std::vector<std::string>& sheet_step_columns();    // steps.csv: one row per step and sheet
+
+//! Runs every step, writes steps.csv rows, cells.csv (constraint error per leaf cell before and
+//! after refinement), VTK per step and sheet, the space curves, and final.obj. Never throws
+//! for problems of the input or the numerics: they become the row's termination and message.
+MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out);
+
+}  // namespace fairshape

@@ -1,0 +1,254 @@
+// The Lagrange augmented system of Welch & Witkin eq. 9,
+//   [H   sĀᵀ] [p]   [ f  ]
+//   [sĀ   0 ] [y] = [s b̄],
+// over Ā p = b̄, a reduction of A p = b to independent rows (§4.3): A P = Q R by a rank-revealing
+// QR (dense column-pivoted Householder on the unknowns A reaches when that is small, SPQR /
+// Eigen SparseQR otherwise), Ā = R₁Pᵀ, b̄ = Q₁ᵀ b. Consistent constraints keep their solutions;
+// inconsistent ones get the least-squares fit (the paper's AᵀA p = Aᵀb, without squaring A's
+// condition number), reported with its residual. Scaled by s = max diag H so the LU keeps its
+// digits. Optimized: UMFPACK, whose symbolic analysis is reused while the pattern stays the
+// same; reference: Eigen SparseLU.
+#include <Eigen/QR>
+#include <Eigen/SPQRSupport>
+#include <Eigen/SparseLU>
+#include <Eigen/SparseQR>
+#include <Eigen/UmfPackSupport>
+
+#include <algorithm>
+#include <memory>
+#include <random>
+
+#include "core/error.h"
+#include "core/timer.h"
+#include "problem/least_squares.h"
+#include "qp/kkt_solver.h"
+
+namespace fairshape::qp {
+
+class LuFactor {
+ public:
+  virtual ~LuFactor() = default;
+  virtual bool factor(const SparseMatrix& K) = 0;
+  virtual Eigen::MatrixXd solve(const Eigen::MatrixXd& rhs) const = 0;
+  //! Symbolic analyses done so far (the reference redoes it with every factorization).
+  virtual int analyses() const = 0;
+};
+
+namespace {
+
+class ReferenceLu final : public LuFactor {
+ public:
+  bool factor(const SparseMatrix& K) override {
+    lu_.compute(K);
+    ++analyses_;
+    return lu_.info() == Eigen::Success;
+  }
+  int analyses() const override { return analyses_; }
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& rhs) const override {
+    return const_cast<Eigen::SparseLU<SparseMatrix>&>(lu_).solve(rhs);
+  }
+
+ private:
+  Eigen::SparseLU<SparseMatrix> lu_;
+  int analyses_ = 0;
+};
+
+// UMFPACK with the symbolic analysis kept across factorizations of the same pattern.
+class UmfpackLu final : public LuFactor {
+ public:
+  bool factor(const SparseMatrix& K) override {
+    if (!same_pattern(K)) {
+      lu_.analyzePattern(K);
+      outer_.assign(K.outerIndexPtr(), K.outerIndexPtr() + K.outerSize() + 1);
+      inner_.assign(K.innerIndexPtr(), K.innerIndexPtr() + K.nonZeros());
+      ++analyses_;
+    }
+    lu_.factorize(K);
+    return lu_.info() == Eigen::Success;
+  }
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& rhs) const override { return lu_.solve(rhs); }
+  int analyses() const override { return analyses_; }
+
+ private:
+  bool same_pattern(const SparseMatrix& K) const {
+    return static_cast<Eigen::Index>(outer_.size()) == K.outerSize() + 1 &&
+           std::equal(outer_.begin(), outer_.end(), K.outerIndexPtr()) &&
+           static_cast<Eigen::Index>(inner_.size()) == K.nonZeros() &&
+           std::equal(inner_.begin(), inner_.end(), K.innerIndexPtr());
+  }
+  Eigen::UmfPackLU<SparseMatrix> lu_;
+  std::vector<int> outer_, inner_;
+  int analyses_ = 0;
+};
+
+SparseMatrix lagrange_matrix(const SparseMatrix& H, const SparseMatrix& A, double s) {
+  const Eigen::Index n = H.rows();
+  Triplets t;
+  t.reserve(static_cast<std::size_t>(H.nonZeros() + 2 * A.nonZeros()));
+  for (int c = 0; c < H.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(H, c); it; ++it) t.emplace_back(static_cast<int>(it.row()), c, it.value());
+  for (int c = 0; c < A.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(A, c); it; ++it) {
+      t.emplace_back(static_cast<int>(n + it.row()), c, s * it.value());
+      t.emplace_back(c, static_cast<int>(n + it.row()), s * it.value());
+    }
+  SparseMatrix K(n + A.rows(), n + A.rows());
+  K.setFromTriplets(t.begin(), t.end());
+  K.makeCompressed();
+  return K;
+}
+
+}  // namespace
+
+// One step of iterative refinement: the Lagrange system is indefinite and, with nearly
+// dependent curve rows, badly conditioned; one correction with the same factors recovers the
+// digits the pivoting LU loses.
+Eigen::MatrixXd refined_solve(const LuFactor& lu, const SparseMatrix& K, const Eigen::MatrixXd& rhs) {
+  Eigen::MatrixXd x = lu.solve(rhs);
+  if (x.allFinite()) x += lu.solve(rhs - K * x);
+  return x;
+}
+
+CompressedRows compress_rows(const SparseMatrix& A, Backend backend, double relative_tolerance) {
+  const std::vector<int> reached = reached_columns(A);
+  if (static_cast<double>(A.rows()) * static_cast<double>(reached.size()) <= kDenseReductionEntries) {
+    // Column-pivoted Householder QR of A on the unknowns it reaches: rank-revealing in practice
+    // (SPQR's pivot threshold is a heuristic that keeps nearly dependent curve rows).
+    auto qr = std::make_shared<Eigen::ColPivHouseholderQR<Eigen::MatrixXd>>();
+    qr->setThreshold(relative_tolerance);
+    qr->compute(Eigen::MatrixXd(A * row_picker(A.cols(), reached)));
+    const Eigen::Index k = qr->rank();
+    const Eigen::MatrixXd R = qr->matrixR().topRows(k).triangularView<Eigen::Upper>();
+    Triplets t;
+    for (Eigen::Index c = 0; c < R.cols(); ++c)
+      for (Eigen::Index r = 0; r < k; ++r)
+        if (R(r, c) != 0) t.emplace_back(static_cast<int>(r), reached[qr->colsPermutation().indices()[c]], R(r, c));
+    CompressedRows out;
+    out.rows.resize(k, A.cols());
+    out.rows.setFromTriplets(t.begin(), t.end());
+    out.targets = [qr, k](const Eigen::MatrixXd& b) {
+      return Eigen::MatrixXd((qr->householderQ().transpose() * b).topRows(k));
+    };
+    return out;
+  }
+  double largest = 0;
+  for (int c = 0; c < A.outerSize(); ++c) largest = std::max(largest, A.col(c).norm());
+  SparseMatrix compressed = A;
+  compressed.makeCompressed();
+  const auto run = [&](auto& qr) {
+    qr.setPivotThreshold(relative_tolerance * largest);
+    qr.compute(compressed);
+    if (qr.info() != Eigen::Success) throw SolverError("KKT: QR of the constraint rows failed");
+    const Eigen::Index k = qr.rank();
+    const auto permutation = qr.colsPermutation();  // SPQR returns it by value: keep it alive
+    const Eigen::VectorXi perm = permutation.indices().template cast<int>();
+    const SparseMatrix R = SparseMatrix(qr.matrixR()).topRows(k);
+    Triplets t;
+    for (int c = 0; c < R.outerSize(); ++c)
+      for (SparseMatrix::InnerIterator it(R, c); it; ++it) t.emplace_back(static_cast<int>(it.row()), perm[c], it.value());
+    CompressedRows out;
+    out.rows.resize(k, A.cols());
+    out.rows.setFromTriplets(t.begin(), t.end());
+    const SparseMatrix R11t = SparseMatrix(R.leftCols(k)).transpose();
+    std::vector<int> leading(perm.data(), perm.data() + k);
+    const SparseMatrix AP1t = SparseMatrix(row_picker(A.cols(), leading).transpose()) * SparseMatrix(A.transpose());
+    out.targets = [R11t, AP1t](const Eigen::MatrixXd& b) {
+      return Eigen::MatrixXd(R11t.triangularView<Eigen::Lower>().solve(Eigen::MatrixXd(AP1t * b)));
+    };
+    return out;
+  };
+  if (backend == Backend::Reference) {
+    Eigen::SparseQR<SparseMatrix, Eigen::COLAMDOrdering<int>> qr;
+    return run(qr);
+  }
+  Eigen::SPQR<SparseMatrix> qr;
+  return run(qr);
+}
+
+// The factored Lagrange system over the compressed constraint rows.
+struct KktSolver::System {
+  CompressedRows rows;
+  SparseMatrix K;
+  std::unique_ptr<LuFactor> lu;
+  bool singular = false;
+};
+
+KktSolver::KktSolver(Backend backend) : backend_(backend) {}
+KktSolver::~KktSolver() = default;
+
+std::unique_ptr<KktSolver::System> KktSolver::build(const SparseMatrix& A, std::unique_ptr<LuFactor> recycled) {
+  auto sys = std::make_unique<System>();
+  if (A.rows()) sys->rows = compress_rows(A, backend_, kRowDependenceTolerance);
+  else sys->rows = {SparseMatrix(0, A.cols()), [](const Eigen::MatrixXd& b) { return b; }};
+  sys->K = lagrange_matrix(H_, sys->rows.rows, scale_);
+  if (recycled) sys->lu = std::move(recycled);  // keeps UMFPACK's symbolic analysis when the pattern repeats
+  else if (backend_ == Backend::Reference) sys->lu = std::make_unique<ReferenceLu>();
+  else sys->lu = std::make_unique<UmfpackLu>();
+  if (!sys->lu->factor(sys->K)) {
+    sys->singular = true;
+    return sys;
+  }
+  // UMFPACK may "succeed" on a numerically singular matrix: a random right-hand side probes it
+  // (inconsistent for a singular K, so its residual stays of the order of the right-hand side).
+  std::mt19937 gen(7);
+  std::uniform_real_distribution<double> d(-1, 1);
+  Eigen::VectorXd probe(sys->K.rows());
+  for (Eigen::Index i = 0; i < probe.size(); ++i) probe[i] = d(gen);
+  const Eigen::VectorXd x = refined_solve(*sys->lu, sys->K, probe);
+  sys->singular = !x.allFinite() || (sys->K * x - probe).norm() > 1e-6 * probe.norm();
+  return sys;
+}
+
+void KktSolver::analyze(const QuadraticProgram& qp) {
+  validate(qp);
+  const Timer timer;
+  H_ = qp.H;
+  A_ = qp.A;
+  const double diag = H_.rows() ? H_.diagonal().cwiseAbs().maxCoeff() : 0.0;
+  scale_ = diag > 0 ? diag : 1.0;
+  main_ = build(A_, main_ ? std::move(main_->lu) : nullptr);
+  analyze_s_ = timer.seconds();
+}
+
+int KktSolver::symbolic_analyses() const { return main_ ? main_->lu->analyses() : 0; }
+
+QpReport KktSolver::solve_with(const System& sys, const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) const {
+  QpReport out;
+  const Eigen::Index n = H_.rows();
+  out.dropped_rows = static_cast<int>(A_.rows() - sys.rows.rows.rows());
+  if (sys.singular) {
+    out.p = Eigen::MatrixXd::Zero(n, f.cols());
+    out.message = "KKT system is singular: the constraints do not pin the energy's null space";
+    return out;
+  }
+  Eigen::MatrixXd rhs(sys.K.rows(), f.cols());
+  rhs.topRows(n) = f;
+  rhs.bottomRows(sys.K.rows() - n) = scale_ * sys.rows.targets(b);
+  const Eigen::MatrixXd x = refined_solve(*sys.lu, sys.K, rhs);
+  if (!x.allFinite()) {
+    out.p = Eigen::MatrixXd::Zero(n, f.cols());
+    out.message = "KKT solve produced non-finite values";
+    return out;
+  }
+  out.p = x.topRows(n);
+  out.termination = Termination::Converged;
+  return out;
+}
+
+QpReport KktSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) {
+  FAIRSHAPE_ASSERT(main_, "KktSolver::solve before analyze");
+  if (f.rows() != H_.rows() || b.rows() != A_.rows() || (b.rows() && b.cols() != f.cols()))
+    throw InvalidInput("KKT solve: right-hand sides do not match the analyzed program");
+  QpReport out = solve_with(*main_, f, b);
+  out.constraint_residual = constraint_residual(A_, b, out.p);
+  if (out.termination == Termination::Converged && out.constraint_residual > 1e-9 * (1 + b.norm()))
+    out.message = "inconsistent constraints (or directions weaker than " + std::to_string(kRowDependenceTolerance) +
+                  " of the strongest): least-squares fit, residual " + std::to_string(out.constraint_residual);
+  if (out.dropped_rows) {
+    const std::string note = "dropped " + std::to_string(out.dropped_rows) + " dependent constraint rows";
+    out.message = out.message.empty() ? note : out.message + "; " + note;
+  }
+  return out;
+}
+
+}  // namespace fairshape::qp

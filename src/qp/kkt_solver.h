@@ -1,0 +1,51 @@
+// The Lagrange (KKT) solver of a QuadraticProgram: see kkt_solver.cpp.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "core/backend.h"
+#include "qp/qp_solver.h"
+
+namespace fairshape::qp {
+
+class LuFactor;  // kkt_solver.cpp: UMFPACK or SparseLU
+
+//! Rows R₁Pᵀ equivalent to A p = b, from a QR A P = Q R whose pivots below relative_tolerance ×
+//! A's largest column norm count as zero, and b ↦ Q₁ᵀ b (= R₁₁⁻ᵀ (A P₁)ᵀ b). For consistent b
+//! the same solutions; for inconsistent b the least-squares fit (§4.3's AᵀA p = Aᵀb, without
+//! squaring A's condition number).
+struct CompressedRows {
+  SparseMatrix rows;
+  std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)> targets;
+};
+CompressedRows compress_rows(const SparseMatrix& A, Backend backend, double relative_tolerance);
+//! Curve rows (eq. 7) along a curved path have singular values spread continuously down to
+//! 1e-17 (the locking §4.2.2 warns of): directions weaker than this count as dependent.
+inline constexpr double kRowDependenceTolerance = 1e-8;
+//! Constraint blocks up to this many dense entries (rows × reached unknowns) are reduced densely.
+inline constexpr double kDenseReductionEntries = 4e7;
+
+class KktSolver final : public QpSolver {
+ public:
+  explicit KktSolver(Backend backend);
+  ~KktSolver() override;
+  void analyze(const QuadraticProgram& qp) override;
+  QpReport solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) override;
+  //! Symbolic analyses of the main system so far: analyze() on a program with the same
+  //! sparsity pattern (new weights, a new rest shape) factors numerically only.
+  int symbolic_analyses() const;
+
+ private:
+  struct System;
+  std::unique_ptr<System> build(const SparseMatrix& A, std::unique_ptr<LuFactor> recycled);
+  QpReport solve_with(const System& sys, const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) const;
+
+  Backend backend_;
+  SparseMatrix H_, A_;
+  double scale_ = 1;
+  std::unique_ptr<System> main_;
+};
+
+}  // namespace fairshape::qp

@@ -1,0 +1,50 @@
+// One interface for the solvers of a QuadraticProgram (§4.3 of Welch & Witkin), registered by
+// name with a reference and an optimized back end:
+//   kkt         the Lagrange augmented system (eq. 9), dependent rows dropped first;
+//   qr_penalty  the penalty least squares [μA; K] (eq. 10) by sparse QR, with Van Loan's
+//               iterative refinement of the constraint residual;
+//   range_space CHOLMOD on H + ρAᵀA and the small Schur complement of the constraints, whose
+//               factor is updated in place when constraint rows are added or removed.
+// analyze() pays for everything that depends on H and A; solve() takes new right-hand sides
+// (a drag: same constraints, new targets).
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "core/registry.h"
+#include "qp/quadratic_program.h"
+#include "solver/solver.h"
+
+namespace fairshape::qp {
+
+struct QpReport {
+  Eigen::MatrixXd p;  // n × k
+  Termination termination = Termination::NumericalFailure;
+  std::string message;  // dropped rows, least-squares fallbacks, warnings
+  int dropped_rows = 0;
+  double constraint_residual = 0;  // ‖A p − b‖_F over every row
+  double condition_estimate = std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> residual_history;  // qr_penalty: the residual after each refinement step
+};
+
+class QpSolver {
+ public:
+  virtual ~QpSolver() = default;
+  //! \throw InvalidInput for an invalid program; SolverError when a factorization fails.
+  virtual void analyze(const QuadraticProgram& qp) = 0;
+  //! The minimizer for new f and b (same H and A as analyze()).
+  virtual QpReport solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) = 0;
+  //! Seconds of the last analyze() (factorization), for sweeps.
+  double analyze_seconds() const { return analyze_s_; }
+
+ protected:
+  double analyze_s_ = 0;
+};
+
+using QpSolverRegistry = Registry<QpSolver>;
+void register_qp_solvers(QpSolverRegistry& r);  // both back ends of every solver
+const QpSolverRegistry& qp_solver_registry();
+
+}  // namespace fairshape::qp

@@ -1,0 +1,30 @@
+// The linearly constrained quadratic program of Welch & Witkin §4.3 (eq. 8), the common
+// ground of every surface and curve problem in fairshape:
+//   minimize ½ pᵀ H p − pᵀ f   subject to   A p = b,
+// with one column of p, f and b per coordinate (x, y, z share H and A).
+#pragma once
+
+#include <string>
+
+#include "core/types.h"
+
+namespace fairshape::qp {
+
+struct QuadraticProgram {
+  SparseMatrix H;      // n × n, symmetric positive semi-definite
+  Eigen::MatrixXd f;   // n × k
+  SparseMatrix A;      // m × n constraint rows (dependent and even inconsistent rows allowed)
+  Eigen::MatrixXd b;   // m × k
+  //! Optional sum-of-squares form of the energy, KᵀK = H (the QR-penalty solver factors [μA; K]
+  //! instead of H); empty: derived from H when needed.
+  SparseMatrix K;
+};
+
+//! \throw InvalidInput naming the mismatched or non-finite part.
+void validate(const QuadraticProgram& qp);
+//! ½ Σ_c p_cᵀ H p_c − f_cᵀ p_c.
+double objective(const QuadraticProgram& qp, const Eigen::MatrixXd& p);
+//! ‖A p − b‖_F.
+double constraint_residual(const SparseMatrix& A, const Eigen::MatrixXd& b, const Eigen::MatrixXd& p);
+
+}  // namespace fairshape::qp

@@ -1,0 +1,50 @@
+// A range-space solver of the KKT system with CHOLMOD, the peer the Lagrange and penalty
+// solvers are measured against, and the one whose factor can be updated in place:
+//   H_ρ = H + ρ AᵀA  (same minimizer on {A p = b}; positive definite once A pins H's null space),
+//   S = A H_ρ⁻¹ Aᵀ   (m × m, dense: constraint counts are small next to n),
+//   λ = S⁺ (A H_ρ⁻¹ g − b),  p = H_ρ⁻¹ (g − Aᵀλ),  g = f + ρ Aᵀ b.
+// Adding constraint rows C is the rank-|C| update H_ρ + ρ CᵀC, removing them the downdate:
+// cholmod_updown changes the factor (simplicial LDLᵀ) instead of refactoring, and only the
+// small S is rebuilt. Dependent rows leave S singular; a complete orthogonal decomposition
+// (minimum-norm λ) takes care of them, so nothing needs dropping.
+#pragma once
+
+#include <Eigen/QR>
+
+#include <memory>
+#include <vector>
+
+#include "qp/qp_solver.h"
+
+namespace fairshape::qp {
+
+class RangeSpaceSolver final : public QpSolver {
+ public:
+  RangeSpaceSolver();
+  ~RangeSpaceSolver() override;
+  void analyze(const QuadraticProgram& qp) override;
+  QpReport solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) override;
+
+  //! Appends constraint rows (their targets come with the next solve's b). \throw InvalidInput
+  //! when the column count differs.
+  void add_rows(const SparseMatrix& rows);
+  //! Removes the given rows (indices into the current A).
+  void remove_rows(std::vector<int> rows);
+  const SparseMatrix& constraints() const { return A_; }
+
+ private:
+  void updown(bool update, const SparseMatrix& rows);
+  void rebuild_schur();
+  Eigen::MatrixXd solve_h(const Eigen::MatrixXd& rhs) const;
+
+  struct Cholmod;
+  std::unique_ptr<Cholmod> chol_;
+  SparseMatrix H_, A_;
+  double rho_ = 1;
+  Eigen::MatrixXd Z_;  // H_ρ⁻¹ Aᵀ
+  Eigen::MatrixXd S_;
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> schur_;  // rank-revealing: dependent rows
+  bool singular_ = false;
+};
+
+}  // namespace fairshape::qp

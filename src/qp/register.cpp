@@ -1,0 +1,47 @@
+#include "core/config.h"
+#include "qp/kkt_solver.h"
+#include "qp/qr_penalty_solver.h"
+#include "qp/range_space_solver.h"
+
+namespace fairshape::qp {
+
+namespace {
+QrPenaltyOptions read_penalty(Config& cfg) {
+  QrPenaltyOptions o;
+  o.mu = cfg.get_number("mu", o.mu, 1e-6, 1e12,
+                        "penalty weight of the constraint rows, relative to the energy's scale (sqrt(max diag H) / max|A|)");
+  o.refinement_steps = cfg.get_int("refinement_steps", o.refinement_steps, 0, 100,
+                                   "Van Loan weighting-method steps refining the constraint residual with the same factorization");
+  return o;
+}
+}  // namespace
+
+void register_qp_solvers(QpSolverRegistry& r) {
+  for (const Backend backend : {Backend::Reference, Backend::Optimized}) {
+    const bool ref = backend == Backend::Reference;
+    r.add("kkt", backend,
+          ref ? "Lagrange system (eq. 9): Eigen SparseQR drops dependent rows, Eigen SparseLU factors"
+              : "Lagrange system (eq. 9): SuiteSparseQR drops dependent rows, UMFPACK factors (symbolic analysis reused)",
+          [backend](Config&) -> std::unique_ptr<QpSolver> { return std::make_unique<KktSolver>(backend); });
+    r.add("qr_penalty", backend,
+          ref ? "penalty least squares [mu A; K] (eq. 10) by Eigen SparseQR, Van Loan refinement"
+              : "penalty least squares [mu A; K] (eq. 10) by SuiteSparseQR, Van Loan refinement",
+          [backend](Config& cfg) -> std::unique_ptr<QpSolver> {
+            return std::make_unique<QrPenaltySolver>(backend, read_penalty(cfg));
+          });
+  }
+  r.add("range_space", Backend::Optimized,
+        "CHOLMOD on H + rho A'A and the dense Schur complement of the constraints; rows added/removed by cholmod_updown",
+        [](Config&) -> std::unique_ptr<QpSolver> { return std::make_unique<RangeSpaceSolver>(); });
+}
+
+const QpSolverRegistry& qp_solver_registry() {
+  static const QpSolverRegistry registry = [] {
+    QpSolverRegistry r("constrained solver");
+    register_qp_solvers(r);
+    return r;
+  }();
+  return registry;
+}
+
+}  // namespace fairshape::qp

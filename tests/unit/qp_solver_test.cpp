@@ -1,0 +1,176 @@
+// The constrained quadratic solvers (Welch & Witkin §4.3) on B-spline problems.
+#include <catch2/catch.hpp>
+
+#include "bspline/hierarchical_surface.h"
+#include "bspline/surface_constraints.h"
+#include "bspline/thin_plate_energy.h"
+#include "core/config.h"
+#include "qp/kkt_solver.h"
+#include "qp/qp_solver.h"
+#include "qp/qr_penalty_solver.h"
+#include "qp/range_space_solver.h"
+
+using namespace fairshape;
+using namespace fairshape::bspline;
+using namespace fairshape::qp;
+
+namespace {
+
+// A 6×6 bicubic sheet with a point constraint at each corner region, a lifted center point and
+// a curve constraint across it: bending energy, flat rest position.
+struct SheetProblem {
+  HierarchicalSurface s{{6, 6, 3, false}};
+  QuadraticProgram qp;
+  int curve_row_count = 0;
+  SheetProblem() {
+    s.refine({{0, 2, 2}, {0, 3, 2}, {0, 2, 3}, {0, 3, 3}});
+    TensionWeights w;
+    w.alpha = 0.1 * Eigen::Matrix2d::Identity();
+    qp.H = thin_plate_hessian(s, w, Backend::Optimized);
+    qp.K = thin_plate_square_root(s, w);
+    qp.f = Eigen::MatrixXd::Zero(s.dof_count(), 3);
+    std::vector<ConstraintRows> parts;
+    for (const auto& [u, v] : std::vector<std::pair<double, double>>{{0.5, 0.5}, {5.5, 0.5}, {0.5, 5.5}, {5.5, 5.5}})
+      parts.push_back(point_rows(s, u, v, Vec3(u, v, 0)));
+    parts.push_back(point_rows(s, 3, 3, Vec3(3, 3, 1.5)));
+    CurveAttachment c;
+    for (int k = 0; k <= 10; ++k) {
+      const double u = 1 + 0.4 * k;
+      c.uv.emplace_back(u, 2.0);
+      c.space.emplace_back(u, 2.0, 0.5 * std::sin(0.3 * k));
+    }
+    const ConstraintRows curve = curve_rows(s, c, CurveQuadrature::Exact);
+    curve_row_count = static_cast<int>(curve.A.rows());
+    parts.push_back(curve);
+    const ConstraintRows all = stack(parts, s.dof_count());
+    qp.A = all.A;
+    qp.b = all.C;
+  }
+};
+
+std::unique_ptr<QpSolver> make(const std::string& name, Backend backend, const std::string& yaml = "{}") {
+  Config cfg(YAML::Load(yaml), "solver");
+  auto solver = qp_solver_registry().create(name, backend, cfg);
+  cfg.check_no_unknown_keys();
+  return solver;
+}
+
+}  // namespace
+
+TEST_CASE("KKT: constraints to 1e-10, dependent curve rows dropped and reported, reference equals optimized", "[qp]") {
+  SheetProblem pr;
+  QpReport reports[2];
+  for (const Backend backend : {Backend::Reference, Backend::Optimized}) {
+    auto solver = make("kkt", backend);
+    solver->analyze(pr.qp);
+    QpReport r = solver->solve(pr.qp.f, pr.qp.b);
+    REQUIRE(r.termination == Termination::Converged);
+    CHECK(r.constraint_residual < 1e-10 * (1 + pr.qp.b.norm()));
+    CHECK(r.dropped_rows > 0);  // an isoparametric curve: r+1 independent rows per span
+    CHECK(r.message.find("dropped") != std::string::npos);
+    reports[backend == Backend::Optimized] = r;
+  }
+  CHECK((reports[0].p - reports[1].p).norm() <= 1e-8 * reports[1].p.norm());
+  // Optimality: the energy gradient lies in the row space of A (KKT stationarity).
+  const Eigen::MatrixXd g = pr.qp.H * reports[1].p - pr.qp.f;
+  const Eigen::MatrixXd At = Eigen::MatrixXd(SparseMatrix(pr.qp.A.transpose()));
+  const Eigen::MatrixXd lambda = At.completeOrthogonalDecomposition().solve(g);
+  CHECK((At * lambda - g).norm() < 1e-8 * (1 + g.norm()));
+}
+
+TEST_CASE("KKT reuses UMFPACK's symbolic analysis for a program with the same pattern", "[qp]") {
+  SheetProblem pr;
+  KktSolver solver(Backend::Optimized);
+  solver.analyze(pr.qp);
+  QuadraticProgram stiffer = pr.qp;
+  stiffer.H *= 3.0;
+  solver.analyze(stiffer);
+  CHECK(solver.symbolic_analyses() == 1);
+  const QpReport r = solver.solve(stiffer.f, stiffer.b);
+  CHECK(r.constraint_residual < 1e-10 * (1 + pr.qp.b.norm()));
+}
+
+TEST_CASE("QR-penalty: each refinement step shrinks the residual; agrees with KKT as mu grows", "[qp]") {
+  SheetProblem pr;
+  auto kkt = make("kkt", Backend::Optimized);
+  kkt->analyze(pr.qp);
+  const Eigen::MatrixXd exact = kkt->solve(pr.qp.f, pr.qp.b).p;
+  for (const Backend backend : {Backend::Reference, Backend::Optimized}) {
+    auto penalty = make("qr_penalty", backend, "{mu: 10, refinement_steps: 4}");
+    penalty->analyze(pr.qp);
+    const QpReport r = penalty->solve(pr.qp.f, pr.qp.b);
+    REQUIRE(r.termination == Termination::Converged);
+    REQUIRE(r.residual_history.size() == 5);
+    for (std::size_t k = 1; k < r.residual_history.size(); ++k) CHECK(r.residual_history[k] < r.residual_history[k - 1]);
+    INFO("residuals " << r.residual_history[0] << " ... " << r.residual_history.back());
+    double previous_error = std::numeric_limits<double>::infinity();
+    for (const double mu : {1e2, 1e4, 1e6}) {
+      auto plain = make("qr_penalty", backend, "{mu: " + std::to_string(mu) + ", refinement_steps: 0}");
+      plain->analyze(pr.qp);
+      const double error = (plain->solve(pr.qp.f, pr.qp.b).p - exact).norm() / exact.norm();
+      INFO("mu " << mu << " error " << error);
+      CHECK(error < previous_error);
+      previous_error = error;
+    }
+    CHECK(previous_error < 1e-3);  // slow: nearly dependent curve rows are weakly penalized
+  }
+}
+
+TEST_CASE("range space: agrees with KKT, and added/removed rows update the factor to the refactored answer", "[qp]") {
+  SheetProblem pr;
+  auto kkt = make("kkt", Backend::Optimized);
+  kkt->analyze(pr.qp);
+  const Eigen::MatrixXd exact = kkt->solve(pr.qp.f, pr.qp.b).p;
+  RangeSpaceSolver rs;
+  rs.analyze(pr.qp);
+  const QpReport r = rs.solve(pr.qp.f, pr.qp.b);
+  REQUIRE(r.termination == Termination::Converged);
+  CHECK((r.p - exact).norm() < 1e-7 * exact.norm());
+  CHECK(r.constraint_residual < 1e-8 * (1 + pr.qp.b.norm()));
+
+  // One more point constraint, by update and by a fresh analysis.
+  const ConstraintRows extra = point_rows(pr.s, 1.5, 4.0, Vec3(1.5, 4.0, -0.7));
+  rs.add_rows(extra.A);
+  const ConstraintRows grown = stack({{pr.qp.A, pr.qp.b}, extra}, pr.s.dof_count());
+  QuadraticProgram bigger = pr.qp;
+  bigger.A = grown.A;
+  bigger.b = grown.C;
+  kkt->analyze(bigger);
+  const Eigen::MatrixXd exact2 = kkt->solve(bigger.f, bigger.b).p;
+  CHECK((rs.solve(bigger.f, bigger.b).p - exact2).norm() < 1e-7 * exact2.norm());
+  // And removed again.
+  rs.remove_rows({static_cast<int>(bigger.A.rows()) - 1});
+  CHECK((rs.solve(pr.qp.f, pr.qp.b).p - exact).norm() < 1e-7 * exact.norm());
+}
+
+TEST_CASE("constrained solvers report singular and inconsistent problems instead of returning NaN", "[qp]") {
+  SheetProblem pr;
+  // A single point constraint leaves the bending null space {1, u, v} unpinned.
+  QuadraticProgram loose = pr.qp;
+  const ConstraintRows one = point_rows(pr.s, 3, 3, Vec3(0, 0, 1));
+  loose.A = one.A;
+  loose.b = one.C;
+  loose.H = thin_plate_hessian(pr.s, TensionWeights{}, Backend::Optimized);
+  loose.K = thin_plate_square_root(pr.s, TensionWeights{});
+  for (const std::string name : {"kkt", "qr_penalty"}) {
+    auto solver = make(name, Backend::Optimized);
+    solver->analyze(loose);
+    const QpReport r = solver->solve(loose.f, loose.b);
+    INFO(name << ": " << r.message);
+    CHECK(r.termination == Termination::NumericalFailure);
+    CHECK(r.p.allFinite());
+    CHECK(r.message.find("null space") != std::string::npos);
+  }
+  // The same point pulled to two places: least-squares fit with the residual reported.
+  QuadraticProgram inconsistent = pr.qp;
+  const ConstraintRows twice = stack({{pr.qp.A, pr.qp.b}, point_rows(pr.s, 3, 3, Vec3(3, 3, -1.5))}, pr.s.dof_count());
+  inconsistent.A = twice.A;
+  inconsistent.b = twice.C;
+  auto kkt = make("kkt", Backend::Optimized);
+  kkt->analyze(inconsistent);
+  const QpReport r = kkt->solve(inconsistent.f, inconsistent.b);
+  CHECK(r.termination == Termination::Converged);
+  CHECK(r.message.find("inconsistent") != std::string::npos);
+  CHECK(r.constraint_residual == Approx(3.0 / std::sqrt(2.0)).epsilon(1e-6));  // midway: 1.5 off each way
+  CHECK(r.p.allFinite());
+}

@@ -1,11 +1,11 @@
 // The Lagrange augmented system of Welch & Witkin eq. 9,
 //   [H   sĀᵀ] [p]   [ f  ]
 //   [sĀ   0 ] [y] = [s b̄],
-// over Ā p = b̄, a reduction of A p = b to independent rows (§4.3): A P = Q R by a rank-revealing
-// QR (dense column-pivoted Householder on the unknowns A reaches when that is small, SPQR /
-// Eigen SparseQR otherwise), Ā = R₁Pᵀ, b̄ = Q₁ᵀ b. Consistent constraints keep their solutions;
-// inconsistent ones get the least-squares fit (the paper's AᵀA p = Aᵀb, without squaring A's
-// condition number), reported with its residual. Scaled by s = max diag H so the LU keeps its
+// over Ā p = b̄, a maximal independent subset of the constraint rows (§4.3), chosen by a
+// rank-revealing QR of Aᵀ (dense column-pivoted Householder on the unknowns A reaches when that
+// is small, SPQR / Eigen SparseQR otherwise). When the dropped rows disagree with the kept ones,
+// the rows are instead reduced to Ā = R₁Pᵀ, b̄ = Q₁ᵀ b from A P = Q R: the least-squares fit (the
+// paper's AᵀA p = Aᵀb, without squaring A's condition number), reported with its residual. Scaled by s = max diag H so the LU keeps its
 // digits. Optimized: UMFPACK, whose symbolic analysis is reused while the pattern stays the
 // same; reference: Eigen SparseLU.
 #include <Eigen/QR>
@@ -109,6 +109,23 @@ Eigen::MatrixXd refined_solve(const LuFactor& lu, const SparseMatrix& K, const E
   return x;
 }
 
+CompressedRows independent_rows_of(const SparseMatrix& A, Backend backend, double relative_tolerance) {
+  const std::vector<int> reached = reached_columns(A);
+  std::vector<int> keep;
+  if (static_cast<double>(A.rows()) * static_cast<double>(reached.size()) <= kDenseReductionEntries) {
+    // Column pivoting on Aᵀ picks rows in order of independence: rank-revealing in practice.
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr;
+    qr.setThreshold(relative_tolerance);
+    qr.compute(Eigen::MatrixXd(SparseMatrix(A * row_picker(A.cols(), reached)).transpose()));
+    for (Eigen::Index k = 0; k < qr.rank(); ++k) keep.push_back(qr.colsPermutation().indices()[k]);
+    std::sort(keep.begin(), keep.end());
+  } else {
+    keep = independent_rows(A, backend);
+  }
+  const SparseMatrix pick_t = SparseMatrix(row_picker(A.rows(), keep).transpose());
+  return {pick_t * A, [pick_t](const Eigen::MatrixXd& b) { return Eigen::MatrixXd(pick_t * b); }};
+}
+
 CompressedRows compress_rows(const SparseMatrix& A, Backend backend, double relative_tolerance) {
   const std::vector<int> reached = reached_columns(A);
   if (static_cast<double>(A.rows()) * static_cast<double>(reached.size()) <= kDenseReductionEntries) {
@@ -176,10 +193,9 @@ struct KktSolver::System {
 KktSolver::KktSolver(Backend backend) : backend_(backend) {}
 KktSolver::~KktSolver() = default;
 
-std::unique_ptr<KktSolver::System> KktSolver::build(const SparseMatrix& A, std::unique_ptr<LuFactor> recycled) {
+std::unique_ptr<KktSolver::System> KktSolver::build(CompressedRows rows, std::unique_ptr<LuFactor> recycled) {
   auto sys = std::make_unique<System>();
-  if (A.rows()) sys->rows = compress_rows(A, backend_, kRowDependenceTolerance);
-  else sys->rows = {SparseMatrix(0, A.cols()), [](const Eigen::MatrixXd& b) { return b; }};
+  sys->rows = std::move(rows);
   sys->K = lagrange_matrix(H_, sys->rows.rows, scale_);
   if (recycled) sys->lu = std::move(recycled);  // keeps UMFPACK's symbolic analysis when the pattern repeats
   else if (backend_ == Backend::Reference) sys->lu = std::make_unique<ReferenceLu>();
@@ -206,7 +222,18 @@ void KktSolver::analyze(const QuadraticProgram& qp) {
   A_ = qp.A;
   const double diag = H_.rows() ? H_.diagonal().cwiseAbs().maxCoeff() : 0.0;
   scale_ = diag > 0 ? diag : 1.0;
-  main_ = build(A_, main_ ? std::move(main_->lu) : nullptr);
+  least_squares_.reset();
+  reduced_ = false;
+  CompressedRows rows = A_.rows() ? independent_rows_of(A_, backend_, kRowDependenceTolerance)
+                                  : CompressedRows{SparseMatrix(0, A_.cols()), [](const Eigen::MatrixXd& b) { return b; }};
+  const bool dropped = rows.rows.rows() < A_.rows();
+  main_ = build(std::move(rows), main_ ? std::move(main_->lu) : nullptr);
+  if (main_->singular && dropped) {
+    // The kept original rows are still nearly dependent (curve rows along a curved path): the
+    // orthogonal reduction R₁Pᵀ is well conditioned where a subset of the rows is not.
+    main_ = build(compress_rows(A_, backend_, kRowDependenceTolerance), nullptr);
+    reduced_ = true;
+  }
   analyze_s_ = timer.seconds();
 }
 
@@ -241,9 +268,19 @@ QpReport KktSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) {
     throw InvalidInput("KKT solve: right-hand sides do not match the analyzed program");
   QpReport out = solve_with(*main_, f, b);
   out.constraint_residual = constraint_residual(A_, b, out.p);
-  if (out.termination == Termination::Converged && out.constraint_residual > 1e-9 * (1 + b.norm()))
+  if (reduced_ && out.termination == Termination::Converged && out.constraint_residual > 1e-9 * (1 + b.norm()))
     out.message = "inconsistent constraints (or directions weaker than " + std::to_string(kRowDependenceTolerance) +
                   " of the strongest): least-squares fit, residual " + std::to_string(out.constraint_residual);
+  else if (out.termination == Termination::Converged && out.dropped_rows > 0 && out.constraint_residual > 1e-9 * (1 + b.norm())) {
+    // The dropped rows disagree with the kept ones: fit all of them in the least-squares sense.
+    if (!least_squares_) least_squares_ = build(compress_rows(A_, backend_, kRowDependenceTolerance), nullptr);
+    const int dropped = out.dropped_rows;
+    out = solve_with(*least_squares_, f, b);
+    out.dropped_rows = dropped;
+    out.constraint_residual = constraint_residual(A_, b, out.p);
+    out.message = "inconsistent constraints (or directions weaker than " + std::to_string(kRowDependenceTolerance) +
+                  " of the strongest): least-squares fit, residual " + std::to_string(out.constraint_residual);
+  }
   if (out.dropped_rows) {
     const std::string note = "dropped " + std::to_string(out.dropped_rows) + " dependent constraint rows";
     out.message = out.message.empty() ? note : out.message + "; " + note;

@@ -21,6 +21,8 @@ struct CompressedRows {
   std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)> targets;
 };
 CompressedRows compress_rows(const SparseMatrix& A, Backend backend, double relative_tolerance);
+//! The rows a rank-revealing QR of Aᵀ keeps (same tolerance), and b ↦ those entries of b.
+CompressedRows independent_rows_of(const SparseMatrix& A, Backend backend, double relative_tolerance);
 //! Curve rows (eq. 7) along a curved path have singular values spread continuously down to
 //! 1e-17 (the locking §4.2.2 warns of): directions weaker than this count as dependent.
 inline constexpr double kRowDependenceTolerance = 1e-8;
@@ -39,13 +41,14 @@ class KktSolver final : public QpSolver {
 
  private:
   struct System;
-  std::unique_ptr<System> build(const SparseMatrix& A, std::unique_ptr<LuFactor> recycled);
+  std::unique_ptr<System> build(CompressedRows rows, std::unique_ptr<LuFactor> recycled);
   QpReport solve_with(const System& sys, const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) const;
 
   Backend backend_;
   SparseMatrix H_, A_;
   double scale_ = 1;
-  std::unique_ptr<System> main_;
+  std::unique_ptr<System> main_, least_squares_;
+  bool reduced_ = false;  // main_ works on R₁Pᵀ rather than a subset of A's rows
 };
 
 }  // namespace fairshape::qp

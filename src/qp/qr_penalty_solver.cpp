@@ -69,11 +69,11 @@ void QrPenaltySolver::analyze(const QuadraticProgram& qp) {
   if (backend_ == Backend::Reference) {
     auto qr = std::make_shared<Eigen::SparseQR<SparseMatrix, Eigen::COLAMDOrdering<int>>>();
     factor_r(*qr, M, R_, permutation_, rank_);
-    least_squares_ = [qr](const Eigen::MatrixXd& rhs) { return Eigen::MatrixXd(qr->solve(rhs)); };
+    if (options_.orthogonal) least_squares_ = [qr](const Eigen::MatrixXd& rhs) { return Eigen::MatrixXd(qr->solve(rhs)); };
   } else {
     auto qr = std::make_shared<Eigen::SPQR<SparseMatrix>>();
     factor_r(*qr, M, R_, permutation_, rank_);
-    least_squares_ = [qr](const Eigen::MatrixXd& rhs) { return Eigen::MatrixXd(qr->solve(rhs)); };
+    if (options_.orthogonal) least_squares_ = [qr](const Eigen::MatrixXd& rhs) { return Eigen::MatrixXd(qr->solve(rhs)); };
   }
   Rt_ = R_.transpose();
   if (R_.rows() < R_.cols()) rank_ = std::min(rank_, static_cast<int>(R_.rows()));
@@ -113,14 +113,20 @@ QpReport QrPenaltySolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd&
                   "): the constraints do not pin the energy's null space, or mu is too large for the energy's scale";
     return out;
   }
-  // The energy's linear term through the corrected semi-normal equations (f need not be Kᵀk);
-  // the constraint targets through Q, as a plain least-squares solve of [μA; K] p ≈ [μb; 0].
-  const Eigen::MatrixXd from_f = f.isZero(0) ? Eigen::MatrixXd::Zero(H_.rows(), f.cols()) : semi_normal_solve(f);
+  // orthogonal: the energy's linear term through the corrected semi-normal equations (f need
+  // not be Kᵀk), the constraint targets through Q (argmin ‖[μA; K] p − [μb; 0]‖).
+  // semi_normal: everything through R alone.
+  const Eigen::MatrixXd from_f =
+      options_.orthogonal && f.isZero(0) ? Eigen::MatrixXd::Zero(H_.rows(), f.cols()) : Eigen::MatrixXd();
   Eigen::MatrixXd shifted = b;  // Van Loan's weighting method: b plus the accumulated residual
   Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(rows_, f.cols());
   for (int step = 0; step <= options_.refinement_steps; ++step) {
-    rhs.topRows(A_.rows()) = weight_ * shifted;
-    out.p = from_f + least_squares_(rhs);
+    if (options_.orthogonal) {
+      rhs.topRows(A_.rows()) = weight_ * shifted;
+      out.p = (from_f.size() ? from_f : semi_normal_solve(f)) + least_squares_(rhs);
+    } else {
+      out.p = semi_normal_solve(weight_ * weight_ * (At_ * shifted) + f);
+    }
     const Eigen::MatrixXd residual = b - A_ * out.p;
     out.residual_history.push_back(residual.norm());
     shifted += residual;

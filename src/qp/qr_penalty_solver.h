@@ -1,8 +1,8 @@
 // The penalty method of Welch & Witkin eq. 10: minimize ‖K p − k‖² + ‖μ(A p − b)‖² through a
 // sparse QR of the stacked [μA; K] (optimized SuiteSparseQR, reference Eigen SparseQR), never
-// forming AᵀA. The constraint targets go through Q (a least-squares solve of [μA; K] p ≈
-// [μb; 0], accurate to cond(M)·ε); a nonzero energy term f, which need not come as Kᵀk, goes
-// through R alone, by Björck's corrected semi-normal equations.
+// forming AᵀA. By default only R is used (Björck's corrected semi-normal equations: two
+// triangular solves and one correction, so f need not come as Kᵀk); with `orthogonal` the
+// constraint targets go through Q as a true least-squares solve.
 // Van Loan's weighting method then refines the constraint residual with the same R: the
 // target b is shifted by the remaining residual, `refinement_steps` times; each step shrinks
 // ‖A p − b‖ by roughly the factor 1/(1 + μ²σ²) (σ the constraint-energy scale ratio).
@@ -21,6 +21,9 @@ namespace fairshape::qp {
 struct QrPenaltyOptions {
   double mu = 1e3;
   int refinement_steps = 3;
+  //! true: keep Q and solve through it (accurate to cond·ε, slow: Q of the tall [μA; K] is
+  //! large); false: R alone, corrected semi-normal equations (fast, cond²·ε before correction).
+  bool orthogonal = false;
 };
 
 class QrPenaltySolver final : public QpSolver {

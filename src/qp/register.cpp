@@ -12,6 +12,9 @@ QrPenaltyOptions read_penalty(Config& cfg) {
                         "penalty weight of the constraint rows, relative to the energy's scale (sqrt(max diag H) / max|A|)");
   o.refinement_steps = cfg.get_int("refinement_steps", o.refinement_steps, 0, 100,
                                    "Van Loan weighting-method steps refining the constraint residual with the same factorization");
+  o.orthogonal = cfg.get_choice("solve", "semi_normal", {"semi_normal", "orthogonal"},
+                                "semi_normal: R only (corrected semi-normal equations, fast); orthogonal: through Q (slow, accurate)") ==
+                 "orthogonal";
   return o;
 }
 }  // namespace

@@ -31,16 +31,18 @@ struct Sheet32 {
     qp.K = thin_plate_square_root(s, w);
     qp.f = Eigen::MatrixXd::Zero(s.dof_count(), 3);
     std::vector<ConstraintRows> parts;
+    // Points and curve sample one smooth height field, so the constraints are consistent.
+    const auto height = [](double u, double v) { return 0.3 * std::sin(0.2 * u) * std::cos(0.15 * v); };
     for (int a = 0; a < 10; ++a)
       for (int b = 0; b < 10; ++b) {
         const double u = 1.6 + 3.2 * a, v = 1.6 + 3.2 * b;
-        parts.push_back(point_rows(s, u, v, Vec3(u, v, 0.3 * std::sin(0.2 * u) * std::cos(0.15 * v))));
+        parts.push_back(point_rows(s, u, v, Vec3(u, v, height(u, v))));
       }
     CurveAttachment c;
     for (int k = 0; k <= 40; ++k) {
       const double t = k / 40.0;
       c.uv.emplace_back(3 + 26 * t, 16 + 6 * std::sin(3 * t));
-      c.space.emplace_back(c.uv.back().x(), c.uv.back().y(), 0.5 * std::sin(6 * t));
+      c.space.emplace_back(c.uv.back().x(), c.uv.back().y(), height(c.uv.back().x(), c.uv.back().y()));
     }
     parts.push_back(curve_rows(s, c, CurveQuadrature::Exact));
     const ConstraintRows all = stack(parts, s.dof_count());

@@ -56,6 +56,12 @@ class ReferenceLu final : public LuFactor {
 // UMFPACK with the symbolic analysis kept across factorizations of the same pattern.
 class UmfpackLu final : public LuFactor {
  public:
+  UmfpackLu() {
+    // The Lagrange matrix is structurally symmetric: the symmetric strategy orders it like a
+    // Cholesky factor (the unsymmetric default filled it 10x); refinement is done by the caller.
+    lu_.umfpackControl()(UMFPACK_STRATEGY) = UMFPACK_STRATEGY_SYMMETRIC;
+    lu_.umfpackControl()(UMFPACK_IRSTEP) = 0;
+  }
   bool factor(const SparseMatrix& K) override {
     if (!same_pattern(K)) {
       lu_.analyzePattern(K);
@@ -105,7 +111,9 @@ SparseMatrix lagrange_matrix(const SparseMatrix& H, const SparseMatrix& A, doubl
 // digits the pivoting LU loses.
 Eigen::MatrixXd refined_solve(const LuFactor& lu, const SparseMatrix& K, const Eigen::MatrixXd& rhs) {
   Eigen::MatrixXd x = lu.solve(rhs);
-  if (x.allFinite()) x += lu.solve(rhs - K * x);
+  if (!x.allFinite()) return x;
+  const Eigen::MatrixXd r = rhs - K * x;
+  if (r.norm() > 1e-14 * rhs.norm()) x += lu.solve(r);
   return x;
 }
 

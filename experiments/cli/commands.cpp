@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "curve_design/curve_components.h"
+#include "qp/qp_solver.h"
 #include "experiment/components.h"
 #include "energy/local_quadratic.h"
 #include "io/matrix_market.h"
@@ -169,6 +170,7 @@ int cmd_list() {
   list_registry("curve energies (optimization.smoothness)", curves.energies);
   list_registry("curve constraints (optimization.constraints)", curves.constraints);
   list_registry("length solvers (optimization.solver)", curves.solvers);
+  list_registry("constrained solvers (sheet configs: solver; Welch & Witkin eq. 9/10)", qp::qp_solver_registry());
   return 0;
 }
 

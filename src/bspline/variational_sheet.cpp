@@ -96,8 +96,11 @@ std::vector<CellError> constraint_errors(const VariationalSheet& sheet, const st
       record(uv.x(), uv.y(), (s.position(P, uv.x(), uv.y()) - polyline_at(c.curve.space, t)).norm());
     }
   }
-  std::vector<CellError> out;
-  for (const auto& [cell, e] : worst) out.push_back({cell, e});
+  std::vector<CellError> out;  // every leaf cell, 0 where no constraint acts
+  for (const SpanId& cell : s.leaf_cells()) {
+    const auto it = worst.find(cell);
+    out.push_back({cell, it == worst.end() ? 0.0 : it->second});
+  }
   return out;
 }
 

@@ -60,7 +60,8 @@ qp::QuadraticProgram assemble(const VariationalSheet& sheet, const SheetEnergy& 
                               const std::vector<SheetConstraint>& constraints, Backend backend);
 
 //! Constraint error per leaf cell (§4.4): point-to-point distances at the points, and
-//! curve-to-curve distances |w(c(t)) − D(t)| sampled along each curve, the largest per cell.
+//! curve-to-curve distances |w(c(t)) − D(t)| sampled along each curve, the largest per cell;
+//! every leaf cell is listed (0 where no constraint acts).
 struct CellError {
   SpanId cell;
   double error;

@@ -245,6 +245,22 @@ SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config) {
     }
     s.constraints.push_back(std::move(cs));
   }
+  // Every (u, v) inside its sheet's domain, checked before anything runs.
+  const auto check_uv = [&](const std::string& sheet, const std::vector<Eigen::Vector2d>& uv, const std::string& what) {
+    const bspline::HierarchicalSurface domain(s.sheets[sheet_index(sheet, what)].shape);
+    try {
+      for (std::size_t i = 0; i < uv.size(); ++i)
+        bspline::check_in_domain(domain, uv[i].x(), uv[i].y(), uv.size() > 1 ? what + ", (u, v) point " + std::to_string(i) : what);
+    } catch (const InvalidInput& e) {
+      throw InvalidConfig(e.what());
+    }
+  };
+  for (std::size_t i = 0; i < s.curves.size(); ++i)
+    if (!s.curves[i].from_sheet.empty())
+      check_uv(s.curves[i].from_sheet, s.curves[i].uv, "curves[" + std::to_string(i) + "].from_surface.uv");
+  for (const SheetConstraintSpec& cs : s.constraints)
+    check_uv(cs.sheet, cs.curve.empty() ? std::vector<Eigen::Vector2d>{{cs.constraint.u, cs.constraint.v}} : cs.constraint.curve.uv,
+             cs.label);
   Config ec = root.child("energy", "objective (§4.1): {metric, alpha, beta, rest_shape}");
   s.energy.metric = ec.get_choice("metric", "thin_plate", {"thin_plate", "displacement"},
                                   "thin plate under tension (eq. 4/6) or control-point displacement |p - p0|^2") == "thin_plate"
@@ -283,7 +299,7 @@ SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config) {
   rc.check_no_unknown_keys();
   Config oc = root.child("output", "what each run writes");
   s.samples_per_span = oc.get_int("samples_per_span", 6, 1, 64, "tessellation of final.obj and the VTK per base span");
-  s.vtk = oc.get<bool>("vtk", true, "write vtk/<run>_step<k>_<sheet>.vtp");
+  s.vtk = oc.get<bool>("vtk", true, "write vtk/<run>_step<k>.vtp (all sheets) after every step");
   oc.check_no_unknown_keys();
   root.check_no_unknown_keys();
   return s;
@@ -344,20 +360,26 @@ SurfaceMesh tessellate(const bspline::VariationalSheet& sheet, int per_span, con
   return m;
 }
 
-MatrixX3 concat(const std::vector<SurfaceMesh>& meshes, PolygonList& faces) {
+// The sheets as one mesh (separate components), with their displacement_norm arrays.
+SurfaceMesh combine(const std::vector<SurfaceMesh>& meshes) {
   Eigen::Index n = 0;
   for (const auto& m : meshes) n += m.n_vertices();
   MatrixX3 V(n, 3);
+  Eigen::MatrixXd displacement(n, 1);
+  PolygonList faces;
   Eigen::Index offset = 0;
   for (const auto& m : meshes) {
     V.middleRows(offset, m.n_vertices()) = m.positions();
+    displacement.middleRows(offset, m.n_vertices()) = m.vertex_data.at("displacement_norm");
     for (auto f : m.polygons()) {
       for (int& v : f) v += static_cast<int>(offset);
       faces.push_back(f);
     }
     offset += m.n_vertices();
   }
-  return V;
+  SurfaceMesh out = SurfaceMesh::from_polygons(V, faces);
+  out.vertex_data["displacement_norm"] = displacement;
+  return out;
 }
 
 }  // namespace
@@ -455,14 +477,15 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
           if (std::isfinite(r.qp.condition_estimate)) cond = std::max(cond, r.qp.condition_estimate);
         }
       }
-      // Per step: the sheets and the space curves.
-      if (spec.vtk || step + 1 >= spec.steps()) {
-        fs::create_directories(fs::path(out.dir) / "vtk");
-        fs::create_directories(fs::path(out.dir) / "curves");
-        for (std::size_t k = 0; k < sheets.size() && step < spec.steps(); ++k) {
-          const SurfaceMesh m = tessellate(sheets[k], spec.samples_per_span, initial_P[k], initial_surfaces[k]);
-          if (spec.vtk) write_vtp(m, (fs::path(out.dir) / "vtk" / (out.run_id + "_step" + std::to_string(step) + "_" + spec.sheets[k].name + ".vtp")).string());
+      // Per step: all sheets in one polydata (point array displacement_norm) and the space curves.
+      if (step < spec.steps()) {
+        if (spec.vtk) {
+          std::vector<SurfaceMesh> meshes;
+          for (std::size_t k = 0; k < sheets.size(); ++k)
+            meshes.push_back(tessellate(sheets[k], spec.samples_per_span, initial_P[k], initial_surfaces[k]));
+          write_vtp(combine(meshes), (fs::path(out.dir) / "vtk" / (out.run_id + "_step" + std::to_string(step) + ".vtp")).string());
         }
+        fs::create_directories(fs::path(out.dir) / "curves");
         for (const auto& [name, pts] : curves_now) {
           MatrixX3 X(static_cast<Eigen::Index>(pts.size()), 3);
           for (std::size_t i = 0; i < pts.size(); ++i) X.row(static_cast<Eigen::Index>(i)) = pts[i].transpose();
@@ -485,14 +508,12 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
     std::vector<SurfaceMesh> meshes;
     for (std::size_t k = 0; k < sheets.size(); ++k)
       meshes.push_back(tessellate(sheets[k], spec.samples_per_span, initial_P[k], initial_surfaces[k]));
-    PolygonList faces;
-    const MatrixX3 V = concat(meshes, faces);
     fs::path p = fs::path(out.dir) / "final.obj";
     if (!out.single_run) {
       fs::create_directories(fs::path(out.dir) / "final");
       p = fs::path(out.dir) / "final" / (out.run_id + ".obj");
     }
-    write_mesh(SurfaceMesh::from_polygons(V, faces), p.string());
+    write_mesh(combine(meshes), p.string());
     row["dofs"] = std::to_string(dofs);
     row["levels"] = std::to_string(levels);
     row["constraint_rows"] = std::to_string(rows);

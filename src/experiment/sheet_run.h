@@ -59,7 +59,7 @@ struct SheetRunSpec {
   bspline::RefinementOptions refinement;
   std::unique_ptr<qp::QpSolver> solver;
   int samples_per_span = 6;
-  bool vtk = true;
+  bool vtk = true;  // vtk/<run>_step<k>.vtp
   int steps() const;
 
   //! \throw InvalidConfig naming the key (unknown sheets or curves, uv outside the domain, ...).
@@ -71,7 +71,8 @@ const std::vector<std::string>& sheet_metric_columns();  // runs.csv
 const std::vector<std::string>& sheet_step_columns();    // steps.csv: one row per step and sheet
 
 //! Runs every step, writes steps.csv rows, cells.csv (constraint error per leaf cell before and
-//! after refinement), VTK per step and sheet, the space curves, and final.obj. Never throws
+//! after refinement), vtk/<run>_step<k>.vtp (every sheet, point array displacement_norm),
+//! curves/<run>_step<k>_<curve>.obj, and final.obj. Never throws
 //! for problems of the input or the numerics: they become the row's termination and message.
 MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out);
 

@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Figures 1-3 of Welch & Witkin and the constrained-solver sweep: runs each config under
+# configs/welch-witkin/, renders it (scripts/plot_sheets.py) into papers/welch-witkin/figures/
+# and keeps its CSVs in papers/welch-witkin/data/.
+#   bash papers/welch-witkin/figures/make_figures.sh      (after `make build`)
+set -euo pipefail
+cd "$(dirname "$0")/../../.."
+mkdir -p papers/welch-witkin/data
+keep() { for f in runs steps cells; do [ -f "$1/$f.csv" ] && cp "$1/$f.csv" "papers/welch-witkin/data/${2}_$f.csv"; done; cp "$1/run.json" "papers/welch-witkin/data/${2}_run.json"; }
+out=results/figures/ww
+build/bin/fairshape run configs/welch-witkin/fig1.yaml --out $out-fig1 --force
+/usr/bin/python3 scripts/plot_sheets.py steps $out-fig1 papers/welch-witkin/figures/fig1.png \
+  --title "Figure 1: push-pins and a promoted surface curve, edited; a second control curve" \
+  --labels "pins + surface curve" "space curve pulled up" "second curve added" "second curve pushed down"
+keep $out-fig1 fig1
+build/bin/fairshape run configs/welch-witkin/fig2.yaml --out $out-fig2 --force
+/usr/bin/python3 scripts/plot_sheets.py steps $out-fig2 papers/welch-witkin/figures/fig2.png \
+  --title "Figure 2: two sheets joined along one space curve, which is then reshaped" \
+  --labels "joined" "shared curve reshaped"
+keep $out-fig2 fig2
+build/bin/fairshape run configs/welch-witkin/fig3.yaml --out $out-fig3 --force
+/usr/bin/python3 scripts/plot_sheets.py cells $out-fig3 papers/welch-witkin/figures/fig3.png \
+  --title "Figure 3: one bicubic span, four points and a curve; automatic refinement by constraint error"
+keep $out-fig3 fig3
+build/bin/fairshape run configs/welch-witkin/solvers.yaml --out $out-solvers --force
+cp $out-solvers/runs.csv papers/welch-witkin/data/solvers_runs.csv

@@ -21,7 +21,9 @@
 
 namespace fairshape {
 
-enum class ConstraintMode { Paper, Kkt };
+// QrPenalty / RangeSpace: the Welch & Witkin solvers of src/qp (eq. 10 with Van Loan's
+// refinement, default options; CHOLMOD range space) on the same program.
+enum class ConstraintMode { Paper, Kkt, QrPenalty, RangeSpace };
 
 struct EditProblem {
   SparseMatrix H;      // n × n, shared by x, y, z
@@ -48,6 +50,9 @@ EditSolution solve_edit(const EditProblem& p, ConstraintMode mode, Solver& free_
 
 class MinNormLeastSquares;
 class KktFactorization;
+namespace qp {
+class QpSolver;
+}
 
 //! How the paper mode sets the constrained vertices: the minimum-norm solution of their rows
 //! (§4.3), or the one nearest to the initial guess (a prolongated coarse solution, whose
@@ -77,6 +82,7 @@ class PreparedEdit {
   std::optional<EditProblem> stacked_;  // the coupled 3n system when there are normal constraints
   Solver& solver_;
   std::unique_ptr<KktFactorization> kkt_;
+  std::unique_ptr<qp::QpSolver> qp_;  // QrPenalty / RangeSpace
   std::vector<int> touched_;  // paper: vertices some constraint row reaches, fixed by least squares
   std::unique_ptr<MinNormLeastSquares> ls_;
   ReducedSystem red_;

@@ -74,7 +74,10 @@ std::string detail_change(const MultiresSurface& before, const SurfaceMesh& edit
 }
 
 ConstraintMode mode_of(const RunSpec& spec) {
-  return spec.constraint_mode == "kkt" ? ConstraintMode::Kkt : ConstraintMode::Paper;
+  if (spec.constraint_mode == "kkt") return ConstraintMode::Kkt;
+  if (spec.constraint_mode == "qr_penalty") return ConstraintMode::QrPenalty;
+  if (spec.constraint_mode == "range_space") return ConstraintMode::RangeSpace;
+  return ConstraintMode::Paper;
 }
 
 // Writes iterations.csv rows and VTK snapshots of the edit level while a solve runs.

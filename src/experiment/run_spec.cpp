@@ -147,9 +147,9 @@ RunSpec RunSpec::from_config(const YAML::Node& run_config, const Components& c,
                                 "unknowns: displacement from the rest shape, or positions") == "position"
                       ? Formulation::Position
                       : Formulation::Displacement;
-  s.constraint_mode = pc.get_choice("constraint_mode", "paper", {"paper", "kkt"},
+  s.constraint_mode = pc.get_choice("constraint_mode", "paper", {"paper", "kkt", "qr_penalty", "range_space"},
                                     "paper: least-squares constrained vertices then the solver (§4.3); kkt: exact "
-                                    "Lagrange system");
+                                    "Lagrange system; qr_penalty / range_space: Welch & Witkin's solvers (src/qp)");
   read_accuracy(pc, s);
   pc.check_no_unknown_keys();
   read_solver(root, c, s.implementation, s);

@@ -32,6 +32,9 @@ RangeSpaceSolver::~RangeSpaceSolver() = default;
 
 void RangeSpaceSolver::analyze(const QuadraticProgram& qp) {
   validate(qp);
+  if (qp.A.rows() > kMaxRows)
+    throw InvalidInput("range_space: " + std::to_string(qp.A.rows()) + " constraint rows are too many for its dense Schur complement (at most " +
+                       std::to_string(kMaxRows) + "); use kkt or qr_penalty");
   const Timer timer;
   H_ = qp.H;
   A_ = qp.A;

@@ -102,6 +102,25 @@ TEST_CASE("both constraint modes satisfy the constraints, and agree when they ar
   CHECK(solve_edit(coarse, ConstraintMode::Kkt, *solver, Backend::Reference).constraint_residual <= 1e-10);
 }
 
+TEST_CASE("Welch & Witkin's solvers serve the Catmull-Clark editor: range space equals KKT, QR-penalty is close", "[design][bm][qp]") {
+  const MultiresSurface h = quad_hierarchy(1);
+  auto solver = cholesky();
+  std::vector<PointConstraint> cs{{1, 10, false, Vec3(0.1, 0.2, 0.0), "a"}, {1, 300, false, Vec3(0, 0, -0.1), "b"},
+                                  {1, 500, false, Vec3::Zero(), "c"}, {1, 800, false, Vec3::Zero(), "d"}};
+  const EditProblem p = detail_preserving(h, 0, cs);  // propagated rows, underdetermined
+  const EditSolution kkt = solve_edit(p, ConstraintMode::Kkt, *solver, Backend::Optimized);
+  const EditSolution range = solve_edit(p, ConstraintMode::RangeSpace, *solver, Backend::Optimized);
+  REQUIRE(range.summary.termination == Termination::Converged);
+  CHECK(range.constraint_residual <= 1e-8);
+  CHECK((range.delta - kkt.delta).norm() <= 1e-6 * kkt.delta.norm());
+  for (const Backend b : {Backend::Reference, Backend::Optimized}) {
+    const EditSolution penalty = solve_edit(p, ConstraintMode::QrPenalty, *solver, b);
+    REQUIRE(penalty.summary.termination == Termination::Converged);
+    CHECK(penalty.constraint_residual <= 1e-4);  // default mu = 1e3, three refinement steps
+    CHECK((penalty.delta - kkt.delta).norm() <= 1e-2 * kkt.delta.norm());
+  }
+}
+
 TEST_CASE("a common offset on every target gives that translation (KKT), zero offsets give nothing", "[design][bm]") {
   const MultiresSurface h = quad_hierarchy(2);
   auto solver = cholesky();

@@ -4,6 +4,10 @@
   plot_sheets.py steps RUN_DIR OUT.png --title TEXT [--labels L0 L1 ...]
       one rendered panel per design step (vtk/<run_id>_step<k>.vtp, coloured by displacement)
   plot_sheets.py cells RUN_DIR OUT.png --title TEXT
+  plot_sheets.py runs RUN_DIR OUT.png --title TEXT --label FORMAT --profile-v V --spans-v N --per-span K
+      one rendered panel per run of a sweep (its last step), plus the height profile z(x) of
+      every run along the grid line v = V of final/<run_id>.obj (N base spans in v, K samples
+      per span); FORMAT is a Python format over the runs.csv row (dots in names -> _)
       constraint error per leaf cell before and after automatic refinement (cells.csv), beside
       the refined surface
 
@@ -101,18 +105,54 @@ def cells_figure(run_dir, out, title):
     fig.savefig(out, dpi=110)
 
 
+def read_obj_vertices(path):
+    with open(path) as f:
+        return [tuple(map(float, line.split()[1:4])) for line in f if line.startswith("v ")]
+
+
+def runs_figure(run_dir, out, title, label, profile_v, spans_v, per_span):
+    runs = read_csv(os.path.join(run_dir, "runs.csv"))
+    fig, axes = plt.subplots(1, len(runs) + 1, figsize=(4.2 * (len(runs) + 1), 3.9), squeeze=False)
+    column = int(round(profile_v * per_span))
+    with tempfile.TemporaryDirectory() as tmp:
+        for k, (ax, r) in enumerate(zip(axes[0], runs)):
+            files = sorted(glob.glob(os.path.join(run_dir, "vtk", r["run_id"] + "_step*.vtp")))
+            ax.imshow(render(files[-1], os.path.join(tmp, f"{k}.png")))
+            ax.axis("off")
+            fields = {key.replace(".", "_"): value for key, value in r.items()}
+            name = label.format(**fields)
+            ax.set_title(name, fontsize=10)
+            V = read_obj_vertices(os.path.join(run_dir, "final", r["run_id"] + ".obj"))
+            rows = spans_v * per_span + 1
+            line = [V[i * rows + column] for i in range(len(V) // rows)]
+            axes[0][-1].plot([x for x, _, _ in line], [z for _, _, z in line], label=name)
+    axes[0][-1].set_xlabel("x")
+    axes[0][-1].set_ylabel("z")
+    axes[0][-1].set_title(f"profile along v = {profile_v}", fontsize=10)
+    axes[0][-1].legend(fontsize=7)
+    fig.suptitle(title)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("kind", choices=["steps", "cells"])
+    p.add_argument("kind", choices=["steps", "cells", "runs"])
     p.add_argument("run_dir")
     p.add_argument("out")
     p.add_argument("--title", default="")
     p.add_argument("--labels", nargs="*", default=[])
+    p.add_argument("--label", default="{run_id}")
+    p.add_argument("--profile-v", type=float, default=0)
+    p.add_argument("--spans-v", type=int, default=1)
+    p.add_argument("--per-span", type=int, default=6)
     a = p.parse_args()
     if a.kind == "steps":
         steps_figure(a.run_dir, a.out, a.title, a.labels)
-    else:
+    elif a.kind == "cells":
         cells_figure(a.run_dir, a.out, a.title)
+    else:
+        runs_figure(a.run_dir, a.out, a.title, a.label, a.profile_v, a.spans_v, a.per_span)
 
 
 if __name__ == "__main__":

@@ -25,10 +25,15 @@ void VariationalSheet::set_coefficients(Eigen::MatrixXd P) {
 int VariationalSheet::refine(const std::vector<SpanId>& spans) {
   std::size_t before = 0;
   for (int l = 0; l < surface_.level_count(); ++l) before += surface_.span_count(l);
-  const SparseMatrix T = surface_.refine(spans);
-  P_ = T * P_;
-  rest_ = T * rest_;
-  remembered_ = T * remembered_;
+  // Coarser layers first: a list may name spans that an earlier entry's refinement creates.
+  std::map<int, std::vector<SpanId>> by_level;
+  for (const SpanId& s : spans) by_level[s.level].push_back(s);
+  for (const auto& [level, group] : by_level) {
+    const SparseMatrix T = surface_.refine(group);
+    P_ = T * P_;
+    rest_ = T * rest_;
+    remembered_ = T * remembered_;
+  }
   std::size_t after = 0;
   for (int l = 0; l < surface_.level_count(); ++l) after += surface_.span_count(l);
   return static_cast<int>(after - before);

@@ -7,7 +7,10 @@
 #include "bspline/surface_constraints.h"
 #include "bspline/thin_plate_energy.h"
 #include "bspline/uniform_basis.h"
+#include "bspline/variational_sheet.h"
+#include "core/config.h"
 #include "core/error.h"
+#include "qp/qp_solver.h"
 
 using namespace fairshape;
 using namespace fairshape::bspline;
@@ -232,4 +235,33 @@ TEST_CASE("B-spline constraints: domain checks and curve rows that reproduce a c
   const ConstraintRows rows = curve_rows(s, c, CurveQuadrature::Exact);
   CHECK(rows.A.rows() > 16);
   CHECK((rows.A * P - rows.C).norm() < 1e-3 * rows.C.norm());
+}
+
+TEST_CASE("rest shape: installed shapes are kept, melt returns to the remembered one, through refinement", "[bspline]") {
+  HierarchicalSurface probe({4, 4, 3, false});
+  const Eigen::MatrixXd flat = linear_coefficients(probe);
+  VariationalSheet sheet({4, 4, 3, false}, flat);
+  sheet.remember_rest_shape();  // the flat sheet
+  Eigen::MatrixXd bent = flat;
+  bent.col(2) = random_coefficients(probe.dof_count(), 8).col(0);
+  sheet.set_coefficients(bent);
+  sheet.install_rest_shape();
+  CHECK((sheet.rest() - bent).norm() == 0);
+  // With eq. 6 and one point held where the rest shape has it, the solution is the rest shape.
+  SheetEnergy e;
+  e.rest_shape = true;
+  e.weights.alpha = 0.1 * Eigen::Matrix2d::Identity();
+  SheetConstraint hold;
+  hold.u = hold.v = 2;
+  hold.target = sheet.surface().position(bent, 2, 2);
+  Config none;
+  auto kkt = qp::qp_solver_registry().create("kkt", Backend::Optimized, none);
+  sheet.refine({{0, 1, 1}});
+  DesignReport r = solve_sheet(sheet, e, {hold}, *kkt, {}, Backend::Optimized);
+  REQUIRE(r.qp.termination == Termination::Converged);
+  CHECK((sheet.surface().position(sheet.coefficients(), 1.3, 0.7) - probe.position(bent, 1.3, 0.7)).norm() < 1e-9);
+  sheet.melt();  // back to the flat sheet: the same solve now returns the plane through the held point
+  r = solve_sheet(sheet, e, {hold}, *kkt, {}, Backend::Optimized);
+  const Vec3 offset = hold.target - Vec3(2, 2, 0);
+  CHECK((sheet.surface().position(sheet.coefficients(), 1.3, 0.7) - (Vec3(1.3, 0.7, 0) + offset)).norm() < 1e-9);
 }

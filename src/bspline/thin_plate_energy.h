@@ -26,8 +26,8 @@ void validate(const TensionWeights& w);
 //! optimized: dense local matrices per leaf cell in parallel (TBB).
 SparseMatrix thin_plate_hessian(const HierarchicalSurface& s, const TensionWeights& w, Backend backend);
 
-//! K with KᵀK = H: one row per quadrature point and energy term, the sum-of-squares form the
-//! QR-penalty solver factors instead of H (§4.3, eq. 10).
+//! K with KᵀK = H, the sum-of-squares form the QR-penalty solver factors instead of H (§4.3,
+//! eq. 10): per leaf cell, the R of the QR of its quadrature rows (one per point and term).
 SparseMatrix thin_plate_square_root(const HierarchicalSurface& s, const TensionWeights& w);
 
 }  // namespace fairshape::bspline

@@ -39,6 +39,12 @@ int VariationalSheet::refine(const std::vector<SpanId>& spans) {
   return static_cast<int>(after - before);
 }
 
+double objective_value(const VariationalSheet& sheet, const SheetEnergy& energy, const qp::QuadraticProgram& program) {
+  const bool about_rest = energy.rest_shape || energy.metric == ShapeMetric::Displacement;
+  return qp::objective(program, sheet.coefficients()) +
+         (about_rest ? 0.5 * (sheet.rest().transpose() * (program.H * sheet.rest())).trace() : 0.0);
+}
+
 qp::QuadraticProgram assemble(const VariationalSheet& sheet, const SheetEnergy& energy,
                               const std::vector<SheetConstraint>& constraints, Backend backend) {
   const HierarchicalSurface& s = sheet.surface();
@@ -131,10 +137,7 @@ DesignReport solve_sheet(VariationalSheet& sheet, const SheetEnergy& energy, con
       return report;
     }
     sheet.set_coefficients(report.qp.p);
-    report.energy = qp::objective(program, report.qp.p) +
-                    (energy.rest_shape || energy.metric == ShapeMetric::Displacement
-                         ? 0.5 * (sheet.rest().transpose() * (program.H * sheet.rest())).trace()
-                         : 0.0);  // Q as a distance from the rest shape: ½(p − p̂)ᵀH(p − p̂)
+    report.energy = objective_value(sheet, energy, program);
     report.errors_after = constraint_errors(sheet, constraints);
     if (report.rounds == 1) report.errors_before = report.errors_after;
     report.max_constraint_error = max_error(report.errors_after);
@@ -162,6 +165,37 @@ DesignReport solve_sheet(VariationalSheet& sheet, const SheetEnergy& energy, con
   }
   if (!report.qp.message.empty()) report.message = report.message.empty() ? report.qp.message : report.qp.message + "; " + report.message;
   return report;
+}
+
+ObjectiveErrorEstimate estimate_objective_error(const VariationalSheet& sheet, const SheetEnergy& energy,
+                                                const std::vector<SheetConstraint>& constraints, qp::QpSolver& solver,
+                                                Backend backend) {
+  ObjectiveErrorEstimate out;
+  const double energy_now = objective_value(sheet, energy, assemble(sheet, energy, constraints, backend));
+  VariationalSheet finer = sheet;
+  std::vector<SpanId> spans;
+  std::set<SpanId, CellKey> seen;
+  for (const SpanId& c : sheet.surface().leaf_cells()) {
+    const SpanId span = sheet.surface().has_span(c) ? c : SpanId{c.level - 1, c.i / 2, c.j / 2};
+    if (span.level + 1 <= HierarchicalSurface::kMaxLevel && seen.insert(span).second) spans.push_back(span);
+  }
+  finer.refine(spans);
+  const DesignReport r = solve_sheet(finer, energy, constraints, solver, {}, backend);
+  out.finer_dofs = finer.surface().dof_count();
+  if (r.qp.termination != Termination::Converged) {
+    out.message = "objective error estimate: the finer solve failed: " + r.message;
+    return out;
+  }
+  out.energy_change = std::abs(energy_now - r.energy) / std::max(std::abs(r.energy), 1e-300);
+  const auto& shape = sheet.surface().shape();
+  const int n = 32;
+  for (int a = 0; a <= n; ++a)
+    for (int b = 0; b <= n; ++b) {
+      const double u = shape.spans_u * static_cast<double>(a) / n, v = shape.spans_v * static_cast<double>(b) / n;
+      out.surface_change = std::max(out.surface_change, (sheet.surface().position(sheet.coefficients(), u, v) -
+                                                         finer.surface().position(finer.coefficients(), u, v)).norm());
+    }
+  return out;
 }
 
 }  // namespace fairshape::bspline

@@ -59,6 +59,10 @@ class VariationalSheet {
 qp::QuadraticProgram assemble(const VariationalSheet& sheet, const SheetEnergy& energy,
                               const std::vector<SheetConstraint>& constraints, Backend backend);
 
+//! Q of the sheet's current coefficients: ½pᵀHp (eq. 4), or ½(p − p̂)ᵀH(p − p̂) about the rest
+//! shape (eq. 6, the displacement metric), from the program assemble() built for it.
+double objective_value(const VariationalSheet& sheet, const SheetEnergy& energy, const qp::QuadraticProgram& program);
+
 //! Constraint error per leaf cell (§4.4): point-to-point distances at the points, and
 //! curve-to-curve distances |w(c(t)) − D(t)| sampled along each curve, the largest per cell;
 //! every leaf cell is listed (0 where no constraint acts).
@@ -87,5 +91,17 @@ struct DesignReport {
 //! refine those cells' spans and solve again (warm: the refined sheet keeps its shape).
 DesignReport solve_sheet(VariationalSheet& sheet, const SheetEnergy& energy, const std::vector<SheetConstraint>& constraints,
                          qp::QpSolver& solver, const RefinementOptions& refinement, Backend backend);
+
+//! The a-posteriori estimate §4.4 mentions but the paper did not implement: the same problem
+//! solved once more with every leaf cell refined one level, compared with the current solution.
+struct ObjectiveErrorEstimate {
+  double energy_change = 0;    // |Q − Q_finer| / |Q_finer|
+  double surface_change = 0;   // max |w − w_finer| over a grid of samples
+  int finer_dofs = 0;
+  std::string message;         // non-empty when the finer solve failed
+};
+ObjectiveErrorEstimate estimate_objective_error(const VariationalSheet& sheet, const SheetEnergy& energy,
+                                                const std::vector<SheetConstraint>& constraints, qp::QpSolver& solver,
+                                                Backend backend);
 
 }  // namespace fairshape::bspline

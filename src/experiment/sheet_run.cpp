@@ -296,6 +296,8 @@ SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config) {
   s.refinement.tolerance = rc.get_number("tolerance", 0, 0, 1e12, "constraint error per leaf cell above which it is refined (0: off)");
   s.refinement.max_level = rc.get_int("max_level", 4, 1, bspline::HierarchicalSurface::kMaxLevel, "deepest layer");
   s.refinement.max_rounds = rc.get_int("max_rounds", 8, 1, 100, "refine-and-solve rounds at most");
+  s.estimate_objective_error = rc.get<bool>("estimate_objective_error", false,
+                                            "after the last step, solve once more with every cell refined and report the change");
   rc.check_no_unknown_keys();
   Config oc = root.child("output", "what each run writes");
   s.samples_per_span = oc.get_int("samples_per_span", 6, 1, 64, "tessellation of final.obj and the VTK per base span");
@@ -308,8 +310,8 @@ SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config) {
 const std::vector<std::string>& sheet_metric_columns() {
   static const std::vector<std::string> cols{
       "sheets", "steps", "dofs", "levels", "constraint_rows", "dropped_rows", "constraint_residual", "max_constraint_error",
-      "energy", "spans_refined", "refinement_rounds", "condition_estimate", "analyze_s", "solve_s", "time_s", "termination",
-      "message"};
+      "energy", "spans_refined", "refinement_rounds", "objective_error_estimate", "surface_change_estimate",
+      "condition_estimate", "analyze_s", "solve_s", "time_s", "termination", "message"};
   return cols;
 }
 
@@ -332,6 +334,22 @@ std::vector<Vec3> curve_at_step(const SpaceCurveSpec& c, const std::vector<Vec3>
     }
   }
   return pts;
+}
+
+// The constraints of sheet k active at `step`, with the space curves as they are then and
+// relative point targets resolved on the initial surface.
+std::vector<SheetConstraint> active_constraints(const SheetRunSpec& spec, std::size_t k, int step,
+                                                const std::map<std::string, std::vector<Vec3>>& curves_now,
+                                                const bspline::HierarchicalSurface& initial_surface, const Eigen::MatrixXd& initial_P) {
+  std::vector<SheetConstraint> active;
+  for (const SheetConstraintSpec& cs : spec.constraints) {
+    if (cs.step > step || cs.sheet != spec.sheets[k].name) continue;
+    SheetConstraint c = cs.constraint;
+    if (!cs.curve.empty()) c.curve.space = curves_now.at(cs.curve);
+    if (cs.relative) c.target += initial_surface.position(initial_P, c.u, c.v);
+    active.push_back(std::move(c));
+  }
+  return active;
 }
 
 SurfaceMesh tessellate(const bspline::VariationalSheet& sheet, int per_span, const Eigen::MatrixXd& initial_P,
@@ -418,24 +436,16 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
                                                  : bspline::surface_curve(sheets[k].surface(), sheets[k].coefficients(), c.uv, c.samples);
     }
     CsvAppender steps((fs::path(out.dir) / "steps.csv").string());
+    std::map<std::string, std::vector<Vec3>> final_curves;  // the space curves at the last step
     double analyze_s = 0, solve_s = 0, energy = 0, residual = 0, max_err = 0, cond = 0;
     int dofs = 0, rows = 0, dropped = 0, refined = 0, rounds = 0, levels = 0;
     std::vector<std::vector<bspline::CellError>> before(sheets.size()), after(sheets.size());
     for (step = 0; step < spec.steps(); ++step) {
       std::map<std::string, std::vector<Vec3>> curves_now;
       for (const SpaceCurveSpec& c : spec.curves) curves_now[c.name] = curve_at_step(c, base_curves.at(c.name), step);
+      final_curves = curves_now;
       for (std::size_t k = 0; k < sheets.size(); ++k) {
-        std::vector<SheetConstraint> active;
-        for (const SheetConstraintSpec& cs : spec.constraints) {
-          if (cs.step > step || cs.sheet != spec.sheets[k].name) continue;
-          SheetConstraint c = cs.constraint;
-          if (!cs.curve.empty()) c.curve.space = curves_now.at(cs.curve);
-          if (cs.relative) {
-            bspline::check_in_domain(initial_surfaces[k], c.u, c.v, cs.label);
-            c.target += initial_surfaces[k].position(initial_P[k], c.u, c.v);
-          }
-          active.push_back(std::move(c));
-        }
+        const std::vector<SheetConstraint> active = active_constraints(spec, k, step, curves_now, initial_surfaces[k], initial_P[k]);
         if (active.empty()) continue;  // nothing acts on this sheet yet: it keeps its shape
         bspline::DesignReport r;
         std::vector<double> times;
@@ -492,6 +502,20 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
           write_polyline(Polyline{X, false}, (fs::path(out.dir) / "curves" / (out.run_id + "_step" + std::to_string(step) + "_" + name + ".obj")).string());
         }
       }
+    }
+    if (spec.estimate_objective_error && row["termination"] == "converged") {
+      double energy_change = 0, surface_change = 0;
+      for (std::size_t k = 0; k < sheets.size(); ++k) {
+        const auto active = active_constraints(spec, k, spec.steps() - 1, final_curves, initial_surfaces[k], initial_P[k]);
+        if (active.empty()) continue;
+        const bspline::ObjectiveErrorEstimate e =
+            bspline::estimate_objective_error(sheets[k], spec.energy, active, *spec.solver, spec.implementation);
+        if (!e.message.empty()) row["message"] = e.message;
+        energy_change = std::max(energy_change, e.energy_change);
+        surface_change = std::max(surface_change, e.surface_change);
+      }
+      row["objective_error_estimate"] = num(energy_change);
+      row["surface_change_estimate"] = num(surface_change);
     }
     // Constraint error per leaf cell, first and last solve of the last step (Figure 3).
     const fs::path cells_csv = fs::path(out.dir) / "cells.csv";

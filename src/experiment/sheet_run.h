@@ -57,6 +57,7 @@ struct SheetRunSpec {
   std::vector<SheetConstraintSpec> constraints;
   bspline::SheetEnergy energy;
   bspline::RefinementOptions refinement;
+  bool estimate_objective_error = false;
   std::unique_ptr<qp::QpSolver> solver;
   int samples_per_span = 6;
   bool vtk = true;  // vtk/<run>_step<k>.vtp

@@ -168,6 +168,16 @@ TEST_CASE("constrained solvers report singular and inconsistent problems instead
     CHECK(r.p.allFinite());
     CHECK(r.message.find("null space") != std::string::npos);
   }
+  // A μ far beyond the energy's scale: warned (badly conditioned) or refused (numerically
+  // singular), never a silent answer.
+  {
+    auto huge = make("qr_penalty", Backend::Optimized, "{mu: 1.0e12, refinement_steps: 0}");
+    huge->analyze(pr.qp);
+    const QpReport r = huge->solve(pr.qp.f, pr.qp.b);
+    INFO(r.message);
+    CHECK((r.message.find("badly conditioned") != std::string::npos || r.message.find("numerically singular") != std::string::npos));
+    CHECK(r.p.allFinite());
+  }
   // The same point pulled to two places: least-squares fit with the residual reported.
   QuadraticProgram inconsistent = pr.qp;
   const ConstraintRows twice = stack({{pr.qp.A, pr.qp.b}, point_rows(pr.s, 3, 3, Vec3(3, 3, -1.5))}, pr.s.dof_count());

@@ -3,10 +3,12 @@
 //   [sĀ   0 ] [y] = [s b̄],
 // over Ā p = b̄, a maximal independent subset of the constraint rows (§4.3), chosen by a
 // rank-revealing QR of Aᵀ (dense column-pivoted Householder on the unknowns A reaches when that
-// is small, SPQR / Eigen SparseQR otherwise). When the dropped rows disagree with the kept ones,
-// the rows are instead reduced to Ā = R₁Pᵀ, b̄ = Q₁ᵀ b from A P = Q R: the least-squares fit (the
-// paper's AᵀA p = Aᵀb, without squaring A's condition number), reported with its residual. Scaled by s = max diag H so the LU keeps its
-// digits. Optimized: UMFPACK, whose symbolic analysis is reused while the pattern stays the
+// is small, SPQR / Eigen SparseQR otherwise). When the kept rows are still too close to
+// dependent for the LU, or the dropped rows disagree with the kept ones, the rows are reduced
+// instead to Ā = R₁Pᵀ, b̄ = Q₁ᵀ b from A P = Q R: well conditioned, and for inconsistent targets
+// the least-squares fit (the paper's AᵀA p = Aᵀb, without squaring A's condition number),
+// reported with its residual. Scaled by s = max diag H so the LU keeps its digits. Optimized:
+// UMFPACK (symmetric strategy), whose symbolic analysis is reused while the pattern stays the
 // same; reference: Eigen SparseLU.
 #include <Eigen/QR>
 #include <Eigen/SPQRSupport>
@@ -104,8 +106,6 @@ SparseMatrix lagrange_matrix(const SparseMatrix& H, const SparseMatrix& A, doubl
   return K;
 }
 
-}  // namespace
-
 // One step of iterative refinement: the Lagrange system is indefinite and, with nearly
 // dependent curve rows, badly conditioned; one correction with the same factors recovers the
 // digits the pivoting LU loses.
@@ -116,6 +116,13 @@ Eigen::MatrixXd refined_solve(const LuFactor& lu, const SparseMatrix& K, const E
   if (r.norm() > 1e-14 * rhs.norm()) x += lu.solve(r);
   return x;
 }
+
+std::string inconsistent_message(double residual) {
+  return "inconsistent constraints (or directions weaker than " + std::to_string(kRowDependenceTolerance) +
+         " of the strongest): least-squares fit, residual " + std::to_string(residual);
+}
+
+}  // namespace
 
 CompressedRows independent_rows_of(const SparseMatrix& A, Backend backend, double relative_tolerance) {
   const std::vector<int> reached = reached_columns(A);
@@ -277,8 +284,7 @@ QpReport KktSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) {
   QpReport out = solve_with(*main_, f, b);
   out.constraint_residual = constraint_residual(A_, b, out.p);
   if (reduced_ && out.termination == Termination::Converged && out.constraint_residual > 1e-9 * (1 + b.norm()))
-    out.message = "inconsistent constraints (or directions weaker than " + std::to_string(kRowDependenceTolerance) +
-                  " of the strongest): least-squares fit, residual " + std::to_string(out.constraint_residual);
+    out.message = inconsistent_message(out.constraint_residual);
   else if (out.termination == Termination::Converged && out.dropped_rows > 0 && out.constraint_residual > 1e-9 * (1 + b.norm())) {
     // The dropped rows disagree with the kept ones: fit all of them in the least-squares sense.
     if (!least_squares_) least_squares_ = build(compress_rows(A_, backend_, kRowDependenceTolerance), nullptr);
@@ -286,8 +292,7 @@ QpReport KktSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) {
     out = solve_with(*least_squares_, f, b);
     out.dropped_rows = dropped;
     out.constraint_residual = constraint_residual(A_, b, out.p);
-    out.message = "inconsistent constraints (or directions weaker than " + std::to_string(kRowDependenceTolerance) +
-                  " of the strongest): least-squares fit, residual " + std::to_string(out.constraint_residual);
+    out.message = inconsistent_message(out.constraint_residual);
   }
   if (out.dropped_rows) {
     const std::string note = "dropped " + std::to_string(out.dropped_rows) + " dependent constraint rows";

@@ -116,14 +116,14 @@ QpReport QrPenaltySolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd&
   // orthogonal: the energy's linear term through the corrected semi-normal equations (f need
   // not be Kᵀk), the constraint targets through Q (argmin ‖[μA; K] p − [μb; 0]‖).
   // semi_normal: everything through R alone.
-  const Eigen::MatrixXd from_f =
-      options_.orthogonal && f.isZero(0) ? Eigen::MatrixXd::Zero(H_.rows(), f.cols()) : Eigen::MatrixXd();
+  Eigen::MatrixXd from_f;
+  if (options_.orthogonal) from_f = f.isZero(0) ? Eigen::MatrixXd::Zero(H_.rows(), f.cols()) : semi_normal_solve(f);
   Eigen::MatrixXd shifted = b;  // Van Loan's weighting method: b plus the accumulated residual
   Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(rows_, f.cols());
   for (int step = 0; step <= options_.refinement_steps; ++step) {
     if (options_.orthogonal) {
       rhs.topRows(A_.rows()) = weight_ * shifted;
-      out.p = (from_f.size() ? from_f : semi_normal_solve(f)) + least_squares_(rhs);
+      out.p = from_f + least_squares_(rhs);
     } else {
       out.p = semi_normal_solve(weight_ * weight_ * (At_ * shifted) + f);
     }

@@ -103,6 +103,10 @@ TEST_CASE("QR-penalty: each refinement step shrinks the residual; agrees with KK
     REQUIRE(r.residual_history.size() == 5);
     for (std::size_t k = 1; k < r.residual_history.size(); ++k) CHECK(r.residual_history[k] < r.residual_history[k - 1]);
     INFO("residuals " << r.residual_history[0] << " ... " << r.residual_history.back());
+    // Through Q or through R alone: the same answer at a moderate mu.
+    auto orthogonal = make("qr_penalty", backend, "{mu: 10, refinement_steps: 4, solve: orthogonal}");
+    orthogonal->analyze(pr.qp);
+    CHECK((orthogonal->solve(pr.qp.f, pr.qp.b).p - r.p).norm() <= 1e-8 * r.p.norm());
     // On the point constraints alone (well conditioned rows), the plain penalty converges to the
     // KKT answer as mu grows.
     QuadraticProgram points = pr.qp;

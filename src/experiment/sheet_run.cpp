@@ -440,7 +440,8 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
     double analyze_s = 0, solve_s = 0, energy = 0, residual = 0, max_err = 0, cond = 0;
     int dofs = 0, rows = 0, dropped = 0, refined = 0, rounds = 0, levels = 0;
     std::vector<std::vector<bspline::CellError>> before(sheets.size()), after(sheets.size());
-    for (step = 0; step < spec.steps(); ++step) {
+    bool failed = false;
+    for (step = 0; step < spec.steps() && !failed; ++step) {
       std::map<std::string, std::vector<Vec3>> curves_now;
       for (const SpaceCurveSpec& c : spec.curves) curves_now[c.name] = curve_at_step(c, base_curves.at(c.name), step);
       final_curves = curves_now;
@@ -466,7 +467,7 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
         if (r.qp.termination != Termination::Converged) {
           row["termination"] = std::string(to_string(r.qp.termination));
           row["message"] = "step " + std::to_string(step) + ", sheet " + spec.sheets[k].name + ": " + r.message;
-          step = spec.steps();
+          failed = true;
           break;
         }
         if (!r.message.empty()) row["message"] = spec.sheets[k].name + ": " + r.message;
@@ -488,7 +489,7 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
         }
       }
       // Per step: all sheets in one polydata (point array displacement_norm) and the space curves.
-      if (step < spec.steps()) {
+      if (!failed) {
         if (spec.vtk) {
           std::vector<SurfaceMesh> meshes;
           for (std::size_t k = 0; k < sheets.size(); ++k)

@@ -42,6 +42,7 @@ void RangeSpaceSolver::analyze(const QuadraticProgram& qp) {
   const SparseMatrix AtA = SparseMatrix(A_.transpose()) * A_;
   const double a_diag = AtA.rows() && AtA.nonZeros() ? AtA.diagonal().cwiseAbs().maxCoeff() : 0.0;
   rho_ = h_diag > 0 && a_diag > 0 ? h_diag / a_diag : 1.0;
+  in_factor_.assign(static_cast<std::size_t>(A_.rows()), 1);
   SparseMatrix Hr = H_ + rho_ * AtA;
   Hr.makeCompressed();
   auto& c = *chol_;
@@ -88,21 +89,39 @@ void RangeSpaceSolver::updown(bool update, const SparseMatrix& rows) {
   if (!ok) throw SolverError("range-space: CHOLMOD update/downdate failed");
 }
 
+namespace {
+SparseMatrix stack_rows(const SparseMatrix& top, const SparseMatrix& bottom) {
+  Triplets t;
+  for (const auto& [part, offset] : {std::pair{&top, Eigen::Index{0}}, std::pair{&bottom, top.rows()}})
+    for (int col = 0; col < part->outerSize(); ++col)
+      for (SparseMatrix::InnerIterator it(*part, col); it; ++it) t.emplace_back(static_cast<int>(it.row() + offset), col, it.value());
+  SparseMatrix out(top.rows() + bottom.rows(), top.cols());
+  out.setFromTriplets(t.begin(), t.end());
+  return out;
+}
+}  // namespace
+
 void RangeSpaceSolver::add_rows(const SparseMatrix& rows) {
   if (rows.cols() != H_.cols())
     throw InvalidInput("range-space: new constraint rows have " + std::to_string(rows.cols()) + " columns, expected " +
                        std::to_string(H_.cols()));
   FAIRSHAPE_ASSERT(!singular_, "range-space: add_rows on a singular system");
-  updown(true, rows);
-  Triplets t;
-  for (const SparseMatrix* part : {static_cast<const SparseMatrix*>(&A_), &rows})
-    for (int col = 0; col < part->outerSize(); ++col)
-      for (SparseMatrix::InnerIterator it(*part, col); it; ++it)
-        t.emplace_back(static_cast<int>(it.row() + (part == &rows ? A_.rows() : 0)), col, it.value());
-  SparseMatrix grown(A_.rows() + rows.rows(), A_.cols());
-  grown.setFromTriplets(t.begin(), t.end());
-  A_ = grown;
-  rebuild_schur();
+  // H_ρ is already positive definite, so new rows need not enter it: only S is bordered,
+  // [S, A Z_C; C Z, C Z_C] with Z_C = H_ρ⁻¹Cᵀ (one solve per new row), and re-decomposed.
+  const Eigen::MatrixXd Zc = solve_h(Eigen::MatrixXd(SparseMatrix(rows.transpose())));
+  const Eigen::Index m = A_.rows(), k = rows.rows();
+  Eigen::MatrixXd S(m + k, m + k);
+  S.topLeftCorner(m, m) = S_;
+  S.topRightCorner(m, k) = A_ * Zc;
+  S.bottomLeftCorner(k, m) = rows * Z_;
+  S.bottomRightCorner(k, k) = rows * Zc;
+  S_ = std::move(S);
+  Eigen::MatrixXd Z(Z_.rows(), m + k);
+  Z << Z_, Zc;
+  Z_ = std::move(Z);
+  A_ = stack_rows(A_, rows);
+  in_factor_.resize(static_cast<std::size_t>(m + k), 0);
+  schur_.compute(S_);
 }
 
 void RangeSpaceSolver::remove_rows(std::vector<int> rows) {
@@ -110,14 +129,36 @@ void RangeSpaceSolver::remove_rows(std::vector<int> rows) {
   rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
   for (int r : rows)
     if (r < 0 || r >= A_.rows()) throw InvalidInput("range-space: no constraint row " + std::to_string(r));
-  std::vector<int> keep;
+  std::vector<int> keep, factored;
   for (int r = 0, k = 0; r < A_.rows(); ++r) {
-    if (k < static_cast<int>(rows.size()) && rows[k] == r) ++k;
-    else keep.push_back(r);
+    if (k < static_cast<int>(rows.size()) && rows[k] == r) {
+      ++k;
+      if (in_factor_[r]) factored.push_back(r);
+    } else {
+      keep.push_back(r);
+    }
   }
-  updown(false, SparseMatrix(row_picker(A_.rows(), rows).transpose()) * A_);
-  A_ = SparseMatrix(row_picker(A_.rows(), keep).transpose()) * A_;
-  rebuild_schur();
+  const SparseMatrix keep_t = SparseMatrix(row_picker(A_.rows(), keep).transpose());
+  std::vector<char> in_factor;
+  for (int r : keep) in_factor.push_back(in_factor_[r]);
+  in_factor_ = std::move(in_factor);
+  if (!factored.empty()) {
+    // Rows that are part of H_ρ leave it by a downdate; H_ρ⁻¹ changed, so S is rebuilt.
+    updown(false, SparseMatrix(row_picker(A_.rows(), factored).transpose()) * A_);
+    A_ = keep_t * A_;
+    rebuild_schur();
+    return;
+  }
+  // Rows added by bordering: drop their rows and columns of S and Z.
+  Eigen::MatrixXd S(keep.size(), keep.size()), Z(Z_.rows(), keep.size());
+  for (std::size_t i = 0; i < keep.size(); ++i) {
+    Z.col(i) = Z_.col(keep[i]);
+    for (std::size_t j = 0; j < keep.size(); ++j) S(i, j) = S_(keep[i], keep[j]);
+  }
+  S_ = std::move(S);
+  Z_ = std::move(Z);
+  A_ = keep_t * A_;
+  schur_.compute(S_);
 }
 
 QpReport RangeSpaceSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) {
@@ -129,7 +170,11 @@ QpReport RangeSpaceSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd
     out.message = "H + rho AᵀA is not positive definite: the constraints do not pin the energy's null space";
     return out;
   }
-  const Eigen::MatrixXd g = A_.rows() ? Eigen::MatrixXd(f + rho_ * (SparseMatrix(A_.transpose()) * b)) : f;
+  // g = f + ρ A_Fᵀ b_F over the rows that are part of H_ρ (the augmented Lagrangian's term).
+  Eigen::MatrixXd bf = b;
+  for (Eigen::Index r = 0; r < bf.rows(); ++r)
+    if (!in_factor_[static_cast<std::size_t>(r)]) bf.row(r).setZero();
+  const Eigen::MatrixXd g = A_.rows() ? Eigen::MatrixXd(f + rho_ * (SparseMatrix(A_.transpose()) * bf)) : f;
   const Eigen::MatrixXd y = solve_h(g);
   out.p = y;
   if (A_.rows()) {

@@ -3,9 +3,10 @@
 //   H_ρ = H + ρ AᵀA  (same minimizer on {A p = b}; positive definite once A pins H's null space),
 //   S = A H_ρ⁻¹ Aᵀ   (m × m, dense: constraint counts are small next to n),
 //   λ = S⁺ (A H_ρ⁻¹ g − b),  p = H_ρ⁻¹ (g − Aᵀλ),  g = f + ρ Aᵀ b.
-// Adding constraint rows C is the rank-|C| update H_ρ + ρ CᵀC, removing them the downdate:
-// cholmod_updown changes the factor (simplicial LDLᵀ) instead of refactoring, and only the
-// small S is rebuilt. Dependent rows leave S singular; a complete orthogonal decomposition
+// Adding constraint rows C borders S (H_ρ is already positive definite, so C need not enter
+// it: one solve per new row and a re-decomposition of the small S); removing rows that are part
+// of H_ρ is the downdate H_ρ − ρ CᵀC by cholmod_updown on the simplicial LDLᵀ factor, then S is
+// rebuilt; neither refactors H_ρ. Dependent rows leave S singular; a complete orthogonal decomposition
 // (minimum-norm λ) takes care of them, so nothing needs dropping.
 #pragma once
 
@@ -47,6 +48,7 @@ class RangeSpaceSolver final : public QpSolver {
   Eigen::MatrixXd S_;
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> schur_;  // rank-revealing: dependent rows
   bool singular_ = false;
+  std::vector<char> in_factor_;  // per row of A: part of H_ρ (analyze) or bordered on (add_rows)
 };
 
 }  // namespace fairshape::qp

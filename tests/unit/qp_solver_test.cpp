@@ -127,7 +127,7 @@ TEST_CASE("QR-penalty: each refinement step shrinks the residual; agrees with KK
   }
 }
 
-TEST_CASE("range space: agrees with KKT, and added/removed rows update the factor to the refactored answer", "[qp]") {
+TEST_CASE("range space: agrees with KKT, and added/removed rows (bordered S, CHOLMOD downdate) give the refactored answer", "[qp]") {
   SheetProblem pr;
   auto kkt = make("kkt", Backend::Optimized);
   kkt->analyze(pr.qp);
@@ -149,9 +149,17 @@ TEST_CASE("range space: agrees with KKT, and added/removed rows update the facto
   kkt->analyze(bigger);
   const Eigen::MatrixXd exact2 = kkt->solve(bigger.f, bigger.b).p;
   CHECK((rs.solve(bigger.f, bigger.b).p - exact2).norm() < 1e-7 * exact2.norm());
-  // And removed again.
+  // And removed again (a bordered row: S shrinks).
   rs.remove_rows({static_cast<int>(bigger.A.rows()) - 1});
   CHECK((rs.solve(pr.qp.f, pr.qp.b).p - exact).norm() < 1e-7 * exact.norm());
+  // Removing an original row downdates the CHOLMOD factor.
+  rs.remove_rows({0});
+  QuadraticProgram smaller = pr.qp;
+  smaller.A = pr.qp.A.bottomRows(pr.qp.A.rows() - 1);
+  smaller.b = pr.qp.b.bottomRows(pr.qp.b.rows() - 1);
+  kkt->analyze(smaller);
+  const Eigen::MatrixXd exact3 = kkt->solve(smaller.f, smaller.b).p;
+  CHECK((rs.solve(smaller.f, smaller.b).p - exact3).norm() < 1e-7 * exact3.norm());
 }
 
 TEST_CASE("constrained solvers report singular and inconsistent problems instead of returning NaN", "[qp]") {

@@ -23,8 +23,10 @@ void register_qp_solvers(QpSolverRegistry& r) {
   for (const Backend backend : {Backend::Reference, Backend::Optimized}) {
     const bool ref = backend == Backend::Reference;
     r.add("kkt", backend,
-          ref ? "Lagrange system (eq. 9): Eigen SparseQR drops dependent rows, Eigen SparseLU factors"
-              : "Lagrange system (eq. 9): SuiteSparseQR drops dependent rows, UMFPACK factors (symbolic analysis reused)",
+          ref ? "Lagrange system (eq. 9): dependent rows dropped by a rank-revealing QR (dense pivoted, Eigen SparseQR when large), "
+                "Eigen SparseLU factors"
+              : "Lagrange system (eq. 9): dependent rows dropped by a rank-revealing QR (dense pivoted, SuiteSparseQR when large), "
+                "UMFPACK factors (symbolic analysis reused)",
           [backend](Config&) -> std::unique_ptr<QpSolver> { return std::make_unique<KktSolver>(backend); });
     r.add("qr_penalty", backend,
           ref ? "penalty least squares [mu A; K] (eq. 10) by Eigen SparseQR, Van Loan refinement"
@@ -34,7 +36,8 @@ void register_qp_solvers(QpSolverRegistry& r) {
           });
   }
   r.add("range_space", Backend::Optimized,
-        "CHOLMOD on H + rho A'A and the dense Schur complement of the constraints; rows added/removed by cholmod_updown",
+        "CHOLMOD on H + rho A'A and the dense Schur complement of the constraints; added rows border it, removed ones "
+        "downdate the factor (cholmod_updown)",
         [](Config&) -> std::unique_ptr<QpSolver> { return std::make_unique<RangeSpaceSolver>(); });
 }
 

@@ -8,6 +8,7 @@
 
 #include "bspline/uniform_basis.h"
 #include "core/error.h"
+#include "problem/constrained_system.h"
 
 namespace fairshape::bspline {
 
@@ -148,19 +149,21 @@ std::vector<Vec3> surface_curve(const HierarchicalSurface& s, const Eigen::Matri
 
 ConstraintRows stack(const std::vector<ConstraintRows>& parts, int dofs) {
   ConstraintRows out;
+  if (parts.empty()) {
+    out.A.resize(0, dofs);
+    out.C.resize(0, 3);
+    return out;
+  }
+  std::vector<const SparseMatrix*> blocks;
   Eigen::Index m = 0;
-  for (const auto& p : parts) m += p.A.rows();
-  Triplets t;
+  for (const auto& p : parts) blocks.push_back(&p.A), m += p.A.rows();
+  out.A = stack_rows(blocks);
   out.C.resize(m, 3);
   Eigen::Index offset = 0;
   for (const auto& p : parts) {
-    for (int c = 0; c < p.A.outerSize(); ++c)
-      for (SparseMatrix::InnerIterator it(p.A, c); it; ++it) t.emplace_back(static_cast<int>(offset + it.row()), c, it.value());
     out.C.middleRows(offset, p.A.rows()) = p.C;
     offset += p.A.rows();
   }
-  out.A.resize(m, dofs);
-  out.A.setFromTriplets(t.begin(), t.end());
   return out;
 }
 

@@ -195,14 +195,7 @@ EditProblem stacked(const EditProblem& p) {
   s.H = block_diagonal(p.H, 3);
   s.g = stack(p.g);
   const SparseMatrix A3 = block_diagonal(lc.A, 3);
-  SparseMatrix A(A3.rows() + lc.A_coupled.rows(), A3.cols());
-  Triplets t;
-  for (const SparseMatrix* part : {&A3, &lc.A_coupled})
-    for (int c = 0; c < part->outerSize(); ++c)
-      for (SparseMatrix::InnerIterator it(*part, c); it; ++it)
-        t.emplace_back(static_cast<int>(it.row() + (part == &A3 ? 0 : A3.rows())), c, it.value());
-  A.setFromTriplets(t.begin(), t.end());
-  s.constraints.A = A;
+  s.constraints.A = stack_rows({&A3, &lc.A_coupled});
   s.constraints.C = stacked_targets(lc, lc.C);
   return s;
 }

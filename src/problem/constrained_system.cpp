@@ -82,6 +82,21 @@ double relative_residual(const SparseMatrix& A, const Eigen::MatrixXd& b, const 
   return nb > 0 ? r / nb : r;
 }
 
+SparseMatrix stack_rows(const std::vector<const SparseMatrix*>& blocks) {
+  FAIRSHAPE_ASSERT(!blocks.empty(), "stack_rows needs a block");
+  Triplets t;
+  Eigen::Index rows = 0;
+  for (const SparseMatrix* b : blocks) {
+    FAIRSHAPE_ASSERT(b->cols() == blocks.front()->cols(), "stacked blocks differ in columns");
+    for (int c = 0; c < b->outerSize(); ++c)
+      for (SparseMatrix::InnerIterator it(*b, c); it; ++it) t.emplace_back(static_cast<int>(rows + it.row()), c, it.value());
+    rows += b->rows();
+  }
+  SparseMatrix out(rows, blocks.front()->cols());
+  out.setFromTriplets(t.begin(), t.end());
+  return out;
+}
+
 SparseMatrix block_diagonal(const SparseMatrix& M, int copies) {
   if (copies == 1) return M;
   Triplets t;

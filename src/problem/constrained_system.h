@@ -42,6 +42,8 @@ double quadratic_energy(const SparseMatrix& H, const Eigen::MatrixXd& g, const E
 //! diag(M, ..., M) with `copies` blocks: M acting on every coordinate of the stacked
 //! unknowns [x; y; z] (the coupled system of normal constraints, multigrid on it).
 SparseMatrix block_diagonal(const SparseMatrix& M, int copies);
+//! The blocks one above the other (all with the same number of columns).
+SparseMatrix stack_rows(const std::vector<const SparseMatrix*>& blocks);
 //! ‖x − reference‖_F / ‖reference‖_F (or the absolute error when the reference is 0).
 double relative_error(const Eigen::MatrixXd& x, const Eigen::MatrixXd& reference);
 //! ‖b − A x‖_F / ‖b‖_F (or ‖b − A x‖_F when b = 0).

@@ -7,10 +7,10 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
-#include <tuple>
 
 #include "core/error.h"
 #include "core/timer.h"
+#include "problem/constrained_system.h"
 
 namespace fairshape::qp {
 
@@ -57,13 +57,8 @@ void QrPenaltySolver::analyze(const QuadraticProgram& qp) {
   double a_max = 0;
   for (Eigen::Index i = 0; i < A_.nonZeros(); ++i) a_max = std::max(a_max, std::abs(A_.valuePtr()[i]));
   weight_ = options_.mu * (diag > 0 && a_max > 0 ? std::sqrt(diag) / a_max : 1.0);
-  Triplets t;
-  for (const auto& [block, offset, w] : {std::tuple<const SparseMatrix*, int, double>{&A_, 0, weight_},
-                                         {&K, static_cast<int>(A_.rows()), 1.0}})
-    for (int c = 0; c < block->outerSize(); ++c)
-      for (SparseMatrix::InnerIterator it(*block, c); it; ++it) t.emplace_back(offset + static_cast<int>(it.row()), c, w * it.value());
-  SparseMatrix M(A_.rows() + K.rows(), H_.cols());
-  M.setFromTriplets(t.begin(), t.end());
+  const SparseMatrix weighted = weight_ * A_;
+  SparseMatrix M = stack_rows({&weighted, &K});
   M.makeCompressed();
   rows_ = M.rows();
   if (backend_ == Backend::Reference) {

@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "core/timer.h"
+#include "problem/constrained_system.h"
 #include "problem/least_squares.h"
 
 namespace fairshape::qp {
@@ -89,18 +90,6 @@ void RangeSpaceSolver::updown(bool update, const SparseMatrix& rows) {
   if (!ok) throw SolverError("range-space: CHOLMOD update/downdate failed");
 }
 
-namespace {
-SparseMatrix stack_rows(const SparseMatrix& top, const SparseMatrix& bottom) {
-  Triplets t;
-  for (const auto& [part, offset] : {std::pair{&top, Eigen::Index{0}}, std::pair{&bottom, top.rows()}})
-    for (int col = 0; col < part->outerSize(); ++col)
-      for (SparseMatrix::InnerIterator it(*part, col); it; ++it) t.emplace_back(static_cast<int>(it.row() + offset), col, it.value());
-  SparseMatrix out(top.rows() + bottom.rows(), top.cols());
-  out.setFromTriplets(t.begin(), t.end());
-  return out;
-}
-}  // namespace
-
 void RangeSpaceSolver::add_rows(const SparseMatrix& rows) {
   if (rows.cols() != H_.cols())
     throw InvalidInput("range-space: new constraint rows have " + std::to_string(rows.cols()) + " columns, expected " +
@@ -119,7 +108,7 @@ void RangeSpaceSolver::add_rows(const SparseMatrix& rows) {
   Eigen::MatrixXd Z(Z_.rows(), m + k);
   Z << Z_, Zc;
   Z_ = std::move(Z);
-  A_ = stack_rows(A_, rows);
+  A_ = stack_rows({&A_, &rows});
   in_factor_.resize(static_cast<std::size_t>(m + k), 0);
   schur_.compute(S_);
 }

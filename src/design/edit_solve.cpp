@@ -14,6 +14,7 @@
 #include "core/timer.h"
 #include "problem/constrained_system.h"
 #include "problem/least_squares.h"
+#include "qp/kkt_solver.h"
 #include "qp/qp_solver.h"
 
 namespace fairshape {
@@ -88,19 +89,7 @@ class KktFactorization {
 
  private:
   void factor(const SparseMatrix& A) {
-    const Eigen::Index n = H_.rows(), m = A.rows();
-    Triplets t;
-    for (int c = 0; c < H_.outerSize(); ++c)
-      for (SparseMatrix::InnerIterator it(H_, c); it; ++it) t.emplace_back(static_cast<int>(it.row()), c, it.value());
-    for (int c = 0; c < A.outerSize(); ++c)
-      for (SparseMatrix::InnerIterator it(A, c); it; ++it) {
-        t.emplace_back(static_cast<int>(n + it.row()), c, scale_ * it.value());
-        t.emplace_back(c, static_cast<int>(n + it.row()), scale_ * it.value());
-      }
-    if (regularization_ > 0)
-      for (Eigen::Index i = 0; i < m; ++i) t.emplace_back(static_cast<int>(n + i), static_cast<int>(n + i), -regularization_);
-    K_.resize(n + m, n + m);
-    K_.setFromTriplets(t.begin(), t.end());
+    K_ = qp::lagrange_matrix(H_, A, scale_, regularization_);
     if (backend_ == Backend::Reference) lu_ = factored<Eigen::SparseLU<SparseMatrix>>(K_);
     else lu_ = factored<Eigen::UmfPackLU<SparseMatrix>>(K_);
   }

@@ -89,22 +89,6 @@ class UmfpackLu final : public LuFactor {
   int analyses_ = 0;
 };
 
-SparseMatrix lagrange_matrix(const SparseMatrix& H, const SparseMatrix& A, double s) {
-  const Eigen::Index n = H.rows();
-  Triplets t;
-  t.reserve(static_cast<std::size_t>(H.nonZeros() + 2 * A.nonZeros()));
-  for (int c = 0; c < H.outerSize(); ++c)
-    for (SparseMatrix::InnerIterator it(H, c); it; ++it) t.emplace_back(static_cast<int>(it.row()), c, it.value());
-  for (int c = 0; c < A.outerSize(); ++c)
-    for (SparseMatrix::InnerIterator it(A, c); it; ++it) {
-      t.emplace_back(static_cast<int>(n + it.row()), c, s * it.value());
-      t.emplace_back(c, static_cast<int>(n + it.row()), s * it.value());
-    }
-  SparseMatrix K(n + A.rows(), n + A.rows());
-  K.setFromTriplets(t.begin(), t.end());
-  K.makeCompressed();
-  return K;
-}
 
 // One step of iterative refinement: the Lagrange system is indefinite and, with nearly
 // dependent curve rows, badly conditioned; one correction with the same factors recovers the
@@ -123,6 +107,25 @@ std::string inconsistent_message(double residual) {
 }
 
 }  // namespace
+
+SparseMatrix lagrange_matrix(const SparseMatrix& H, const SparseMatrix& A, double scale, double regularization) {
+  const Eigen::Index n = H.rows(), m = A.rows();
+  Triplets t;
+  t.reserve(static_cast<std::size_t>(H.nonZeros() + 2 * A.nonZeros() + (regularization > 0 ? m : 0)));
+  for (int c = 0; c < H.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(H, c); it; ++it) t.emplace_back(static_cast<int>(it.row()), c, it.value());
+  for (int c = 0; c < A.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(A, c); it; ++it) {
+      t.emplace_back(static_cast<int>(n + it.row()), c, scale * it.value());
+      t.emplace_back(c, static_cast<int>(n + it.row()), scale * it.value());
+    }
+  if (regularization > 0)
+    for (Eigen::Index i = 0; i < m; ++i) t.emplace_back(static_cast<int>(n + i), static_cast<int>(n + i), -regularization);
+  SparseMatrix K(n + m, n + m);
+  K.setFromTriplets(t.begin(), t.end());
+  K.makeCompressed();
+  return K;
+}
 
 CompressedRows independent_rows_of(const SparseMatrix& A, Backend backend, double relative_tolerance) {
   const std::vector<int> reached = reached_columns(A);

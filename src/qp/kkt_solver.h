@@ -29,6 +29,9 @@ inline constexpr double kRowDependenceTolerance = 1e-8;
 //! Constraint blocks up to this many dense entries (rows × reached unknowns) are reduced densely.
 inline constexpr double kDenseReductionEntries = 4e7;
 
+//! [H sAᵀ; sA −δI]: the Lagrange matrix with scaled constraint rows (δ = 0: the exact system).
+SparseMatrix lagrange_matrix(const SparseMatrix& H, const SparseMatrix& A, double scale, double regularization = 0);
+
 class KktSolver final : public QpSolver {
  public:
   explicit KktSolver(Backend backend);

@@ -110,13 +110,7 @@ CurveObjective CurveRunSpec::objective() const {
 CurveRunSpec CurveRunSpec::from_config(const YAML::Node& run_config, const std::vector<std::string>& dirs) {
   Config root(run_config, "");
   CurveRunSpec s;
-  s.name = root.require<std::string>("name", "experiment name (names the results folder)");
-  root.get<std::string>("description", "", "free text");
-  root.get_int("seed", 0, 0, INT32_MAX, "random seed (curve runs are deterministic)");
-  s.threads = root.get_int("threads", 0, 0, 4096, "TBB threads for optimized back ends (0 = all cores)");
-  s.repeat = root.get_int("repeat", 1, 1, 1000, "timing repeats per edit (the median is reported)");
-  s.implementation = backend_from_string(root.get_choice("implementation", "optimized", {"reference", "optimized"},
-                                                         "back end of every component"));
+  static_cast<RunBasics&>(s) = read_run_basics(root);
   Config in = root.child("input", "input curve");
   s.curve_path = resolve_input(in.require<std::string>("curve", "polyline OBJ (v and l lines)"), dirs, in.key_path("curve"));
   const int levels = in.get_int("levels", -1, -1, 62, "hierarchy depth (-1: as many as the point count allows)");

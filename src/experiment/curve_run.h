@@ -11,13 +11,13 @@
 
 #include "curve_design/editing_loop.h"
 #include "experiment/run_one.h"
+#include "experiment/run_spec.h"
 
 namespace fairshape {
 
-struct CurveRunSpec {
-  std::string name, curve_path, solver_type;
-  int threads = 0, repeat = 1, levels = 0;
-  Backend implementation = Backend::Optimized;
+struct CurveRunSpec : RunBasics {
+  std::string curve_path, solver_type;
+  int levels = 0;
   Polyline curve;
   std::vector<CurveEdit> edits;
   double beta = 0.5;

@@ -108,17 +108,23 @@ std::vector<std::string> input_search_dirs(const std::string& config_path) {
   return dirs;
 }
 
+RunBasics read_run_basics(Config& root) {
+  RunBasics b;
+  b.name = root.require<std::string>("name", "experiment name (names the results folder)");
+  root.get<std::string>("description", "", "free text");
+  b.seed = root.get_int("seed", 0, 0, INT32_MAX, "random seed (runs without randomness ignore it)");
+  b.threads = root.get_int("threads", 0, 0, 4096, "TBB threads for optimized back ends (0 = all cores)");
+  b.repeat = root.get_int("repeat", 1, 1, 1000, "timing repeats (the median is reported; surface runs also report the minimum)");
+  b.implementation = backend_from_string(
+      root.get_choice("implementation", "optimized", {"reference", "optimized"}, "back end of every component"));
+  return b;
+}
+
 RunSpec RunSpec::from_config(const YAML::Node& run_config, const Components& c,
                              const std::vector<std::string>& search_dirs) {
   Config root(run_config, "");
   RunSpec s;
-  s.name = root.require<std::string>("name", "experiment name (names the results folder)");
-  root.get<std::string>("description", "", "free text");
-  s.seed = root.get_int("seed", 0, 0, INT32_MAX, "random seed");
-  s.threads = root.get_int("threads", 0, 0, 4096, "TBB threads for optimized back ends (0 = all cores)");
-  s.repeat = root.get_int("repeat", 1, 1, 1000, "timing repeats per run (median and minimum reported)");
-  s.implementation = backend_from_string(root.get_choice("implementation", "optimized",
-                                                         {"reference", "optimized"}, "back end of every component"));
+  static_cast<RunBasics&>(s) = read_run_basics(root);
   Config in = root.child("input", "input geometry");
   s.mesh_path = resolve_input(in.require<std::string>("mesh", "mesh file (.obj, .off, .ply)"), search_dirs,
                               in.key_path("mesh"));

@@ -48,10 +48,16 @@ struct AccuracyOptions {
   bool multilevel() const { return mode != "single-level"; }
 };
 
-struct RunSpec {
+//! The keys every experiment config starts with, whatever it runs (surfaces, curves, sheets).
+struct RunBasics {
   std::string name;
   int seed = 0, threads = 0, repeat = 1;
   Backend implementation = Backend::Optimized;
+};
+//! Reads name, description, seed, threads, repeat and implementation from the config's root.
+RunBasics read_run_basics(Config& root);
+
+struct RunSpec : RunBasics {
   std::string mesh_path, representation;  // representation: mesh | catmull-clark | loop
   int levels = 0;                          // uniform subdivision steps of the input mesh
   int remesh_base_faces = 0;               // > 0: remesh the input into a hierarchy with details

@@ -207,13 +207,7 @@ int SheetRunSpec::steps() const {
 SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config) {
   Config root(run_config, "");
   SheetRunSpec s;
-  s.name = root.require<std::string>("name", "experiment name (names the results folder)");
-  root.get<std::string>("description", "", "free text");
-  root.get_int("seed", 0, 0, INT32_MAX, "random seed (sheet runs are deterministic)");
-  s.threads = root.get_int("threads", 0, 0, 4096, "TBB threads for optimized back ends (0 = all cores)");
-  s.repeat = root.get_int("repeat", 1, 1, 1000, "timing repeats of each solve (the median is reported)");
-  s.implementation = backend_from_string(root.get_choice("implementation", "optimized", {"reference", "optimized"},
-                                                         "back end of the energy assembly and the solver"));
+  static_cast<RunBasics&>(s) = read_run_basics(root);
   for (Config c : root.child_list("sheets", "hierarchical B-spline sheets")) s.sheets.push_back(read_sheet(c));
   if (s.sheets.empty()) throw InvalidConfig("sheets: at least one sheet");
   const auto sheet_index = [&](const std::string& name, const std::string& key) {

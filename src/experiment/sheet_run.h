@@ -13,6 +13,7 @@
 #include "bspline/uniform_basis.h"
 #include "bspline/variational_sheet.h"
 #include "experiment/run_one.h"
+#include "experiment/run_spec.h"
 #include "qp/qp_solver.h"
 
 namespace fairshape {
@@ -48,10 +49,8 @@ struct SheetConstraintSpec {
   bspline::SheetConstraint constraint;
 };
 
-struct SheetRunSpec {
-  std::string name, solver_type;
-  int threads = 0, repeat = 1;
-  Backend implementation = Backend::Optimized;
+struct SheetRunSpec : RunBasics {
+  std::string solver_type;
   std::vector<SheetSpec> sheets;
   std::vector<SpaceCurveSpec> curves;
   std::vector<SheetConstraintSpec> constraints;

@@ -57,7 +57,7 @@ ConstraintRows normal_rows(const HierarchicalSurface& s, const Eigen::MatrixXd& 
   Vec3 du, dv;
   s.derivatives(P, u, v, du, dv);
   const Vec3 tu = du - du.dot(n) * n, tv = dv - dv.dot(n) * n;
-  if (tu.cross(tv).norm() <= 1e-12 * du.norm() * dv.norm() || tu.cross(tv).norm() == 0)
+  if (tu.cross(tv).norm() <= 1e-12 * du.norm() * dv.norm())  // also catches a zero tangent
     throw InvalidInput("normal constraint at (" + std::to_string(u) + ", " + std::to_string(v) +
                        "): the surface's tangents projected onto the requested plane are parallel (normal in the tangent plane?)");
   return stack({tangent_rows(s, u, v, 0, tu), tangent_rows(s, u, v, 1, tv)}, s.dof_count());

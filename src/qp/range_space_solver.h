@@ -31,7 +31,6 @@ class RangeSpaceSolver final : public QpSolver {
   void add_rows(const SparseMatrix& rows);
   //! Removes the given rows (indices into the current A).
   void remove_rows(std::vector<int> rows);
-  const SparseMatrix& constraints() const { return A_; }
   //! S and H_ρ⁻¹Aᵀ are dense: beyond this many rows the other solvers are the right tools.
   static constexpr int kMaxRows = 3000;
 

@@ -18,6 +18,11 @@ MultigridOptions MultigridOptions::from_config(Config& cfg) {
                                             "coarse operators: Galerkin product PᵀAP, or the energy re-assembled on "
                                             "each coarser mesh");
   o.coarse_operator = coarse == "reassembly" ? CoarseOperator::Reassembly : CoarseOperator::Galerkin;
+  const std::string space = sub.get_choice(
+      "coarse_space", "nested", {"nested", "conforming"},
+      "coarse unknowns: nested (coarse vertices whose own fine vertex is free) or conforming (only those whose "
+      "subdivided basis function vanishes on every constrained fine vertex)");
+  o.coarse_space = space == "nested" ? CoarseSpace::Nested : CoarseSpace::Conforming;
   o.pre_smooth = sub.get_int("pre_smooth", o.pre_smooth, 0, 1000, "forward smoothing sweeps before the coarse correction");
   o.post_smooth = sub.get_int("post_smooth", o.post_smooth, 0, 1000, "backward smoothing sweeps after it");
   o.omega = sub.get<double>("omega", o.omega, "smoother relaxation in (0, 2): 1 = Gauss-Seidel, else SOR");
@@ -149,16 +154,31 @@ MultigridLevels build_multigrid_levels(const SparseMatrix& A, const LevelOperato
     // The coarse unknowns: the coarse vertices whose own fine vertex is kept (ids nest). Taking
     // every column that reaches a kept row instead leaves, next to the constrained region,
     // columns that differ only on rows the system dropped: a singular coarse operator.
+    // `conforming` further keeps only the columns that vanish on every dropped row, so each
+    // coarse function is exactly a fine one (nested spaces); `nested` also keeps columns cut
+    // off at the constrained region, whose prolongations have a kink there.
     const Eigen::Index nf = ops.prolongation[level].rows(), ncv = ops.prolongation[level].cols();
+    std::vector<char> fine_kept(P_full.rows(), 0);
+    for (int i : kept) fine_kept[i] = 1;
+    const auto conforms = [&](Eigen::Index column) {
+      for (SparseMatrix::InnerIterator it(P_full, column); it; ++it)
+        if (it.value() != 0.0 && !fine_kept[it.row()]) return false;
+      return true;
+    };
+    const bool conforming = opt.coarse_space == MultigridOptions::CoarseSpace::Conforming;
     std::vector<int> col_of(P_full.cols(), -1);
     std::vector<int> coarse_kept;
     for (int i : kept) {
       const Eigen::Index block = i / nf, vertex = i % nf;
-      if (vertex < ncv) {
-        col_of[block * ncv + vertex] = static_cast<int>(coarse_kept.size());
-        coarse_kept.push_back(static_cast<int>(block * ncv + vertex));
-      }
+      if (vertex >= ncv) continue;
+      const Eigen::Index column = block * ncv + vertex;
+      if (conforming && !conforms(column)) continue;
+      col_of[column] = static_cast<int>(coarse_kept.size());
+      coarse_kept.push_back(static_cast<int>(column));
     }
+    if (coarse_kept.empty())
+      throw InvalidInput("multigrid: no coarse unknown on hierarchy level " + std::to_string(level) +
+                         " stays clear of the constrained vertices; lower multigrid.max_levels");
     const int nc = static_cast<int>(coarse_kept.size());
     levels[k].P = select(P_full, kept, col_of, nc);
     if (opt.coarse_operator == MultigridOptions::CoarseOperator::Galerkin) {

@@ -36,8 +36,11 @@ namespace fairshape {
 struct MultigridOptions {
   enum class Cycle { V, W, Fmg };
   enum class CoarseOperator { Galerkin, Reassembly };
+  //! Which coarse vertices stay unknowns next to the constrained (dropped) fine vertices.
+  enum class CoarseSpace { Nested, Conforming };
   Cycle cycle = Cycle::V;
   CoarseOperator coarse_operator = CoarseOperator::Galerkin;
+  CoarseSpace coarse_space = CoarseSpace::Nested;
   int pre_smooth = 2, post_smooth = 2;
   double omega = 1.0;  // smoother relaxation: 1 = Gauss-Seidel
   int max_levels = 0;  // coarse levels to use (0: every level the hierarchy offers)

@@ -99,6 +99,18 @@ TEST_CASE("multigrid converges to the direct solution: every cycle and back end"
         }
 }
 
+TEST_CASE("multigrid with the conforming coarse space converges to the direct solution", "[multigrid]") {
+  const TestSystem t = make_system("double-torus-example.off", 3, Operator::BiLaplacian);
+  const Eigen::MatrixXd exact = direct_solution(t.reduced);
+  for (Backend backend : {Backend::Reference, Backend::Optimized}) {
+    const Outcome o = run(t, "multigrid_cg", backend,
+                          "{tolerance: 1.0e-13, max_iterations: 300, multigrid: {coarse_space: conforming}}");
+    INFO(to_string(backend) << ": " << o.summary.iterations << " iterations, " << o.summary.message);
+    CHECK(o.summary.termination == Termination::Converged);
+    CHECK(relative_error(o.x, exact) < 1e-8);
+  }
+}
+
 TEST_CASE("multigrid on the stretch+bend energy: reference = optimized, same result for 1 and 2 threads", "[multigrid]") {
   const TestSystem t = make_system("cross_quad.off", 3, Operator::StretchBend);
   const Eigen::MatrixXd exact = direct_solution(t.reduced);

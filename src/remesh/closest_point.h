@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include "mesh/surface_mesh.h"
 
@@ -13,8 +14,9 @@ class ClosestPointQuery {
   //! Polygons are split into triangle fans. \throw InvalidInput for an empty mesh.
   explicit ClosestPointQuery(const SurfaceMesh& surface);
   ~ClosestPointQuery();
-  //! Closest surface point of every row of `points` (parallel over rows).
-  MatrixX3 closest_points(const MatrixX3& points) const;
+  //! Closest surface point of every row of `points` (parallel over rows); with `faces`, also
+  //! the face each one lies on.
+  MatrixX3 closest_points(const MatrixX3& points, std::vector<int>* faces = nullptr) const;
 
  private:
   struct Impl;

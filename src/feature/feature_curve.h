@@ -1,0 +1,61 @@
+// A feature curve (Khodakovsky & Schröder, "Fine level feature editing for subdivision
+// surfaces", §1.4, §2.4, §2.7): a control polygon drawn on one level of a Loop hierarchy, the
+// parameters of its profile, and the base polyline the perturbation is measured from.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "feature/ray_unrolling.h"
+#include "feature/triangle_surface.h"
+
+namespace fairshape::feature {
+
+//! Per-feature parameters (§2.7). Lengths are world units.
+struct FeatureParams {
+  double radius = 0.1;             // neighbourhood size r on the left of the curve
+  double left_right_ratio = 1.0;   // r_left / r_right
+  double height = 0.02;            // profile value at the base point (negative: a groove)
+  double crease = 0.0;             // profile slope at the base point (0: smooth)
+  double end_height_ratio = 1.0;   // height at the curve's end / height at its start
+  double flatness_angle_deg = 2.0;  // adaptive refinement threshold (§2.5)
+  bool quadratic = false;          // frames on the quadratic spline of the polygon (§2.4)
+  int quadratic_samples = 8;       // straight pieces per quadratic span
+  double right_radius() const { return radius / left_right_ratio; }
+  //! \throw InvalidInput naming the parameter and its valid range.
+  void validate(const std::string& where) const;
+};
+
+struct FeatureCurve {
+  std::string name;
+  int level = 0;                     // the hierarchy level it is drawn on
+  std::vector<SurfacePoint> points;  // control polygon on that level's mesh
+  FeatureParams params;
+};
+
+//! One straight piece of a base curve, inside one face of the level (Figure 5).
+struct BaseSegment {
+  int face = -1;
+  Vec3 a = Vec3::Zero(), b = Vec3::Zero();            // end points in space
+  Vec3 bary_a = Vec3::Zero(), bary_b = Vec3::Zero();  // and in the face
+  double arc_start = 0, length = 0;                   // arc length along the curve
+  int prev = -1, next = -1;                           // neighbouring segments of the same curve
+};
+
+struct BaseCurve {
+  std::vector<BaseSegment> segments;
+  double total_length = 0;
+  FeatureParams params;
+};
+
+//! The polygon split at every edge of the level (and, when params.quadratic, replaced by the
+//! quadratic spline through its edge midpoints, sampled and walked on the surface).
+//! \throw InvalidInput when the curve leaves the surface or has fewer than 2 points.
+BaseCurve build_base_curve(const TriangleSurface& s, const FeatureCurve& curve);
+
+//! World points projected to their closest points on `s` (CGAL AABB tree). \throw InvalidInput
+//! naming the first point farther than `max_distance` from the surface.
+std::vector<SurfacePoint> project_to_surface(const TriangleSurface& s, const MatrixX3& points, double max_distance,
+                                             const std::string& what);
+
+}  // namespace fairshape::feature

@@ -1,0 +1,52 @@
+// Feature curves in a multiresolution Loop surface (Khodakovsky & Schröder, "Fine level feature
+// editing for subdivision surfaces", §2.5–2.6). The underlying surface is never modified: the
+// features are kept as definitions, and evaluation applies them level by level, coarse to fine —
+// level l is synthesized from the perturbed level l − 1 with the surface's own details in local
+// frames, then perturbed by the features drawn on level l. So a feature can be edited, moved or
+// deleted without loss, finer features follow coarser ones, and an edit of the base surface
+// carries every feature with it (curves are attached to the surface by face and barycentric
+// coordinates).
+#pragma once
+
+#include <map>
+#include <vector>
+
+#include "feature/perturbation.h"
+#include "subdivision/multires_surface.h"
+
+namespace fairshape::feature {
+
+class FeaturedSurface {
+ public:
+  //! \throw InvalidInput unless the hierarchy is Loop.
+  FeaturedSurface(MultiresSurface surface, Backend backend);
+
+  int add(FeatureCurve curve);  // returns the feature's id
+  void replace(int id, FeatureCurve curve);
+  void remove(int id);
+  const std::map<int, FeatureCurve>& features() const { return features_; }
+
+  //! The surface without features (edit it, e.g. set_base_positions + synthesize, through this).
+  MultiresSurface& original() { dirty_ = true; return original_; }
+  const MultiresSurface& original() const { return original_; }
+
+  //! The surface with every feature applied. \throw InvalidInput / FlatnessError for a feature
+  //! that cannot be applied (the message names it).
+  const MultiresSurface& result();
+  //! The perturbation applied on a level by the last evaluation (empty when none).
+  const LevelPerturbation& perturbation(int level);
+  //! The base curves of the last evaluation (for output), per feature id.
+  const std::map<int, BaseCurve>& base_curves();
+
+ private:
+  void evaluate();
+  MultiresSurface original_, result_;
+  Backend backend_;
+  std::map<int, FeatureCurve> features_;
+  std::map<int, BaseCurve> base_curves_;
+  std::vector<LevelPerturbation> perturbations_;
+  int next_id_ = 0;
+  bool dirty_ = true;
+};
+
+}  // namespace fairshape::feature

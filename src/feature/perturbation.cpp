@@ -1,0 +1,76 @@
+#include "feature/perturbation.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fairshape::feature {
+
+MatrixX3 LevelPerturbation::dense(int n_vertices) const {
+  MatrixX3 d = MatrixX3::Zero(n_vertices, 3);
+  for (std::size_t i = 0; i < vertices.size(); ++i) d.row(vertices[i]) = displacement.row(static_cast<Eigen::Index>(i));
+  return d;
+}
+
+double cubic_profile(double s, double length, double h0, double m0, double h1, double m1) {
+  const double t = s / length, t2 = t * t, t3 = t2 * t;
+  return (2 * t3 - 3 * t2 + 1) * h0 + (t3 - 2 * t2 + t) * length * m0 + (-2 * t3 + 3 * t2) * h1 +
+         (t3 - t2) * length * m1;
+}
+
+namespace {
+
+double closest_parameter(const BaseSegment& seg, const Vec3& p) {
+  const Vec3 ab = seg.b - seg.a;
+  return std::clamp((p - seg.a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+}
+
+// Arc length along the unrolled path of the point closest to p; < 0 when that is the path's end
+// (p lies beyond the region of influence).
+double arc_of_closest(const UnrolledRay& ray, const Vec3& p) {
+  double best = std::numeric_limits<double>::infinity(), arc = 0;
+  for (std::size_t k = 1; k < ray.path.size(); ++k) {
+    const Vec3 a = ray.path[k - 1], ab = ray.path[k] - a;
+    const double len2 = ab.squaredNorm();
+    const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+    const double d = (p - (a + t * ab)).squaredNorm();
+    if (d < best) best = d, arc = ray.arc[k - 1] + t * (ray.arc[k] - ray.arc[k - 1]);
+  }
+  return arc < ray.length() * (1 - 1e-12) ? arc : -1.0;
+}
+
+}  // namespace
+
+std::optional<SegmentOffset> segment_offset(const TriangleSurface& s, const BaseCurve& curve, int segment,
+                                            const Vec3& p) {
+  const BaseSegment& seg = curve.segments[static_cast<std::size_t>(segment)];
+  const double t = closest_parameter(seg, p);
+  // Figure 12: an end point counts only when the neighbour shares it as its closest point.
+  if (t == 0.0 && seg.prev >= 0 && closest_parameter(curve.segments[static_cast<std::size_t>(seg.prev)], p) < 1.0)
+    return std::nullopt;
+  if (t == 1.0 && seg.next >= 0 && closest_parameter(curve.segments[static_cast<std::size_t>(seg.next)], p) > 0.0)
+    return std::nullopt;
+  const SurfacePoint base{seg.face, (1 - t) * seg.bary_a + t * seg.bary_b};
+  const Vec3 b = (1 - t) * seg.a + t * seg.b;
+  const Vec3 n = s.normal(base);
+  const Vec3 along = (seg.b - seg.a) / seg.length;
+  const Vec3 left = n.cross(along).normalized();
+  Vec3 dir = (p - b) - (p - b).dot(n) * n;
+  dir = dir.norm() > 1e-12 * seg.length ? Vec3(dir.normalized()) : left;
+  // Left and right sizes blend smoothly around the end caps (§2.7).
+  const double w_left = 0.5 + 0.5 * std::clamp(dir.dot(left), -1.0, 1.0);
+  const FeatureParams& q = curve.params;
+  const double radius = q.right_radius() + w_left * (q.radius - q.right_radius());
+  if ((p - b).norm() >= radius) return std::nullopt;  // outside N_r
+  const UnrolledRay ray = unroll_ray(s, base, dir, radius);
+  const double length = ray.length();
+  if (length <= 0) return std::nullopt;
+  const double arc = arc_of_closest(ray, p);
+  if (arc < 0) return std::nullopt;
+  const double z_end = (s.point(ray.end) - b).dot(n), slope_end = ray.end_direction.dot(n);
+  const double along_curve = (seg.arc_start + t * seg.length) / curve.total_length;
+  const double height = q.height * (1 + (q.end_height_ratio - 1) * along_curve);
+  const double target = cubic_profile(arc, length, height, q.crease, z_end, slope_end);
+  return SegmentOffset{target - (p - b).dot(n), n};
+}
+
+}  // namespace fairshape::feature

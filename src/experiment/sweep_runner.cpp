@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "experiment/config_loader.h"
 #include "experiment/curve_run.h"
+#include "experiment/feature_run.h"
 #include "experiment/sheet_run.h"
 #include "experiment/run_metadata.h"
 #include "experiment/progress.h"
@@ -34,6 +35,7 @@ struct Plan {
   std::string name;
   bool curve = false;  // curve runs (input.curve) or surface runs (input.mesh)
   bool sheet = false;  // B-spline sheet runs (sheets:)
+  bool feature = false;  // feature-curve runs (features:)
   std::vector<std::string> search_dirs, columns;
   std::map<std::string, std::string> swept_key_of;  // CSV column -> swept key (they differ by a prefix)
   std::vector<RunPoint> runs;  // after --filter
@@ -56,10 +58,12 @@ Plan make_plan(const SweepOptions& opt) {
   plan.search_dirs = input_search_dirs(opt.config_path);
   plan.curve = is_curve_config(plan.root);
   plan.sheet = is_sheet_config(plan.root);
+  plan.feature = is_feature_config(plan.root);
   std::set<std::string> problems;
   for (auto& p : expand_sweep(plan.root)) {
     try {
-      plan.name = plan.sheet   ? SheetRunSpec::from_config(p.config).name
+      plan.name = plan.feature ? FeatureRunSpec::from_config(p.config, plan.search_dirs).name
+                  : plan.sheet ? SheetRunSpec::from_config(p.config).name
                   : plan.curve ? CurveRunSpec::from_config(p.config, plan.search_dirs).name
                                : RunSpec::from_config(p.config, components(), plan.search_dirs).name;
     } catch (const InvalidConfig& e) {
@@ -77,7 +81,7 @@ Plan make_plan(const SweepOptions& opt) {
     throw InvalidConfig(msg);
   }
   plan.columns = {"run_id"};
-  const auto& metrics = plan.sheet ? sheet_metric_columns() : plan.curve ? curve_metric_columns() : metric_columns();
+  const auto& metrics = plan.feature ? feature_metric_columns() : plan.sheet ? sheet_metric_columns() : plan.curve ? curve_metric_columns() : metric_columns();
   for (const auto& k : swept_keys(plan.root)) {  // a swept key named like a metric (energy) gets a prefix
     plan.columns.push_back(std::find(metrics.begin(), metrics.end(), k) == metrics.end() ? k : "param." + k);
     plan.swept_key_of[plan.columns.back()] = k;
@@ -180,6 +184,12 @@ MetricRow execute_curve(const RunPoint& p, const Plan& plan, const std::string& 
   return execute_curve_run(spec, {dir, p.run_id, single});
 }
 
+MetricRow execute_feature(const RunPoint& p, const Plan& plan, const std::string& dir, bool single) {
+  FeatureRunSpec spec = FeatureRunSpec::from_config(p.config, plan.search_dirs);
+  const auto threads = limit_threads(spec.threads);
+  return execute_feature_run(spec, {dir, p.run_id, single});
+}
+
 MetricRow execute_sheet(const RunPoint& p, const std::string& dir, bool single) {
   SheetRunSpec spec = SheetRunSpec::from_config(p.config);
   const auto threads = limit_threads(spec.threads);
@@ -195,7 +205,8 @@ int run_in_process(const SweepOptions& opt, const Plan& plan, const std::vector<
   int failed = 0, done = 0;
   const bool single = plan.runs.size() == 1;
   for (const RunPoint* p : todo) {
-    const MetricRow m = plan.sheet   ? execute_sheet(*p, dir, single)
+    const MetricRow m = plan.feature ? execute_feature(*p, plan, dir, single)
+                        : plan.sheet ? execute_sheet(*p, dir, single)
                         : plan.curve ? execute_curve(*p, plan, dir, single)
                                      : execute_surface(*p, plan, cache, dir, single);
     rows.append(row_fields(plan, *p, m));

@@ -1,0 +1,236 @@
+#include "experiment/feature_run.h"
+
+#include <cmath>
+#include <filesystem>
+
+#include "core/config.h"
+#include "core/timer.h"
+#include "experiment/metric_format.h"
+#include "feature/adaptive_mesh.h"
+#include "feature/featured_surface.h"
+#include "io/mesh_io.h"
+#include "io/vtk_io.h"
+#include "mesh/polyline.h"
+
+namespace fairshape {
+namespace fs = std::filesystem;
+
+namespace {
+
+Vec3 read_point(const YAML::Node& n, const std::string& where) {
+  if (!n.IsSequence() || n.size() != 3) throw InvalidConfig(where + ": expected [x, y, z]");
+  Vec3 p(n[0].as<double>(), n[1].as<double>(), n[2].as<double>());
+  if (!p.allFinite()) throw InvalidConfig(where + ": not finite");
+  return p;
+}
+
+Vec3 read_vec3(Config& c, const std::string& key, const std::string& doc) {
+  const std::vector<double> v = c.get<std::vector<double>>(key, {0, 0, 0}, doc);
+  if (v.size() != 3 || !std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
+    throw InvalidConfig(c.key_path(key) + ": expected three finite numbers [x, y, z]");
+  return {v[0], v[1], v[2]};
+}
+
+// Feature parameters: the config's `feature_defaults`, overridden per feature.
+feature::FeatureParams read_params(Config& c, const feature::FeatureParams& d) {
+  feature::FeatureParams p;
+  p.radius = c.get_number("radius", d.radius, 1e-12, 1e12, "neighbourhood size r (left of the curve), world units");
+  p.left_right_ratio = c.get_number("left_right_ratio", d.left_right_ratio, 1e-3, 1e3, "r_left / r_right (§2.7)");
+  p.height = c.get_number("height", d.height, -1e12, 1e12, "profile height at the curve (negative: groove)");
+  p.crease = c.get_number("crease", d.crease, -1e3, 1e3, "profile slope at the curve (0: smooth)");
+  p.end_height_ratio = c.get_number("end_height_ratio", d.end_height_ratio, 0, 1e3, "height at the end / at the start");
+  p.flatness_angle_deg = c.get_number("flatness_angle_deg", d.flatness_angle_deg, 1e-3, 89.9,
+                                      "adaptive refinement threshold in degrees (§2.5)");
+  p.quadratic = c.get<bool>("quadratic", d.quadratic, "frames on the quadratic spline of the polygon (§2.4)");
+  p.quadratic_samples = c.get_int("quadratic_samples", d.quadratic_samples, 1, 256, "straight pieces per quadratic span");
+  return p;
+}
+
+// A smooth (C²) bump of the base level around its vertex nearest to `nearest`.
+MatrixX3 edited_base(const SurfaceMesh& base, const BaseEditSpec& e, double diag) {
+  Eigen::Index centre = 0;
+  (base.positions().rowwise() - e.nearest.transpose()).rowwise().squaredNorm().minCoeff(&centre);
+  const Vec3 c = base.position(static_cast<int>(centre));
+  MatrixX3 X = base.positions();
+  const double R = e.radius * diag;
+  for (int v = 0; v < base.n_vertices(); ++v) {
+    const double t = (base.position(v) - c).norm() / R;
+    if (t < 1) X.row(v) += std::pow(1 - t * t, 3) * e.offset.transpose();
+  }
+  return X;
+}
+
+}  // namespace
+
+bool is_feature_config(const YAML::Node& c) { return c.IsMap() && c["features"].IsDefined(); }
+
+FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const std::vector<std::string>& dirs) {
+  Config root(run_config, "");
+  FeatureRunSpec s;
+  static_cast<RunBasics&>(s) = read_run_basics(root);
+  Config in = root.child("input", "the base mesh: {mesh, levels, weights}");
+  s.mesh_path = resolve_input(in.require<std::string>("mesh", "a triangle mesh (OFF/OBJ/PLY)"), dirs, in.key_path("mesh"));
+  s.levels = in.get_int("levels", 3, 0, 8, "uniform Loop subdivision steps");
+  s.loop_weights = in.get_choice("weights", "loop", {"loop", "warren"}, "Loop vertex weights (warren: 3/8k, the paper's)");
+  in.check_no_unknown_keys();
+  Config dc = root.child("feature_defaults", "parameters every feature starts from (sweepable: feature_defaults.height)");
+  const feature::FeatureParams defaults = read_params(dc, feature::FeatureParams{});
+  dc.check_no_unknown_keys();
+  int k = 0;
+  for (Config c : root.child_list("features", "feature curves [{name, level, points | surface_points, ...}]")) {
+    const std::string where = "features[" + std::to_string(k++) + "]";
+    FeatureSpec f;
+    f.curve.name = c.get<std::string>("name", where, "name in outputs and messages");
+    f.curve.level = c.get_int("level", 0, 0, s.levels, "the hierarchy level the curve is drawn on");
+    f.curve.params = read_params(c, defaults);
+    f.max_distance = c.get_number("max_distance", 0.02, 0, 1, "× bounding-box diagonal: farther points leave the surface");
+    if (c.has("points") == c.has("surface_points"))
+      throw InvalidConfig(where + ": give exactly one of points ([[x, y, z], ...], projected onto the level) or "
+                                  "surface_points ([[face, b0, b1, b2], ...])");
+    if (c.has("points")) {
+      const YAML::Node pts = c.node()["points"];
+      (void)c.get<YAML::Node>("points", {}, "world points, projected onto the level's surface");
+      if (!pts.IsSequence()) throw InvalidConfig(c.key_path("points") + ": expected a list of [x, y, z]");
+      for (std::size_t i = 0; i < pts.size(); ++i)
+        f.world_points.push_back(read_point(pts[i], c.key_path("points") + "[" + std::to_string(i) + "]"));
+    } else {
+      const YAML::Node pts = c.node()["surface_points"];
+      (void)c.get<YAML::Node>("surface_points", {}, "points as [face, b0, b1, b2] on the level");
+      if (!pts.IsSequence()) throw InvalidConfig(c.key_path("surface_points") + ": expected a list of [face, b0, b1, b2]");
+      for (std::size_t i = 0; i < pts.size(); ++i) {
+        const std::string w = c.key_path("surface_points") + "[" + std::to_string(i) + "]";
+        if (!pts[i].IsSequence() || pts[i].size() != 4) throw InvalidConfig(w + ": expected [face, b0, b1, b2]");
+        feature::SurfacePoint p{pts[i][0].as<int>(), Vec3(pts[i][1].as<double>(), pts[i][2].as<double>(), pts[i][3].as<double>())};
+        if (p.bary.minCoeff() < 0 || std::abs(p.bary.sum() - 1) > 1e-9)
+          throw InvalidConfig(w + ": barycentric coordinates must be >= 0 and sum to 1");
+        f.curve.points.push_back(p);
+      }
+    }
+    if (f.world_points.size() + f.curve.points.size() < 2) throw InvalidConfig(where + ": at least two points");
+    try {
+      f.curve.params.validate(where);
+    } catch (const InvalidInput& e) {
+      throw InvalidConfig(e.what());
+    }
+    c.check_no_unknown_keys();
+    s.features.push_back(std::move(f));
+  }
+  if (s.features.empty()) throw InvalidConfig("features: at least one feature curve");
+  Config ec = root.child("base_edit", "a coarse edit of the base surface (Figure 15): {enabled, nearest, offset, radius}");
+  s.base_edit.enabled = ec.get<bool>("enabled", ec.has("offset"), "apply the edit");
+  s.base_edit.nearest = read_vec3(ec, "nearest", "the edit's centre: the base vertex nearest to this point");
+  s.base_edit.offset = read_vec3(ec, "offset", "displacement of the centre");
+  s.base_edit.radius = ec.get_number("radius", 0.3, 1e-6, 10, "falloff radius × bounding-box diagonal");
+  ec.check_no_unknown_keys();
+  Config ac = root.child("adaptive", "adaptive output mesh (§2.5): {enabled}");
+  s.adaptive = ac.get<bool>("enabled", true, "write adaptive/<run>.obj refined by the features' flatness thresholds");
+  ac.check_no_unknown_keys();
+  Config oc = root.child("output", "what each run writes");
+  s.vtk = oc.get<bool>("vtk", true, "write vtk/<run>.vtp with the displacement array");
+  oc.check_no_unknown_keys();
+  root.check_no_unknown_keys();
+  return s;
+}
+
+const std::vector<std::string>& feature_metric_columns() {
+  static const std::vector<std::string> cols{"features", "levels", "n_fine", "segments", "apply_s", "vertices_moved",
+                                             "max_displacement", "triangles_uniform", "triangles_adaptive", "time_s",
+                                             "termination", "message"};
+  return cols;
+}
+
+MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
+  MetricRow row;
+  for (const auto& c : feature_metric_columns()) row[c] = "";
+  row["implementation"] = std::string(to_string(spec.implementation));
+  row["solver.type"] = "";  // no solver: the perturbation is explicit
+  row["features"] = std::to_string(spec.features.size());
+  row["levels"] = std::to_string(spec.levels);
+  row["termination"] = "converged";
+  const Timer wall;
+  try {
+    SubdivisionOptions opt;
+    opt.scheme = SchemeType::Loop;
+    opt.weights = spec.loop_weights == "warren" ? LoopWeights::Warren : LoopWeights::Loop;
+    const SurfaceMesh base = read_mesh(spec.mesh_path);
+    feature::FeaturedSurface surface(MultiresSurface(base, opt, spec.levels, spec.implementation), spec.implementation);
+    const SurfaceMesh& fine0 = surface.original().mesh(spec.levels);
+    const double diag = (fine0.positions().colwise().maxCoeff() - fine0.positions().colwise().minCoeff()).norm();
+    for (FeatureSpec& f : spec.features) {
+      if (!f.world_points.empty()) {
+        const SurfaceMesh& level = surface.original().mesh(f.curve.level);
+        const feature::TriangleSurface s(level, feature::loop_limit_normals(level));
+        MatrixX3 P(static_cast<Eigen::Index>(f.world_points.size()), 3);
+        for (std::size_t i = 0; i < f.world_points.size(); ++i) P.row(static_cast<Eigen::Index>(i)) = f.world_points[i].transpose();
+        f.curve.points = feature::project_to_surface(s, P, f.max_distance * diag, "feature '" + f.curve.name + "'");
+      }
+      for (const auto& p : f.curve.points)
+        if (p.face < 0 || p.face >= surface.original().mesh(f.curve.level).n_faces())
+          throw InvalidInput("feature '" + f.curve.name + "': face " + std::to_string(p.face) + " is not a face of level " +
+                             std::to_string(f.curve.level));
+      surface.add(f.curve);
+    }
+    (void)surface.result();  // the features on the unedited surface (curves are attached to it)
+    if (spec.base_edit.enabled) {
+      MultiresSurface& original = surface.original();
+      original.set_base_positions(edited_base(original.mesh(0), spec.base_edit, diag));
+      original.synthesize(DetailSpace::Local);
+    }
+    std::vector<double> times;
+    for (int rep = 0; rep < spec.repeat; ++rep) {
+      surface.original();  // marks the features for re-evaluation
+      const Timer t;
+      (void)surface.result();
+      times.push_back(t.seconds());
+    }
+    std::sort(times.begin(), times.end());
+    row["apply_s"] = num(times[times.size() / 2]);
+    const MultiresSurface& result = surface.result();
+    SurfaceMesh fine = result.mesh(spec.levels);
+    const MatrixX3 d = fine.positions() - surface.original().mesh(spec.levels).positions();
+    const Eigen::VectorXd norms = d.rowwise().norm();
+    fine.vertex_data["displacement"] = d;
+    fine.vertex_data["displacement_norm"] = norms;
+    row["n_fine"] = std::to_string(fine.n_vertices());
+    row["vertices_moved"] = std::to_string((norms.array() > 1e-12 * diag).count());
+    row["max_displacement"] = num(norms.maxCoeff());
+    row["triangles_uniform"] = std::to_string(fine.n_faces());
+    int segments = 0;
+    fs::create_directories(fs::path(out.dir) / "curves");
+    for (const auto& [id, bc] : surface.base_curves()) {
+      segments += static_cast<int>(bc.segments.size());
+      MatrixX3 X(static_cast<Eigen::Index>(bc.segments.size() + 1), 3);
+      for (std::size_t i = 0; i < bc.segments.size(); ++i) X.row(static_cast<Eigen::Index>(i)) = bc.segments[i].a.transpose();
+      X.row(X.rows() - 1) = bc.segments.back().b.transpose();
+      write_polyline(Polyline{X, false}, (fs::path(out.dir) / "curves" /
+                                          (out.run_id + "_" + surface.features().at(id).name + ".obj")).string());
+    }
+    row["segments"] = std::to_string(segments);
+    if (spec.adaptive) {
+      int from = spec.levels;
+      double angle = 90;
+      for (const auto& f : spec.features) {
+        from = std::min(from, f.curve.level);
+        angle = std::min(angle, f.curve.params.flatness_angle_deg);
+      }
+      const feature::AdaptiveMesh a = feature::adaptive_mesh(result, from, angle);
+      row["triangles_adaptive"] = std::to_string(a.mesh.n_faces());
+      fs::create_directories(fs::path(out.dir) / "adaptive");
+      write_mesh(a.mesh, (fs::path(out.dir) / "adaptive" / (out.run_id + ".obj")).string());
+    }
+    if (spec.vtk) write_vtp(fine, (fs::path(out.dir) / "vtk" / (out.run_id + ".vtp")).string());
+    fs::path p = fs::path(out.dir) / "final.obj";
+    if (!out.single_run) {
+      fs::create_directories(fs::path(out.dir) / "final");
+      p = fs::path(out.dir) / "final" / (out.run_id + ".obj");
+    }
+    write_mesh(fine, p.string());
+  } catch (const Error& e) {
+    row["termination"] = "invalid_input";
+    row["message"] = e.what();
+  }
+  row["time_s"] = num(wall.seconds());
+  return row;
+}
+
+}  // namespace fairshape

@@ -1,0 +1,47 @@
+// Feature-curve experiments (configs/khodakovsky-schroder): a Loop hierarchy of a mesh, feature
+// curves drawn on its levels, an optional coarse edit of the base surface (Figure 15), and an
+// adaptive mesh of the result. A config is a feature run when it has `features:`.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "experiment/run_one.h"
+#include "experiment/run_spec.h"
+#include "feature/feature_curve.h"
+
+namespace fairshape {
+
+struct FeatureSpec {
+  feature::FeatureCurve curve;       // points filled in when the run projects `world_points`
+  std::vector<Vec3> world_points;    // or given as surface points (curve.points)
+  double max_distance = 0.02;        // × bounding-box diagonal: farther points leave the surface
+};
+
+struct BaseEditSpec {
+  bool enabled = false;
+  Vec3 nearest = Vec3::Zero(), offset = Vec3::Zero();
+  double radius = 0.3;  // × bounding-box diagonal: smooth falloff around the nearest base vertex
+};
+
+struct FeatureRunSpec : RunBasics {
+  std::string mesh_path, loop_weights = "loop";
+  int levels = 3;
+  std::vector<FeatureSpec> features;
+  BaseEditSpec base_edit;
+  bool adaptive = true;
+  bool vtk = true;
+  //! \throw InvalidConfig naming the key.
+  static FeatureRunSpec from_config(const YAML::Node& run_config, const std::vector<std::string>& search_dirs);
+};
+
+bool is_feature_config(const YAML::Node& run_config);
+const std::vector<std::string>& feature_metric_columns();
+
+//! Writes final.obj (finest level), vtk/<run>.vtp (point arrays displacement, displacement_norm),
+//! adaptive/<run>.obj and curves/<run>_<feature>.obj; never throws for problems of the input.
+MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out);
+
+}  // namespace fairshape

@@ -1,0 +1,24 @@
+// Adaptive Loop refinement (Khodakovsky & Schröder, "Fine level feature editing for subdivision
+// surfaces", §2.5, Figure 13): a triangle of level k is quadrisected only where an edge midpoint
+// (its level k + 1 vertex) leaves the plane of one of the two triangles sharing the edge by more
+// than an angle, measured on the line from the midpoint to the triangle's opposite corner.
+// Neighbouring triangles differ by at most one level, and a triangle next to finer ones is split
+// into two or three (green closure), so the mesh is crack free. The levels come from the
+// hierarchy (computed uniformly, which our subdivision does faster than walking an adaptive
+// structure); refinement stops at its finest level. Every vertex takes its finest-level position.
+#pragma once
+
+#include "subdivision/multires_surface.h"
+
+namespace fairshape::feature {
+
+struct AdaptiveMesh {
+  SurfaceMesh mesh;
+  std::vector<int> finest_vertex;   // each vertex's id on the finest level
+  std::vector<int> triangles_per_level;  // leaves by level (green triangles count on their level)
+};
+
+//! \throw InvalidInput for a non-Loop hierarchy, a level outside it or an angle outside (0, 90).
+AdaptiveMesh adaptive_mesh(const MultiresSurface& surface, int from_level, double flatness_angle_deg);
+
+}  // namespace fairshape::feature

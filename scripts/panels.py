@@ -54,14 +54,18 @@ def main():
     p.add_argument("--label", help="panel label format (required unless --ladder)")
     p.add_argument("--ladder", metavar="RUN_ID", help="show this run's ladder levels instead of every run")
     p.add_argument("--rest", help="also show this mesh first, uncoloured")
+    p.add_argument("--columns", type=int, default=0, help="panels per row (default: all in one row)")
     p.add_argument("--render", nargs=argparse.REMAINDER, default=[], help="arguments for fairshape render")
     a = p.parse_args()
     panels = ladder_panels(a) if a.ladder else run_panels(a)
-    fig, axes = plt.subplots(1, len(panels), figsize=(6.4 * len(panels), 5.0), dpi=100, squeeze=False)
-    for ax, (png, label) in zip(axes[0], panels):
+    cols = a.columns or len(panels)
+    rows = (len(panels) + cols - 1) // cols
+    fig, axes = plt.subplots(rows, cols, figsize=(6.4 * cols, 5.0 * rows), dpi=100, squeeze=False)
+    for ax in axes.flat:
+        ax.axis("off")
+    for ax, (png, label) in zip(axes.flat, panels):
         ax.imshow(mpimg.imread(png))
         ax.set_title(label, fontsize=11)
-        ax.axis("off")
     fig.suptitle(a.title, fontsize=13)
     fig.tight_layout()
     tmp = a.out_png + ".tmp.png"

@@ -226,7 +226,26 @@ std::vector<FacePiece> walk_between(const TriangleSurface& s, const SurfacePoint
     bary = b;
     return true;
   };
-  for (int step = 0; step < kMaxSteps; ++step) {
+  const auto where = [&] {
+    const Vec3 p = s.point(from);
+    return "from (" + std::to_string(p.x()) + ", " + std::to_string(p.y()) + ", " + std::to_string(p.z()) + ")";
+  };
+  // Goes to vertex v of the current face and on into the ring face that faces the target.
+  std::vector<char> passed(static_cast<std::size_t>(s.mesh().n_vertices()), 0);
+  const auto through_vertex = [&](int v) {
+    if (passed[static_cast<std::size_t>(v)])
+      throw InvalidInput("the curve cannot be followed on the surface " + where() + ": the walk towards the next point "
+                         "circles around vertex " + std::to_string(v) + " (the surface is not flat at this scale)");
+    passed[static_cast<std::size_t>(v)] = 1;
+    const RingSector ring = find_sector(s, v, project_onto_plane(target - s.vertex(v), s.vertex_normal(v)));
+    if (ring.face < 0) throw InvalidInput("the curve leaves the surface at boundary vertex " + std::to_string(v));
+    w.f = ring.face;
+    w.b = Vec3::Zero();
+    w.b[ring.corner_v] = 1;
+  };
+  int entered_by = -1;  // the mesh edge the walk came in through
+  const int max_steps = 4 * s.n_faces() + 16;
+  for (int step = 0; step < max_steps; ++step) {
     Vec3 end_bary;
     if (arrived_in(w.f, end_bary)) {
       pieces.push_back({w.f, w.b, end_bary});
@@ -240,32 +259,45 @@ std::vector<FacePiece> walk_between(const TriangleSurface& s, const SurfacePoint
       t = w.exit_distance(vanishing);
     }
     if (vanishing < 0)
-      throw InvalidInput("the curve leaves the surface between (" + std::to_string(s.point(from).x()) + ", " +
-                         std::to_string(s.point(from).y()) + ", " + std::to_string(s.point(from).z()) +
-                         ") and its next point: the walk stalls in face " + std::to_string(w.f));
+      throw InvalidInput("the curve leaves the surface " + where() + ": the walk stalls in face " + std::to_string(w.f));
+    const int e = (vanishing + 1) % 3;
+    int h = s.mesh().face_halfedge(w.f);
+    for (int i = 0; i < e; ++i) h = s.mesh().next(h);
+    if (SurfaceMesh::edge(h) == entered_by) {
+      // The target lies behind the edge seen from both of its faces: follow the edge to the end
+      // point nearer the target, then pass that vertex.
+      const int va = s.corners(w.f)[e], vb = s.corners(w.f)[(e + 1) % 3];
+      const int v = (s.vertex(va) - target).norm() < (s.vertex(vb) - target).norm() ? va : vb;
+      Vec3 bv = Vec3::Zero();
+      bv[s.corner_of(w.f, v)] = 1;
+      pieces.push_back({w.f, w.b, bv});
+      through_vertex(v);
+      entered_by = -1;
+      continue;
+    }
     const Vec3 start_bary = w.b;
     w.advance(t);
     w.b[vanishing] = 0;
     pieces.push_back({w.f, start_bary, w.b});
-    const int e = (vanishing + 1) % 3;
-    if (const int v = w.snapped_vertex(e); v >= 0) {  // through a vertex: the ring face towards the target
-      const RingSector ring = find_sector(s, v, project_onto_plane(target - s.vertex(v), s.vertex_normal(v)));
-      if (ring.face < 0)
-        throw InvalidInput("the curve leaves the surface at boundary vertex " + std::to_string(v));
-      w.f = ring.face;
-      w.b = Vec3::Zero();
-      w.b[ring.corner_v] = 1;
+    if (const int v = w.snapped_vertex(e); v >= 0) {
+      through_vertex(v);
+      entered_by = -1;
       continue;
     }
     int along = -1;
     if (!w.cross_edge(e, &along))
       throw InvalidInput("the curve leaves the surface across a boundary edge of face " + std::to_string(w.f));
-    if (along >= 0) {
-      w.b = Vec3::Zero();
-      w.b[s.corner_of(w.f, along)] = 1;
+    entered_by = SurfaceMesh::edge(h);
+    if (along >= 0) {  // grazing the edge: along it to its end point (still in this face)
+      Vec3 bv = Vec3::Zero();
+      bv[s.corner_of(w.f, along)] = 1;
+      pieces.push_back({w.f, w.b, bv});
+      w.b = bv;
+      entered_by = -1;
     }
   }
-  throw InvalidInput("the curve's walk along the surface did not arrive after " + std::to_string(kMaxSteps) + " faces");
+  throw InvalidInput("the curve cannot be followed on the surface " + where() + ": the walk towards the next point "
+                     "did not arrive");
 }
 
 }  // namespace fairshape::feature

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "feature/adaptive_mesh.h"
 #include "feature/featured_surface.h"
 #include "io/mesh_io.h"
 #include "test_support.h"
@@ -307,4 +308,40 @@ TEST_CASE("bad feature curves: off the surface, too few points, a radius beyond 
     INFO(e.what());
   }
   CHECK(reported);
+}
+
+TEST_CASE("adaptive Loop refinement: crack free, refines only near the features, stops when flat", "[feature]") {
+  const SurfaceMesh mushroom = read_mesh(test::data_path("mushroom.off"));
+  FeaturedSurface fs(loop_hierarchy(mushroom, 3), Backend::Optimized);
+  const SurfaceMesh& l1 = fs.original().mesh(1);
+  const TriangleSurface s1(l1, loop_limit_normals(l1));
+  const double diag = (l1.positions().colwise().maxCoeff() - l1.positions().colwise().minCoeff()).norm();
+  Eigen::Index top = 0;
+  l1.positions().col(2).maxCoeff(&top);
+  const Vec3 c = l1.position(static_cast<int>(top));
+  MatrixX3 pts(2, 3);
+  pts << (c - Vec3(0.05 * diag, 0, 0)).transpose(), (c + Vec3(0.05 * diag, 0, 0)).transpose();
+  FeatureParams q;
+  q.radius = 0.03 * diag;
+  q.height = 0.01 * diag;
+  fs.add({"ridge", 1, project_to_surface(s1, pts, 0.05 * diag, "ridge"), q});
+  const MultiresSurface& r = fs.result();
+  const AdaptiveMesh coarse = adaptive_mesh(r, 1, 20.0), fine = adaptive_mesh(r, 1, 2.0);
+  // A T-junction would open a crack: a boundary loop the input does not have (it has one).
+  CHECK(coarse.mesh.boundary_loops().size() == mushroom.boundary_loops().size());
+  CHECK(fine.mesh.boundary_loops().size() == mushroom.boundary_loops().size());
+  CHECK(fine.mesh.n_faces() > coarse.mesh.n_faces());
+  CHECK(fine.mesh.n_faces() < r.mesh(3).n_faces());
+  CHECK(coarse.triangles_per_level[3] < fine.triangles_per_level[3]);
+  // The whole surface is kept: its area equals the finest level's within the flatness error.
+  const auto area = [](const SurfaceMesh& m) {
+    double a = 0;
+    for (int f = 0; f < m.n_faces(); ++f) {
+      const auto v = m.face_vertices(f);
+      a += 0.5 * (m.position(v[1]) - m.position(v[0])).cross(m.position(v[2]) - m.position(v[0])).norm();
+    }
+    return a;
+  };
+  CHECK(area(fine.mesh) == Approx(area(r.mesh(3))).epsilon(0.01));
+  CHECK_THROWS_WITH(adaptive_mesh(r, 1, 95.0), Catch::Contains("flatness_angle_deg"));
 }

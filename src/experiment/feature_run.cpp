@@ -41,6 +41,8 @@ feature::FeatureParams read_params(Config& c, const feature::FeatureParams& d) {
   p.end_height_ratio = c.get_number("end_height_ratio", d.end_height_ratio, 0, 1e3, "height at the end / at the start");
   p.flatness_angle_deg = c.get_number("flatness_angle_deg", d.flatness_angle_deg, 1e-3, 89.9,
                                       "adaptive refinement threshold in degrees (§2.5)");
+  p.max_turn_deg = c.get_number("max_turn_deg", d.max_turn_deg, 1, 179,
+                                "largest turn of the surface normal within the radius before the feature is refused");
   p.quadratic = c.get<bool>("quadratic", d.quadratic, "frames on the quadratic spline of the polygon (§2.4)");
   p.quadratic_samples = c.get_int("quadratic_samples", d.quadratic_samples, 1, 256, "straight pieces per quadratic span");
   return p;

@@ -16,6 +16,7 @@ void FeatureParams::validate(const std::string& where) const {
   require(std::isfinite(crease), "crease", crease, "finite");
   require(end_height_ratio >= 0 && std::isfinite(end_height_ratio), "end_height_ratio", end_height_ratio, ">= 0");
   require(flatness_angle_deg > 0 && flatness_angle_deg < 90, "flatness_angle_deg", flatness_angle_deg, "(0, 90)");
+  require(max_turn_deg > 0 && max_turn_deg < 180, "max_turn_deg", max_turn_deg, "(0, 180)");
   require(quadratic_samples >= 1 && quadratic_samples <= 256, "quadratic_samples", quadratic_samples, "1..256");
 }
 
@@ -60,6 +61,7 @@ BaseCurve build_base_curve(const TriangleSurface& s, const FeatureCurve& curve) 
     polygon.back() = curve.points.back();
   }
   BaseCurve out;
+  out.name = curve.name;
   out.params = curve.params;
   for (std::size_t i = 1; i < polygon.size(); ++i) {
     std::vector<FacePiece> pieces;

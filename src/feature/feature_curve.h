@@ -19,6 +19,7 @@ struct FeatureParams {
   double crease = 0.0;             // profile slope at the base point (0: smooth)
   double end_height_ratio = 1.0;   // height at the curve's end / height at its start
   double flatness_angle_deg = 2.0;  // adaptive refinement threshold (§2.5)
+  double max_turn_deg = 60.0;       // the surface may turn at most this much within the radius
   bool quadratic = false;          // frames on the quadratic spline of the polygon (§2.4)
   int quadratic_samples = 8;       // straight pieces per quadratic span
   double right_radius() const { return radius / left_right_ratio; }
@@ -43,6 +44,7 @@ struct BaseSegment {
 };
 
 struct BaseCurve {
+  std::string name;
   std::vector<BaseSegment> segments;
   double total_length = 0;
   FeatureParams params;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace fairshape::feature {
 
@@ -66,6 +67,15 @@ std::optional<SegmentOffset> segment_offset(const TriangleSurface& s, const Base
   if (length <= 0) return std::nullopt;
   const double arc = arc_of_closest(ray, p);
   if (arc < 0) return std::nullopt;
+  // One frame serves the whole cross-section (§1.4: the feature is small against the surface's
+  // own scale); a surface that turns away within the radius breaks that, loudly.
+  const double turn = std::acos(std::clamp(n.dot(s.normal(ray.end)), -1.0, 1.0)) * 180 / std::numbers::pi;
+  if (turn > q.max_turn_deg)
+    throw InvalidInput("feature '" + curve.name + "': the surface turns by " + std::to_string(static_cast<int>(turn)) + " degrees within radius " +
+                       std::to_string(radius) + " of the curve at (" + std::to_string(b.x()) + ", " + std::to_string(b.y()) +
+                       ", " + std::to_string(b.z()) + ") (face " + std::to_string(seg.face) + "; max_turn_deg " +
+                       std::to_string(q.max_turn_deg) + "): the feature is too wide for this level; use a smaller "
+                       "radius or draw it on a finer level");
   const double z_end = (s.point(ray.end) - b).dot(n), slope_end = ray.end_direction.dot(n);
   const double along_curve = (seg.arc_start + t * seg.length) / curve.total_length;
   const double height = q.height * (1 + (q.end_height_ratio - 1) * along_curve);

@@ -1,12 +1,17 @@
-// Optimized back end of compute_perturbation: each segment's neighbourhood is gathered by a walk
-// over the vertex graph from the segment's face (vertices closer than the feature's size plus
-// the longest edge, so the walk cannot be cut off by a vertex just outside), the candidate
-// (vertex, segment) pairs are sorted into the reference's order, and the vertices are
-// evaluated in parallel.
+// Optimized back end of compute_perturbation. The segments go into a uniform grid whose cells
+// are as wide as the largest reach (feature size plus the longest edge): each segment is listed
+// in every cell its reach-widened bounding box overlaps, so a vertex's own cell lists every
+// segment that can move it. The moved region is gathered by one walk over the vertex graph from
+// the segments' faces through vertices within reach of a listed segment (reach includes the
+// longest edge, so the walk cannot be cut off by a vertex just outside), and the vertices are
+// evaluated in parallel against their cell's list — in curve and segment order, as the
+// reference does, so the two agree exactly.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
+#include <unordered_map>
 
 #include "feature/perturbation_backends.h"
 
@@ -19,64 +24,90 @@ double distance_to_segment(const BaseSegment& seg, const Vec3& p) {
   return (p - (seg.a + t * ab)).norm();
 }
 
-struct Candidate {
-  int vertex, curve, segment;
-  bool operator<(const Candidate& o) const {
-    return std::tie(vertex, curve, segment) < std::tie(o.vertex, o.curve, o.segment);
+struct SegmentRef {
+  int curve, segment;
+  double reach;
+};
+
+class SegmentGrid {
+ public:
+  SegmentGrid(const std::vector<BaseCurve>& curves, double longest_edge) {
+    for (const BaseCurve& c : curves) cell_ = std::max(cell_, std::max(c.params.radius, c.params.right_radius()) + longest_edge);
+    for (int c = 0; c < static_cast<int>(curves.size()); ++c) {
+      const double reach = std::max(curves[c].params.radius, curves[c].params.right_radius()) + longest_edge;
+      for (int k = 0; k < static_cast<int>(curves[c].segments.size()); ++k) {
+        const BaseSegment& seg = curves[c].segments[static_cast<std::size_t>(k)];
+        const Eigen::Vector3i lo = cell_of(seg.a.cwiseMin(seg.b).array() - reach), hi = cell_of(seg.a.cwiseMax(seg.b).array() + reach);
+        for (int x = lo.x(); x <= hi.x(); ++x)
+          for (int y = lo.y(); y <= hi.y(); ++y)
+            for (int z = lo.z(); z <= hi.z(); ++z) cells_[key(x, y, z)].push_back({c, k, reach});
+      }
+    }
   }
+  //! Segments that may reach p, in curve and segment order (empty if none).
+  const std::vector<SegmentRef>& near(const Vec3& p) const {
+    const Eigen::Vector3i c = cell_of(p);
+    const auto it = cells_.find(key(c.x(), c.y(), c.z()));
+    return it == cells_.end() ? empty_ : it->second;
+  }
+
+ private:
+  Eigen::Vector3i cell_of(const Vec3& p) const {
+    return (p / cell_).array().floor().cast<int>();
+  }
+  static std::uint64_t key(int x, int y, int z) {
+    const auto u = [](int v) { return static_cast<std::uint64_t>(static_cast<std::uint32_t>(v) & 0x1fffff); };
+    return u(x) | (u(y) << 21) | (u(z) << 42);
+  }
+  double cell_ = 0;
+  std::unordered_map<std::uint64_t, std::vector<SegmentRef>> cells_;
+  std::vector<SegmentRef> empty_;
 };
 
 }  // namespace
 
 LevelPerturbation perturbation_tbb(const TriangleSurface& s, const std::vector<BaseCurve>& curves) {
   const SurfaceMesh& m = s.mesh();
-  const double h = s.longest_edge();
-  std::vector<Candidate> candidates;
-  std::vector<int> seen(static_cast<std::size_t>(m.n_vertices()), -1);  // stamp: last segment that saw it
-  int stamp = 0;
-  std::vector<int> queue;
-  for (int c = 0; c < static_cast<int>(curves.size()); ++c) {
-    const double reach = std::max(curves[c].params.radius, curves[c].params.right_radius()) + h;
-    for (int k = 0; k < static_cast<int>(curves[c].segments.size()); ++k, ++stamp) {
-      const BaseSegment& seg = curves[c].segments[static_cast<std::size_t>(k)];
-      queue.assign(s.corners(seg.face).begin(), s.corners(seg.face).end());
-      for (int v : queue) seen[static_cast<std::size_t>(v)] = stamp;
-      for (std::size_t head = 0; head < queue.size(); ++head) {
-        const int v = queue[head];
-        candidates.push_back({v, c, k});
-        for (int w : m.vertex_neighbors(v))
-          if (seen[static_cast<std::size_t>(w)] != stamp && distance_to_segment(seg, s.vertex(w)) < reach) {
-            seen[static_cast<std::size_t>(w)] = stamp;
-            queue.push_back(w);
-          }
+  const SegmentGrid grid(curves, s.longest_edge());
+  const auto within_reach = [&](const Vec3& p) {
+    for (const SegmentRef& r : grid.near(p))
+      if (distance_to_segment(curves[static_cast<std::size_t>(r.curve)].segments[static_cast<std::size_t>(r.segment)], p) < r.reach)
+        return true;
+    return false;
+  };
+  std::vector<char> seen(static_cast<std::size_t>(m.n_vertices()), 0);
+  std::vector<int> region;
+  for (const BaseCurve& c : curves)
+    for (const BaseSegment& seg : c.segments)
+      for (int v : s.corners(seg.face))
+        if (!seen[static_cast<std::size_t>(v)]) seen[static_cast<std::size_t>(v)] = 1, region.push_back(v);
+  for (std::size_t head = 0; head < region.size(); ++head)
+    m.for_each_outgoing(region[head], [&](int h) {
+      const int w = m.to_vertex(h);
+      if (!seen[static_cast<std::size_t>(w)] && within_reach(s.vertex(w))) {
+        seen[static_cast<std::size_t>(w)] = 1;
+        region.push_back(w);
       }
-    }
-  }
-  std::sort(candidates.begin(), candidates.end());
-  std::vector<std::size_t> starts;  // first candidate of each distinct vertex
-  for (std::size_t i = 0; i < candidates.size(); ++i)
-    if (i == 0 || candidates[i].vertex != candidates[i - 1].vertex) starts.push_back(i);
-  starts.push_back(candidates.size());
-  const std::size_t n = starts.size() - 1;
+    });
+  std::sort(region.begin(), region.end());
+  const std::size_t n = region.size();
   std::vector<Vec3> moved(n);
   std::vector<char> touched(n, 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 64), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const Vec3 p = s.vertex(region[i]);
       OffsetCombiner combined;
-      for (std::size_t j = starts[i]; j < starts[i + 1]; ++j) {
-        const Candidate& cand = candidates[j];
-        if (const auto o = segment_offset(s, curves[static_cast<std::size_t>(cand.curve)], cand.segment,
-                                          s.vertex(cand.vertex))) {
+      for (const SegmentRef& ref : grid.near(p))
+        if (const auto o = segment_offset(s, curves[static_cast<std::size_t>(ref.curve)], ref.segment, p)) {
           combined.add(*o);
           touched[i] = 1;
         }
-      }
       moved[i] = combined.displacement();
     }
   });
   LevelPerturbation out;
   for (std::size_t i = 0; i < n; ++i)
-    if (touched[i]) out.vertices.push_back(candidates[starts[i]].vertex);
+    if (touched[i]) out.vertices.push_back(region[i]);
   out.displacement.resize(static_cast<Eigen::Index>(out.vertices.size()), 3);
   for (std::size_t i = 0, row = 0; i < n; ++i)
     if (touched[i]) out.displacement.row(static_cast<Eigen::Index>(row++)) = moved[i].transpose();

@@ -32,7 +32,9 @@ RingSector find_sector(const TriangleSurface& s, int v, const Vec3& d) {
   const auto to2 = [&](const Vec3& x) { return Eigen::Vector2d((x - p).dot(out.u), (x - p).dot(out.w)); };
   out.d2 = Eigen::Vector2d(d.dot(out.u), d.dot(out.w)).normalized();
   double total_angle = 0;
-  for (int f : s.mesh().vertex_faces(v)) {
+  s.mesh().for_each_outgoing(v, [&](int h) {
+    const int f = s.mesh().face(h);
+    if (f < 0) return;
     const int i = s.corner_of(f, v);
     const Eigen::Vector2d a2 = to2(s.vertex(s.corners(f)[(i + 1) % 3])), b2 = to2(s.vertex(s.corners(f)[(i + 2) % 3]));
     if (!(cross2(a2, b2) > 0))
@@ -46,7 +48,7 @@ RingSector find_sector(const TriangleSurface& s, int v, const Vec3& d) {
       out.a2 = a2;
       out.b2 = b2;
     }
-  }
+  });
   if (total_angle > 2 * std::numbers::pi * (1 + 1e-9))
     throw FlatnessError(v, "vertex " + std::to_string(v) + ": its one-ring wraps " +
                                std::to_string(total_angle / (2 * std::numbers::pi)) +

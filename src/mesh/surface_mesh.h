@@ -57,6 +57,17 @@ class SurfaceMesh {
   // Next outgoing half-edge counter-clockwise around from_vertex(h).
   int rotate_ccw(int h) const { return twin(prev_[h]); }
   std::vector<int> outgoing_halfedges(int v) const;  // ccw, starting at halfedge(v)
+  //! f(h) for each outgoing half-edge of v in the same order, without allocating (hot loops).
+  template <class F>
+  void for_each_outgoing(int v, F&& f) const {
+    const int start = vertex_halfedge_[v];
+    if (start < 0) return;
+    int h = start;
+    do {
+      f(h);
+      h = rotate_ccw(h);
+    } while (h != start);
+  }
   std::vector<int> vertex_neighbors(int v) const;    // edge neighbours, same order
   std::vector<int> vertex_faces(int v) const;        // incident faces, same order
 

@@ -1,0 +1,115 @@
+// Khodakovsky & Schröder feature curves at scale: a 100-segment curve applied on a Loop level of
+// 1,050,625 vertices (a curved 32 × 32 sheet refined 5 times), optimized (TBB) against the
+// reference, and against the cost of one uniform Loop refinement of the same level (all in one
+// process). The feature is fine-level: r = 8 edge lengths of that level. Goal: interactive,
+// under 50 ms on 2 cores. Medians: --benchmark_repetitions.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+
+#include <tbb/global_control.h>
+
+#include "feature/perturbation.h"
+#include "subdivision/multires_surface.h"
+#include "subdivision/subdivider.h"
+
+using namespace fairshape;
+using namespace fairshape::feature;
+
+namespace {
+
+SurfaceMesh curved_sheet(int n) {
+  MatrixX3 V((n + 1) * (n + 1), 3);
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const double x = -1 + 2.0 * i / n, y = -1 + 2.0 * j / n;
+      V.row(j * (n + 1) + i) << x, y, 0.12 * (x * x - 0.5 * y * y);
+    }
+  PolygonList faces;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+      if ((i + j) % 2 == 0) faces.push_back({a, b, d}), faces.push_back({a, d, c});
+      else faces.push_back({a, b, c}), faces.push_back({b, d, c});
+    }
+  return SurfaceMesh::from_polygons(V, faces);
+}
+
+SubdivisionOptions loop() {
+  SubdivisionOptions o;
+  o.scheme = SchemeType::Loop;
+  return o;
+}
+
+struct Fixture {
+  SurfaceMesh level;  // ~1M vertices
+  MatrixX3 normals;
+  FeatureCurve curve;
+  Fixture() {
+    const MultiresSurface h(curved_sheet(32), loop(), 5, Backend::Optimized);
+    level = h.mesh(5);
+    normals = loop_limit_normals(level);
+    const TriangleSurface s(level, normals);
+    // 101 points on a wave across the sheet: 100 segments.
+    MatrixX3 P(101, 3);
+    for (int k = 0; k <= 100; ++k) {
+      const double x = -0.8 + 1.6 * k / 100.0, y = 0.3 * std::sin(3 * x);
+      P.row(k) << x, y, 0.12 * (x * x - 0.5 * y * y);
+    }
+    curve.name = "wave";
+    curve.points = project_to_surface(s, P, 0.01, "benchmark curve");
+    curve.params.radius = 8 * 2.0 / 1024;
+    curve.params.height = 0.004;
+  }
+};
+
+Fixture& fixture() {
+  static Fixture f;
+  return f;
+}
+
+// What one interactive edit of the curve costs: split the polygon, perturb the level.
+void apply(benchmark::State& state, Backend backend) {
+  Fixture& f = fixture();
+  const tbb::global_control threads(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(state.range(0)));
+  const TriangleSurface s(f.level, f.normals);
+  std::size_t moved = 0, segments = 0;
+  for (auto _ : state) {
+    const BaseCurve base = build_base_curve(s, f.curve);
+    const LevelPerturbation d = compute_perturbation(s, {base}, backend);
+    moved = d.vertices.size();
+    segments = base.segments.size();
+    benchmark::DoNotOptimize(d.displacement.data());
+  }
+  state.counters["vertices"] = static_cast<double>(f.level.n_vertices());
+  state.counters["moved"] = static_cast<double>(moved);
+  state.counters["segments_after_split"] = static_cast<double>(segments);
+}
+
+void BM_ApplyFeature_Optimized(benchmark::State& state) { apply(state, Backend::Optimized); }
+void BM_ApplyFeature_Reference(benchmark::State& state) { apply(state, Backend::Reference); }
+
+// The frames' normals for the whole level (done once per level edit, not per curve edit).
+void BM_LevelNormals(benchmark::State& state) {
+  Fixture& f = fixture();
+  const tbb::global_control threads(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(loop_limit_normals(f.level).data());
+}
+
+// The peer: one uniform Loop step of the same level (topology, S and positions).
+void BM_UniformLoopRefinement(benchmark::State& state) {
+  Fixture& f = fixture();
+  const tbb::global_control threads(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(state.range(0)));
+  for (auto _ : state) {
+    const SurfaceMesh fine = subdivide_once(f.level, loop(), Backend::Optimized);
+    benchmark::DoNotOptimize(fine.positions().data());
+  }
+}
+
+}  // namespace
+
+BENCHMARK(BM_ApplyFeature_Optimized)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ApplyFeature_Reference)->Arg(1)->Iterations(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_LevelNormals)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_UniformLoopRefinement)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_MAIN();

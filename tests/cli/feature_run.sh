@@ -1,0 +1,33 @@
+# Khodakovsky & Schröder feature experiments (configs/khodakovsky-schroder): outputs, the
+# reference back end, a coarse edit, and bad input.
+source "$(dirname "$0")/lib.sh"
+C=configs/khodakovsky-schroder/fig11.yaml
+"$FS" run $C --out "$SCRATCH/fig11" --set input.levels=3 2>/dev/null || fail "fig11 failed"
+for f in runs.csv final.obj run.json; do [ -s "$SCRATCH/fig11/$f" ] || fail "missing $f"; done
+for c in time_s vertices_moved max_displacement triangles_adaptive; do head -1 "$SCRATCH/fig11/runs.csv" | grep -q "$c" || fail "runs.csv lacks $c"; done
+[ "$(ls "$SCRATCH/fig11/vtk/"*.vtp | wc -l)" -eq 1 ] || fail "expected one VTK"
+grep -q "displacement_norm" "$SCRATCH/fig11/vtk/"*.vtp || fail "VTK lacks the displacement array"
+[ "$(ls "$SCRATCH/fig11/curves/"*.obj | wc -l)" -eq 3 ] || fail "expected one base curve per feature"
+[ -s "$SCRATCH/fig11/adaptive/"*.obj ] || fail "missing the adaptive mesh"
+# Reference and optimized write the same surface.
+"$FS" run $C --out "$SCRATCH/ref" --set input.levels=3 --set implementation=reference --set adaptive.enabled=false 2>/dev/null \
+  || fail "reference run failed"
+cmp -s "$SCRATCH/fig11/final.obj" "$SCRATCH/ref/final.obj" || fail "reference and optimized final.obj differ"
+# Figure 15: the coarse edit moves the surface, the features stay on it.
+"$FS" run configs/khodakovsky-schroder/fig15.yaml --out "$SCRATCH/fig15" --set input.levels=3 2>/dev/null || fail "fig15 failed"
+[ "$(grep -c ',converged,' "$SCRATCH/fig15/runs.csv")" -eq 2 ] || fail "fig15 runs did not finish"
+
+expect_error 3 "feature 'ridge_a': point 0 .* the curve leaves the surface" -- \
+  "$FS" run $C --set 'features.0.points=[[-0.8, -0.55, 0.9], [0.0, 0.1, 0.0]]' --out "$SCRATCH/x"
+expect_error 2 "features\[1\].radius" -- "$FS" run $C --set features.1.radius=-0.1 --out "$SCRATCH/x"
+expect_error 2 "features\[0\]: give exactly one of points" -- "$FS" run $C \
+  --set 'features.0.surface_points=[[0, 0.2, 0.3, 0.5], [1, 0.2, 0.3, 0.5]]' --out "$SCRATCH/x"
+expect_error 2 "features\[2\].level" -- "$FS" run $C --set features.2.level=9 --out "$SCRATCH/x"
+expect_error 2 "feature_defaults.flatness_angle_deg" -- "$FS" run $C --set feature_defaults.flatness_angle_deg=120 --out "$SCRATCH/x"
+# A radius far beyond the scale at which level 0 of the knot is flat: a clear message, no NaN.
+rc=0; "$FS" run configs/khodakovsky-schroder/fig17.yaml --set feature_defaults.radius=0.6 --set 'features.0.level=0' \
+  --out "$SCRATCH/wide" 2>/dev/null || rc=$?
+[ "$rc" -eq 3 ] || fail "too wide a feature: exit $rc, expected 3"
+grep -q "feature .f0.: the surface turns by [0-9]* degrees within radius" "$SCRATCH/wide/runs.csv" || fail "flatness failure not explained"
+! grep -qi "nan" "$SCRATCH/wide/runs.csv" || fail "NaN written"
+echo "feature_run: ok"

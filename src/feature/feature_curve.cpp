@@ -95,9 +95,8 @@ BaseCurve build_base_curve(const TriangleSurface& s, const FeatureCurve& curve) 
 
 std::vector<SurfacePoint> project_to_surface(const TriangleSurface& s, const MatrixX3& points, double max_distance,
                                              const std::string& what) {
-  const ClosestPointQuery query(s.mesh());
   std::vector<int> faces;
-  const MatrixX3 closest = query.closest_points(points, &faces);
+  const MatrixX3 closest = s.locator().closest_points(points, &faces);
   std::vector<SurfacePoint> out;
   for (Eigen::Index i = 0; i < points.rows(); ++i) {
     const double distance = (points.row(i) - closest.row(i)).norm();

@@ -44,14 +44,16 @@ double arc_of_closest(const UnrolledRay& ray, const Vec3& p) {
 std::optional<SegmentOffset> segment_offset(const TriangleSurface& s, const BaseCurve& curve, int segment,
                                             const Vec3& p) {
   const BaseSegment& seg = curve.segments[static_cast<std::size_t>(segment)];
+  const FeatureParams& q = curve.params;
   const double t = closest_parameter(seg, p);
+  const Vec3 b = (1 - t) * seg.a + t * seg.b;
+  if ((p - b).squaredNorm() >= std::pow(std::max(q.radius, q.right_radius()), 2)) return std::nullopt;  // outside N_r
   // Figure 12: an end point counts only when the neighbour shares it as its closest point.
   if (t == 0.0 && seg.prev >= 0 && closest_parameter(curve.segments[static_cast<std::size_t>(seg.prev)], p) < 1.0)
     return std::nullopt;
   if (t == 1.0 && seg.next >= 0 && closest_parameter(curve.segments[static_cast<std::size_t>(seg.next)], p) > 0.0)
     return std::nullopt;
   const SurfacePoint base{seg.face, (1 - t) * seg.bary_a + t * seg.bary_b};
-  const Vec3 b = (1 - t) * seg.a + t * seg.b;
   const Vec3 n = s.normal(base);
   const Vec3 along = (seg.b - seg.a) / seg.length;
   const Vec3 left = n.cross(along).normalized();
@@ -59,7 +61,6 @@ std::optional<SegmentOffset> segment_offset(const TriangleSurface& s, const Base
   dir = dir.norm() > 1e-12 * seg.length ? Vec3(dir.normalized()) : left;
   // Left and right sizes blend smoothly around the end caps (§2.7).
   const double w_left = 0.5 + 0.5 * std::clamp(dir.dot(left), -1.0, 1.0);
-  const FeatureParams& q = curve.params;
   const double radius = q.right_radius() + w_left * (q.radius - q.right_radius());
   if ((p - b).norm() >= radius) return std::nullopt;  // outside N_r
   const UnrolledRay ray = unroll_ray(s, base, dir, radius);

@@ -75,19 +75,20 @@ LevelPerturbation perturbation_tbb(const TriangleSurface& s, const std::vector<B
         return true;
     return false;
   };
-  std::vector<char> seen(static_cast<std::size_t>(m.n_vertices()), 0);
+  enum : char { kUntested, kInside, kOutside };  // each vertex is tested once
+  std::vector<char> state(static_cast<std::size_t>(m.n_vertices()), kUntested);
   std::vector<int> region;
   for (const BaseCurve& c : curves)
     for (const BaseSegment& seg : c.segments)
       for (int v : s.corners(seg.face))
-        if (!seen[static_cast<std::size_t>(v)]) seen[static_cast<std::size_t>(v)] = 1, region.push_back(v);
+        if (state[static_cast<std::size_t>(v)] == kUntested) state[static_cast<std::size_t>(v)] = kInside, region.push_back(v);
   for (std::size_t head = 0; head < region.size(); ++head)
     m.for_each_outgoing(region[head], [&](int h) {
       const int w = m.to_vertex(h);
-      if (!seen[static_cast<std::size_t>(w)] && within_reach(s.vertex(w))) {
-        seen[static_cast<std::size_t>(w)] = 1;
-        region.push_back(w);
-      }
+      char& st = state[static_cast<std::size_t>(w)];
+      if (st != kUntested) return;
+      st = within_reach(s.vertex(w)) ? kInside : kOutside;
+      if (st == kInside) region.push_back(w);
     });
   std::sort(region.begin(), region.end());
   const std::size_t n = region.size();

@@ -1,5 +1,6 @@
 #include "feature/ray_unrolling.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -31,7 +32,7 @@ RingSector find_sector(const TriangleSurface& s, int v, const Vec3& d) {
   const Vec3 p = s.vertex(v);
   const auto to2 = [&](const Vec3& x) { return Eigen::Vector2d((x - p).dot(out.u), (x - p).dot(out.w)); };
   out.d2 = Eigen::Vector2d(d.dot(out.u), d.dot(out.w)).normalized();
-  double total_angle = 0;
+  int containing = 0;  // sectors strictly around d: more than one when the ring wraps twice
   s.mesh().for_each_outgoing(v, [&](int h) {
     const int f = s.mesh().face(h);
     if (f < 0) return;
@@ -41,7 +42,7 @@ RingSector find_sector(const TriangleSurface& s, int v, const Vec3& d) {
       throw FlatnessError(v, "vertex " + std::to_string(v) + ": its one-ring folds over when projected to the tangent "
                                  "plane (the surface is not flat at this scale; draw the feature on a finer level or "
                                  "use a smaller radius)");
-    total_angle += std::atan2(cross2(a2, b2), a2.dot(b2));
+    if (cross2(a2, out.d2) > 0 && cross2(out.d2, b2) > 0) ++containing;
     if (out.face < 0 && cross2(a2, out.d2) >= 0 && cross2(out.d2, b2) >= 0) {
       out.face = f;
       out.corner_v = i;
@@ -49,36 +50,46 @@ RingSector find_sector(const TriangleSurface& s, int v, const Vec3& d) {
       out.b2 = b2;
     }
   });
-  if (total_angle > 2 * std::numbers::pi * (1 + 1e-9))
-    throw FlatnessError(v, "vertex " + std::to_string(v) + ": its one-ring wraps " +
-                               std::to_string(total_angle / (2 * std::numbers::pi)) +
-                               " times around its tangent plane (the surface is not flat at this scale; draw the "
-                               "feature on a finer level or use a smaller radius)");
+  if (containing > 1)
+    throw FlatnessError(v, "vertex " + std::to_string(v) + ": its one-ring wraps more than once around its tangent "
+                               "plane (the surface is not flat at this scale; draw the feature on a finer level or "
+                               "use a smaller radius)");
   return out;
 }
 
 // The walk's state: a point of face f (barycentric b) moving in the in-plane direction d.
 struct Walker {
+  Walker(const TriangleSurface& surface, int face, const Vec3& bary, const Vec3& dir)
+      : s(surface), f(face), b(bary), d(dir) {}
   const TriangleSurface& s;
   int f;
   Vec3 b, d;
 
   Vec3 position() const { return s.point({f, b}); }
 
+  // d/dt of the barycentric coordinates, kept until f or d change (a step uses it twice).
+  const Vec3& rate() const {
+    if (f != rate_f_ || d != rate_d_) {
+      rate_ = s.barycentric_rate(f, d);
+      rate_f_ = f;
+      rate_d_ = d;
+    }
+    return rate_;
+  }
   // Distance to the face's boundary along d, and the corner whose weight reaches zero there.
   double exit_distance(int& vanishing) const {
-    const Vec3 rate = s.barycentric_rate(f, d);
+    const Vec3& r = rate();
     double t = std::numeric_limits<double>::infinity();
     vanishing = -1;
     for (int i = 0; i < 3; ++i)
-      if (rate[i] < 0) {
-        const double ti = std::max(b[i], 0.0) / -rate[i];
+      if (r[i] < 0) {
+        const double ti = std::max(b[i], 0.0) / -r[i];
         if (ti < t) t = ti, vanishing = i;
       }
     return t;
   }
   void advance(double t) {
-    b += t * s.barycentric_rate(f, d);
+    b += t * rate();
     for (int i = 0; i < 3; ++i) b[i] = std::max(b[i], 0.0);
     b /= b.sum();
   }
@@ -103,22 +114,36 @@ struct Walker {
     bg[s.corner_of(g, va)] = b[e];
     bg[s.corner_of(g, vb)] = b[(e + 1) % 3];
     const int opposite = 3 - s.corner_of(g, va) - s.corner_of(g, vb);
-    if (dg.norm() < 1e-14 || s.barycentric_rate(g, dg)[opposite] <= 0) {
+    const double len = dg.norm();
+    if (len < 1e-14) {
+      *along_edge = (s.vertex(vb) - s.vertex(va)).dot(d) > 0 ? vb : va;
+      return true;
+    }
+    dg /= len;
+    const Vec3 rate_g = s.barycentric_rate(g, dg);
+    if (rate_g[opposite] <= 0) {
       *along_edge = (s.vertex(vb) - s.vertex(va)).dot(d) > 0 ? vb : va;
       return true;
     }
     f = g;
     b = bg;
-    d = dg.normalized();
+    d = dg;
+    rate_f_ = g, rate_d_ = dg, rate_ = rate_g;
     return true;
   }
+
+ private:
+  mutable int rate_f_ = -1;
+  mutable Vec3 rate_d_ = Vec3::Zero(), rate_ = Vec3::Zero();
 };
 
 }  // namespace
 
 UnrolledRay unroll_ray(const TriangleSurface& s, const SurfacePoint& start, const Vec3& direction, double length) {
   UnrolledRay ray;
-  Walker w{s, start.face, start.bary, project_onto_plane(direction, s.face_normal(start.face))};
+  ray.path.reserve(32);
+  ray.arc.reserve(32);
+  Walker w(s, start.face, start.bary, project_onto_plane(direction, s.face_normal(start.face)));
   if (w.d.norm() < 1e-300) throw InvalidInput("unroll_ray: the direction is normal to the face");
   w.d.normalize();
   double done = 0;
@@ -215,7 +240,7 @@ UnrolledRay unroll_ray(const TriangleSurface& s, const SurfacePoint& start, cons
 std::vector<FacePiece> walk_between(const TriangleSurface& s, const SurfacePoint& from, const SurfacePoint& to) {
   std::vector<FacePiece> pieces;
   const Vec3 target = s.point(to);
-  Walker w{s, from.face, from.bary, Vec3::Zero()};
+  Walker w(s, from.face, from.bary, Vec3::Zero());
   const double scale = (s.point(from) - target).norm() + 1e-300;
   const auto arrived_in = [&](int f, Vec3& bary) {
     if (f == to.face) {
@@ -233,12 +258,12 @@ std::vector<FacePiece> walk_between(const TriangleSurface& s, const SurfacePoint
     return "from (" + std::to_string(p.x()) + ", " + std::to_string(p.y()) + ", " + std::to_string(p.z()) + ")";
   };
   // Goes to vertex v of the current face and on into the ring face that faces the target.
-  std::vector<char> passed(static_cast<std::size_t>(s.mesh().n_vertices()), 0);
+  std::vector<int> passed;  // few: a walk passes a handful of vertices
   const auto through_vertex = [&](int v) {
-    if (passed[static_cast<std::size_t>(v)])
+    if (std::find(passed.begin(), passed.end(), v) != passed.end())
       throw InvalidInput("the curve cannot be followed on the surface " + where() + ": the walk towards the next point "
                          "circles around vertex " + std::to_string(v) + " (the surface is not flat at this scale)");
-    passed[static_cast<std::size_t>(v)] = 1;
+    passed.push_back(v);
     const RingSector ring = find_sector(s, v, project_onto_plane(target - s.vertex(v), s.vertex_normal(v)));
     if (ring.face < 0) throw InvalidInput("the curve leaves the surface at boundary vertex " + std::to_string(v));
     w.f = ring.face;

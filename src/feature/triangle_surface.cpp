@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/error.h"
+#include "remesh/closest_point.h"
 #include "subdivision/limit.h"
 
 namespace fairshape::feature {
@@ -64,6 +65,11 @@ int TriangleSurface::corner_of(int f, int v) const {
   for (int i = 0; i < 3; ++i)
     if (corners_[f][i] == v) return i;
   return -1;
+}
+
+const ClosestPointQuery& TriangleSurface::locator() const {
+  if (!locator_) locator_ = std::make_shared<const ClosestPointQuery>(*mesh_);
+  return *locator_;
 }
 
 MatrixX3 loop_limit_normals(const SurfaceMesh& mesh) {

@@ -6,11 +6,16 @@
 #pragma once
 
 #include <array>
+#include <memory>
 
 #include <Eigen/Geometry>
 #include <vector>
 
 #include "mesh/surface_mesh.h"
+
+namespace fairshape {
+class ClosestPointQuery;
+}
 
 namespace fairshape::feature {
 
@@ -42,12 +47,15 @@ class TriangleSurface {
   //! The corner of f at vertex v, −1 if v is not a corner.
   int corner_of(int f, int v) const;
   double longest_edge() const { return longest_edge_; }
+  //! Closest points on this level (a CGAL AABB tree, built on first use and kept).
+  const ClosestPointQuery& locator() const;
 
  private:
   const SurfaceMesh* mesh_;
   MatrixX3 normals_, face_normals_;
   std::vector<std::array<int, 3>> corners_, across_;
   double longest_edge_ = 0;
+  mutable std::shared_ptr<const ClosestPointQuery> locator_;
 };
 
 //! The limit normals of a Loop level (the frame normals of the feature).

@@ -18,10 +18,10 @@
 namespace fairshape::feature {
 namespace {
 
-double distance_to_segment(const BaseSegment& seg, const Vec3& p) {
+double squared_distance_to_segment(const BaseSegment& seg, const Vec3& p) {
   const Vec3 ab = seg.b - seg.a;
   const double t = std::clamp((p - seg.a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-  return (p - (seg.a + t * ab)).norm();
+  return (p - (seg.a + t * ab)).squaredNorm();
 }
 
 struct SegmentRef {
@@ -69,10 +69,19 @@ class SegmentGrid {
 LevelPerturbation perturbation_tbb(const TriangleSurface& s, const std::vector<BaseCurve>& curves) {
   const SurfaceMesh& m = s.mesh();
   const SegmentGrid grid(curves, s.longest_edge());
+  // The segment that last had a vertex in reach is tried first: the walk moves between neighbours.
+  const SegmentRef* hint = nullptr;
+  const auto reaches = [&](const SegmentRef& r, const Vec3& p) {
+    return squared_distance_to_segment(curves[static_cast<std::size_t>(r.curve)].segments[static_cast<std::size_t>(r.segment)],
+                                       p) < r.reach * r.reach;
+  };
   const auto within_reach = [&](const Vec3& p) {
+    if (hint && reaches(*hint, p)) return true;
     for (const SegmentRef& r : grid.near(p))
-      if (distance_to_segment(curves[static_cast<std::size_t>(r.curve)].segments[static_cast<std::size_t>(r.segment)], p) < r.reach)
+      if (reaches(r, p)) {
+        hint = &r;
         return true;
+      }
     return false;
   };
   enum : char { kUntested, kInside, kOutside };  // each vertex is tested once

@@ -6,6 +6,7 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <cstdlib>
 
 #include <tbb/global_control.h>
 
@@ -42,12 +43,12 @@ SubdivisionOptions loop() {
 }
 
 struct Fixture {
-  SurfaceMesh level;  // ~1M vertices
+  SurfaceMesh level;  // ~1M vertices at level 5
   MatrixX3 normals;
   FeatureCurve curve;
-  Fixture() {
-    const MultiresSurface h(curved_sheet(32), loop(), 5, Backend::Optimized);
-    level = h.mesh(5);
+  explicit Fixture(int levels) {
+    const MultiresSurface h(curved_sheet(32), loop(), levels, Backend::Optimized);
+    level = h.mesh(levels);
     normals = loop_limit_normals(level);
     const TriangleSurface s(level, normals);
     // 101 points on a wave across the sheet: 100 segments.
@@ -58,13 +59,18 @@ struct Fixture {
     }
     curve.name = "wave";
     curve.points = project_to_surface(s, P, 0.01, "benchmark curve");
-    curve.params.radius = 8 * 2.0 / 1024;
+    curve.params.radius = 8 * 2.0 / (32 << levels);  // 8 edge lengths of the level
     curve.params.height = 0.004;
   }
 };
 
+// Level 5 (1,050,625 vertices) unless FAIRSHAPE_FEATURE_BENCH_LEVELS says otherwise (a smaller
+// level makes instruction counts under callgrind affordable).
 Fixture& fixture() {
-  static Fixture f;
+  static Fixture f([] {
+    const char* env = std::getenv("FAIRSHAPE_FEATURE_BENCH_LEVELS");
+    return env ? std::atoi(env) : 5;
+  }());
   return f;
 }
 

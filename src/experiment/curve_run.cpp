@@ -238,14 +238,7 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
                 .length_error_max);
     if (!last.solve.history.empty()) row["stationarity"] = num(last.solve.history.back().stationarity);
     if (row["message"].empty()) row["message"] = last.solve.message;
-    if (spec.final_curve) {
-      fs::path p = fs::path(out.dir) / "final.obj";
-      if (!out.single_run) {
-        fs::create_directories(fs::path(out.dir) / "final");
-        p = fs::path(out.dir) / "final" / (out.run_id + ".obj");
-      }
-      write_polyline(current, p.string());
-    }
+    if (spec.final_curve) write_polyline(current, out.final_path());
   } catch (const Error& e) {
     row["termination"] = "invalid_input";
     row["message"] = "edit " + std::to_string(done) + ": " + e.what();

@@ -24,13 +24,6 @@ Vec3 read_point(const YAML::Node& n, const std::string& where) {
   return p;
 }
 
-Vec3 read_vec3(Config& c, const std::string& key, const std::string& doc) {
-  const std::vector<double> v = c.get<std::vector<double>>(key, {0, 0, 0}, doc);
-  if (v.size() != 3 || !std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
-    throw InvalidConfig(c.key_path(key) + ": expected three finite numbers [x, y, z]");
-  return {v[0], v[1], v[2]};
-}
-
 // Feature parameters: the config's `feature_defaults`, overridden per feature.
 feature::FeatureParams read_params(Config& c, const feature::FeatureParams& d) {
   feature::FeatureParams p;
@@ -120,8 +113,8 @@ FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const s
   if (s.features.empty()) throw InvalidConfig("features: at least one feature curve");
   Config ec = root.child("base_edit", "a coarse edit of the base surface (Figure 15): {enabled, nearest, offset, radius}");
   s.base_edit.enabled = ec.get<bool>("enabled", ec.has("offset"), "apply the edit");
-  s.base_edit.nearest = read_vec3(ec, "nearest", "the edit's centre: the base vertex nearest to this point");
-  s.base_edit.offset = read_vec3(ec, "offset", "displacement of the centre");
+  s.base_edit.nearest = read_vec3(ec, "nearest", Vec3::Zero(), "the edit's centre: the base vertex nearest to this point");
+  s.base_edit.offset = read_vec3(ec, "offset", Vec3::Zero(), "displacement of the centre");
   s.base_edit.radius = ec.get_number("radius", 0.3, 1e-6, 10, "falloff radius × bounding-box diagonal");
   ec.check_no_unknown_keys();
   Config ac = root.child("adaptive", "adaptive output mesh (§2.5): {enabled}");
@@ -221,12 +214,7 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
       write_mesh(a.mesh, (fs::path(out.dir) / "adaptive" / (out.run_id + ".obj")).string());
     }
     if (spec.vtk) write_vtp(fine, (fs::path(out.dir) / "vtk" / (out.run_id + ".vtp")).string());
-    fs::path p = fs::path(out.dir) / "final.obj";
-    if (!out.single_run) {
-      fs::create_directories(fs::path(out.dir) / "final");
-      p = fs::path(out.dir) / "final" / (out.run_id + ".obj");
-    }
-    write_mesh(fine, p.string());
+    write_mesh(fine, out.final_path());
   } catch (const Error& e) {
     row["termination"] = "invalid_input";
     row["message"] = e.what();

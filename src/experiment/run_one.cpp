@@ -21,6 +21,13 @@
 
 namespace fairshape {
 namespace fs = std::filesystem;
+
+std::string RunOutputs::final_path() const {
+  if (single_run) return (fs::path(dir) / "final.obj").string();
+  fs::create_directories(fs::path(dir) / "final");
+  return (fs::path(dir) / "final" / (run_id + ".obj")).string();
+}
+
 namespace {
 
 double median(std::vector<double> v) {
@@ -151,14 +158,7 @@ void measure_accuracy(const EditProblem& p, const EditSolution& sol, const Refer
 }
 
 void write_geometry(const RunSpec& spec, const RunOutputs& out, const SurfaceMesh& result, const MultiresSurface& h) {
-  if (spec.output.final_mesh) {
-    fs::path p = fs::path(out.dir) / "final.obj";
-    if (!out.single_run) {
-      fs::create_directories(fs::path(out.dir) / "final");
-      p = fs::path(out.dir) / "final" / (out.run_id + ".obj");
-    }
-    write_mesh(result, p.string());
-  }
+  if (spec.output.final_mesh) write_mesh(result, out.final_path());
   if (spec.output.vtk == "none") return;
   write_vtp(result, (fs::path(out.dir) / "vtk" / (out.run_id + ".vtp")).string());
   if (h.levels() > 0) h.save((fs::path(out.dir) / "vtk" / (out.run_id + "_levels.vtm")).string());

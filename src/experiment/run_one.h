@@ -43,6 +43,8 @@ struct RunOutputs {
   std::string dir;       // the experiment's output folder
   std::string run_id;
   bool single_run = true;  // final.obj, or final/<run_id>.obj in a sweep
+  //! Where the run's final geometry goes (creates final/ in a sweep).
+  std::string final_path() const;
 };
 
 //! Never throws for problems of the input, the numerics or the outputs: they become the

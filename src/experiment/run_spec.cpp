@@ -1,5 +1,6 @@
 #include "experiment/run_spec.h"
 
+#include <cmath>
 #include <filesystem>
 
 #include "core/config.h"
@@ -98,6 +99,13 @@ void read_accuracy(Config& pc, RunSpec& s) {
 }
 
 }  // namespace
+
+Vec3 read_vec3(Config& c, const std::string& key, const Vec3& fallback, const std::string& doc) {
+  const std::vector<double> v = c.get<std::vector<double>>(key, {fallback.x(), fallback.y(), fallback.z()}, doc);
+  if (v.size() != 3 || !std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
+    throw InvalidConfig(c.key_path(key) + ": expected three finite numbers [x, y, z]");
+  return {v[0], v[1], v[2]};
+}
 
 std::vector<std::string> input_search_dirs(const std::string& config_path) {
   std::vector<std::string> dirs{"."};

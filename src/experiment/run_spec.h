@@ -80,6 +80,9 @@ struct RunSpec : RunBasics {
 
 //! The current directory, then `config_path`'s folder and its parents (so configs can name
 //! `data/cow.off` from anywhere inside the repository).
+//! A `[x, y, z]` key. \throw InvalidConfig naming the key unless three finite numbers.
+Vec3 read_vec3(Config& c, const std::string& key, const Vec3& fallback, const std::string& doc);
+
 std::vector<std::string> input_search_dirs(const std::string& config_path);
 //! `path` as found in `dirs`. \throw InvalidConfig naming `key` when it is nowhere.
 std::string resolve_input(const std::string& path, const std::vector<std::string>& dirs, const std::string& key);

@@ -22,13 +22,6 @@ using bspline::SheetConstraint;
 
 namespace {
 
-Vec3 read_vec3(Config& c, const std::string& key, const Vec3& fallback, const std::string& doc) {
-  const std::vector<double> v = c.get<std::vector<double>>(key, {fallback.x(), fallback.y(), fallback.z()}, doc);
-  if (v.size() != 3 || !std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
-    throw InvalidConfig(c.key_path(key) + ": expected three finite numbers [x, y, z]");
-  return {v[0], v[1], v[2]};
-}
-
 Eigen::Vector2d read_uv(Config& c, const std::string& key, const std::string& doc) {
   const std::vector<double> v = c.require<std::vector<double>>(key, doc);
   if (c.documenting()) return Eigen::Vector2d::Zero();
@@ -527,12 +520,7 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
     std::vector<SurfaceMesh> meshes;
     for (std::size_t k = 0; k < sheets.size(); ++k)
       meshes.push_back(tessellate(sheets[k], spec.samples_per_span, initial_P[k], initial_surfaces[k]));
-    fs::path p = fs::path(out.dir) / "final.obj";
-    if (!out.single_run) {
-      fs::create_directories(fs::path(out.dir) / "final");
-      p = fs::path(out.dir) / "final" / (out.run_id + ".obj");
-    }
-    write_mesh(combine(meshes), p.string());
+    write_mesh(combine(meshes), out.final_path());
     row["dofs"] = std::to_string(dofs);
     row["levels"] = std::to_string(levels);
     row["constraint_rows"] = std::to_string(rows);

@@ -78,7 +78,9 @@ BaseCurve build_base_curve(const TriangleSurface& s, const FeatureCurve& curve) 
       seg.bary_b = piece.to;
       seg.a = s.point({piece.face, piece.from});
       seg.b = s.point({piece.face, piece.to});
-      seg.length = (seg.b - seg.a).norm();
+      seg.ab = seg.b - seg.a;
+      seg.length = seg.ab.norm();
+      seg.inv_length2 = 1 / seg.ab.squaredNorm();
       if (seg.length <= 1e-12 * (1 + seg.a.norm())) continue;  // a crossing exactly at a vertex
       seg.arc_start = out.total_length;
       out.total_length += seg.length;

@@ -39,6 +39,8 @@ struct BaseSegment {
   int face = -1;
   Vec3 a = Vec3::Zero(), b = Vec3::Zero();            // end points in space
   Vec3 bary_a = Vec3::Zero(), bary_b = Vec3::Zero();  // and in the face
+  Vec3 ab = Vec3::Zero();                             // b − a, and 1 / |b − a|² (closest points
+  double inv_length2 = 0;                             // are the hot loop of the perturbation)
   double arc_start = 0, length = 0;                   // arc length along the curve
   int prev = -1, next = -1;                           // neighbouring segments of the same curve
 };

@@ -21,8 +21,7 @@ double cubic_profile(double s, double length, double h0, double m0, double h1, d
 namespace {
 
 double closest_parameter(const BaseSegment& seg, const Vec3& p) {
-  const Vec3 ab = seg.b - seg.a;
-  return std::clamp((p - seg.a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  return std::clamp((p - seg.a).dot(seg.ab) * seg.inv_length2, 0.0, 1.0);
 }
 
 // Arc length along the unrolled path of the point closest to p; < 0 when that is the path's end
@@ -46,8 +45,9 @@ std::optional<SegmentOffset> segment_offset(const TriangleSurface& s, const Base
   const BaseSegment& seg = curve.segments[static_cast<std::size_t>(segment)];
   const FeatureParams& q = curve.params;
   const double t = closest_parameter(seg, p);
-  const Vec3 b = (1 - t) * seg.a + t * seg.b;
-  if ((p - b).squaredNorm() >= std::pow(std::max(q.radius, q.right_radius()), 2)) return std::nullopt;  // outside N_r
+  const Vec3 b = seg.a + t * seg.ab;
+  const double reach = std::max(q.radius, q.right_radius());
+  if ((p - b).squaredNorm() >= reach * reach) return std::nullopt;  // outside N_r (checked again below)
   // Figure 12: an end point counts only when the neighbour shares it as its closest point.
   if (t == 0.0 && seg.prev >= 0 && closest_parameter(curve.segments[static_cast<std::size_t>(seg.prev)], p) < 1.0)
     return std::nullopt;
@@ -55,7 +55,7 @@ std::optional<SegmentOffset> segment_offset(const TriangleSurface& s, const Base
     return std::nullopt;
   const SurfacePoint base{seg.face, (1 - t) * seg.bary_a + t * seg.bary_b};
   const Vec3 n = s.normal(base);
-  const Vec3 along = (seg.b - seg.a) / seg.length;
+  const Vec3 along = seg.ab / seg.length;
   const Vec3 left = n.cross(along).normalized();
   Vec3 dir = (p - b) - (p - b).dot(n) * n;
   dir = dir.norm() > 1e-12 * seg.length ? Vec3(dir.normalized()) : left;

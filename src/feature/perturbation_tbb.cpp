@@ -1,15 +1,17 @@
 // Optimized back end of compute_perturbation. The segments go into a uniform grid whose cells
 // are as wide as the largest reach (feature size plus the longest edge): each segment is listed
 // in every cell its reach-widened bounding box overlaps, so a vertex's own cell lists every
-// segment that can move it. The moved region is gathered by one walk over the vertex graph from
+// segment that can move it. The moved region is gathered by a walk over the vertex graph from
 // the segments' faces through vertices within reach of a listed segment (reach includes the
-// longest edge, so the walk cannot be cut off by a vertex just outside), and the vertices are
+// longest edge, so the walk cannot be cut off by a vertex just outside), and its vertices are
 // evaluated in parallel against their cell's list — in curve and segment order, as the
 // reference does, so the two agree exactly.
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <unordered_map>
 
@@ -19,9 +21,8 @@ namespace fairshape::feature {
 namespace {
 
 double squared_distance_to_segment(const BaseSegment& seg, const Vec3& p) {
-  const Vec3 ab = seg.b - seg.a;
-  const double t = std::clamp((p - seg.a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-  return (p - (seg.a + t * ab)).squaredNorm();
+  const double t = std::clamp((p - seg.a).dot(seg.ab) * seg.inv_length2, 0.0, 1.0);
+  return (p - (seg.a + t * seg.ab)).squaredNorm();
 }
 
 struct SegmentRef {
@@ -69,13 +70,13 @@ class SegmentGrid {
 LevelPerturbation perturbation_tbb(const TriangleSurface& s, const std::vector<BaseCurve>& curves) {
   const SurfaceMesh& m = s.mesh();
   const SegmentGrid grid(curves, s.longest_edge());
-  // The segment that last had a vertex in reach is tried first: the walk moves between neighbours.
-  const SegmentRef* hint = nullptr;
   const auto reaches = [&](const SegmentRef& r, const Vec3& p) {
     return squared_distance_to_segment(curves[static_cast<std::size_t>(r.curve)].segments[static_cast<std::size_t>(r.segment)],
                                        p) < r.reach * r.reach;
   };
-  const auto within_reach = [&](const Vec3& p) {
+  // The segment that last had a vertex in reach is tried first (per task: the walk moves between
+  // neighbours, so it usually still reaches).
+  const auto within_reach = [&](const Vec3& p, const SegmentRef*& hint) {
     if (hint && reaches(*hint, p)) return true;
     for (const SegmentRef& r : grid.near(p))
       if (reaches(r, p)) {
@@ -84,21 +85,34 @@ LevelPerturbation perturbation_tbb(const TriangleSurface& s, const std::vector<B
       }
     return false;
   };
-  enum : char { kUntested, kInside, kOutside };  // each vertex is tested once
-  std::vector<char> state(static_cast<std::size_t>(m.n_vertices()), kUntested);
-  std::vector<int> region;
+  // The region: a breadth-first walk, frontier by frontier, each frontier in parallel. A vertex
+  // is claimed (and tested) once through an atomic state, so the region does not depend on the
+  // thread count (it is sorted afterwards).
+  enum : char { kUntested, kClaimed };
+  std::vector<std::atomic<char>> state(static_cast<std::size_t>(m.n_vertices()));
+  std::vector<int> region, frontier;
   for (const BaseCurve& c : curves)
     for (const BaseSegment& seg : c.segments)
       for (int v : s.corners(seg.face))
-        if (state[static_cast<std::size_t>(v)] == kUntested) state[static_cast<std::size_t>(v)] = kInside, region.push_back(v);
-  for (std::size_t head = 0; head < region.size(); ++head)
-    m.for_each_outgoing(region[head], [&](int h) {
-      const int w = m.to_vertex(h);
-      char& st = state[static_cast<std::size_t>(w)];
-      if (st != kUntested) return;
-      st = within_reach(s.vertex(w)) ? kInside : kOutside;
-      if (st == kInside) region.push_back(w);
+        if (state[static_cast<std::size_t>(v)].exchange(kClaimed) == kUntested) frontier.push_back(v);
+  tbb::enumerable_thread_specific<std::vector<int>> next_parts;
+  while (!frontier.empty()) {
+    region.insert(region.end(), frontier.begin(), frontier.end());
+    for (auto& part : next_parts) part.clear();
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, frontier.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
+      std::vector<int>& next = next_parts.local();
+      const SegmentRef* hint = nullptr;
+      for (std::size_t i = r.begin(); i != r.end(); ++i)
+        m.for_each_outgoing(frontier[i], [&](int h) {
+          const int w = m.to_vertex(h);
+          std::atomic<char>& st = state[static_cast<std::size_t>(w)];
+          if (st.load(std::memory_order_relaxed) != kUntested || st.exchange(kClaimed) != kUntested) return;
+          if (within_reach(s.vertex(w), hint)) next.push_back(w);
+        });
     });
+    frontier.clear();
+    for (const auto& part : next_parts) frontier.insert(frontier.end(), part.begin(), part.end());
+  }
   std::sort(region.begin(), region.end());
   const std::size_t n = region.size();
   std::vector<Vec3> moved(n);
@@ -107,11 +121,16 @@ LevelPerturbation perturbation_tbb(const TriangleSurface& s, const std::vector<B
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       const Vec3 p = s.vertex(region[i]);
       OffsetCombiner combined;
-      for (const SegmentRef& ref : grid.near(p))
-        if (const auto o = segment_offset(s, curves[static_cast<std::size_t>(ref.curve)], ref.segment, p)) {
+      for (const SegmentRef& ref : grid.near(p)) {
+        const BaseCurve& curve = curves[static_cast<std::size_t>(ref.curve)];
+        // segment_offset's own first test, inlined: most listed segments are out of reach.
+        const double r = std::max(curve.params.radius, curve.params.right_radius());
+        if (squared_distance_to_segment(curve.segments[static_cast<std::size_t>(ref.segment)], p) >= r * r) continue;
+        if (const auto o = segment_offset(s, curve, ref.segment, p)) {
           combined.add(*o);
           touched[i] = 1;
         }
+      }
       moved[i] = combined.displacement();
     }
   });

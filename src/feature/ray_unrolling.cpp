@@ -155,6 +155,30 @@ UnrolledRay unroll_ray(const TriangleSurface& s, const SurfacePoint& start, cons
     ray.arc.push_back(done);
   };
   int vertex = -1;  // ≥ 0: the walk stands on this vertex
+  // At a point of edge e of the current face: stand on its vertex, or cross the edge; a ray
+  // grazing the edge runs along it to its end point. False when the ray ends here.
+  const auto leave_by_edge = [&](int e) {
+    vertex = w.snapped_vertex(e);
+    if (vertex >= 0) return true;
+    int along = -1;
+    if (!w.cross_edge(e, &along)) {
+      ray.hit_boundary = true;
+      return false;
+    }
+    if (along < 0) return true;
+    const double to_vertex = (s.vertex(along) - w.position()).norm();
+    if (length - done <= to_vertex) {
+      const Vec3 x = w.position() + (length - done) * (s.vertex(along) - w.position()).normalized();
+      w.b = s.barycentric(w.f, x);
+      record(length - done);
+      return false;
+    }
+    w.b = Vec3::Zero();
+    w.b[s.corner_of(w.f, along)] = 1;
+    record(to_vertex);
+    vertex = along;
+    return true;
+  };
   for (int step = 0; step < kMaxSteps; ++step) {
     const double remaining = length - done;
     if (vertex >= 0) {
@@ -186,14 +210,7 @@ UnrolledRay unroll_ray(const TriangleSurface& s, const SurfacePoint& start, cons
       w.b[cb] = lambda;
       w.d = d3;  // still in the vertex's tangent plane: the edge crossing projects it twice
       record(t);
-      vertex = w.snapped_vertex(ca);
-      if (vertex >= 0) continue;
-      int along = -1;
-      if (!w.cross_edge(ca, &along)) {
-        ray.hit_boundary = true;
-        break;
-      }
-      if (along >= 0) vertex = along;
+      if (!leave_by_edge(ca)) break;
       continue;
     }
     int vanishing = -1;
@@ -206,27 +223,7 @@ UnrolledRay unroll_ray(const TriangleSurface& s, const SurfacePoint& start, cons
     w.advance(t);
     w.b[vanishing] = 0;
     record(t);
-    const int e = (vanishing + 1) % 3;  // the edge opposite the vanishing corner
-    vertex = w.snapped_vertex(e);
-    if (vertex >= 0) continue;
-    int along = -1;
-    if (!w.cross_edge(e, &along)) {
-      ray.hit_boundary = true;
-      break;
-    }
-    if (along >= 0) {  // grazing: run along the edge to its end point, then pass the vertex
-      const double to_vertex = (s.vertex(along) - w.position()).norm();
-      if (length - done <= to_vertex) {
-        const Vec3 x = w.position() + (length - done) * (s.vertex(along) - w.position()).normalized();
-        w.b = s.barycentric(w.f, x);
-        record(length - done);
-        break;
-      }
-      w.b = Vec3::Zero();
-      w.b[s.corner_of(w.f, along)] = 1;
-      record(to_vertex);
-      vertex = along;
-    }
+    if (!leave_by_edge((vanishing + 1) % 3)) break;  // the edge opposite the vanishing corner
   }
   if (vertex >= 0 && ray.hit_boundary) {  // stopped on a boundary vertex
     w.b = Vec3::Zero();

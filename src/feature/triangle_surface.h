@@ -37,15 +37,38 @@ class TriangleSurface {
   Vec3 vertex(int v) const { return mesh_->position(v); }
   Vec3 vertex_normal(int v) const { return normals_.row(v).transpose(); }
   Vec3 face_normal(int f) const { return face_normals_.row(f).transpose(); }
-  Vec3 point(const SurfacePoint& p) const;
+  // The small queries below are inline: ray walks call them at every step.
+  Vec3 point(const SurfacePoint& p) const {
+    const auto& c = corners_[p.face];
+    return p.bary[0] * vertex(c[0]) + p.bary[1] * vertex(c[1]) + p.bary[2] * vertex(c[2]);
+  }
   //! Unit normal of the interpolated normal field at p.
-  Vec3 normal(const SurfacePoint& p) const;
+  Vec3 normal(const SurfacePoint& p) const {
+    const auto& c = corners_[p.face];
+    const Vec3 n = p.bary[0] * vertex_normal(c[0]) + p.bary[1] * vertex_normal(c[1]) + p.bary[2] * vertex_normal(c[2]);
+    const double len = n.norm();
+    return len > 1e-300 ? Vec3(n / len) : face_normal(p.face);
+  }
   //! Barycentric coordinates in f of a point of f's plane.
-  Vec3 barycentric(int f, const Vec3& x) const;
-  //! Rate of change of the barycentric coordinates along an in-plane direction d of face f.
-  Vec3 barycentric_rate(int f, const Vec3& d) const;
+  Vec3 barycentric(int f, const Vec3& x) const {
+    return Vec3(1.0, 0.0, 0.0) + barycentric_rate(f, x - vertex(corners_[f][0]));
+  }
+  //! Rate of change of the barycentric coordinates along an in-plane direction d of face f:
+  //! d = a e1 + b e2 (e1 = p1 − p0, e2 = p2 − p0) by the normal equations.
+  Vec3 barycentric_rate(int f, const Vec3& d) const {
+    const auto& c = corners_[f];
+    const Vec3 p0 = vertex(c[0]), e1 = vertex(c[1]) - p0, e2 = vertex(c[2]) - p0;
+    const double g11 = e1.dot(e1), g12 = e1.dot(e2), g22 = e2.dot(e2);
+    const double inv_det = 1 / (g11 * g22 - g12 * g12);
+    const double r1 = e1.dot(d), r2 = e2.dot(d);
+    const double a = (g22 * r1 - g12 * r2) * inv_det, b = (g11 * r2 - g12 * r1) * inv_det;
+    return {-a - b, a, b};
+  }
   //! The corner of f at vertex v, −1 if v is not a corner.
-  int corner_of(int f, int v) const;
+  int corner_of(int f, int v) const {
+    const auto& c = corners_[f];
+    return c[0] == v ? 0 : c[1] == v ? 1 : c[2] == v ? 2 : -1;
+  }
   double longest_edge() const { return longest_edge_; }
   //! Closest points on this level (a CGAL AABB tree, built on first use and kept).
   const ClosestPointQuery& locator() const;

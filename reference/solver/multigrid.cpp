@@ -13,8 +13,8 @@ class SerialKernels {
  public:
   using Block = Eigen::MatrixXd;
 
-  void setup(const MultigridLevels& levels, double omega) {
-    omega_ = omega;
+  void setup(const MultigridLevels& levels, const MultigridOptions& options) {
+    omega_ = options.omega;
     levels_ = levels;
     rows_.clear();
     diagonals_.clear();

@@ -30,6 +30,12 @@ MultigridOptions MultigridOptions::from_config(Config& cfg) {
     throw InvalidConfig(sub.key_path("omega") + ": " + std::to_string(o.omega) + " is outside (0, 2), where SOR diverges");
   o.patch_smoothing = sub.get<bool>("patch_smoothing", o.patch_smoothing,
                                     "exact solves on patches around extraordinary vertices after each sweep set");
+  const std::string smoother = sub.get_choice(
+      "smoother", "block", {"block", "multicolor"},
+      "optimized back end: block multicolour Gauss-Seidel on a renumbered system (contiguous blocks) or point "
+      "multicolour on the subdivision numbering; the reference is lexicographic either way");
+  o.smoother = smoother == "multicolor" ? Smoother::Multicolor : Smoother::Block;
+  o.block_size = sub.get_int("block_size", o.block_size, 16, 1 << 16, "rows per block of the block smoother");
   o.max_levels = sub.get_int("max_levels", o.max_levels, 0, 64, "coarse levels to use (0: all the hierarchy has)");
   if (o.pre_smooth + o.post_smooth == 0 && !sub.documenting())
     throw InvalidConfig(sub.path() + ": pre_smooth and post_smooth are both 0: the cycle would not smooth");

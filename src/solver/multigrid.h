@@ -45,6 +45,11 @@ struct MultigridOptions {
   double omega = 1.0;  // smoother relaxation: 1 = Gauss-Seidel
   int max_levels = 0;  // coarse levels to use (0: every level the hierarchy offers)
   bool patch_smoothing = true;  // exact solves on patches around singular vertices
+  //! Optimized back end's smoother: point multicolour over the subdivision numbering, or block
+  //! multicolour over a renumbering that keeps blocks contiguous (block_ordering.h).
+  enum class Smoother { Multicolor, Block };
+  Smoother smoother = Smoother::Block;
+  int block_size = 256;
   //! Reads the `multigrid` block of a solver's options.
   static MultigridOptions from_config(Config& cfg);
 };
@@ -241,7 +246,7 @@ SolveSummary run_multigrid(Kernels& k, const MultigridOptions& mg, const Iterati
 }
 
 //! The solver: builds the levels in analyze() (the hierarchy comes from set_levels), then
-//! runs cycles or preconditioned CG. Kernels also provide setup(levels, omega).
+//! runs cycles or preconditioned CG. Kernels also provide setup(levels, options).
 template <class Kernels>
 class MultigridSolver : public Solver {
  public:
@@ -260,7 +265,7 @@ class MultigridSolver : public Solver {
     diagonal_problem_.clear();
     for (std::size_t l = 1; l < levels.size() && diagonal_problem_.empty(); ++l)
       diagonal_problem_ = diagonal_problem(levels[l].A.diagonal());
-    kernels_.setup(levels, mg_.omega);
+    kernels_.setup(levels, mg_);
     analyzed_rows_ = A.rows();
   }
 

@@ -1,8 +1,9 @@
 // Optimized `multigrid` and `multigrid_cg`: the shared cycle (multigrid.h) over TBB kernels —
-// multicolour smoothing, row-parallel residuals and transfers on row-major blocks, the
+// block or point multicolour smoothing, row-parallel residuals and transfers on row-major blocks, the
 // Galerkin product gathered in parallel, CHOLMOD on the coarsest level.
 #include <Eigen/CholmodSupport>
 
+#include "solver/block_ordering.h"
 #include "solver/multigrid.h"
 #include "solver/parallel_kernels.h"
 
@@ -13,34 +14,47 @@ class ParallelKernels {
  public:
   using Block = RowBlock;
 
-  void setup(const MultigridLevels& levels, double omega) {
-    omega_ = omega;
+  void setup(const MultigridLevels& levels, const MultigridOptions& options) {
+    omega_ = options.omega;
+    block_ = options.smoother == MultigridOptions::Smoother::Block;
     const std::size_t n = levels.size();
     A_.resize(n);
     P_.assign(n, {});
     PT_.assign(n, {});
+    orderings_.assign(n, {});
     smoothers_.assign(n, {});
+    block_smoothers_.assign(n, {});
     patches_.assign(n, {});
     for (std::size_t l = 0; l < n; ++l) {
       A_[l] = levels[l].A;
       A_[l].makeCompressed();
-      if (l > 0) {
-        P_[l] = levels[l].P;
-        PT_[l] = RowSparseMatrix(levels[l].P.transpose());
+      if (l == 0) continue;  // the coarsest level is solved directly, in its own numbering
+      if (block_) {
+        orderings_[l] = BlockOrdering::build(A_[l], options.block_size);
+        A_[l] = orderings_[l].permute(A_[l]);
+        block_smoothers_[l].analyze(A_[l], orderings_[l].color_blocks);
+      } else {
         smoothers_[l].analyze(A_[l]);
-        patches_[l].setup(levels[l].A, levels[l].patches);
       }
+      P_[l] = block_ ? permute_prolongation(levels[l].P, orderings_[l], orderings_[l - 1]) : levels[l].P;
+      PT_[l] = RowSparseMatrix(SparseMatrix(P_[l]).transpose());
+      std::vector<std::vector<int>> patches = levels[l].patches;
+      if (block_)
+        for (auto& patch : patches)
+          for (int& i : patch) i = orderings_[l].new_of_old[static_cast<std::size_t>(i)];
+      patches_[l].setup(SparseMatrix(A_[l]), patches);
     }
     coarse_A_ = levels[0].A;
     coarse_.compute(coarse_A_);
   }
 
-
   int levels() const { return static_cast<int>(A_.size()); }
   Block zeros(int l, Eigen::Index cols) const { return Block::Zero(A_[l].rows(), cols); }
   void smooth(int l, Block& x, const Block& b, int sweeps, bool forward) const {
     if (!forward) patches_[l].apply(A_[l], x, b, false);
-    for (int s = 0; s < sweeps; ++s) smoothers_[l].sweep(A_[l], x, b, omega_, forward);
+    for (int s = 0; s < sweeps; ++s)
+      if (block_) block_smoothers_[l].sweep(A_[l], x, b, omega_, forward);
+      else smoothers_[l].sweep(A_[l], x, b, omega_, forward);
     if (forward) patches_[l].apply(A_[l], x, b, true);
   }
   Block residual(int l, const Block& x, const Block& b) const {
@@ -66,16 +80,32 @@ class ParallelKernels {
     return x.allFinite() && coarse_solve_accurate(coarse_A_, bc, Eigen::MatrixXd(x));
   }
   Eigen::VectorXd column_dots(const Block& a, const Block& c) const { return parallel_column_dots(a, c); }
-  Block to_block(const Eigen::MatrixXd& m) const { return m; }
-  Eigen::MatrixXd from_block(const Block& m) const { return m; }
+  // The caller's vectors are in the system's numbering; the finest level may be renumbered.
+  Block to_block(const Eigen::MatrixXd& m) const {
+    const BlockOrdering& o = orderings_.back();
+    if (o.empty()) return m;
+    Block out(m.rows(), m.cols());
+    for (Eigen::Index i = 0; i < m.rows(); ++i) out.row(o.new_of_old[static_cast<std::size_t>(i)]) = m.row(i);
+    return out;
+  }
+  Eigen::MatrixXd from_block(const Block& m) const {
+    const BlockOrdering& o = orderings_.back();
+    if (o.empty()) return m;
+    Eigen::MatrixXd out(m.rows(), m.cols());
+    for (Eigen::Index i = 0; i < m.rows(); ++i) out.row(i) = m.row(o.new_of_old[static_cast<std::size_t>(i)]);
+    return out;
+  }
 
  private:
   std::vector<RowSparseMatrix> A_, P_, PT_;
+  std::vector<BlockOrdering> orderings_;  // empty: the level keeps its numbering
   std::vector<MulticolorSmoother> smoothers_;
+  std::vector<BlockSmoother> block_smoothers_;
   std::vector<PatchSmoother> patches_;
   SparseMatrix coarse_A_;
   Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> coarse_;
   double omega_ = 1.0;
+  bool block_ = true;
 };
 
 }  // namespace

@@ -61,6 +61,31 @@ void MulticolorSmoother::sweep(const RowSparseMatrix& A, RowBlock& x, const RowB
   }
 }
 
+void BlockSmoother::analyze(const RowSparseMatrix& A, std::vector<std::vector<std::pair<int, int>>> color_blocks) {
+  diag_ = A.diagonal();
+  color_blocks_ = std::move(color_blocks);
+}
+
+void BlockSmoother::sweep(const RowSparseMatrix& A, RowBlock& x, const RowBlock& b, double omega, bool forward) const {
+  check_columns(x);
+  const int n_colors = colors();
+  for (int k = 0; k < n_colors; ++k) {
+    const auto& blocks = color_blocks_[static_cast<std::size_t>(forward ? k : n_colors - 1 - k)];
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, blocks.size(), 1),
+        [&](const tbb::blocked_range<std::size_t>& r) {
+          for (std::size_t q = r.begin(); q != r.end(); ++q) {
+            const auto [begin, end] = blocks[q];
+            if (forward)
+              for (int i = begin; i < end; ++i) relax_row(A, diag_, i, x, b, omega);
+            else
+              for (int i = end - 1; i >= begin; --i) relax_row(A, diag_, i, x, b, omega);
+          }
+        },
+        tbb::static_partitioner());
+  }
+}
+
 namespace {
 
 template <class RowOp>

@@ -3,6 +3,7 @@
 // neighbour). Every reduction is deterministic for a fixed thread count.
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include "core/types.h"
@@ -25,6 +26,21 @@ class MulticolorSmoother {
   static constexpr std::size_t kParallelRows = 512;
   Eigen::VectorXd diag_;
   std::vector<std::vector<int>> classes_;
+};
+
+//! Block multicolour Gauss-Seidel / SOR on a system renumbered by a BlockOrdering: the colours
+//! in turn, the blocks of one colour in parallel, each block's rows in order (backward: colours
+//! and rows reversed, the adjoint sweep). Blocks of one colour share no entry, so the result
+//! does not depend on the thread count.
+class BlockSmoother {
+ public:
+  void analyze(const RowSparseMatrix& A_renumbered, std::vector<std::vector<std::pair<int, int>>> color_blocks);
+  void sweep(const RowSparseMatrix& A, RowBlock& x, const RowBlock& b, double omega, bool forward) const;
+  int colors() const { return static_cast<int>(color_blocks_.size()); }
+
+ private:
+  Eigen::VectorXd diag_;
+  std::vector<std::vector<std::pair<int, int>>> color_blocks_;
 };
 
 //! y = A x

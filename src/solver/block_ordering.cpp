@@ -1,0 +1,84 @@
+#include "solver/block_ordering.h"
+
+#include <algorithm>
+
+#include "core/error.h"
+#include "solver/graph_coloring.h"
+
+namespace fairshape {
+
+BlockOrdering BlockOrdering::build(const RowSparseMatrix& A, int block_size) {
+  if (A.rows() != A.cols()) throw InvalidInput("block ordering: the matrix is not square");
+  const int n = static_cast<int>(A.rows());
+  // Blocks: breadth-first from the lowest unassigned row until the block is full.
+  std::vector<int> block_of(static_cast<std::size_t>(n), -1), bfs_order;
+  bfs_order.reserve(static_cast<std::size_t>(n));
+  int blocks = 0;
+  for (int seed = 0; seed < n; ++seed) {
+    if (block_of[static_cast<std::size_t>(seed)] >= 0) continue;
+    const std::size_t first = bfs_order.size();
+    block_of[static_cast<std::size_t>(seed)] = blocks;
+    bfs_order.push_back(seed);
+    for (std::size_t head = first; head < bfs_order.size() && bfs_order.size() - first < static_cast<std::size_t>(block_size);
+         ++head)
+      for (RowSparseMatrix::InnerIterator it(A, bfs_order[head]); it; ++it) {
+        const int j = static_cast<int>(it.col());
+        if (block_of[static_cast<std::size_t>(j)] >= 0) continue;
+        block_of[static_cast<std::size_t>(j)] = blocks;
+        bfs_order.push_back(j);
+        if (bfs_order.size() - first == static_cast<std::size_t>(block_size)) break;
+      }
+    ++blocks;
+  }
+  // The block graph (blocks coupled by an entry of A), coloured greedily.
+  std::vector<Eigen::Triplet<double, int>> coupling;
+  for (int i = 0; i < n; ++i)
+    for (RowSparseMatrix::InnerIterator it(A, i); it; ++it)
+      coupling.emplace_back(block_of[static_cast<std::size_t>(i)], block_of[static_cast<std::size_t>(it.col())], 1.0);
+  RowSparseMatrix B(blocks, blocks);
+  B.setFromTriplets(coupling.begin(), coupling.end());
+  const std::vector<std::vector<int>> block_colors = color_rows(B);
+  // New numbering: colour by colour, block by block, each block's rows in breadth-first order.
+  std::vector<std::vector<int>> rows_of(static_cast<std::size_t>(blocks));
+  for (int i : bfs_order) rows_of[static_cast<std::size_t>(block_of[static_cast<std::size_t>(i)])].push_back(i);
+  BlockOrdering o;
+  o.old_of_new.reserve(static_cast<std::size_t>(n));
+  for (const std::vector<int>& color : block_colors) {
+    o.color_blocks.emplace_back();
+    for (int blk : color) {
+      const int begin = static_cast<int>(o.old_of_new.size());
+      for (int i : rows_of[static_cast<std::size_t>(blk)]) o.old_of_new.push_back(i);
+      o.color_blocks.back().emplace_back(begin, static_cast<int>(o.old_of_new.size()));
+    }
+  }
+  o.new_of_old.assign(static_cast<std::size_t>(n), -1);
+  for (int k = 0; k < n; ++k) o.new_of_old[static_cast<std::size_t>(o.old_of_new[static_cast<std::size_t>(k)])] = k;
+  return o;
+}
+
+RowSparseMatrix BlockOrdering::permute(const RowSparseMatrix& A) const {
+  std::vector<Eigen::Triplet<double, int>> t;
+  t.reserve(static_cast<std::size_t>(A.nonZeros()));
+  for (int i = 0; i < A.outerSize(); ++i)
+    for (RowSparseMatrix::InnerIterator it(A, i); it; ++it)
+      t.emplace_back(new_of_old[static_cast<std::size_t>(i)], new_of_old[static_cast<std::size_t>(it.col())], it.value());
+  RowSparseMatrix out(A.rows(), A.cols());
+  out.setFromTriplets(t.begin(), t.end());
+  return out;
+}
+
+SparseMatrix permute_prolongation(const SparseMatrix& P, const BlockOrdering& fine, const BlockOrdering& coarse) {
+  std::vector<Eigen::Triplet<double, int>> t;
+  t.reserve(static_cast<std::size_t>(P.nonZeros()));
+  for (int j = 0; j < P.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(P, j); it; ++it) {
+      const int r = fine.empty() ? static_cast<int>(it.row()) : fine.new_of_old[static_cast<std::size_t>(it.row())];
+      const int c = coarse.empty() ? j : coarse.new_of_old[static_cast<std::size_t>(j)];
+      t.emplace_back(r, c, it.value());
+    }
+  SparseMatrix out(P.rows(), P.cols());
+  out.setFromTriplets(t.begin(), t.end());
+  return out;
+}
+
+}  // namespace fairshape

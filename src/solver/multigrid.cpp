@@ -59,6 +59,26 @@ void PatchSmoother::setup(const SparseMatrix& A, const std::vector<std::vector<i
     inverses_.insert(inverses_.end(), inverse.data(), inverse.data() + inverse.size());
     max_size_ = std::max(max_size_, m);
   }
+  // Colours: patch q conflicts with p when one of q's rows is coupled (through A) to p's rows.
+  std::vector<std::vector<std::size_t>> owners(static_cast<std::size_t>(A.rows()));
+  for (std::size_t k = 0; k < patches_.size(); ++k)
+    for (int i : patches_[k]) owners[static_cast<std::size_t>(i)].push_back(k);
+  std::vector<int> color(patches_.size(), -1), taken_by;  // taken_by[c] == p: a conflict of p has c
+  colors_.clear();
+  for (std::size_t k = 0; k < patches_.size(); ++k) {
+    for (int i : patches_[k])
+      for (SparseMatrix::InnerIterator it(A, i); it; ++it)  // column i = row i (A is symmetric)
+        for (std::size_t q : owners[static_cast<std::size_t>(it.row())])
+          if (q != k && color[q] >= 0) taken_by[static_cast<std::size_t>(color[q])] = static_cast<int>(k);
+    int c = 0;
+    while (c < static_cast<int>(taken_by.size()) && taken_by[static_cast<std::size_t>(c)] == static_cast<int>(k)) ++c;
+    if (c == static_cast<int>(taken_by.size())) {
+      taken_by.push_back(-1);
+      colors_.emplace_back();
+    }
+    color[k] = c;
+    colors_[static_cast<std::size_t>(c)].push_back(k);
+  }
 }
 
 bool coarse_solve_accurate(const SparseMatrix& A, const Eigen::MatrixXd& b, const Eigen::MatrixXd& x) {

@@ -60,36 +60,47 @@ struct MultigridLevel {
   std::vector<std::vector<int>> patches;  // unknowns around each singular vertex
 };
 
-//! Multiplicative Schwarz on small overlapping patches: x_p += A_pp⁻¹ (b − A x)_p, patch by
-//! patch (in reverse order for the adjoint pass). The inverses are formed once (patches are
-//! a few dozen unknowns), so a pass allocates nothing.
+//! Multiplicative Schwarz on small overlapping patches: x_p += A_pp⁻¹ (b − A x)_p. The patches
+//! are coloured so that two of one colour never touch each other's rows through A: a colour's
+//! patches may run in any order, or in parallel, with bit-identical results. A pass runs the
+//! colours in order (in reverse for the adjoint pass). The inverses are formed once (patches are
+//! a few dozen unknowns), so a pass allocates nothing but two small buffers.
 class PatchSmoother {
  public:
   void setup(const SparseMatrix& A, const std::vector<std::vector<int>>& patches);
   bool empty() const { return patches_.empty(); }
+  const std::vector<std::vector<std::size_t>>& colors() const { return colors_; }
+  Eigen::Index max_size() const { return max_size_; }
+
+  //! The serial pass (the reference back end; the optimized one runs each colour in parallel).
   template <class Block>
   void apply(const RowSparseMatrix& A, Block& x, const Block& b, bool forward) const {
-    const std::size_t n = patches_.size();
-    if (n == 0) return;
+    if (patches_.empty()) return;
     Eigen::MatrixXd r(max_size_, x.cols()), e(max_size_, x.cols());
-    for (std::size_t q = 0; q < n; ++q) {
-      const std::size_t k = forward ? q : n - 1 - q;
-      const std::vector<int>& patch = patches_[k];
-      const auto m = static_cast<Eigen::Index>(patch.size());
-      for (Eigen::Index a = 0; a < m; ++a) {
-        for (Eigen::Index c = 0; c < x.cols(); ++c) r(a, c) = b(patch[a], c);
-        for (RowSparseMatrix::InnerIterator it(A, patch[a]); it; ++it)
-          for (Eigen::Index c = 0; c < x.cols(); ++c) r(a, c) -= it.value() * x(it.col(), c);
-      }
-      const Eigen::Map<const Eigen::MatrixXd> inverse(inverses_.data() + offsets_[k], m, m);
-      e.topRows(m).noalias() = inverse * r.topRows(m);
-      for (Eigen::Index a = 0; a < m; ++a)
-        for (Eigen::Index c = 0; c < x.cols(); ++c) x(patch[a], c) += e(a, c);
+    const std::size_t n = colors_.size();
+    for (std::size_t q = 0; q < n; ++q)
+      for (std::size_t k : colors_[forward ? q : n - 1 - q]) apply_patch(k, A, x, b, r, e);
+  }
+  //! One patch; r and e are scratch of max_size() rows.
+  template <class Block>
+  void apply_patch(std::size_t k, const RowSparseMatrix& A, Block& x, const Block& b, Eigen::MatrixXd& r,
+                   Eigen::MatrixXd& e) const {
+    const std::vector<int>& patch = patches_[k];
+    const auto m = static_cast<Eigen::Index>(patch.size());
+    for (Eigen::Index a = 0; a < m; ++a) {
+      for (Eigen::Index c = 0; c < x.cols(); ++c) r(a, c) = b(patch[a], c);
+      for (RowSparseMatrix::InnerIterator it(A, patch[a]); it; ++it)
+        for (Eigen::Index c = 0; c < x.cols(); ++c) r(a, c) -= it.value() * x(it.col(), c);
     }
+    const Eigen::Map<const Eigen::MatrixXd> inverse(inverses_.data() + offsets_[k], m, m);
+    e.topRows(m).noalias() = inverse * r.topRows(m);
+    for (Eigen::Index a = 0; a < m; ++a)
+      for (Eigen::Index c = 0; c < x.cols(); ++c) x(patch[a], c) += e(a, c);
   }
 
  private:
   std::vector<std::vector<int>> patches_;
+  std::vector<std::vector<std::size_t>> colors_;  // patch indices per colour, ascending
   std::vector<double> inverses_;  // A_pp⁻¹ of every patch, column-major, back to back
   std::vector<std::size_t> offsets_;
   Eigen::Index max_size_ = 0;

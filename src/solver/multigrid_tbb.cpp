@@ -2,6 +2,8 @@
 // block or point multicolour smoothing, row-parallel residuals and transfers on row-major blocks, the
 // Galerkin product gathered in parallel, CHOLMOD on the coarsest level.
 #include <Eigen/CholmodSupport>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "solver/block_ordering.h"
 #include "solver/multigrid.h"
@@ -51,11 +53,24 @@ class ParallelKernels {
   int levels() const { return static_cast<int>(A_.size()); }
   Block zeros(int l, Eigen::Index cols) const { return Block::Zero(A_[l].rows(), cols); }
   void smooth(int l, Block& x, const Block& b, int sweeps, bool forward) const {
-    if (!forward) patches_[l].apply(A_[l], x, b, false);
+    if (!forward) patch_pass(l, x, b, false);
     for (int s = 0; s < sweeps; ++s)
       if (block_) block_smoothers_[l].sweep(A_[l], x, b, omega_, forward);
       else smoothers_[l].sweep(A_[l], x, b, omega_, forward);
-    if (forward) patches_[l].apply(A_[l], x, b, true);
+    if (forward) patch_pass(l, x, b, true);
+  }
+  // The patch smoother's colours in turn, each colour's patches in parallel.
+  void patch_pass(int l, Block& x, const Block& b, bool forward) const {
+    const PatchSmoother& p = patches_[l];
+    if (p.empty()) return;
+    const auto& colors = p.colors();
+    for (std::size_t q = 0; q < colors.size(); ++q) {
+      const auto& patches = colors[forward ? q : colors.size() - 1 - q];
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, patches.size(), 16), [&](const tbb::blocked_range<std::size_t>& r) {
+        Eigen::MatrixXd res(p.max_size(), x.cols()), e(p.max_size(), x.cols());
+        for (std::size_t i = r.begin(); i != r.end(); ++i) p.apply_patch(patches[i], A_[l], x, b, res, e);
+      });
+    }
   }
   Block residual(int l, const Block& x, const Block& b) const {
     Block r;

@@ -105,7 +105,7 @@ std::vector<OsdLevel> osd_refine(const SurfaceMesh& m, const SubdivisionOptions&
 // For each of our vertices, the OpenSubdiv vertex at the same place (within tol), or -1.
 std::vector<int> match_vertices(const MatrixX3& ours, const MatrixX3& theirs, double tol) {
   const double cell = std::max(tol * 1e4, 1e-9);
-  auto key = [cell](long x, long y, long z) { return (x * 73856093) ^ (y * 19349663) ^ (z * 83492791); };
+  auto key = [](long x, long y, long z) { return (x * 73856093) ^ (y * 19349663) ^ (z * 83492791); };
   std::unordered_multimap<long, int> grid;
   for (Eigen::Index i = 0; i < theirs.rows(); ++i)
     grid.emplace(key(std::lround(theirs(i, 0) / cell), std::lround(theirs(i, 1) / cell), std::lround(theirs(i, 2) / cell)),

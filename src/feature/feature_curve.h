@@ -3,6 +3,7 @@
 // parameters of its profile, and the base polyline the perturbation is measured from.
 #pragma once
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,11 @@ struct BaseSegment {
   double inv_length2 = 0;                             // are the hot loop of the perturbation)
   double arc_start = 0, length = 0;                   // arc length along the curve
   int prev = -1, next = -1;                           // neighbouring segments of the same curve
+
+  //! Parameter in [0, 1] of the point closest to p, and the squared distance to it (inline:
+  //! the perturbation tests every listed segment against every vertex near the curve).
+  double closest_parameter(const Vec3& p) const { return std::clamp((p - a).dot(ab) * inv_length2, 0.0, 1.0); }
+  double squared_distance(const Vec3& p) const { return (p - (a + closest_parameter(p) * ab)).squaredNorm(); }
 };
 
 struct BaseCurve {

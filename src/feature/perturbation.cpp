@@ -1,5 +1,7 @@
 #include "feature/perturbation.h"
 
+#include "feature/perturbation_backends.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -12,6 +14,13 @@ MatrixX3 LevelPerturbation::dense(int n_vertices) const {
   return d;
 }
 
+void OffsetCombiner::add(const SegmentOffset& o) {
+  if (o.delta > raise.delta) raise = o;
+  if (o.delta < cut.delta) cut = o;
+}
+
+Vec3 OffsetCombiner::displacement() const { return raise.delta * raise.normal + cut.delta * cut.normal; }
+
 double cubic_profile(double s, double length, double h0, double m0, double h1, double m1) {
   const double t = s / length, t2 = t * t, t3 = t2 * t;
   return (2 * t3 - 3 * t2 + 1) * h0 + (t3 - 2 * t2 + t) * length * m0 + (-2 * t3 + 3 * t2) * h1 +
@@ -19,10 +28,6 @@ double cubic_profile(double s, double length, double h0, double m0, double h1, d
 }
 
 namespace {
-
-double closest_parameter(const BaseSegment& seg, const Vec3& p) {
-  return std::clamp((p - seg.a).dot(seg.ab) * seg.inv_length2, 0.0, 1.0);
-}
 
 // Arc length along the unrolled path of the point closest to p; < 0 when that is the path's end
 // (p lies beyond the region of influence).
@@ -44,14 +49,14 @@ std::optional<SegmentOffset> segment_offset(const TriangleSurface& s, const Base
                                             const Vec3& p) {
   const BaseSegment& seg = curve.segments[static_cast<std::size_t>(segment)];
   const FeatureParams& q = curve.params;
-  const double t = closest_parameter(seg, p);
+  const double t = seg.closest_parameter(p);
   const Vec3 b = seg.a + t * seg.ab;
   const double reach = std::max(q.radius, q.right_radius());
   if ((p - b).squaredNorm() >= reach * reach) return std::nullopt;  // outside N_r (checked again below)
   // Figure 12: an end point counts only when the neighbour shares it as its closest point.
-  if (t == 0.0 && seg.prev >= 0 && closest_parameter(curve.segments[static_cast<std::size_t>(seg.prev)], p) < 1.0)
+  if (t == 0.0 && seg.prev >= 0 && curve.segments[static_cast<std::size_t>(seg.prev)].closest_parameter(p) < 1.0)
     return std::nullopt;
-  if (t == 1.0 && seg.next >= 0 && closest_parameter(curve.segments[static_cast<std::size_t>(seg.next)], p) > 0.0)
+  if (t == 1.0 && seg.next >= 0 && curve.segments[static_cast<std::size_t>(seg.next)].closest_parameter(p) > 0.0)
     return std::nullopt;
   const SurfacePoint base{seg.face, (1 - t) * seg.bary_a + t * seg.bary_b};
   const Vec3 n = s.normal(base);

@@ -5,6 +5,7 @@
 
 namespace fairshape::feature {
 
+//! Raises and cuts of one control point, combined as §2.3 describes (perturbation.cpp).
 struct OffsetCombiner {
   SegmentOffset raise, cut;
   void add(const SegmentOffset& o);

@@ -4,14 +4,6 @@
 
 namespace fairshape::feature {
 
-// Raises and cuts of one control point, combined as §2.3 describes.
-void OffsetCombiner::add(const SegmentOffset& o) {
-  if (o.delta > raise.delta) raise = o;
-  if (o.delta < cut.delta) cut = o;
-}
-
-Vec3 OffsetCombiner::displacement() const { return raise.delta * raise.normal + cut.delta * cut.normal; }
-
 LevelPerturbation perturbation_reference(const TriangleSurface& s, const std::vector<BaseCurve>& curves) {
   LevelPerturbation out;
   std::vector<Vec3> moved;

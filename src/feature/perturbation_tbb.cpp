@@ -20,11 +20,6 @@
 namespace fairshape::feature {
 namespace {
 
-double squared_distance_to_segment(const BaseSegment& seg, const Vec3& p) {
-  const double t = std::clamp((p - seg.a).dot(seg.ab) * seg.inv_length2, 0.0, 1.0);
-  return (p - (seg.a + t * seg.ab)).squaredNorm();
-}
-
 struct SegmentRef {
   int curve, segment;
   double reach;
@@ -71,8 +66,8 @@ LevelPerturbation perturbation_tbb(const TriangleSurface& s, const std::vector<B
   const SurfaceMesh& m = s.mesh();
   const SegmentGrid grid(curves, s.longest_edge());
   const auto reaches = [&](const SegmentRef& r, const Vec3& p) {
-    return squared_distance_to_segment(curves[static_cast<std::size_t>(r.curve)].segments[static_cast<std::size_t>(r.segment)],
-                                       p) < r.reach * r.reach;
+    return curves[static_cast<std::size_t>(r.curve)].segments[static_cast<std::size_t>(r.segment)].squared_distance(p) <
+           r.reach * r.reach;
   };
   // The segment that last had a vertex in reach is tried first (per task: the walk moves between
   // neighbours, so it usually still reaches).
@@ -125,7 +120,7 @@ LevelPerturbation perturbation_tbb(const TriangleSurface& s, const std::vector<B
         const BaseCurve& curve = curves[static_cast<std::size_t>(ref.curve)];
         // segment_offset's own first test, inlined: most listed segments are out of reach.
         const double r = std::max(curve.params.radius, curve.params.right_radius());
-        if (squared_distance_to_segment(curve.segments[static_cast<std::size_t>(ref.segment)], p) >= r * r) continue;
+        if (curve.segments[static_cast<std::size_t>(ref.segment)].squared_distance(p) >= r * r) continue;
         if (const auto o = segment_offset(s, curve, ref.segment, p)) {
           combined.add(*o);
           touched[i] = 1;

@@ -15,6 +15,9 @@ double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x()
 
 Vec3 project_onto_plane(const Vec3& d, const Vec3& n) { return d - d.dot(n) * n; }
 
+// Barycentric coordinates of corner k (weight 1 there, 0 at the other two).
+Vec3 at_corner(int k) { return Vec3::Unit(k); }
+
 // The face of v's one-ring the tangent-plane direction d enters, with the ring projected to the
 // tangent plane (one-to-one or FlatnessError). `sector` = −1 when d leaves the surface there.
 struct RingSector {
@@ -173,8 +176,7 @@ UnrolledRay unroll_ray(const TriangleSurface& s, const SurfacePoint& start, cons
       record(length - done);
       return false;
     }
-    w.b = Vec3::Zero();
-    w.b[s.corner_of(w.f, along)] = 1;
+    w.b = at_corner(s.corner_of(w.f, along));
     record(to_vertex);
     vertex = along;
     return true;
@@ -226,8 +228,7 @@ UnrolledRay unroll_ray(const TriangleSurface& s, const SurfacePoint& start, cons
     if (!leave_by_edge((vanishing + 1) % 3)) break;  // the edge opposite the vanishing corner
   }
   if (vertex >= 0 && ray.hit_boundary) {  // stopped on a boundary vertex
-    w.b = Vec3::Zero();
-    w.b[s.corner_of(w.f, vertex)] = 1;
+    w.b = at_corner(s.corner_of(w.f, vertex));
   }
   ray.end = {w.f, w.b};
   ray.end_direction = w.d.normalized();
@@ -264,8 +265,7 @@ std::vector<FacePiece> walk_between(const TriangleSurface& s, const SurfacePoint
     const RingSector ring = find_sector(s, v, project_onto_plane(target - s.vertex(v), s.vertex_normal(v)));
     if (ring.face < 0) throw InvalidInput("the curve leaves the surface at boundary vertex " + std::to_string(v));
     w.f = ring.face;
-    w.b = Vec3::Zero();
-    w.b[ring.corner_v] = 1;
+    w.b = at_corner(ring.corner_v);
   };
   int entered_by = -1;  // the mesh edge the walk came in through
   const int max_steps = 4 * s.n_faces() + 16;
@@ -292,9 +292,7 @@ std::vector<FacePiece> walk_between(const TriangleSurface& s, const SurfacePoint
       // point nearer the target, then pass that vertex.
       const int va = s.corners(w.f)[e], vb = s.corners(w.f)[(e + 1) % 3];
       const int v = (s.vertex(va) - target).norm() < (s.vertex(vb) - target).norm() ? va : vb;
-      Vec3 bv = Vec3::Zero();
-      bv[s.corner_of(w.f, v)] = 1;
-      pieces.push_back({w.f, w.b, bv});
+      pieces.push_back({w.f, w.b, at_corner(s.corner_of(w.f, v))});
       through_vertex(v);
       entered_by = -1;
       continue;
@@ -313,10 +311,9 @@ std::vector<FacePiece> walk_between(const TriangleSurface& s, const SurfacePoint
       throw InvalidInput("the curve leaves the surface across a boundary edge of face " + std::to_string(w.f));
     entered_by = SurfaceMesh::edge(h);
     if (along >= 0) {  // grazing the edge: along it to its end point (still in this face)
-      Vec3 bv = Vec3::Zero();
-      bv[s.corner_of(w.f, along)] = 1;
-      pieces.push_back({w.f, w.b, bv});
-      w.b = bv;
+      const Vec3 end = at_corner(s.corner_of(w.f, along));
+      pieces.push_back({w.f, w.b, end});
+      w.b = end;
       entered_by = -1;
     }
   }

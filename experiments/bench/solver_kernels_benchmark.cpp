@@ -91,19 +91,18 @@ void BM_StreamTriad(benchmark::State& state) {
 }
 BENCHMARK(BM_StreamTriad)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-// One forward multicolour sweep of the reduced level-L system. Bytes: the least a sweep must
-// move — A's values and column indices once (12 bytes per entry, 4 per row pointer), x read
-// and written and b read once (3 doubles each per row).
-void BM_MulticolorSweep_CowEdit(benchmark::State& state) {
-  const int level = static_cast<int>(state.range(0));
-  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(state.range(1)));
+// The reduced level-L cow edit (the multigrid's finest system) and one forward sweep of it by a
+// smoother, timed. Bytes: the least a sweep must move — A's values and column indices once
+// (12 bytes per entry, 4 per row pointer), x read and written and b read once (3 doubles each
+// per row).
+RowSparseMatrix cow_edit_system(int level) {
   const EditProblem& p = bench::cow_edit(level, level).ladder.problems.back();
   const std::vector<int> fixed = reached_columns(p.constraints.A);
-  const ReducedSystem r =
-      reduce({p.H, p.g, fixed, Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(fixed.size()), 3)});
-  const RowSparseMatrix A = r.A;
-  MulticolorSmoother smoother;
-  smoother.analyze(A);
+  return RowSparseMatrix(reduce({p.H, p.g, fixed, Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(fixed.size()), 3)}).A);
+}
+
+template <class Smoother>
+void time_sweeps(benchmark::State& state, const RowSparseMatrix& A, const Smoother& smoother) {
   RowBlock x = RowBlock::Zero(A.rows(), 3), b = RowBlock::Ones(A.rows(), 3);
   for (auto _ : state) {
     smoother.sweep(A, x, b, 1.0, true);
@@ -114,30 +113,26 @@ void BM_MulticolorSweep_CowEdit(benchmark::State& state) {
   state.counters["colors"] = smoother.colors();
   state.counters["bytes_per_second"] = benchmark::Counter(bytes * state.iterations(), benchmark::Counter::kIsRate);
 }
+
+// Point multicolour over the subdivision numbering.
+void BM_MulticolorSweep_CowEdit(benchmark::State& state) {
+  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(state.range(1)));
+  const RowSparseMatrix A = cow_edit_system(static_cast<int>(state.range(0)));
+  MulticolorSmoother smoother;
+  smoother.analyze(A);
+  time_sweeps(state, A, smoother);
+}
 BENCHMARK(BM_MulticolorSweep_CowEdit)->Args({3, 1})->Args({3, 2})->Args({4, 2})->Unit(benchmark::kMillisecond)->UseRealTime();
 
-// The same sweep by the block multicolour smoother on the renumbered system (what multigrid's
-// optimized back end runs by default); same bytes.
+// Block multicolour on the renumbered system (what multigrid's optimized back end runs by default).
 void BM_BlockSweep_CowEdit(benchmark::State& state) {
-  const int level = static_cast<int>(state.range(0));
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(state.range(1)));
-  const EditProblem& p = bench::cow_edit(level, level).ladder.problems.back();
-  const std::vector<int> fixed = reached_columns(p.constraints.A);
-  const ReducedSystem r =
-      reduce({p.H, p.g, fixed, Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(fixed.size()), 3)});
-  const BlockOrdering ordering = BlockOrdering::build(RowSparseMatrix(r.A), 256);
-  const RowSparseMatrix A = ordering.permute(RowSparseMatrix(r.A));
+  const RowSparseMatrix system = cow_edit_system(static_cast<int>(state.range(0)));
+  const BlockOrdering ordering = BlockOrdering::build(system, 256);
+  const RowSparseMatrix A = ordering.permute(system);
   BlockSmoother smoother;
   smoother.analyze(A, ordering.color_blocks);
-  RowBlock x = RowBlock::Zero(A.rows(), 3), b = RowBlock::Ones(A.rows(), 3);
-  for (auto _ : state) {
-    smoother.sweep(A, x, b, 1.0, true);
-    benchmark::DoNotOptimize(x.data());
-  }
-  const double bytes = 12.0 * static_cast<double>(A.nonZeros()) + (4.0 + 3 * 24.0) * static_cast<double>(A.rows());
-  state.counters["rows"] = static_cast<double>(A.rows());
-  state.counters["colors"] = smoother.colors();
-  state.counters["bytes_per_second"] = benchmark::Counter(bytes * state.iterations(), benchmark::Counter::kIsRate);
+  time_sweeps(state, A, smoother);
 }
 BENCHMARK(BM_BlockSweep_CowEdit)->Args({3, 1})->Args({3, 2})->Args({4, 2})->Unit(benchmark::kMillisecond)->UseRealTime();
 

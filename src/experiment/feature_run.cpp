@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <map>
 
 #include "core/config.h"
 #include "core/timer.h"
@@ -151,10 +152,12 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
     feature::FeaturedSurface surface(MultiresSurface(base, opt, spec.levels, spec.implementation), spec.implementation);
     const SurfaceMesh& fine0 = surface.original().mesh(spec.levels);
     const double diag = (fine0.positions().colwise().maxCoeff() - fine0.positions().colwise().minCoeff()).norm();
+    std::map<int, feature::TriangleSurface> drawn_on;  // one per level: its normals and AABB tree
     for (FeatureSpec& f : spec.features) {
       if (!f.world_points.empty()) {
         const SurfaceMesh& level = surface.original().mesh(f.curve.level);
-        const feature::TriangleSurface s(level, feature::loop_limit_normals(level));
+        const feature::TriangleSurface& s =
+            drawn_on.try_emplace(f.curve.level, level, feature::loop_limit_normals(level)).first->second;
         MatrixX3 P(static_cast<Eigen::Index>(f.world_points.size()), 3);
         for (std::size_t i = 0; i < f.world_points.size(); ++i) P.row(static_cast<Eigen::Index>(i)) = f.world_points[i].transpose();
         f.curve.points = feature::project_to_surface(s, P, f.max_distance * diag, "feature '" + f.curve.name + "'");
@@ -165,7 +168,8 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
                              std::to_string(f.curve.level));
       surface.add(f.curve);
     }
-    (void)surface.result();  // the features on the unedited surface (curves are attached to it)
+    // The curves are attached to the unedited levels (face, barycentric coordinates), so a base
+    // edit carries them.
     if (spec.base_edit.enabled) {
       MultiresSurface& original = surface.original();
       original.set_base_positions(edited_base(original.mesh(0), spec.base_edit, diag));

@@ -24,7 +24,7 @@ class SerialKernels {
       diagonals_.push_back(levels_[l].A.diagonal());
       patches_[l].setup(levels_[l].A, levels_[l].patches);
     }
-    coarse_.compute(levels_[0].A);
+    coarse_.compute(regularized_for_factorization(levels_[0].A));
   }
 
   int levels() const { return static_cast<int>(levels_.size()); }
@@ -40,9 +40,7 @@ class SerialKernels {
   Block restrict_down(int l, const Block& r) const { return levels_[l].P.transpose() * r; }
   void prolong_add(int l, const Block& e, Block& x) const { x += levels_[l].P * e; }
   bool coarse_solve(const Block& b, Block& x) {
-    if (coarse_.info() != Eigen::Success) return false;
-    x = coarse_.solve(b);
-    return x.allFinite() && coarse_solve_accurate(levels_[0].A, b, x);
+    return coarse_.info() == Eigen::Success && solve_coarsest(coarse_, levels_[0].A, b, x);
   }
   Eigen::VectorXd column_dots(const Block& a, const Block& c) const { return a.cwiseProduct(c).colwise().sum().transpose(); }
   Block to_block(const Eigen::MatrixXd& m) const { return m; }

@@ -65,6 +65,7 @@ bool IterationMonitor::record(int iteration, double residual, const Eigen::Matri
   const bool first = first_residual_ < 0;
   if (first) first_residual_ = residual;
   const bool energy_rule = opt_.energy_tolerance > 0;
+  const Timer observing;
   const double energy = (energy_rule || cb_) ? energy_(x) : std::nan("");
   // Relative to the decrease so far, so a constant in the energy (the reduced system drops
   // one) does not change when the rule fires.
@@ -76,7 +77,9 @@ bool IterationMonitor::record(int iteration, double residual, const Eigen::Matri
     fail("diverged at iteration " + std::to_string(iteration) + " (residual " + std::to_string(residual) + ")");
     return false;
   }
-  if (cb_ && !cb_({iteration, residual, timer_.seconds(), energy, &x})) {
+  const bool stop = cb_ && !cb_({iteration, residual, timer_.seconds() - summary_.observe_s, energy, &x});
+  summary_.observe_s += observing.seconds();
+  if (stop) {
     summary_.message = "stopped by the callback";
     return false;
   }

@@ -29,7 +29,11 @@ class MulticolorSor : public Solver {
     const double b_norm = b.norm() > 0 ? b.norm() : 1.0;
     const auto record = [&](int it) {
       parallel_residual(A_, xr, br, r);
-      if (monitor.wants_iterate()) x = xr;
+      if (monitor.wants_iterate()) {
+        const Timer converting;
+        x = xr;
+        monitor.add_observation(converting.seconds());
+      }
       return monitor.record(it, std::sqrt(parallel_column_dots(r, r).sum()) / b_norm, x);
     };
     if (!record(0)) return monitor.summary();

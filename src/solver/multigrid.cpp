@@ -19,10 +19,13 @@ MultigridOptions MultigridOptions::from_config(Config& cfg) {
                                             "each coarser mesh");
   o.coarse_operator = coarse == "reassembly" ? CoarseOperator::Reassembly : CoarseOperator::Galerkin;
   const std::string space = sub.get_choice(
-      "coarse_space", "nested", {"nested", "conforming"},
-      "coarse unknowns: nested (coarse vertices whose own fine vertex is free) or conforming (only those whose "
-      "subdivided basis function vanishes on every constrained fine vertex)");
-  o.coarse_space = space == "nested" ? CoarseSpace::Nested : CoarseSpace::Conforming;
+      "coarse_space", "nested", {"nested", "truncated", "conforming"},
+      "coarse unknowns: nested (coarse vertices whose own fine vertex is free), truncated (every coarse vertex "
+      "whose subdivided basis function reaches a free fine vertex, cut to the free ones) or conforming (only "
+      "those whose basis function vanishes on every constrained fine vertex)");
+  o.coarse_space = space == "truncated" ? CoarseSpace::Truncated
+                   : space == "nested"  ? CoarseSpace::Nested
+                                        : CoarseSpace::Conforming;
   o.pre_smooth = sub.get_int("pre_smooth", o.pre_smooth, 0, 1000, "forward smoothing sweeps before the coarse correction");
   o.post_smooth = sub.get_int("post_smooth", o.post_smooth, 0, 1000, "backward smoothing sweeps after it");
   o.omega = sub.get<double>("omega", o.omega, "smoother relaxation in (0, 2): 1 = Gauss-Seidel, else SOR");
@@ -54,7 +57,8 @@ void PatchSmoother::setup(const SparseMatrix& A, const std::vector<std::vector<i
     for (Eigen::Index a = 0; a < m; ++a)
       for (Eigen::Index c = 0; c < m; ++c) Apq(a, c) = A.coeff(patch[a], patch[c]);
     // A principal block of a positive definite matrix: LDLᵀ gives its inverse stably.
-    const Eigen::MatrixXd inverse = Eigen::LDLT<Eigen::MatrixXd>(Apq).solve(Eigen::MatrixXd::Identity(m, m));
+    const Eigen::MatrixXd solved = Eigen::LDLT<Eigen::MatrixXd>(Apq).solve(Eigen::MatrixXd::Identity(m, m));
+    const Eigen::MatrixXd inverse = 0.5 * (solved + solved.transpose());  // exactly symmetric (apply_patch)
     offsets_.push_back(inverses_.size());
     inverses_.insert(inverses_.end(), inverse.data(), inverse.data() + inverse.size());
     max_size_ = std::max(max_size_, m);
@@ -84,6 +88,12 @@ void PatchSmoother::setup(const SparseMatrix& A, const std::vector<std::vector<i
 bool coarse_solve_accurate(const SparseMatrix& A, const Eigen::MatrixXd& b, const Eigen::MatrixXd& x) {
   const double scale = b.norm() > 0 ? b.norm() : 1.0;
   return (b - A * x).norm() <= 1e-8 * scale;
+}
+
+SparseMatrix regularized_for_factorization(const SparseMatrix& A) {
+  SparseMatrix out = A;
+  for (Eigen::Index i = 0; i < out.rows(); ++i) out.coeffRef(i, i) *= 1.0 + 1e-10;
+  return out;
 }
 
 SparseMatrix serial_galerkin_product(const SparseMatrix& A, const SparseMatrix& P) {
@@ -155,6 +165,37 @@ std::vector<std::vector<int>> truncated_patches(const SparseMatrix& A, const Spa
   return patches;
 }
 
+// Which coarse unknowns the level keeps, ascending (see MultigridOptions::CoarseSpace).
+// `nf`, `ncv`: fine and coarse vertices per coordinate block (vertex ids nest across levels).
+std::vector<int> coarse_unknowns(const SparseMatrix& P_full, const std::vector<int>& kept, Eigen::Index nf,
+                                 Eigen::Index ncv, MultigridOptions::CoarseSpace space) {
+  std::vector<char> fine_kept(static_cast<std::size_t>(P_full.rows()), 0);
+  for (int i : kept) fine_kept[static_cast<std::size_t>(i)] = 1;
+  std::vector<int> out;
+  if (space == MultigridOptions::CoarseSpace::Truncated) {
+    for (Eigen::Index column = 0; column < P_full.cols(); ++column)
+      for (SparseMatrix::InnerIterator it(P_full, column); it; ++it)
+        if (it.value() != 0.0 && fine_kept[static_cast<std::size_t>(it.row())]) {
+          out.push_back(static_cast<int>(column));
+          break;
+        }
+    return out;
+  }
+  const auto conforms = [&](Eigen::Index column) {
+    for (SparseMatrix::InnerIterator it(P_full, column); it; ++it)
+      if (it.value() != 0.0 && !fine_kept[static_cast<std::size_t>(it.row())]) return false;
+    return true;
+  };
+  for (int i : kept) {
+    const Eigen::Index block = i / nf, vertex = i % nf;
+    if (vertex >= ncv) continue;
+    const Eigen::Index column = block * ncv + vertex;
+    if (space == MultigridOptions::CoarseSpace::Conforming && !conforms(column)) continue;
+    out.push_back(static_cast<int>(column));
+  }
+  return out;
+}
+
 }  // namespace
 
 MultigridLevels build_multigrid_levels(const SparseMatrix& A, const LevelOperators& ops, const LevelSelection& selection,
@@ -172,36 +213,20 @@ MultigridLevels build_multigrid_levels(const SparseMatrix& A, const LevelOperato
   if (static_cast<Eigen::Index>(kept.size()) != A.rows())
     throw InvalidInput("multigrid: the system has " + std::to_string(A.rows()) + " unknowns, the hierarchy's kept set " +
                        std::to_string(kept.size()));
+  // A re-assembled operator knows nothing of cut functions: it pins the coarse vertices itself.
+  const auto space = opt.coarse_operator == MultigridOptions::CoarseOperator::Reassembly &&
+                             opt.coarse_space == MultigridOptions::CoarseSpace::Truncated
+                         ? MultigridOptions::CoarseSpace::Nested
+                         : opt.coarse_space;
   MultigridLevels levels(used + 1);
   levels[used].A = A;
   for (int k = used; k > 0; --k) {
     const int level = available - (used - k) - 1;  // the hierarchy's level below level k's
     const SparseMatrix P_full = block_diagonal(ops.prolongation[level], selection.blocks);
-    // The coarse unknowns: the coarse vertices whose own fine vertex is kept (ids nest). Taking
-    // every column that reaches a kept row instead leaves, next to the constrained region,
-    // columns that differ only on rows the system dropped: a singular coarse operator.
-    // `conforming` further keeps only the columns that vanish on every dropped row, so each
-    // coarse function is exactly a fine one (nested spaces); `nested` also keeps columns cut
-    // off at the constrained region, whose prolongations have a kink there.
-    const Eigen::Index nf = ops.prolongation[level].rows(), ncv = ops.prolongation[level].cols();
-    std::vector<char> fine_kept(P_full.rows(), 0);
-    for (int i : kept) fine_kept[i] = 1;
-    const auto conforms = [&](Eigen::Index column) {
-      for (SparseMatrix::InnerIterator it(P_full, column); it; ++it)
-        if (it.value() != 0.0 && !fine_kept[it.row()]) return false;
-      return true;
-    };
-    const bool conforming = opt.coarse_space == MultigridOptions::CoarseSpace::Conforming;
+    const std::vector<int> coarse_kept = coarse_unknowns(P_full, kept, ops.prolongation[level].rows(),
+                                                         ops.prolongation[level].cols(), space);
     std::vector<int> col_of(P_full.cols(), -1);
-    std::vector<int> coarse_kept;
-    for (int i : kept) {
-      const Eigen::Index block = i / nf, vertex = i % nf;
-      if (vertex >= ncv) continue;
-      const Eigen::Index column = block * ncv + vertex;
-      if (conforming && !conforms(column)) continue;
-      col_of[column] = static_cast<int>(coarse_kept.size());
-      coarse_kept.push_back(static_cast<int>(column));
-    }
+    for (std::size_t c = 0; c < coarse_kept.size(); ++c) col_of[static_cast<std::size_t>(coarse_kept[c])] = static_cast<int>(c);
     if (coarse_kept.empty())
       throw InvalidInput("multigrid: no coarse unknown on hierarchy level " + std::to_string(level) +
                          " stays clear of the constrained vertices; lower multigrid.max_levels");

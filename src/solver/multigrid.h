@@ -36,8 +36,16 @@ namespace fairshape {
 struct MultigridOptions {
   enum class Cycle { V, W, Fmg };
   enum class CoarseOperator { Galerkin, Reassembly };
-  //! Which coarse vertices stay unknowns next to the constrained (dropped) fine vertices.
-  enum class CoarseSpace { Nested, Conforming };
+  //! Which coarse vertices stay unknowns next to the constrained (dropped) fine vertices:
+  //! Nested: the coarse vertices whose own fine vertex is free.
+  //! Truncated: every coarse basis function that reaches a free fine vertex, cut to the free
+  //!   ones (as truncated B-splines at a cut boundary). The largest space, so the coarse
+  //!   correction reaches the band next to the pinned region; some cut functions coincide
+  //!   there, so the coarse operators may be singular (consistent: the coarsest solve is
+  //!   regularized and refined, see solve_coarsest).
+  //! Conforming: only the functions that vanish on every constrained fine vertex.
+  //! Measured in papers/boier-martin (README, "coarse spaces").
+  enum class CoarseSpace { Nested, Truncated, Conforming };
   Cycle cycle = Cycle::V;
   CoarseOperator coarse_operator = CoarseOperator::Galerkin;
   CoarseSpace coarse_space = CoarseSpace::Nested;
@@ -92,8 +100,18 @@ class PatchSmoother {
       for (RowSparseMatrix::InnerIterator it(A, patch[a]); it; ++it)
         for (Eigen::Index c = 0; c < x.cols(); ++c) r(a, c) -= it.value() * x(it.col(), c);
     }
-    const Eigen::Map<const Eigen::MatrixXd> inverse(inverses_.data() + offsets_[k], m, m);
-    e.topRows(m).noalias() = inverse * r.topRows(m);
+    // e = A_pp⁻¹ r by hand: at a few dozen rows a general matrix product spends more time
+    // packing its operands than multiplying. The inverse is symmetric, so row a of it is the
+    // contiguous column a.
+    const double* inverse = inverses_.data() + offsets_[k];
+    for (Eigen::Index a = 0; a < m; ++a) {
+      const double* row = inverse + a * m;
+      for (Eigen::Index c = 0; c < x.cols(); ++c) {
+        double sum = 0;
+        for (Eigen::Index q = 0; q < m; ++q) sum += row[q] * r(q, c);
+        e(a, c) = sum;
+      }
+    }
     for (Eigen::Index a = 0; a < m; ++a)
       for (Eigen::Index c = 0; c < x.cols(); ++c) x(patch[a], c) += e(a, c);
   }
@@ -109,6 +127,26 @@ class PatchSmoother {
 //! A direct solve is trusted when its relative residual is small: a semidefinite coarsest
 //! operator (nothing pinned) can factor "successfully" and return garbage.
 bool coarse_solve_accurate(const SparseMatrix& A, const Eigen::MatrixXd& b, const Eigen::MatrixXd& x);
+
+//! What the coarsest level factors: A with its diagonal raised by a relative 1e-10. The
+//! truncated coarse space can make A singular (two cut functions equal on the free vertices);
+//! the systems the cycle hands down stay consistent, and any solution gives the same
+//! prolongated correction. Refinement against A itself (solve_coarsest) removes the shift.
+SparseMatrix regularized_for_factorization(const SparseMatrix& A);
+
+//! x = A⁻¹ b through `factor` (of regularized_for_factorization(A)) with iterative refinement
+//! until coarse_solve_accurate; false when it does not get there (an inconsistent, i.e.
+//! truly singular, system: nothing pinned) or produces non-finite values.
+template <class Factor, class Block>
+bool solve_coarsest(const Factor& factor, const SparseMatrix& A, const Block& b_in, Block& x_out) {
+  constexpr int kMaxRefinements = 8;
+  const Eigen::MatrixXd b = b_in;
+  Eigen::MatrixXd x = factor.solve(b);
+  for (int k = 0; k < kMaxRefinements && x.allFinite() && !coarse_solve_accurate(A, b, x); ++k)
+    x += factor.solve(Eigen::MatrixXd(b - A * x));
+  x_out = x;
+  return x.allFinite() && coarse_solve_accurate(A, b, x);
+}
 
 //! Level 0 = coarsest, back() = the system itself.
 using MultigridLevels = std::vector<MultigridLevel>;
@@ -200,7 +238,11 @@ SolveSummary run_multigrid(Kernels& k, const MultigridOptions& mg, const Iterati
   const double b_norm = norm(b) > 0 ? norm(b) : 1.0;
   Eigen::MatrixXd seen;  // the iterate in the caller's layout, converted only when looked at
   const auto record = [&](int it, const Block& r) {
-    if (monitor.wants_iterate()) seen = k.from_block(x);
+    if (monitor.wants_iterate()) {
+      const Timer converting;
+      seen = k.from_block(x);
+      monitor.add_observation(converting.seconds());
+    }
     return monitor.record(it, norm(r) / b_norm, seen);
   };
   const auto failed = [&] {

@@ -47,7 +47,7 @@ class ParallelKernels {
       patches_[l].setup(SparseMatrix(A_[l]), patches);
     }
     coarse_A_ = levels[0].A;
-    coarse_.compute(coarse_A_);
+    coarse_.compute(regularized_for_factorization(coarse_A_));
   }
 
   int levels() const { return static_cast<int>(A_.size()); }
@@ -89,10 +89,7 @@ class ParallelKernels {
   }
   void prolong_add(int l, const Block& e, Block& x) const { parallel_multiply_add(P_[l], e, x); }
   bool coarse_solve(const Block& b, Block& x) {
-    if (coarse_.info() != Eigen::Success) return false;
-    const Eigen::MatrixXd bc = b;
-    x = coarse_.solve(bc);
-    return x.allFinite() && coarse_solve_accurate(coarse_A_, bc, Eigen::MatrixXd(x));
+    return coarse_.info() == Eigen::Success && solve_coarsest(coarse_, coarse_A_, b, x);
   }
   Eigen::VectorXd column_dots(const Block& a, const Block& c) const { return parallel_column_dots(a, c); }
   // The caller's vectors are in the system's numbering; the finest level may be renumbered.

@@ -24,6 +24,9 @@ struct SolveSummary {
   int iterations = 0;
   double residual = -1;  // relative: ‖b − A x‖ / ‖b‖
   std::string message;
+  //! Seconds spent observing the iterations (energies, callbacks, iterate copies for them):
+  //! callers subtract it, so a monitored solve is timed like an unmonitored one.
+  double observe_s = 0;
 };
 
 struct IterationRecord {

@@ -40,8 +40,14 @@ class IterationMonitor {
     return iteration % opt_.check_every == 0 || iteration == opt_.max_iterations;
   }
   SolveSummary summary() const { return summary_; }
-  //! Time the solver spent preparing an observation (e.g. converting its iterate for record()).
-  void add_observation(double seconds) { summary_.observe_s += seconds; }
+  //! Runs the solver's preparation of an observation (e.g. converting its iterate for
+  //! record()), counted as observing, not solving.
+  template <class Prepare>
+  void observe(Prepare&& prepare) {
+    const Timer t;
+    prepare();
+    summary_.observe_s += t.seconds();
+  }
   void fail(const std::string& message) {
     summary_.termination = Termination::NumericalFailure;
     summary_.message = message;

@@ -29,11 +29,7 @@ class MulticolorSor : public Solver {
     const double b_norm = b.norm() > 0 ? b.norm() : 1.0;
     const auto record = [&](int it) {
       parallel_residual(A_, xr, br, r);
-      if (monitor.wants_iterate()) {
-        const Timer converting;
-        x = xr;
-        monitor.add_observation(converting.seconds());
-      }
+      if (monitor.wants_iterate()) monitor.observe([&] { x = xr; });
       return monitor.record(it, std::sqrt(parallel_column_dots(r, r).sum()) / b_norm, x);
     };
     if (!record(0)) return monitor.summary();

@@ -238,11 +238,7 @@ SolveSummary run_multigrid(Kernels& k, const MultigridOptions& mg, const Iterati
   const double b_norm = norm(b) > 0 ? norm(b) : 1.0;
   Eigen::MatrixXd seen;  // the iterate in the caller's layout, converted only when looked at
   const auto record = [&](int it, const Block& r) {
-    if (monitor.wants_iterate()) {
-      const Timer converting;
-      seen = k.from_block(x);
-      monitor.add_observation(converting.seconds());
-    }
+    if (monitor.wants_iterate()) monitor.observe([&] { seen = k.from_block(x); });
     return monitor.record(it, norm(r) / b_norm, seen);
   };
   const auto failed = [&] {

@@ -21,8 +21,9 @@ MultigridOptions MultigridOptions::from_config(Config& cfg) {
   const std::string space = sub.get_choice(
       "coarse_space", "nested", {"nested", "truncated", "conforming"},
       "coarse unknowns: nested (coarse vertices whose own fine vertex is free), truncated (every coarse vertex "
-      "whose subdivided basis function reaches a free fine vertex, cut to the free ones) or conforming (only "
-      "those whose basis function vanishes on every constrained fine vertex)");
+      "whose subdivided basis function reaches a free fine vertex, cut to the free ones; with coarse_operator "
+      "reassembly it is nested) or conforming (only those whose basis function vanishes on every constrained "
+      "fine vertex)");
   o.coarse_space = space == "truncated" ? CoarseSpace::Truncated
                    : space == "nested"  ? CoarseSpace::Nested
                                         : CoarseSpace::Conforming;

@@ -18,6 +18,7 @@
 #include "energy/laplacian.h"
 #include "energy/local_quadratic.h"
 #include "solver/block_ordering.h"
+#include "solver/multigrid.h"
 #include "solver/parallel_kernels.h"
 #include "experiment/components.h"
 #include "io/mesh_io.h"
@@ -128,7 +129,7 @@ BENCHMARK(BM_MulticolorSweep_CowEdit)->Args({3, 1})->Args({3, 2})->Args({4, 2})-
 void BM_BlockSweep_CowEdit(benchmark::State& state) {
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(state.range(1)));
   const RowSparseMatrix system = cow_edit_system(static_cast<int>(state.range(0)));
-  const BlockOrdering ordering = BlockOrdering::build(system, 256);
+  const BlockOrdering ordering = BlockOrdering::build(system, BlockOrdering::block_size_for(system.rows(), MultigridOptions().block_size));
   const RowSparseMatrix A = ordering.permute(system);
   BlockSmoother smoother;
   smoother.analyze(A, ordering.color_blocks);

@@ -47,12 +47,14 @@ SystemEnergy system_energy(const SparseMatrix& A, const Eigen::MatrixXd& b) {
     return tbb::parallel_deterministic_reduce(
         tbb::blocked_range<Eigen::Index>(0, A.outerSize(), 4096), 0.0,
         [&](const tbb::blocked_range<Eigen::Index>& r, double acc) {
-          for (Eigen::Index j = r.begin(); j != r.end(); ++j)
-            for (Eigen::Index c = 0; c < x.cols(); ++c) {
-              double Ax = 0;
-              for (SparseMatrix::InnerIterator it(A, j); it; ++it) Ax += it.value() * x(it.row(), c);
-              acc += x(j, c) * (0.5 * Ax - b(j, c));
-            }
+          // One pass over column j for all of x's columns (independent sums, one read of A).
+          Eigen::VectorXd Ax(x.cols());
+          for (Eigen::Index j = r.begin(); j != r.end(); ++j) {
+            Ax.setZero();
+            for (SparseMatrix::InnerIterator it(A, j); it; ++it)
+              for (Eigen::Index c = 0; c < x.cols(); ++c) Ax[c] += it.value() * x(it.row(), c);
+            for (Eigen::Index c = 0; c < x.cols(); ++c) acc += x(j, c) * (0.5 * Ax[c] - b(j, c));
+          }
           return acc;
         },
         std::plus<double>());

@@ -39,7 +39,7 @@ MultigridOptions MultigridOptions::from_config(Config& cfg) {
       "optimized back end: block multicolour Gauss-Seidel on a renumbered system (contiguous blocks) or point "
       "multicolour on the subdivision numbering; the reference is lexicographic either way");
   o.smoother = smoother == "multicolor" ? Smoother::Multicolor : Smoother::Block;
-  o.block_size = sub.get_int("block_size", o.block_size, 16, 1 << 16, "rows per block of the block smoother");
+  o.block_size = sub.get_int("block_size", o.block_size, 16, 1 << 16, "largest rows per block of the block smoother (a level uses smaller blocks when it has fewer than 64 of them)");
   o.max_levels = sub.get_int("max_levels", o.max_levels, 0, 64, "coarse levels to use (0: all the hierarchy has)");
   if (o.pre_smooth + o.post_smooth == 0 && !sub.documenting())
     throw InvalidConfig(sub.path() + ": pre_smooth and post_smooth are both 0: the cycle would not smooth");

@@ -57,7 +57,7 @@ struct MultigridOptions {
   //! multicolour over a renumbering that keeps blocks contiguous (block_ordering.h).
   enum class Smoother { Multicolor, Block };
   Smoother smoother = Smoother::Block;
-  int block_size = 256;
+  int block_size = 4096;  // the largest; small levels use smaller blocks (BlockOrdering::block_size_for)
   //! Reads the `multigrid` block of a solver's options.
   static MultigridOptions from_config(Config& cfg);
 };
@@ -79,6 +79,9 @@ class PatchSmoother {
   bool empty() const { return patches_.empty(); }
   const std::vector<std::vector<std::size_t>>& colors() const { return colors_; }
   Eigen::Index max_size() const { return max_size_; }
+  const std::vector<int>& patch(std::size_t k) const { return patches_[k]; }
+  //! A_pp⁻¹ of patch k: m × m, exactly symmetric (so column q is also row q).
+  const double* inverse(std::size_t k) const { return inverses_.data() + offsets_[k]; }
 
   //! The serial pass (the reference back end; the optimized one runs each colour in parallel).
   template <class Block>
@@ -100,18 +103,14 @@ class PatchSmoother {
       for (RowSparseMatrix::InnerIterator it(A, patch[a]); it; ++it)
         for (Eigen::Index c = 0; c < x.cols(); ++c) r(a, c) -= it.value() * x(it.col(), c);
     }
-    // e = A_pp⁻¹ r by hand: at a few dozen rows a general matrix product spends more time
-    // packing its operands than multiplying. The inverse is symmetric, so row a of it is the
-    // contiguous column a.
-    const double* inverse = inverses_.data() + offsets_[k];
-    for (Eigen::Index a = 0; a < m; ++a) {
-      const double* row = inverse + a * m;
-      for (Eigen::Index c = 0; c < x.cols(); ++c) {
-        double sum = 0;
-        for (Eigen::Index q = 0; q < m; ++q) sum += row[q] * r(q, c);
-        e(a, c) = sum;
-      }
-    }
+    // e = A_pp⁻¹ r by hand, as a sum of the inverse's columns: at a few dozen rows a general
+    // matrix product spends more time packing its operands than multiplying, and a dot
+    // product per entry waits on one chain of additions.
+    const double* inverse = this->inverse(k);
+    e.topRows(m).setZero();
+    for (Eigen::Index q = 0; q < m; ++q)
+      for (Eigen::Index c = 0; c < x.cols(); ++c)
+        for (Eigen::Index a = 0; a < m; ++a) e(a, c) += inverse[q * m + a] * r(q, c);
     for (Eigen::Index a = 0; a < m; ++a)
       for (Eigen::Index c = 0; c < x.cols(); ++c) x(patch[a], c) += e(a, c);
   }

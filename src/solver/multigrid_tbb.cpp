@@ -5,12 +5,40 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+#include <vector>
+
 #include "solver/block_ordering.h"
 #include "solver/multigrid.h"
 #include "solver/parallel_kernels.h"
+#include "solver/row_kernels.h"
 
 namespace fairshape {
 namespace {
+
+// PatchSmoother::apply_patch on row-major blocks of C columns: x_p += A_pp⁻¹ (b − A x)_p with
+// the residual by the row kernels and the product as a sum of the inverse's columns, each
+// column of e contiguous so that the innermost loop vectorizes.
+template <int C>
+void apply_patch(const PatchSmoother& p, std::size_t k, const CsrView& A, double* x, const double* b,
+                 double* __restrict r, double* __restrict e) {
+  const std::vector<int>& patch = p.patch(k);
+  const auto m = static_cast<std::ptrdiff_t>(patch.size());
+  for (std::ptrdiff_t a = 0; a < m; ++a) {
+    double s[C];
+    row_sum<C>(A, patch[static_cast<std::size_t>(a)], x, s);
+    for (int c = 0; c < C; ++c) r[c * m + a] = b[patch[static_cast<std::size_t>(a)] * C + c] - s[c];
+  }
+  const double* __restrict inverse = p.inverse(k);
+  std::fill(e, e + C * m, 0.0);
+  for (std::ptrdiff_t q = 0; q < m; ++q)
+    for (int c = 0; c < C; ++c) {
+      const double rq = r[c * m + q];
+      for (std::ptrdiff_t a = 0; a < m; ++a) e[c * m + a] += inverse[q * m + a] * rq;
+    }
+  for (std::ptrdiff_t a = 0; a < m; ++a)
+    for (int c = 0; c < C; ++c) x[patch[static_cast<std::size_t>(a)] * C + c] += e[c * m + a];
+}
 
 class ParallelKernels {
  public:
@@ -32,7 +60,7 @@ class ParallelKernels {
       A_[l].makeCompressed();
       if (l == 0) continue;  // the coarsest level is solved directly, in its own numbering
       if (block_) {
-        orderings_[l] = BlockOrdering::build(A_[l], options.block_size);
+        orderings_[l] = BlockOrdering::build(A_[l], BlockOrdering::block_size_for(A_[l].rows(), options.block_size));
         A_[l] = orderings_[l].permute(A_[l]);
         block_smoothers_[l].analyze(A_[l], orderings_[l].color_blocks);
       } else {
@@ -63,14 +91,18 @@ class ParallelKernels {
   void patch_pass(int l, Block& x, const Block& b, bool forward) const {
     const PatchSmoother& p = patches_[l];
     if (p.empty()) return;
+    const CsrView A(A_[l]);
     const auto& colors = p.colors();
-    for (std::size_t q = 0; q < colors.size(); ++q) {
-      const auto& patches = colors[forward ? q : colors.size() - 1 - q];
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, patches.size(), 16), [&](const tbb::blocked_range<std::size_t>& r) {
-        Eigen::MatrixXd res(p.max_size(), x.cols()), e(p.max_size(), x.cols());
-        for (std::size_t i = r.begin(); i != r.end(); ++i) p.apply_patch(patches[i], A_[l], x, b, res, e);
-      });
-    }
+    with_columns(x.cols(), [&](auto C) {
+      for (std::size_t q = 0; q < colors.size(); ++q) {
+        const auto& patches = colors[forward ? q : colors.size() - 1 - q];
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, patches.size(), 16), [&](const tbb::blocked_range<std::size_t>& r) {
+          std::vector<double> scratch(static_cast<std::size_t>(2 * C * p.max_size()));
+          for (std::size_t i = r.begin(); i != r.end(); ++i)
+            apply_patch<C>(p, patches[i], A, x.data(), b.data(), scratch.data(), scratch.data() + C * p.max_size());
+        });
+      }
+    });
   }
   Block residual(int l, const Block& x, const Block& b) const {
     Block r;

@@ -1,6 +1,6 @@
 // The TBB kernels the optimized iterative solvers share, on a row-major matrix and row-major
 // blocks (the x, y, z of one unknown side by side, so a row touches one cache line per
-// neighbour). Every reduction is deterministic for a fixed thread count.
+// neighbour) of 1 to 3 columns. Every reduction is deterministic for a fixed thread count.
 #pragma once
 
 #include <utility>
@@ -24,7 +24,7 @@ class MulticolorSmoother {
 
  private:
   static constexpr std::size_t kParallelRows = 512;
-  Eigen::VectorXd diag_;
+  Eigen::VectorXd diag_, inv_diag_;
   std::vector<std::vector<int>> classes_;
 };
 
@@ -39,7 +39,7 @@ class BlockSmoother {
   int colors() const { return static_cast<int>(color_blocks_.size()); }
 
  private:
-  Eigen::VectorXd diag_;
+  Eigen::VectorXd inv_diag_;
   std::vector<std::vector<std::pair<int, int>>> color_blocks_;
 };
 

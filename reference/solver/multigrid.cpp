@@ -24,7 +24,7 @@ class SerialKernels {
       diagonals_.push_back(levels_[l].A.diagonal());
       patches_[l].setup(levels_[l].A, levels_[l].patches);
     }
-    coarse_.compute(regularized_for_factorization(levels_[0].A));
+    coarse_.compute(levels_[0].A, options.coarse_space == MultigridOptions::CoarseSpace::Truncated);
   }
 
   int levels() const { return static_cast<int>(levels_.size()); }
@@ -39,9 +39,7 @@ class SerialKernels {
   Block multiply(int l, const Block& x) const { return levels_[l].A * x; }
   Block restrict_down(int l, const Block& r) const { return levels_[l].P.transpose() * r; }
   void prolong_add(int l, const Block& e, Block& x) const { x += levels_[l].P * e; }
-  bool coarse_solve(const Block& b, Block& x) {
-    return coarse_.info() == Eigen::Success && solve_coarsest(coarse_, levels_[0].A, b, x);
-  }
+  bool coarse_solve(const Block& b, Block& x) { return coarse_.solve(b, x); }
   Eigen::VectorXd column_dots(const Block& a, const Block& c) const { return a.cwiseProduct(c).colwise().sum().transpose(); }
   Block to_block(const Eigen::MatrixXd& m) const { return m; }
   Eigen::MatrixXd from_block(const Block& m) const { return m; }
@@ -52,7 +50,7 @@ class SerialKernels {
   std::vector<RowSparseMatrix> rows_;
   std::vector<Eigen::VectorXd> diagonals_;
   std::vector<PatchSmoother> patches_;
-  Eigen::SimplicialLDLT<SparseMatrix> coarse_;
+  CoarsestSolve<Eigen::SimplicialLDLT<SparseMatrix>> coarse_;
   double omega_ = 1.0;
 };
 

@@ -147,6 +147,44 @@ bool solve_coarsest(const Factor& factor, const SparseMatrix& A, const Block& b_
   return x.allFinite() && coarse_solve_accurate(A, b, x);
 }
 
+//! The coarsest level's direct solve. A nested or conforming coarse space gives a positive
+//! definite operator: it is factored as is, and once one solve has passed
+//! coarse_solve_accurate (which catches a semidefinite operator — nothing pinned — that
+//! factored "successfully") every later solve is the factorization alone: the check and
+//! refinement cost more than the solve (level 2 of the cow as coarsest level: ~2× the solve).
+//! A truncated space, or an operator the factorization refuses, gets the regularized factor
+//! and refinement on every solve (solve_coarsest).
+template <class Factor>
+class CoarsestSolve {
+ public:
+  void compute(const SparseMatrix& A, bool may_be_singular) {
+    A_ = A;
+    refine_always_ = may_be_singular;
+    verified_ = false;
+    if (!refine_always_) {
+      factor_.compute(A_);
+      if (factor_.info() == Eigen::Success) return;
+      refine_always_ = true;
+    }
+    factor_.compute(regularized_for_factorization(A_));
+  }
+  template <class Block>
+  bool solve(const Block& b, Block& x) {
+    if (factor_.info() != Eigen::Success) return false;
+    if (verified_ && !refine_always_) {
+      x = Eigen::MatrixXd(factor_.solve(Eigen::MatrixXd(b)));
+      return x.allFinite();
+    }
+    verified_ = solve_coarsest(factor_, A_, b, x);
+    return verified_;
+  }
+
+ private:
+  SparseMatrix A_;
+  Factor factor_;
+  bool refine_always_ = false, verified_ = false;
+};
+
 //! Level 0 = coarsest, back() = the system itself.
 using MultigridLevels = std::vector<MultigridLevel>;
 

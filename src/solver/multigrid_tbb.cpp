@@ -74,8 +74,7 @@ class ParallelKernels {
           for (int& i : patch) i = orderings_[l].new_of_old[static_cast<std::size_t>(i)];
       patches_[l].setup(SparseMatrix(A_[l]), patches);
     }
-    coarse_A_ = levels[0].A;
-    coarse_.compute(regularized_for_factorization(coarse_A_));
+    coarse_.compute(levels[0].A, options.coarse_space == MultigridOptions::CoarseSpace::Truncated);
   }
 
   int levels() const { return static_cast<int>(A_.size()); }
@@ -120,9 +119,7 @@ class ParallelKernels {
     return c;
   }
   void prolong_add(int l, const Block& e, Block& x) const { parallel_multiply_add(P_[l], e, x); }
-  bool coarse_solve(const Block& b, Block& x) {
-    return coarse_.info() == Eigen::Success && solve_coarsest(coarse_, coarse_A_, b, x);
-  }
+  bool coarse_solve(const Block& b, Block& x) { return coarse_.solve(b, x); }
   Eigen::VectorXd column_dots(const Block& a, const Block& c) const { return parallel_column_dots(a, c); }
   // The caller's vectors are in the system's numbering; the finest level may be renumbered.
   Block to_block(const Eigen::MatrixXd& m) const {
@@ -146,8 +143,7 @@ class ParallelKernels {
   std::vector<MulticolorSmoother> smoothers_;
   std::vector<BlockSmoother> block_smoothers_;
   std::vector<PatchSmoother> patches_;
-  SparseMatrix coarse_A_;
-  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> coarse_;
+  CoarsestSolve<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>> coarse_;
   double omega_ = 1.0;
   bool block_ = true;
 };

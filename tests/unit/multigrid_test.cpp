@@ -142,6 +142,41 @@ TEST_CASE("the coarsest solve handles singular consistent systems and refuses in
   CHECK_FALSE(solve_coarsest(factor, A, inconsistent, x));
 }
 
+// The coarsest solve skips its residual check only after one checked solve of a factor that
+// needed no regularization; a singular operator never gets there.
+TEST_CASE("the coarsest solve: plain factor for definite operators, refusal for inconsistent singular ones", "[multigrid]") {
+  const int n = 30;
+  Triplets k;
+  for (int i = 0; i < n; ++i) {
+    k.emplace_back(i, i, i == 0 ? 3.0 : 2.0);  // the first row pinned to a neighbour: definite
+    if (i + 1 < n) {
+      k.emplace_back(i, i + 1, -1.0);
+      k.emplace_back(i + 1, i, -1.0);
+    }
+  }
+  SparseMatrix definite(n, n);
+  definite.setFromTriplets(k.begin(), k.end());
+  CoarsestSolve<Eigen::SimplicialLDLT<SparseMatrix>> solve;
+  solve.compute(definite, false);
+  for (int trial = 0; trial < 3; ++trial) {  // the first solve is checked, the later ones are not
+    const Eigen::MatrixXd b = Eigen::MatrixXd::Random(n, 3);
+    Eigen::MatrixXd x;
+    REQUIRE(solve.solve(b, x));
+    CHECK(coarse_solve_accurate(definite, b, x));
+  }
+  // Nothing pinned: the path graph's Laplacian (singular, constants in its kernel).
+  SparseMatrix laplacian = definite;
+  laplacian.coeffRef(0, 0) = 1.0;
+  laplacian.coeffRef(n - 1, n - 1) = 1.0;
+  Eigen::MatrixXd inconsistent = Eigen::MatrixXd::Zero(n, 1), x;
+  inconsistent(0, 0) = 1.0;  // a net force on a free body
+  for (const bool may_be_singular : {false, true}) {
+    CoarsestSolve<Eigen::SimplicialLDLT<SparseMatrix>> singular;
+    singular.compute(laplacian, may_be_singular);
+    CHECK_FALSE(singular.solve(inconsistent, x));
+  }
+}
+
 TEST_CASE("multigrid on the stretch+bend energy: reference = optimized, same result for 1 and 2 threads", "[multigrid]") {
   const TestSystem t = make_system("cross_quad.off", 3, Operator::StretchBend);
   const Eigen::MatrixXd exact = direct_solution(t.reduced);

@@ -1,5 +1,7 @@
 #include "core/memory.h"
 
+#include <malloc.h>
+
 #include <fstream>
 #include <string>
 
@@ -12,11 +14,14 @@ bool reset_peak_rss() {
   return static_cast<bool>(f.flush());
 }
 
-double peak_rss_mb() {
+namespace {
+
+// A "Vm...:" field of /proc/self/status in MiB; -1 when absent.
+double status_mb(const std::string& field) {
   std::ifstream f("/proc/self/status");
   std::string key;
   while (f >> key) {
-    if (key == "VmHWM:") {
+    if (key == field) {
       double kib = 0;
       f >> kib;
       return kib / 1024.0;
@@ -24,6 +29,15 @@ double peak_rss_mb() {
     std::getline(f, key);
   }
   return -1.0;
+}
+
+}  // namespace
+
+double peak_rss_mb() { return status_mb("VmHWM:"); }
+
+double trimmed_rss_mb() {
+  malloc_trim(0);
+  return status_mb("VmRSS:");
 }
 
 }  // namespace fairshape

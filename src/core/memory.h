@@ -7,5 +7,8 @@ namespace fairshape {
 bool reset_peak_rss();
 // Peak resident set size in MiB since start or the last successful reset (VmHWM).
 double peak_rss_mb();
+// Resident set size now, in MiB (VmRSS), after returning the allocator's free memory to the
+// system (so memory freed by an earlier step does not hide the next step's growth).
+double trimmed_rss_mb();
 
 }  // namespace fairshape

@@ -381,7 +381,13 @@ class MultigridSolver : public Solver {
 template <class Kernels>
 std::unique_ptr<Solver> make_multigrid_solver(Config& cfg, bool krylov, GalerkinProduct galerkin) {
   const auto opt = IterativeOptions::from_config(cfg);
-  return std::make_unique<MultigridSolver<Kernels>>(opt, MultigridOptions::from_config(cfg), krylov, std::move(galerkin));
+  const MultigridOptions mg = MultigridOptions::from_config(cfg);
+  // CG needs a symmetric preconditioner: with unequal sweep counts it stalls instead of failing.
+  if (krylov && mg.pre_smooth != mg.post_smooth && !cfg.documenting())
+    throw InvalidConfig(cfg.path() + ".multigrid: multigrid_cg needs a symmetric cycle, pre_smooth (" +
+                        std::to_string(mg.pre_smooth) + ") = post_smooth (" + std::to_string(mg.post_smooth) +
+                        "); unequal counts are for the `multigrid` solver");
+  return std::make_unique<MultigridSolver<Kernels>>(opt, mg, krylov, std::move(galerkin));
 }
 
 }  // namespace fairshape

@@ -11,6 +11,7 @@ expect_error 2 "config file not found" -- "$FS" run nowhere.yaml
 expect_error 2 "colour: unknown key" -- "$FS" run configs/smoke/cow_nose_pull.yaml --set colour=red --out "$SCRATCH/x"
 expect_error 2 "unknown value 'multigrd'" -- "$FS" run configs/smoke/cow_nose_pull.yaml --set solver.type=multigrd --out "$SCRATCH/x"
 expect_error 2 "solver.sor.omega" -- "$FS" run configs/smoke/cow_nose_pull.yaml --set solver.sor.omega=2.5 --out "$SCRATCH/x"
+expect_error 2 "multigrid_cg needs a symmetric cycle" -- "$FS" run configs/smoke/cow_nose_pull.yaml --set solver.type=multigrid_cg --set solver.multigrid.pre_smooth=1 --out "$SCRATCH/x"
 expect_error 2 "problem.drag_steps: a drag needs problem.accuracy" -- "$FS" run configs/smoke/cow_nose_pull.yaml --set problem.drag_steps=4 --out "$SCRATCH/x"
 expect_error 2 "problem.coarse_level: 3 is above the edit level" -- "$FS" run configs/smoke/cow_nose_pull.yaml --set problem.accuracy=interactive --set problem.coarse_level=3 --out "$SCRATCH/x"
 expect_error 2 "interactive needs problem.constraint_mode paper" -- "$FS" run configs/smoke/cow_nose_pull.yaml --set problem.accuracy=interactive --set problem.constraint_mode=kkt --out "$SCRATCH/x"

@@ -23,6 +23,7 @@ assert r["termination"] == "converged", r
 assert float(r["constraint_violation"]) < 1e-10, r
 assert float(r["error_vs_reference"]) < 1e-8, r
 assert float(r["peak_rss_mb"]) > 0
+assert 0 <= float(r["solve_extra_mb"]) <= float(r["peak_rss_mb"]), r
 PYEOF
 # final.obj is the deformed cow: same size, moved.
 "$FS" info "$OUT/final.obj" | grep -q "vertices             2904" || fail "final.obj"

@@ -13,16 +13,16 @@ class SerialKernels {
  public:
   using Block = Eigen::MatrixXd;
 
-  void setup(const MultigridLevels& levels, const MultigridOptions& options) {
+  void setup(MultigridLevels levels, const MultigridOptions& options) {
     omega_ = options.omega;
-    levels_ = levels;
+    levels_ = std::move(levels);
     rows_.clear();
     diagonals_.clear();
     patches_.assign(levels_.size(), {});
     for (std::size_t l = 0; l < levels_.size(); ++l) {
       rows_.emplace_back(levels_[l].A);
       diagonals_.push_back(levels_[l].A.diagonal());
-      patches_[l].setup(levels_[l].A, levels_[l].patches);
+      patches_[l].setup(rows_[l], levels_[l].patches);
     }
     coarse_.compute(levels_[0].A, options.coarse_space == MultigridOptions::CoarseSpace::Truncated);
   }

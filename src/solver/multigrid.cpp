@@ -47,7 +47,7 @@ MultigridOptions MultigridOptions::from_config(Config& cfg) {
   return o;
 }
 
-void PatchSmoother::setup(const SparseMatrix& A, const std::vector<std::vector<int>>& patches) {
+void PatchSmoother::setup(const RowSparseMatrix& A, const std::vector<std::vector<int>>& patches) {
   patches_ = patches;
   inverses_.clear();
   offsets_.clear();
@@ -72,8 +72,8 @@ void PatchSmoother::setup(const SparseMatrix& A, const std::vector<std::vector<i
   colors_.clear();
   for (std::size_t k = 0; k < patches_.size(); ++k) {
     for (int i : patches_[k])
-      for (SparseMatrix::InnerIterator it(A, i); it; ++it)  // column i = row i (A is symmetric)
-        for (std::size_t q : owners[static_cast<std::size_t>(it.row())])
+      for (RowSparseMatrix::InnerIterator it(A, i); it; ++it)
+        for (std::size_t q : owners[static_cast<std::size_t>(it.col())])
           if (q != k && color[q] >= 0) taken_by[static_cast<std::size_t>(color[q])] = static_cast<int>(k);
     int c = 0;
     while (c < static_cast<int>(taken_by.size()) && taken_by[static_cast<std::size_t>(c)] == static_cast<int>(k)) ++c;

@@ -75,7 +75,7 @@ struct MultigridLevel {
 //! a few dozen unknowns), so a pass allocates nothing but two small buffers.
 class PatchSmoother {
  public:
-  void setup(const SparseMatrix& A, const std::vector<std::vector<int>>& patches);
+  void setup(const RowSparseMatrix& A, const std::vector<std::vector<int>>& patches);
   bool empty() const { return patches_.empty(); }
   const std::vector<std::vector<std::size_t>>& colors() const { return colors_; }
   Eigen::Index max_size() const { return max_size_; }
@@ -346,12 +346,12 @@ class MultigridSolver : public Solver {
 
   void analyze(const SparseMatrix& A) override {
     if (!ops_) throw InvalidInput("multigrid: no hierarchy was given (the problem has no levels below the solve level)");
-    const MultigridLevels levels = build_multigrid_levels(A, *ops_, selection_, mg_, galerkin_);
+    MultigridLevels levels = build_multigrid_levels(A, *ops_, selection_, mg_, galerkin_);
     // Gauss-Seidel needs a positive diagonal on every smoothed level (not the coarsest).
     diagonal_problem_.clear();
     for (std::size_t l = 1; l < levels.size() && diagonal_problem_.empty(); ++l)
       diagonal_problem_ = diagonal_problem(levels[l].A.diagonal());
-    kernels_.setup(levels, mg_);
+    kernels_.setup(std::move(levels), mg_);  // the kernels keep what they need, in their own layout
     analyzed_rows_ = A.rows();
   }
 

@@ -14,6 +14,7 @@
 #include "experiment/components.h"
 #include "io/mesh_io.h"
 #include "problem/constrained_system.h"
+#include "solver/block_ordering.h"
 #include "solver/multigrid.h"
 #include "solver/parallel_kernels.h"
 #include "subdivision/multires_surface.h"
@@ -218,6 +219,46 @@ TEST_CASE("the parallel Galerkin product equals Pᵀ A P", "[multigrid]") {
   const SparseMatrix serial = serial_galerkin_product(A, P), parallel = parallel_galerkin_product(A, P);
   CHECK((serial - parallel).norm() <= 1e-12 * serial.norm());
   CHECK(parallel.isCompressed());
+}
+
+// The block smoother's renumbering: a permutation, blocks of one colour contiguous and
+// uncoupled, and the permuted matrix equal to Q A Qᵀ.
+TEST_CASE("block ordering: contiguous uncoupled colour blocks and an exact symmetric permutation", "[multigrid]") {
+  const TestSystem t = make_system("double-torus-example.off", 2, Operator::BiLaplacian);
+  const RowSparseMatrix A(t.reduced.A);
+  for (const int block_size : {16, 64, 4096}) {
+    const BlockOrdering o = BlockOrdering::build(A, block_size);
+    const auto n = static_cast<std::size_t>(A.rows());
+    REQUIRE(o.new_of_old.size() == n);
+    std::vector<int> block_of(n, -1);
+    int next = 0, blocks = 0;
+    for (const auto& colour : o.color_blocks)
+      for (const auto& [begin, end] : colour) {
+        CHECK(begin == next);  // colour after colour, block after block, no gap
+        CHECK(end - begin <= block_size);
+        for (int i = begin; i < end; ++i) block_of[static_cast<std::size_t>(i)] = blocks;
+        next = end;
+        ++blocks;
+      }
+    CHECK(next == static_cast<int>(n));
+    for (std::size_t i = 0; i < n; ++i) CHECK(o.old_of_new[static_cast<std::size_t>(o.new_of_old[i])] == static_cast<int>(i));
+    const RowSparseMatrix B = o.permute(A);
+    Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> Q(static_cast<Eigen::Index>(n));
+    for (std::size_t i = 0; i < n; ++i) Q.indices()[static_cast<Eigen::Index>(i)] = o.new_of_old[i];
+    const SparseMatrix expected = Q * SparseMatrix(t.reduced.A) * Q.transpose();
+    CHECK((SparseMatrix(B) - expected).norm() == 0.0);
+    // Blocks of one colour share no entry of A.
+    std::vector<int> colour_of_block;
+    for (std::size_t c = 0; c < o.color_blocks.size(); ++c)
+      colour_of_block.insert(colour_of_block.end(), o.color_blocks[c].size(), static_cast<int>(c));
+    int conflicts = 0;
+    for (int i = 0; i < B.outerSize(); ++i)
+      for (RowSparseMatrix::InnerIterator it(B, i); it; ++it) {
+        const int bi = block_of[static_cast<std::size_t>(i)], bj = block_of[static_cast<std::size_t>(it.col())];
+        if (bi != bj && colour_of_block[static_cast<std::size_t>(bi)] == colour_of_block[static_cast<std::size_t>(bj)]) ++conflicts;
+      }
+    CHECK(conflicts == 0);
+  }
 }
 
 TEST_CASE("multigrid reports a shallow hierarchy, a singular system, a bad relaxation and divergence", "[multigrid]") {

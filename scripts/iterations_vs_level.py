@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """h-independence of a solver sweep: iterations to the tolerance (and seconds) against the
-number of unknowns, one line per solver, from runs.csv; runs that stopped at the iteration
-cap are drawn hollow.
+number of unknowns, one line per solver, from runs.csv, with CHOLMOD's analyze+factor+solve
+time beside them when the sweep has it; runs that stopped at the iteration cap are drawn hollow.
 
   scripts/iterations_vs_level.py RUN_DIR --solvers multigrid,multigrid_cg -o out.png
 """
@@ -27,11 +27,16 @@ def main():
         rows = list(csv.DictReader(f))
     keep = set(a.solvers.split(",")) if a.solvers else None
     lines = defaultdict(list)
+    direct = []  # CHOLMOD's time beside the iterative solvers' (it has no iterations to plot)
     for r in rows:
-        if keep and r["solver.type"] not in keep or not r["iterations"] or r["solver.type"] == "cholesky":
+        if not r["iterations"] or not r["analyze_s"] or not r["solve_s"]:
             continue
-        lines[r["solver.type"]].append((int(r["n_dofs"]), int(r["iterations"]), float(r["time_s"]),
-                                        r["termination"] == "converged"))
+        seconds = float(r["analyze_s"]) + float(r["solve_s"])
+        if r["solver.type"] == "cholesky":
+            direct.append((int(r["n_dofs"]), seconds))
+        elif not keep or r["solver.type"] in keep:
+            lines[r["solver.type"]].append((int(r["n_dofs"]), int(r["iterations"]), seconds,
+                                            r["termination"] == "converged"))
     if not lines:
         raise SystemExit("iterations_vs_level: no iterative runs in " + a.run_dir)
     fig, (left, right) = plt.subplots(1, 2, figsize=(12, 4.5), dpi=100)
@@ -44,6 +49,9 @@ def main():
             face = line.get_color() if p[3] else "none"
             left.plot(p[0], p[1], "o", color=line.get_color(), markerfacecolor=face)
             right.plot(p[0], p[2], "o", color=line.get_color(), markerfacecolor=face)
+    if direct:
+        direct.sort()
+        right.plot([d[0] for d in direct], [d[1] for d in direct], "k:s", label="CHOLMOD (analyze+factor+solve)")
     for ax, ylabel in ((left, "iterations (hollow: hit the cap)"), (right, "seconds (analysis + solve)")):
         ax.set_xscale("log")
         ax.set_xlabel("vertices of the edit level (n_dofs)")

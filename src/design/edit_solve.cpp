@@ -16,6 +16,7 @@
 #include "problem/least_squares.h"
 #include "qp/kkt_solver.h"
 #include "qp/qp_solver.h"
+#include "solver/parallel_kernels.h"
 
 namespace fairshape {
 namespace {
@@ -116,12 +117,21 @@ class KktFactorization {
     const SparseMatrix R11t = SparseMatrix(R.leftCols(rank)).transpose();
     std::vector<int> leading(static_cast<std::size_t>(rank));
     for (Eigen::Index k = 0; k < rank; ++k) leading[static_cast<std::size_t>(k)] = permutation.indices()[k];
-    const SparseMatrix AP1t = SparseMatrix(row_picker(on_reached.cols(), leading).transpose()) *
-                              SparseMatrix(on_reached.transpose());
-    compressed_targets_ = [R11t, AP1t](const Eigen::MatrixXd& C) {
-      const Eigen::MatrixXd y = AP1t * C;
-      return Eigen::MatrixXd(R11t.triangularView<Eigen::Lower>().solve(y));
-    };
+    const SparseMatrix AP1 = on_reached * row_picker(on_reached.cols(), leading);
+    if (backend_ == Backend::Reference) {
+      const SparseMatrix AP1t = AP1.transpose();
+      compressed_targets_ = [R11t, AP1t](const Eigen::MatrixXd& C) {
+        const Eigen::MatrixXd y = AP1t * C;
+        return Eigen::MatrixXd(R11t.triangularView<Eigen::Lower>().solve(y));
+      };
+    } else {  // one parallel pass over the (hundreds of thousands of) rows, every step of a drag
+      const RowSparseMatrix AP1_rows(AP1);
+      compressed_targets_ = [R11t, AP1_rows](const Eigen::MatrixXd& C) {
+        RowBlock y;
+        parallel_transpose_multiply(AP1_rows, RowBlock(C), y);
+        return Eigen::MatrixXd(R11t.triangularView<Eigen::Lower>().solve(Eigen::MatrixXd(y)));
+      };
+    }
   }
 
   template <class LU>
@@ -265,9 +275,15 @@ EditSolution PreparedEdit::solve(const Eigen::MatrixXd& C, const IterationCallba
     out = solve_paper(targets, initial ? &start : nullptr, constrained, cb);
   }
   out.analyze_s = analyze_s_;
-  out.constraint_residual = (s.constraints.A * out.delta - targets).norm();
+  out.constraint_residual = measure_constraints_ ? (s.constraints.A * out.delta - targets).norm()
+                                                 : std::numeric_limits<double>::quiet_NaN();
   if (coupled) out.delta = unstack(out.delta);
   return out;
+}
+
+double PreparedEdit::constraint_residual(const Eigen::MatrixXd& delta, const Eigen::MatrixXd& C) const {
+  if (!stacked_) return (original_->constraints.A * delta - C).norm();
+  return (stacked_->constraints.A * stack(delta) - stacked_targets(original_->constraints, C)).norm();
 }
 
 EditSolution PreparedEdit::solve_paper(const Eigen::MatrixXd& targets, const Eigen::MatrixXd* start,

@@ -73,6 +73,12 @@ class PreparedEdit {
   EditSolution solve(const Eigen::MatrixXd& C, const IterationCallback& cb = {}, const Eigen::MatrixXd* initial = nullptr,
                      ConstrainedStart constrained = ConstrainedStart::MinimumNorm);
   double analyze_s() const { return analyze_s_; }
+  //! ‖A ΔP − C‖ for a result of solve(). solve() measures it itself unless told not to: a
+  //! cascade's intermediate levels throw it away, and on a coarse level under a fine fixed
+  //! region it is a product with hundreds of thousands of propagated rows (a third of an
+  //! interactive step at 1.1M vertices).
+  double constraint_residual(const Eigen::MatrixXd& delta, const Eigen::MatrixXd& C) const;
+  void measure_constraints(bool measure) { measure_constraints_ = measure; }
 
  private:
   const EditProblem& solved() const { return stacked_ ? *stacked_ : *original_; }
@@ -87,6 +93,7 @@ class PreparedEdit {
   std::unique_ptr<MinNormLeastSquares> ls_;
   ReducedSystem red_;
   double analyze_s_ = 0;
+  bool measure_constraints_ = true;
 };
 
 //! [C stacked by coordinate; the coupled targets]: the right-hand side of the coupled system.

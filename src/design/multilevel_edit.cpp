@@ -47,6 +47,10 @@ MultilevelEdit::MultilevelEdit(const EditLadder& ladder, Accuracy accuracy, cons
     for (std::size_t k = 1; k < levels; ++k) prepare(k, relaxer(), ConstraintMode::Paper);
   if (accuracy == Accuracy::Converged && levels > 1)
     prepared_.back() = std::make_unique<PreparedEdit>(ladder.problems.back(), ConstraintMode::Paper, finest, backend);
+  // Only the edit level's constraint residual is reported (solve() measures the interactive
+  // mode's itself): the coarser levels' are skipped.
+  for (std::size_t k = 0; k + 1 < levels; ++k)
+    if (prepared_[k]) prepared_[k]->measure_constraints(false);
   current_.resize(levels);
   analyze_s_ = setup.seconds();
 }
@@ -83,6 +87,7 @@ EditSolution MultilevelEdit::solve(double scale, const IterationCallback& cb) {
   current_[0] = out.delta;
   if (out.summary.termination == Termination::NumericalFailure) {  // nothing to build on
     out.summary.message = "coarse level: " + out.summary.message;
+    out.constraint_residual = prepared_[0]->constraint_residual(out.delta, targets(0));
     return out;
   }
   int iterations = 0;

@@ -133,6 +133,20 @@ void parallel_multiply_add(const RowSparseMatrix& M, const RowBlock& x, RowBlock
   });
 }
 
+void parallel_transpose_multiply(const RowSparseMatrix& M, const RowBlock& x, RowBlock& y) {
+  const CsrView csr(M);
+  const Eigen::Index cols = x.cols();
+  y = tbb::parallel_deterministic_reduce(
+      tbb::blocked_range<Eigen::Index>(0, M.rows(), 16384), RowBlock(RowBlock::Zero(M.cols(), cols)),
+      [&](const tbb::blocked_range<Eigen::Index>& r, RowBlock acc) {
+        for (Eigen::Index i = r.begin(); i != r.end(); ++i)
+          for (int k = csr.outer[i]; k < csr.outer[i + 1]; ++k)
+            for (Eigen::Index c = 0; c < cols; ++c) acc(csr.inner[k], c) += csr.value[k] * x(i, c);
+        return acc;
+      },
+      [](const RowBlock& a, const RowBlock& b) { return RowBlock(a + b); });
+}
+
 Eigen::VectorXd parallel_column_dots(const RowBlock& a, const RowBlock& c) {
   const Eigen::Index cols = a.cols();
   return tbb::parallel_deterministic_reduce(

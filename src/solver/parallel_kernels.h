@@ -49,6 +49,10 @@ void parallel_multiply(const RowSparseMatrix& A, const RowBlock& x, RowBlock& y)
 void parallel_residual(const RowSparseMatrix& A, const RowBlock& x, const RowBlock& b, RowBlock& r);
 //! Σ_i a_ij c_ij for every column j.
 Eigen::VectorXd parallel_column_dots(const RowBlock& a, const RowBlock& c);
+//! y = Mᵀ x, in one pass over M's rows: chunks of rows scatter into their own copy of y,
+//! summed in a fixed order (deterministic for a fixed thread count). For a tall M with few
+//! columns, e.g. constraint rows propagated to a coarse level.
+void parallel_transpose_multiply(const RowSparseMatrix& M, const RowBlock& x, RowBlock& y);
 //! y += M x (M row-major: P for prolongation, Pᵀ stored row-major for restriction).
 void parallel_multiply_add(const RowSparseMatrix& M, const RowBlock& x, RowBlock& y);
 //! Pᵀ A P for symmetric A (rows of the result gathered in parallel, deterministic).

@@ -223,6 +223,23 @@ TEST_CASE("the parallel Galerkin product equals Pᵀ A P", "[multigrid]") {
 
 // The block smoother's renumbering: a permutation, blocks of one colour contiguous and
 // uncoupled, and the permuted matrix equal to Q A Qᵀ.
+TEST_CASE("the parallel row kernels equal Eigen's products, for 1 to 3 columns", "[multigrid]") {
+  const TestSystem t = make_system("cross_quad.off", 2, Operator::StretchBend);
+  const RowSparseMatrix A(t.reduced.A);
+  const RowSparseMatrix P(SparseMatrix(t.ops->prolongation.back()));  // tall: fine rows, coarse columns
+  for (Eigen::Index cols = 1; cols <= 3; ++cols) {
+    const RowBlock x = RowBlock::Random(A.rows(), cols), b = RowBlock::Random(A.rows(), cols);
+    RowBlock y, r, z;
+    parallel_multiply(A, x, y);
+    parallel_residual(A, x, b, r);
+    CHECK((y - RowBlock(A * x)).norm() <= 1e-12 * y.norm());
+    CHECK((r - RowBlock(b - A * x)).norm() <= 1e-12 * y.norm());
+    const RowBlock fine = RowBlock::Random(P.rows(), cols);
+    parallel_transpose_multiply(P, fine, z);
+    CHECK((z - RowBlock(SparseMatrix(P.transpose()) * fine)).norm() <= 1e-12 * z.norm());
+  }
+}
+
 TEST_CASE("block ordering: contiguous uncoupled colour blocks and an exact symmetric permutation", "[multigrid]") {
   const TestSystem t = make_system("double-torus-example.off", 2, Operator::BiLaplacian);
   const RowSparseMatrix A(t.reduced.A);

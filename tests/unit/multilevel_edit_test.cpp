@@ -2,6 +2,8 @@
 // and drags through PreparedEdit's factor-once solves.
 #include <catch2/catch.hpp>
 
+#include <cmath>
+
 #include "design/multilevel_edit.h"
 #include "energy/local_quadratic.h"
 #include "experiment/components.h"
@@ -155,6 +157,30 @@ TEST_CASE("converged: a drag's steps reach the direct solution, warm starts cut 
     iterations.push_back(sol.summary.iterations);
   }
   CHECK(iterations.back() < iterations.front());
+}
+
+// Coarse levels skip measuring their (propagated, huge) constraint residuals; every mode still
+// reports the edit level's, and PreparedEdit::constraint_residual agrees with solve()'s.
+TEST_CASE("every accuracy mode reports the edit level's constraint residual", "[design][bm][multilevel]") {
+  const EditLadder ladder = ladder_from(0);
+  const EditProblem& fine = ladder.problems.back();
+  auto finest = solver("cholesky", Backend::Optimized)();
+  for (Accuracy a : {Accuracy::Interactive, Accuracy::Improved, Accuracy::Converged}) {
+    MultilevelEdit edit(ladder, a, solver("cholesky", Backend::Optimized), solver("gauss_seidel", Backend::Optimized),
+                        *finest, Backend::Optimized);
+    const double scale = 0.6;
+    const EditSolution s = edit.solve(scale);
+    const double explicit_residual = (fine.constraints.A * s.delta - scale * fine.constraints.C).norm();
+    REQUIRE(std::isfinite(s.constraint_residual));
+    CHECK(s.constraint_residual == Approx(explicit_residual).margin(1e-12));
+  }
+  auto direct = solver("cholesky", Backend::Optimized)();
+  PreparedEdit prepared(fine, ConstraintMode::Paper, *direct, Backend::Optimized);
+  const Eigen::MatrixXd C = 0.3 * fine.constraints.C;
+  const EditSolution s = prepared.solve(C);
+  CHECK(prepared.constraint_residual(s.delta, C) == Approx(s.constraint_residual).margin(1e-12));
+  prepared.measure_constraints(false);
+  CHECK(std::isnan(prepared.solve(C).constraint_residual));
 }
 
 TEST_CASE("the accuracy ladder refuses what it cannot do", "[design][bm][multilevel]") {

@@ -37,6 +37,7 @@ MultilevelEdit::MultilevelEdit(const EditLadder& ladder, Accuracy accuracy, cons
                          std::to_string(k) + " to level " + std::to_string(k + 1));
     rows_.emplace_back(S);
   }
+  if (backend != Backend::Reference) edit_rows_ = RowSparseMatrix(ladder.problems.back().constraints.A);
   prepared_.resize(levels);
   const auto prepare = [&](std::size_t k, std::unique_ptr<Solver> s, ConstraintMode mode) {
     solvers_.push_back(std::move(s));
@@ -96,7 +97,10 @@ EditSolution MultilevelEdit::solve(double scale, const IterationCallback& cb) {
       case Accuracy::Interactive:
         out.delta = prolongate(0, last, current_[0]);
         out.summary = {Termination::MaxIterations, 0, -1, "interactive: coarse solve subdivided to the edit level"};
-        out.constraint_residual = (ladder_.problems[last].constraints.A * out.delta - targets(last)).norm();
+        out.constraint_residual =
+            backend_ == Backend::Reference
+                ? (ladder_.problems[last].constraints.A * out.delta - targets(last)).norm()
+                : parallel_residual_norm(edit_rows_, out.delta, scale, ladder_.problems[last].constraints.C);
         break;
       case Accuracy::Improved:
         for (std::size_t k = 1; k <= last; ++k) {

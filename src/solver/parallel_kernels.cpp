@@ -5,6 +5,9 @@
 #include <tbb/parallel_reduce.h>
 #include <tbb/partitioner.h>
 
+#include <cmath>
+#include <functional>
+
 #include "core/error.h"
 #include "core/parallel_row_assembly.h"
 #include "solver/graph_coloring.h"
@@ -145,6 +148,25 @@ void parallel_transpose_multiply(const RowSparseMatrix& M, const RowBlock& x, Ro
         return acc;
       },
       [](const RowBlock& a, const RowBlock& b) { return RowBlock(a + b); });
+}
+
+double parallel_residual_norm(const RowSparseMatrix& M, const Eigen::MatrixXd& x, double s, const Eigen::MatrixXd& c) {
+  FAIRSHAPE_ASSERT(x.cols() == c.cols() && c.rows() == M.rows() && x.rows() == M.cols(), "residual norm: sizes differ");
+  const CsrView csr(M);
+  const double squares = tbb::parallel_deterministic_reduce(
+      tbb::blocked_range<Eigen::Index>(0, M.rows(), 16384), 0.0,
+      [&](const tbb::blocked_range<Eigen::Index>& r, double acc) {
+        for (Eigen::Index i = r.begin(); i != r.end(); ++i)
+          for (Eigen::Index col = 0; col < x.cols(); ++col) {
+            double Mx = 0;
+            for (int k = csr.outer[i]; k < csr.outer[i + 1]; ++k) Mx += csr.value[k] * x(csr.inner[k], col);
+            const double ri = Mx - s * c(i, col);
+            acc += ri * ri;
+          }
+        return acc;
+      },
+      std::plus<double>());
+  return std::sqrt(squares);
 }
 
 Eigen::VectorXd parallel_column_dots(const RowBlock& a, const RowBlock& c) {

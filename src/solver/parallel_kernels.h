@@ -53,6 +53,9 @@ Eigen::VectorXd parallel_column_dots(const RowBlock& a, const RowBlock& c);
 //! summed in a fixed order (deterministic for a fixed thread count). For a tall M with few
 //! columns, e.g. constraint rows propagated to a coarse level.
 void parallel_transpose_multiply(const RowSparseMatrix& M, const RowBlock& x, RowBlock& y);
+//! ‖M x − s c‖_F for column-major x and c (a deformation and its targets), without forming
+//! either product: one parallel pass over M's rows, deterministic for a fixed thread count.
+double parallel_residual_norm(const RowSparseMatrix& M, const Eigen::MatrixXd& x, double s, const Eigen::MatrixXd& c);
 //! y += M x (M row-major: P for prolongation, Pᵀ stored row-major for restriction).
 void parallel_multiply_add(const RowSparseMatrix& M, const RowBlock& x, RowBlock& y);
 //! Pᵀ A P for symmetric A (rows of the result gathered in parallel, deterministic).

@@ -237,6 +237,9 @@ TEST_CASE("the parallel row kernels equal Eigen's products, for 1 to 3 columns",
     const RowBlock fine = RowBlock::Random(P.rows(), cols);
     parallel_transpose_multiply(P, fine, z);
     CHECK((z - RowBlock(SparseMatrix(P.transpose()) * fine)).norm() <= 1e-12 * z.norm());
+    const Eigen::MatrixXd coarse = Eigen::MatrixXd::Random(P.cols(), cols), targets = Eigen::MatrixXd::Random(P.rows(), cols);
+    const double expected = (SparseMatrix(P) * coarse - 0.7 * targets).norm();
+    CHECK(parallel_residual_norm(P, coarse, 0.7, targets) == Approx(expected).epsilon(1e-12));
   }
 }
 

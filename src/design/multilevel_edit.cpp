@@ -48,8 +48,8 @@ MultilevelEdit::MultilevelEdit(const EditLadder& ladder, Accuracy accuracy, cons
     for (std::size_t k = 1; k < levels; ++k) prepare(k, relaxer(), ConstraintMode::Paper);
   if (accuracy == Accuracy::Converged && levels > 1)
     prepared_.back() = std::make_unique<PreparedEdit>(ladder.problems.back(), ConstraintMode::Paper, finest, backend);
-  // Only the edit level's constraint residual is reported (solve() measures the interactive
-  // mode's itself): the coarser levels' are skipped.
+  // Only the edit level's constraint residual is reported (the interactive mode measures it
+  // after subdividing): the coarser levels skip theirs.
   for (std::size_t k = 0; k + 1 < levels; ++k)
     if (prepared_[k]) prepared_[k]->measure_constraints(false);
   current_.resize(levels);

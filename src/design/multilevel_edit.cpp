@@ -37,7 +37,8 @@ MultilevelEdit::MultilevelEdit(const EditLadder& ladder, Accuracy accuracy, cons
                          std::to_string(k) + " to level " + std::to_string(k + 1));
     rows_.emplace_back(S);
   }
-  if (backend != Backend::Reference) edit_rows_ = RowSparseMatrix(ladder.problems.back().constraints.A);
+  if (accuracy == Accuracy::Interactive && backend != Backend::Reference)  // its residual's rows
+    edit_rows_ = RowSparseMatrix(ladder.problems.back().constraints.A);
   prepared_.resize(levels);
   const auto prepare = [&](std::size_t k, std::unique_ptr<Solver> s, ConstraintMode mode) {
     solvers_.push_back(std::move(s));

@@ -64,7 +64,7 @@ class MultilevelEdit {
   Accuracy accuracy_;
   Backend backend_;
   std::vector<RowSparseMatrix> rows_;  // the prolongations row-major, for the parallel product
-  RowSparseMatrix edit_rows_;          // the edit level's constraint rows, row-major (optimized back end)
+  RowSparseMatrix edit_rows_;          // the edit level's constraint rows, row-major (optimized interactive mode)
   std::vector<std::unique_ptr<Solver>> solvers_;
   std::vector<std::unique_ptr<PreparedEdit>> prepared_;  // per level; only those the mode needs
   std::vector<Eigen::MatrixXd> current_, previous_;

@@ -271,8 +271,9 @@ MetricRow execute_run(RunSpec& spec, RunCache& cache, const RunOutputs& out) {
       times.push_back(sol.solve_s);
     }
     sink.finish();
-    row["peak_rss_mb"] = num(peak_rss_mb());
-    row["solve_extra_mb"] = num(peak_rss_mb() - before_solve_mb);
+    const double solve_peak_mb = peak_rss_mb();
+    row["peak_rss_mb"] = num(solve_peak_mb);
+    row["solve_extra_mb"] = num(solve_peak_mb - before_solve_mb);
     row["analyze_s"] = num(sol.analyze_s);
     row["solve_s"] = num(median(times));
     row["solve_min_s"] = num(*std::min_element(times.begin(), times.end()));

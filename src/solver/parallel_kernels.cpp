@@ -89,51 +89,39 @@ void BlockSmoother::sweep(const RowSparseMatrix& A, RowBlock& x, const RowBlock&
 
 namespace {
 
-template <class RowOp>
-void for_rows(Eigen::Index n, const RowOp& op) {
-  tbb::parallel_for(
-      tbb::blocked_range<Eigen::Index>(0, n, 1024),
-      [&](const tbb::blocked_range<Eigen::Index>& r) {
-        for (Eigen::Index i = r.begin(); i != r.end(); ++i) op(i);
-      },
-      tbb::static_partitioner());
+// store(k, s) for every entry k = i·C + c of the row-major result, s = Σ_j a_ij x_jc; rows in
+// parallel. The products, residuals and transfers differ only in what they store.
+template <class Store>
+void for_each_row_sum(const RowSparseMatrix& A, const RowBlock& x, const Store& store) {
+  const CsrView csr(A);
+  with_columns(x.cols(), [&](auto C) {
+    tbb::parallel_for(
+        tbb::blocked_range<Eigen::Index>(0, A.rows(), 1024),
+        [&](const tbb::blocked_range<Eigen::Index>& r) {
+          for (Eigen::Index i = r.begin(); i != r.end(); ++i) {
+            double s[C];
+            row_sum<C>(csr, i, x.data(), s);
+            for (int c = 0; c < C; ++c) store(i * C + c, s[c]);
+          }
+        },
+        tbb::static_partitioner());
+  });
 }
 
 }  // namespace
 
 void parallel_multiply(const RowSparseMatrix& A, const RowBlock& x, RowBlock& y) {
-  const CsrView csr(A);
   y.resize(A.rows(), x.cols());
-  with_columns(x.cols(), [&](auto C) {
-    for_rows(A.rows(), [&](Eigen::Index i) {
-      double s[C];
-      row_sum<C>(csr, i, x.data(), s);
-      for (int c = 0; c < C; ++c) y.data()[i * C + c] = s[c];
-    });
-  });
+  for_each_row_sum(A, x, [&](Eigen::Index k, double s) { y.data()[k] = s; });
 }
 
 void parallel_residual(const RowSparseMatrix& A, const RowBlock& x, const RowBlock& b, RowBlock& r) {
-  const CsrView csr(A);
   r.resize(A.rows(), x.cols());
-  with_columns(x.cols(), [&](auto C) {
-    for_rows(A.rows(), [&](Eigen::Index i) {
-      double s[C];
-      row_sum<C>(csr, i, x.data(), s);
-      for (int c = 0; c < C; ++c) r.data()[i * C + c] = b.data()[i * C + c] - s[c];
-    });
-  });
+  for_each_row_sum(A, x, [&](Eigen::Index k, double s) { r.data()[k] = b.data()[k] - s; });
 }
 
 void parallel_multiply_add(const RowSparseMatrix& M, const RowBlock& x, RowBlock& y) {
-  const CsrView csr(M);
-  with_columns(x.cols(), [&](auto C) {
-    for_rows(M.rows(), [&](Eigen::Index i) {
-      double s[C];
-      row_sum<C>(csr, i, x.data(), s);
-      for (int c = 0; c < C; ++c) y.data()[i * C + c] += s[c];
-    });
-  });
+  for_each_row_sum(M, x, [&](Eigen::Index k, double s) { y.data()[k] += s; });
 }
 
 void parallel_transpose_multiply(const RowSparseMatrix& M, const RowBlock& x, RowBlock& y) {

@@ -1,7 +1,9 @@
-// Reference `gauss_seidel` and `sor`: lexicographic sweeps (lexicographic_sweep.h).
+// Reference `gauss_seidel` and `sor`: lexicographic sweeps (lexicographic_sweep.h) over a
+// row-major copy of A, made again whenever a solve brings another matrix (solver.h).
 #include "problem/constrained_system.h"
 #include "reference/solver/lexicographic_sweep.h"
 #include "solver/iterative.h"
+#include "solver/matrix_fingerprint.h"
 
 namespace fairshape::reference {
 namespace {
@@ -9,11 +11,14 @@ namespace {
 class LexicographicSor : public Solver {
  public:
   LexicographicSor(IterativeOptions opt, double omega) : opt_(opt), omega_(omega) {}
-  void analyze(const SparseMatrix& A) override { A_ = A; }
+  void analyze(const SparseMatrix& A) override {
+    A_ = A;
+    analyzed_.remember(A);
+  }
 
   SolveSummary solve(const SparseMatrix& A, const Eigen::MatrixXd& b, Eigen::MatrixXd& x,
                      const IterationCallback& cb) override {
-    if (A_.rows() != A.rows()) analyze(A);
+    if (!analyzed_.is(A)) analyze(A);
     IterationMonitor monitor(opt_, cb, system_energy(A, b));
     const Eigen::VectorXd diag = A.diagonal();
     if (const auto problem = diagonal_problem(diag); !problem.empty()) {
@@ -32,6 +37,7 @@ class LexicographicSor : public Solver {
   IterativeOptions opt_;
   double omega_;
   RowSparseMatrix A_;
+  AnalyzedMatrix analyzed_;
 };
 
 }  // namespace

@@ -1,7 +1,10 @@
-// Reference `cholesky`: Eigen's SimplicialLDLT, the plainest sparse direct solve.
+// Reference `cholesky`: Eigen's SimplicialLDLT, the plainest sparse direct solve. Factored in
+// analyze() and again whenever a solve brings another matrix (solver.h); a new matrix with the
+// analyzed pattern keeps the symbolic analysis and is only refactored.
 #include <Eigen/SparseCholesky>
 
 #include "problem/constrained_system.h"
+#include "solver/matrix_fingerprint.h"
 #include "solver/solver.h"
 
 namespace fairshape::reference {
@@ -9,13 +12,10 @@ namespace {
 
 class SimplicialCholesky : public Solver {
  public:
-  void analyze(const SparseMatrix& A) override {
-    ldlt_.compute(A);
-    rows_ = A.rows();
-  }
+  void analyze(const SparseMatrix& A) override { factor(A, MatrixFingerprint(A)); }
   SolveSummary solve(const SparseMatrix& A, const Eigen::MatrixXd& b, Eigen::MatrixXd& x,
                      const IterationCallback&) override {
-    if (rows_ != A.rows()) analyze(A);
+    if (const MatrixFingerprint f(A); f != analyzed_.fingerprint()) factor(A, f);
     SolveSummary s;
     if (ldlt_.info() != Eigen::Success || (ldlt_.vectorD().array() <= 0).any()) {
       s.message = "LDLT: matrix is not positive definite (singular: is anything fixed?)";
@@ -29,8 +29,14 @@ class SimplicialCholesky : public Solver {
   }
 
  private:
+  void factor(const SparseMatrix& A, const MatrixFingerprint& f) {
+    if (!f.same_pattern(analyzed_.fingerprint())) ldlt_.analyzePattern(A);
+    ldlt_.factorize(A);
+    analyzed_.remember(f);
+  }
+
   Eigen::SimplicialLDLT<SparseMatrix> ldlt_;
-  Eigen::Index rows_ = -1;
+  AnalyzedMatrix analyzed_;
 };
 
 }  // namespace

@@ -60,13 +60,15 @@ class BlockKkt final : public KktFactor {
   Eigen::MINRES<SparseMatrix, Eigen::Lower | Eigen::Upper, Eigen::IdentityPreconditioner> minres_;
 };
 
-// Optimized: banded ordering, fixed pattern, value offsets computed once.
+// Optimized: banded ordering, fixed pattern, value offsets computed once — for the rows'
+// structure (which points each row touches): rows of another structure get a new pattern and
+// symbolic analysis, never slots computed for other rows.
 class BandedKkt final : public KktFactor {
  public:
   BandedKkt(const LengthProblem& p, KktMethod method, double tol) : p_(p), method_(method), tol_(tol) {}
 
   bool factor(const std::vector<ConstraintRow>& rows, const Eigen::VectorXd* newton) override {
-    if (K_.rows() == 0) build_pattern(rows);
+    if (K_.rows() == 0 || !same_structure(rows)) build_pattern(rows);
     double* v = K_.valuePtr();
     std::copy(base_.begin(), base_.end(), v);
     tbb::parallel_for(tbb::blocked_range<int>(0, static_cast<int>(rows.size()), 4096), [&](const auto& range) {
@@ -120,8 +122,21 @@ class BandedKkt final : public KktFactor {
     return out;
   }
 
+  // Row sizes and points, three entries a row (an unused second point is 0, as ConstraintRow has it).
+  static std::vector<int> structure_of(const std::vector<ConstraintRow>& rows) {
+    std::vector<int> out;
+    out.reserve(3 * rows.size());
+    for (const auto& r : rows) out.insert(out.end(), {r.size, r.points[0], r.size == 2 ? r.points[1] : 0});
+    return out;
+  }
+  bool same_structure(const std::vector<ConstraintRow>& rows) const { return structure_of(rows) == structure_; }
+
   void build_pattern(const std::vector<ConstraintRow>& rows) {
     const int np = p_.n_points(), n = 3 * np, m = static_cast<int>(rows.size());
+    structure_ = structure_of(rows);
+    multiplier_position_.clear();
+    hessian_slots_.clear();
+    analyzed_ = false;
     // Position of every natural unknown: point p's coordinates, then the rows ending at p.
     std::vector<std::vector<int>> rows_ending_at(np);
     for (int r = 0; r < m; ++r) rows_ending_at[last_point(rows[r])].push_back(r);
@@ -186,6 +201,7 @@ class BandedKkt final : public KktFactor {
   std::vector<double> base_;
   std::vector<int> position_, jacobian_slot_, multiplier_position_;
   std::vector<HessianSlot> hessian_slots_;
+  std::vector<int> structure_;  // structure_of the rows the pattern was built for
   bool analyzed_ = false;
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::NaturalOrdering<int>> ldlt_;
   Eigen::MINRES<SparseMatrix, Eigen::Lower, Eigen::IdentityPreconditioner> minres_;

@@ -1,21 +1,21 @@
-// Optimized `cholesky`: CHOLMOD supernodal LLᵀ (SuiteSparse), factored once in analyze().
+// Optimized `cholesky`: CHOLMOD supernodal LLᵀ (SuiteSparse), factored in analyze() and again
+// whenever a solve brings another matrix (solver.h); a new matrix with the analyzed pattern
+// keeps the symbolic analysis (the fill-reducing ordering) and is only refactored.
 #include <Eigen/CholmodSupport>
 
-#include "solver/solver.h"
 #include "problem/constrained_system.h"
+#include "solver/matrix_fingerprint.h"
+#include "solver/solver.h"
 
 namespace fairshape {
 namespace {
 
 class CholmodCholesky : public Solver {
  public:
-  void analyze(const SparseMatrix& A) override {
-    llt_.compute(A);
-    analyzed_rows_ = A.rows();
-  }
+  void analyze(const SparseMatrix& A) override { factor(A, MatrixFingerprint(A)); }
   SolveSummary solve(const SparseMatrix& A, const Eigen::MatrixXd& b, Eigen::MatrixXd& x,
                      const IterationCallback&) override {
-    if (analyzed_rows_ != A.rows()) analyze(A);
+    if (const MatrixFingerprint f(A); f != analyzed_.fingerprint()) factor(A, f);
     SolveSummary s;
     if (llt_.info() != Eigen::Success) {
       s.message = "CHOLMOD: matrix is not positive definite (singular: is anything fixed?)";
@@ -30,8 +30,14 @@ class CholmodCholesky : public Solver {
   }
 
  private:
+  void factor(const SparseMatrix& A, const MatrixFingerprint& f) {
+    if (!f.same_pattern(analyzed_.fingerprint())) llt_.analyzePattern(A);
+    llt_.factorize(A);
+    analyzed_.remember(f);
+  }
+
   Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> llt_;
-  Eigen::Index analyzed_rows_ = -1;
+  AnalyzedMatrix analyzed_;
 };
 
 }  // namespace

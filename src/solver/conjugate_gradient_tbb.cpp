@@ -1,9 +1,11 @@
-// Optimized `conjugate_gradient`: the shared CG algorithm with a TBB row-parallel product.
+// Optimized `conjugate_gradient`: the shared CG algorithm with a TBB row-parallel product on a
+// row-major copy of A, made again whenever a solve brings another matrix (solver.h).
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
 
 #include "solver/conjugate_gradient.h"
+#include "solver/matrix_fingerprint.h"
 
 namespace fairshape {
 namespace {
@@ -15,10 +17,11 @@ class ParallelCg : public Solver {
     A_ = A;
     A_.makeCompressed();
     diag_ = A.diagonal();
+    analyzed_.remember(A);
   }
   SolveSummary solve(const SparseMatrix& A, const Eigen::MatrixXd& b, Eigen::MatrixXd& x,
                      const IterationCallback& cb) override {
-    if (A_.rows() != A.rows()) analyze(A);
+    if (!analyzed_.is(A)) analyze(A);
     auto multiply = [this](const Eigen::MatrixXd& p) {
       Eigen::MatrixXd out(p.rows(), p.cols());
       tbb::parallel_for(
@@ -42,6 +45,7 @@ class ParallelCg : public Solver {
   IterativeOptions opt_;
   RowSparseMatrix A_;
   Eigen::VectorXd diag_;
+  AnalyzedMatrix analyzed_;
 };
 
 }  // namespace

@@ -1,7 +1,9 @@
 // Optimized `gauss_seidel` and `sor`: multicolour SOR (parallel_kernels.h), one
 // tbb::parallel_for per colour, on a row-major copy of A and a row-major iterate.
 // Rows of one colour are independent, so the result does not depend on the thread count.
+// The copy and its colouring are redone whenever a solve brings another matrix (solver.h).
 #include "solver/iterative.h"
+#include "solver/matrix_fingerprint.h"
 #include "solver/parallel_kernels.h"
 
 namespace fairshape {
@@ -15,11 +17,12 @@ class MulticolorSor : public Solver {
     A_ = A;
     A_.makeCompressed();
     smoother_.analyze(A_);
+    analyzed_.remember(A);
   }
 
   SolveSummary solve(const SparseMatrix& A, const Eigen::MatrixXd& b, Eigen::MatrixXd& x,
                      const IterationCallback& cb) override {
-    if (A_.rows() != A.rows()) analyze(A);
+    if (!analyzed_.is(A)) analyze(A);
     IterationMonitor monitor(opt_, cb, system_energy(A, b));
     if (const auto problem = diagonal_problem(smoother_.diagonal()); !problem.empty()) {
       monitor.fail(problem);
@@ -46,6 +49,7 @@ class MulticolorSor : public Solver {
   double omega_;
   RowSparseMatrix A_;
   MulticolorSmoother smoother_;
+  AnalyzedMatrix analyzed_;
 };
 
 }  // namespace

@@ -24,6 +24,7 @@
 #include "core/error.h"
 #include "solver/iterative.h"
 #include "solver/level_operators.h"
+#include "solver/matrix_fingerprint.h"
 
 namespace fairshape {
 
@@ -332,7 +333,8 @@ SolveSummary run_multigrid(Kernels& k, const MultigridOptions& mg, const Iterati
 }
 
 //! The solver: builds the levels in analyze() (the hierarchy comes from set_levels), then
-//! runs cycles or preconditioned CG. Kernels also provide setup(levels, options).
+//! runs cycles or preconditioned CG. Kernels also provide setup(levels, options). The levels are
+//! built again when a solve brings another matrix, or after set_levels (solver.h).
 template <class Kernels>
 class MultigridSolver : public Solver {
  public:
@@ -342,9 +344,11 @@ class MultigridSolver : public Solver {
   void set_levels(std::shared_ptr<const LevelOperators> ops, const LevelSelection& selection) override {
     ops_ = std::move(ops);
     selection_ = selection;
+    analyzed_.forget();  // the levels were built from the old hierarchy
   }
 
   void analyze(const SparseMatrix& A) override {
+    analyzed_.forget();  // until the new levels stand, so that a throw below leaves none to reuse
     if (!ops_) throw InvalidInput("multigrid: no hierarchy was given (the problem has no levels below the solve level)");
     MultigridLevels levels = build_multigrid_levels(A, *ops_, selection_, mg_, galerkin_);
     // Gauss-Seidel needs a positive diagonal on every smoothed level (not the coarsest).
@@ -352,12 +356,12 @@ class MultigridSolver : public Solver {
     for (std::size_t l = 1; l < levels.size() && diagonal_problem_.empty(); ++l)
       diagonal_problem_ = diagonal_problem(levels[l].A.diagonal());
     kernels_.setup(std::move(levels), mg_);  // the kernels keep what they need, in their own layout
-    analyzed_rows_ = A.rows();
+    analyzed_.remember(A);
   }
 
   SolveSummary solve(const SparseMatrix& A, const Eigen::MatrixXd& b, Eigen::MatrixXd& x,
                      const IterationCallback& cb) override {
-    if (analyzed_rows_ != A.rows()) analyze(A);
+    if (!analyzed_.is(A)) analyze(A);
     if (!diagonal_problem_.empty()) {
       SolveSummary s;
       s.message = "multigrid: " + diagonal_problem_;
@@ -375,7 +379,7 @@ class MultigridSolver : public Solver {
   LevelSelection selection_;
   Kernels kernels_;
   std::string diagonal_problem_;
-  Eigen::Index analyzed_rows_ = -1;
+  AnalyzedMatrix analyzed_;
 };
 
 template <class Kernels>

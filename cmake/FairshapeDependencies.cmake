@@ -16,6 +16,7 @@ fairshape_require(Ceres libceres-dev 2.1 CONFIG)
 fairshape_require(VTK libvtk9-dev 9.1 COMPONENTS CommonCore CommonDataModel IOXML IOImage
                   RenderingCore RenderingOpenGL2 FiltersCore FiltersGeometry)
 fairshape_require(TBB libtbb-dev CONFIG)
+fairshape_require(OpenSSL libssl-dev)  # SHA-256 of input files and configs (provenance)
 if(FAIRSHAPE_BUILD_TESTS)
   fairshape_require(Catch2 catch2 2 CONFIG)
 endif()

@@ -92,7 +92,7 @@ def run_panels(a):
     if not a.label:
         sys.exit("panels: --label is required (or --ladder RUN_ID)")
     rows = list(csv.DictReader(open(os.path.join(a.run_dir, "runs.csv"))))
-    failed = [r["run_id"] for r in rows if r["termination"] not in ("converged", "max_iterations", "energy_stalled")]
+    failed = [r["run_id"] for r in rows if r["termination"] not in ("converged", "energy_stalled", "schedule_completed")]
     if failed:
         sys.exit(f"panels: runs {failed} did not finish; see {a.run_dir}/runs.csv")
     panels = []

@@ -8,7 +8,7 @@
 #include <memory>
 #include <string>
 
-#include "experiment/assemble_problem.h"
+#include "experiment/kinds/surface_edit/assemble_problem.h"
 #include "experiment/components.h"
 #include "io/mesh_io.h"
 #include "experiment/run_spec.h"
@@ -30,7 +30,7 @@ inline const CowEdit& cow_edit(int level, int coarse, const std::string& solver 
   const std::string yaml = R"(
 name: bench
 input: { mesh: data/cow.off, representation: catmull-clark, levels: )" + std::to_string(level) + R"( }
-energy: [ { type: detail-preserving, alpha: 0.1, beta: 1.0 } ]
+energy: [ { type: detail_preserving, alpha: 0.1, beta: 1.0 } ]
 constraints:
   - { type: fixed, region: { axis: x, from: 0.0, to: 0.3 } }
   - { type: position, nearest: [0.5, 0.0, 0.0], offset: [0.15, 0.0, 0.08] }

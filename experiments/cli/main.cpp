@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
   c_ren->add_flag("--edges", ren.opt.edges, "draw mesh edges");
 
   fairshape::SweepOptions run;
-  std::string shard = "0/1", worker = "0/1";
+  std::string shard = "0/1", worker;
   auto* c_run = app.add_subcommand("run", "run an experiment (a YAML config; a `sweep:` block runs many)");
   c_run->add_option("config", run.config_path, "experiment YAML file")->required();
   c_run->add_option("--set", run.sets, "override a key: --set solver.tolerance=1e-10 (value is YAML)");
@@ -48,6 +48,8 @@ int main(int argc, char** argv) {
   c_run->add_flag("--force", run.force, "start over in an --out folder that holds results");
   c_run->add_option("--jobs", run.jobs, "run sweep points in N parallel processes")->check(CLI::Range(1, 256));
   c_run->add_option("--shard", shard, "run only slice i of n (0 <= i < n), e.g. for a cluster job array");
+  c_run->add_flag("--retry-failed", run.retry_failed, "with --resume: run the runs whose row says they failed again");
+  c_run->add_flag("--dry-run", run.dry_run, "validate and print the points with their run ids; run nothing");
   c_run->add_option("--worker", worker, "internal: set for processes started by --jobs")->group("");
 
   SubdivideArgs sub;
@@ -96,9 +98,10 @@ int main(int argc, char** argv) {
 
   std::vector<std::string> merge_in;
   std::string merge_out;
-  auto* c_merge = app.add_subcommand("merge", "join runs.csv files of shards into one");
-  c_merge->add_option("output", merge_out, "merged CSV")->required();
-  c_merge->add_option("inputs", merge_in, "runs.csv files")->required();
+  auto* c_merge = app.add_subcommand("merge", "join the output folders of shards (every table, run.json) into one folder, "
+                                               "or CSV tables into one");
+  c_merge->add_option("output", merge_out, "merged folder (or CSV)")->required();
+  c_merge->add_option("inputs", merge_in, "shard output folders (or CSV tables of one name)")->required();
 
   try {
     app.parse(argc, argv);
@@ -111,7 +114,10 @@ int main(int argc, char** argv) {
     if (*c_ren) return cmd_render(ren, argc, argv);
     if (*c_run) {
       run.shard = fairshape::Slice::parse(shard, "--shard");
-      run.worker = fairshape::Slice::parse(worker, "--worker");
+      run.is_worker = !worker.empty();
+      if (run.is_worker) run.worker = fairshape::Slice::parse(worker, "--worker");
+      run.argv.assign(argv, argv + argc);
+      if (run.retry_failed && !run.resume) throw fairshape::InvalidConfig("--retry-failed needs --resume");
       run.executable = std::filesystem::read_symlink("/proc/self/exe").string();
       if (run.resume && run.out_dir.empty()) throw fairshape::InvalidConfig("--resume needs --out DIR");
       return fairshape::run_sweep(run);
@@ -121,7 +127,7 @@ int main(int argc, char** argv) {
     if (*c_rem) return cmd_remesh(rem);
     if (*c_en) return cmd_energy(en);
     if (*c_merge) {
-      fairshape::merge_run_tables(merge_in, merge_out);
+      fairshape::merge_results(merge_in, merge_out);
       return 0;
     }
   } catch (const fairshape::Error& e) {

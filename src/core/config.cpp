@@ -93,6 +93,15 @@ std::vector<Config> Config::child_list(const std::string& key, const std::string
   return out;
 }
 
+std::vector<std::string> Config::unread_keys() const {
+  std::vector<std::string> out;
+  for (const auto& kv : node_) {
+    const std::string k = kv.first.as<std::string>();
+    if (!read_keys_->count(k)) out.push_back(k);
+  }
+  return out;
+}
+
 void Config::check_no_unknown_keys() const {
   for (const auto& kv : node_) {
     const std::string k = kv.first.as<std::string>();

@@ -49,6 +49,8 @@ class Config {
   std::vector<Config> child_list(const std::string& key, const std::string& doc);
 
   void check_no_unknown_keys() const;  // throws InvalidConfig naming the key and valid keys
+  //! Keys present in the block that no read has asked for (yet), in file order.
+  std::vector<std::string> unread_keys() const;
   void set_recorder(std::shared_ptr<std::vector<OptionDoc>> r) { recorder_ = std::move(r); }
   //! True while `fairshape list` runs a factory on an empty block to collect its docs:
   //! factories skip checks that need a real value (required keys read as empty).

@@ -37,6 +37,12 @@ class Registry {
     entries_.push_back({name, backend, std::move(doc), std::move(make)});
   }
 
+  //! A name an entry had in an earlier release: using it is an error that names the new one.
+  void add_former_name(const std::string& former, const std::string& current) {
+    FAIRSHAPE_ASSERT(has(current), kind_ + " '" + current + "' must be registered before its former name");
+    former_names_.emplace_back(former, current);
+  }
+
   bool has(const std::string& name, Backend backend) const { return find(name, backend) != nullptr; }
   bool has(const std::string& name) const {
     return has(name, Backend::Reference) || has(name, Backend::Optimized);
@@ -75,6 +81,8 @@ class Registry {
   }
 
   [[noreturn]] void throw_unknown(const std::string& name, Backend backend) const {
+    for (const auto& [former, current] : former_names_)
+      if (former == name) throw InvalidConfig(kind_ + " '" + name + "' is now called '" + current + "'");
     if (has(name)) {
       const Backend other = backend == Backend::Reference ? Backend::Optimized : Backend::Reference;
       throw InvalidConfig(kind_ + " '" + name + "' has no " + std::string(to_string(backend)) +
@@ -87,6 +95,7 @@ class Registry {
 
   std::string kind_;
   std::vector<Entry> entries_;
+  std::vector<std::pair<std::string, std::string>> former_names_;
 };
 
 }  // namespace fairshape

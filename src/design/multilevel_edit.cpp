@@ -97,7 +97,7 @@ EditSolution MultilevelEdit::solve(double scale, const IterationCallback& cb) {
     switch (accuracy_) {
       case Accuracy::Interactive:
         out.delta = prolongate(0, last, current_[0]);
-        out.summary = {Termination::MaxIterations, 0, -1, "interactive: coarse solve subdivided to the edit level"};
+        out.summary = {Termination::ScheduleCompleted, 0, -1, "interactive: coarse solve subdivided to the edit level"};
         out.constraint_residual =
             backend_ == Backend::Reference
                 ? (ladder_.problems[last].constraints.A * out.delta - targets(last)).norm()

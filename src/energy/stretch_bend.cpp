@@ -40,13 +40,17 @@ StretchBendWeights weights_from(Config& cfg) {
 
 void register_stretch_bend(EnergyRegistry& r) {
   for (Backend b : {Backend::Reference, Backend::Optimized}) {
-    r.add("thin-plate", b,
+    r.add("surface_thin_plate", b,
           "α·stretch + β·bend of the deformed surface, local quadratic fits (Boier-Martin et al. §3.4)",
           [b](Config& cfg) -> std::unique_ptr<Energy> { return std::make_unique<StretchBend>(weights_from(cfg), b, true); });
-    r.add("detail-preserving", b,
+    r.add("detail_preserving", b,
           "α·stretch + β·bend of the deformation ΔP, fits from the rest shape (Boier-Martin et al. §4.1)",
           [b](Config& cfg) -> std::unique_ptr<Energy> { return std::make_unique<StretchBend>(weights_from(cfg), b, false); });
   }
+  // Their names until this release: `thin-plate` was one punctuation mark from the umbrella
+  // energy's `thin_plate`, a different energy.
+  r.add_former_name("thin-plate", "surface_thin_plate");
+  r.add_former_name("detail-preserving", "detail_preserving");
 }
 
 }  // namespace fairshape

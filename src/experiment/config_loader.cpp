@@ -111,7 +111,44 @@ YAML::Node get_by_path(const YAML::Node& root, const std::string& dotted) {
   return cur;
 }
 
-YAML::Node load_experiment_config(const std::string& path, const std::vector<std::string>& sets) {
+namespace {
+
+bool is_under(const std::string& key, const std::string& prefix) {
+  return key.size() > prefix.size() && key.compare(0, prefix.size(), prefix) == 0 && key[prefix.size()] == '.';
+}
+
+// A --set of a key the sweep varies replaces that axis (the key leaves its list or its zip);
+// a --set above or below a swept key would be half-overwritten by it, so it is refused.
+void take_key_out_of_sweep(YAML::Node root, const std::string& key, std::vector<std::string>* notes) {
+  if (key == "sweep" || is_under(key, "sweep")) return;  // the sweep itself is being set
+  YAML::Node sweep = root["sweep"];
+  if (!sweep || !sweep.IsMap()) return;
+  auto visit = [&](YAML::Node axes, const std::string& where) {
+    std::vector<std::string> keys;
+    for (const auto& kv : axes)
+      if (kv.first.IsScalar() && kv.first.as<std::string>() != "zip") keys.push_back(kv.first.as<std::string>());
+    for (const auto& swept : keys) {
+      if (swept == key) {
+        axes.remove(swept);
+        if (notes) notes->push_back("--set " + key + " replaces the sweep axis " + where + swept);
+      } else if (is_under(swept, key) || is_under(key, swept)) {
+        throw InvalidConfig("--set " + key + ": overlaps the swept key " + where + swept +
+                            " (set the swept key itself, or the sweep with --set '" + where + swept + "=[...]')");
+      }
+    }
+  };
+  visit(sweep, "sweep.");
+  if (YAML::Node zip = sweep["zip"]; zip && zip.IsMap()) {
+    visit(zip, "sweep.zip.");
+    if (zip.size() == 0) sweep.remove("zip");
+  }
+  if (sweep.size() == 0) root.remove("sweep");
+}
+
+}  // namespace
+
+YAML::Node load_experiment_config(const std::string& path, const std::vector<std::string>& sets,
+                                  std::vector<std::string>* notes) {
   YAML::Node root = load_with_defaults(path, 0);
   for (const auto& s : sets) {
     const auto eq = s.find('=');
@@ -123,6 +160,7 @@ YAML::Node load_experiment_config(const std::string& path, const std::vector<std
     } catch (const YAML::Exception& e) {
       throw InvalidConfig("--set '" + s + "': value is not valid YAML: " + e.msg);
     }
+    take_key_out_of_sweep(root, s.substr(0, eq), notes);
     set_by_path(root, s.substr(0, eq), value);
   }
   return root;

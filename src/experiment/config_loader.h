@@ -10,8 +10,11 @@
 
 namespace fairshape {
 
+//! A --set of a swept key replaces its axis (noted in `notes`); one overlapping a swept key
+//! (a parent or child path of it) is refused.
 //! \throw InvalidConfig naming the file (and line, for YAML syntax errors) or the key.
-YAML::Node load_experiment_config(const std::string& path, const std::vector<std::string>& sets);
+YAML::Node load_experiment_config(const std::string& path, const std::vector<std::string>& sets,
+                                  std::vector<std::string>* notes = nullptr);
 
 //! Sets a dotted key path, creating maps on the way. Under `sweep` (and `sweep.zip`) the rest
 //! of the path is one key, since swept keys are themselves dotted paths.

@@ -8,21 +8,17 @@
 #include <cstdio>
 #include <ctime>
 #include <fstream>
+#include <filesystem>
 #include <thread>
+
+#include "core/atomic_file.h"
+#include "core/sha256.h"
+#include "experiment/sweep_runner.h"
+#include "fairshape_build_info.h"
+#include "io/json_io.h"
 
 namespace fairshape {
 namespace {
-
-std::string run_command(const std::string& cmd) {
-  std::array<char, 256> buf{};
-  std::string out;
-  FILE* p = ::popen(cmd.c_str(), "r");
-  if (!p) return "";
-  while (std::fgets(buf.data(), static_cast<int>(buf.size()), p)) out += buf.data();
-  ::pclose(p);
-  while (!out.empty() && (out.back() == '\n' || out.back() == ' ')) out.pop_back();
-  return out;
-}
 
 std::string cpu_model() {
   std::ifstream f("/proc/cpuinfo");
@@ -30,10 +26,6 @@ std::string cpu_model() {
   while (std::getline(f, line))
     if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
   return "unknown";
-}
-
-std::string git(const std::string& args) {
-  return run_command("git -C '" FAIRSHAPE_SOURCE_DIR "' " + args + " 2>/dev/null");
 }
 
 }  // namespace
@@ -63,8 +55,8 @@ nlohmann::json yaml_to_json(const YAML::Node& n) {
 }
 
 std::string git_short_sha() {
-  const std::string sha = git("rev-parse --short=7 HEAD");
-  return sha.empty() ? "nogit" : sha;
+  const std::string sha = FAIRSHAPE_GIT_COMMIT;
+  return sha == "unknown" ? "nogit" : sha.substr(0, 7);
 }
 
 std::string utc_timestamp(const char* format) {
@@ -78,8 +70,8 @@ std::string utc_timestamp(const char* format) {
 
 nlohmann::json build_and_machine_info() {
   nlohmann::json j;
-  j["git_commit"] = git("rev-parse HEAD");
-  j["git_dirty"] = !git("status --porcelain --untracked-files=no").empty();
+  j["git_commit"] = FAIRSHAPE_GIT_COMMIT;  // as built, not as checked out now
+  j["git_dirty"] = FAIRSHAPE_GIT_DIRTY;
   j["compiler"] = std::string(FAIRSHAPE_COMPILER_ID) + " " + __VERSION__;
   j["build_type"] = FAIRSHAPE_BUILD_TYPE;
   j["compiler_flags"] = FAIRSHAPE_CXX_FLAGS;
@@ -95,6 +87,55 @@ nlohmann::json build_and_machine_info() {
   j["hardware_threads"] = std::thread::hardware_concurrency();
   j["tbb_default_concurrency"] = tbb::info::default_concurrency();
   return j;
+}
+
+namespace {
+namespace fs = std::filesystem;
+
+nlohmann::json slice_json(const Slice& s) { return std::to_string(s.index) + "/" + std::to_string(s.count); }
+
+}  // namespace
+
+RunJournal::RunJournal(const fs::path& dir, const SweepOptions& opt, const YAML::Node& root, const std::string& name,
+                       const std::vector<std::string>& inputs, std::size_t planned, std::size_t already_done)
+    : path_(dir / "run.json") {
+  if (fs::exists(path_)) {
+    journal_ = read_json(path_.string());
+  } else {
+    journal_ = build_and_machine_info();
+    journal_["name"] = name;
+    journal_["config_file"] = opt.config_path;
+    journal_["config"] = yaml_to_json(root);
+    journal_["config_sha256"] = sha256_hex(YAML::Dump(root));
+    journal_["seed"] = yaml_to_json(root["seed"]);
+    journal_["threads_requested"] = yaml_to_json(root["threads"]);
+    journal_["sessions"] = nlohmann::json::array();
+    write_atomically(dir / "config.resolved.yaml", [&](std::ostream& os) { os << YAML::Dump(root) << '\n'; });
+  }
+  nlohmann::json hashes = nlohmann::json::object();
+  for (const auto& f : inputs) hashes[f] = sha256_file_hex(f);
+  nlohmann::json session = build_and_machine_info();
+  session["started"] = utc_timestamp();
+  session["argv"] = opt.argv;
+  session["set"] = opt.sets;
+  session["filter"] = opt.filters;
+  session["shard"] = slice_json(opt.shard);
+  session["jobs"] = opt.jobs;
+  session["resume"] = opt.resume;
+  session["retry_failed"] = opt.retry_failed;
+  session["input_sha256"] = hashes;
+  session["runs_planned"] = planned;
+  session["runs_already_done"] = already_done;
+  journal_["sessions"].push_back(session);
+  write_json(journal_, path_.string());
+}
+
+void RunJournal::close(int exit_status, std::size_t runs_done) {
+  auto& session = journal_["sessions"].back();
+  session["ended"] = utc_timestamp();
+  session["exit_status"] = exit_status;
+  session["runs_done"] = runs_done;
+  write_json(journal_, path_.string());
 }
 
 }  // namespace fairshape

@@ -1,9 +1,12 @@
-// run.json: what produced a result folder (commit, compiler, flags, library versions, machine,
-// threads, seed, times, the resolved config), so any number can be traced and reproduced.
+// run.json: what produced a result folder (commit and dirty flag as built, compiler, flags,
+// library versions, machine, threads, seed, the resolved config, and one record per session
+// that wrote to it), so any number can be traced and reproduced.
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <filesystem>
 #include <string>
+#include <vector>
 
 #include <yaml-cpp/yaml.h>
 
@@ -13,5 +16,22 @@ nlohmann::json yaml_to_json(const YAML::Node& n);
 nlohmann::json build_and_machine_info();  // git, compiler, flags, libraries, CPU, threads
 std::string git_short_sha();             // 7 hex digits, or "nogit"
 std::string utc_timestamp(const char* format = "%Y-%m-%dT%H:%M:%SZ");
+
+struct SweepOptions;
+
+//! run.json of an output folder: written once with the build, the machine and the resolved
+//! config (and config.resolved.yaml beside it); each `fairshape run` on the folder (the first
+//! and every --resume) appends a session: argv, --set, --filter, shard, jobs, the SHA-256 of
+//! every input file, times and exit status. A resume never rewrites what came before.
+class RunJournal {
+ public:
+  RunJournal(const std::filesystem::path& dir, const SweepOptions& opt, const YAML::Node& root, const std::string& name,
+             const std::vector<std::string>& inputs, std::size_t planned, std::size_t already_done);
+  void close(int exit_status, std::size_t runs_done);
+
+ private:
+  std::filesystem::path path_;
+  nlohmann::json journal_;
+};
 
 }  // namespace fairshape

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "core/config.h"
+#include "experiment/vtk_policy.h"
 
 namespace fairshape {
 namespace fs = std::filesystem;
@@ -17,6 +18,10 @@ std::string resolve_input(const std::string& path, const std::vector<std::string
   }
   throw InvalidConfig(key + ": input file '" + path + "' not found (looked in the current directory and "
                       "beside the config)");
+}
+
+bool solver_is_used(const RunSpec& s) {
+  return s.constraint_mode == "paper" && (s.accuracy.mode == "single-level" || s.accuracy.mode == "converged");
 }
 
 namespace {
@@ -43,25 +48,39 @@ void read_constraints(Config& root, const Components& c, Backend backend, RunSpe
   }
 }
 
-// The solver block: common keys, then every registered solver's sub-block that is present is
-// validated (so a sweep over solver.type stays valid), and the chosen one is kept.
+// The solver block. Every registered solver's schema applies to it whichever is chosen, so a
+// key's validity never depends on its siblings (solver.tolerance is valid beside a direct
+// solver) and a sweep over solver.type carries every solver's options; a key no solver knows
+// is an error. What the chosen solver does not read is recorded in unused_keys, never
+// reported as if it had been used.
 void read_solver(Config& root, const Components& c, Backend backend, RunSpec& s) {
   Config sc = root.child("solver", "linear solver: {type, tolerance, max_iterations, <type>: {...}}");
-  s.solver_type = sc.get_choice("type", "cholesky", c.solvers.names(), "solver name");
-  s.initial_guess = sc.get_choice("initial_guess", "zero", {"zero", "random"},
-                                  "start of iterative solvers (random uses the seed)");
-  for (const auto& name : c.solvers.names()) {
-    if (name == s.solver_type) continue;
-    if (sc.has(name))
+  const auto read_common = [&](Config& block) {
+    s.solver_type = block.get_choice("type", "cholesky", c.solvers.names(), "solver name");
+    s.initial_guess = block.get_choice("initial_guess", "zero", {"zero", "random"},
+                                       "start of iterative solvers (random uses the seed)");
+  };
+  read_common(sc);
+  for (const auto& name : c.solvers.names())
+    if (name != s.solver_type)
       (void)c.solvers.create(name, c.solvers.has(name, backend) ? backend : Backend::Reference, sc);
-  }
   s.solver = c.solvers.create(s.solver_type, backend, sc);
   sc.check_no_unknown_keys();
+  Config chosen(sc.node(), sc.path());
+  read_common(chosen);
+  (void)c.solvers.create(s.solver_type, backend, chosen);
+  // The other constraint modes solve their KKT or QP system themselves, and the interactive
+  // and improved ladders use their own direct and relaxation solves: the block is unused.
+  if (solver_is_used(s)) {
+    for (const auto& k : chosen.unread_keys()) s.unused_keys.push_back(sc.key_path(k));
+  } else {
+    for (const auto& kv : sc.node()) s.unused_keys.push_back(sc.key_path(kv.first.as<std::string>()));
+  }
 }
 
 void read_output(Config& root, OutputOptions& o) {
   Config oc = root.child("output", "what each run writes");
-  o.vtk = oc.get_choice("vtk", o.vtk, {"none", "final", "every_iteration"}, "VTK PolyData per run");
+  o.vtk = read_vtk_policy(oc, "also the iterate every output.vtk_every iterations, as a .pvd series");
   o.vtk_every = oc.get_int("vtk_every", o.vtk_every, 1, 1000000, "iterations between VTK snapshots");
   o.iterations = oc.get<bool>("iterations", o.iterations, "write iterations.csv (residual history)");
   o.final_mesh = oc.get<bool>("final_mesh", o.final_mesh, "write final.obj (final/<run_id>.obj in sweeps)");
@@ -119,6 +138,13 @@ std::vector<std::string> input_search_dirs(const std::string& config_path) {
 RunBasics read_run_basics(Config& root) {
   RunBasics b;
   b.name = root.require<std::string>("name", "experiment name (names the results folder)");
+  // The name becomes results/<name>/: one plain folder name, so no output can land elsewhere.
+  const bool plain = !b.name.empty() && b.name.size() <= 128 && b.name != "." && b.name != ".." &&
+                     b.name.front() != '.' && b.name.find_first_not_of(
+                         "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789._-") == std::string::npos;
+  if (!plain)
+    throw InvalidConfig("name: '" + b.name + "' must be a plain folder name (letters, digits, '.', '_', '-'; not "
+                        "starting with '.'; at most 128 characters): it names results/<name>/");
   root.get<std::string>("description", "", "free text");
   b.seed = root.get_int("seed", 0, 0, INT32_MAX, "random seed (runs without randomness ignore it)");
   b.threads = root.get_int("threads", 0, 0, 4096, "TBB threads for optimized back ends (0 = all cores)");

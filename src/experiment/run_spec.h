@@ -11,6 +11,7 @@
 
 #include "core/backend.h"
 #include "experiment/components.h"
+#include "experiment/vtk_policy.h"
 
 namespace fairshape {
 
@@ -28,7 +29,7 @@ struct ConstraintTerm {
 enum class Formulation { Displacement, Position };
 
 struct OutputOptions {
-  std::string vtk = "final";  // none | final | every_iteration
+  VtkPolicy vtk = VtkPolicy::Final;
   int vtk_every = 10;
   bool iterations = true;
   bool final_mesh = true;
@@ -72,11 +73,17 @@ struct RunSpec : RunBasics {
   std::unique_ptr<Solver> solver;
   OutputOptions output;
   std::string system_key;  // equal for runs that solve the same linear system
+  //! Keys the config sets that this run does not use (e.g. solver.* under constraint_mode
+  //! kkt), for runs.csv's unused_keys: recorded as not applicable, never as used.
+  std::vector<std::string> unused_keys;
 
   //! \param search_dirs where relative input paths are looked up after the working directory.
   static RunSpec from_config(const YAML::Node& run_config, const Components& c,
                              const std::vector<std::string>& search_dirs);
 };
+
+//! Whether the run's linear solver (the solver block) takes part in its solve.
+bool solver_is_used(const RunSpec& s);
 
 //! The current directory, then `config_path`'s folder and its parents (so configs can name
 //! `data/cow.off` from anywhere inside the repository).

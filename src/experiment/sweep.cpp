@@ -1,19 +1,12 @@
 #include "experiment/sweep.h"
 
-#include <cstdio>
-
 #include "core/config.h"
 #include "core/error.h"
+#include "core/sha256.h"
 #include "experiment/config_loader.h"
 
 namespace fairshape {
 namespace {
-
-struct Axis {
-  std::vector<std::string> keys;
-  std::vector<std::vector<YAML::Node>> values;  // values[k][i]: key k at position i
-  std::size_t size() const { return values.empty() ? 1 : values.front().size(); }
-};
 
 std::vector<YAML::Node> list_of(const YAML::Node& n, const std::string& key) {
   if (!n.IsSequence() || n.size() == 0)
@@ -23,86 +16,109 @@ std::vector<YAML::Node> list_of(const YAML::Node& n, const std::string& key) {
   return out;
 }
 
-std::vector<Axis> axes_of(const YAML::Node& root) {
-  std::vector<Axis> axes;
-  const YAML::Node sweep = root["sweep"];
-  if (!sweep) return axes;
-  if (!sweep.IsMap()) throw InvalidConfig("sweep: expected a map of key: [values]");
-  if (const YAML::Node zip = sweep["zip"]) {
-    if (!zip.IsMap()) throw InvalidConfig("sweep.zip: expected a map of key: [values]");
-    Axis a;
-    for (const auto& kv : zip) {
-      const std::string key = kv.first.as<std::string>();
-      a.keys.push_back(key);
-      a.values.push_back(list_of(kv.second, "zip." + key));
-      if (a.values.back().size() != a.values.front().size())
-        throw InvalidConfig("sweep.zip." + key + ": has " + std::to_string(a.values.back().size()) +
-                            " values but sweep.zip." + a.keys.front() + " has " +
-                            std::to_string(a.values.front().size()) + " (zipped lists must be equally long)");
-    }
-    if (!a.keys.empty()) axes.push_back(std::move(a));
-  }
-  for (const auto& kv : sweep) {
-    const std::string key = kv.first.as<std::string>();
-    if (key == "zip") continue;
-    axes.push_back({{key}, {list_of(kv.second, key)}});
-  }
-  return axes;
+std::string key_of(const YAML::Node& k, const std::string& where) {
+  if (!k.IsScalar()) throw InvalidConfig(where + ": a swept key must be a dotted key path, got '" + yaml_to_string(k) + "'");
+  return k.as<std::string>();
 }
 
 }  // namespace
 
-std::vector<std::string> swept_keys(const YAML::Node& root) {
+SweepSpace::SweepSpace(const YAML::Node& root) {
+  base_ = YAML::Clone(root);
+  base_.remove("sweep");
+  const YAML::Node sweep = root["sweep"];
+  if (sweep) {
+    if (!sweep.IsMap()) throw InvalidConfig("sweep: expected a map of key: [values]");
+    if (const YAML::Node zip = sweep["zip"]) {
+      if (!zip.IsMap()) throw InvalidConfig("sweep.zip: expected a map of key: [values]");
+      Axis a;
+      for (const auto& kv : zip) {
+        const std::string key = key_of(kv.first, "sweep.zip");
+        a.keys.push_back(key);
+        a.values.push_back(list_of(kv.second, "zip." + key));
+        if (a.values.back().size() != a.values.front().size())
+          throw InvalidConfig("sweep.zip." + key + ": has " + std::to_string(a.values.back().size()) +
+                              " values but sweep.zip." + a.keys.front() + " has " +
+                              std::to_string(a.values.front().size()) + " (zipped lists must be equally long)");
+      }
+      if (!a.keys.empty()) axes_.push_back(std::move(a));
+    }
+    for (const auto& kv : sweep) {
+      const std::string key = key_of(kv.first, "sweep");
+      if (key == "zip") continue;
+      axes_.push_back({{key}, {list_of(kv.second, key)}, {}, {}});
+    }
+  }
+  for (Axis& a : axes_) {
+    // Positions listing the same values make the same points: they are repeats of each other.
+    std::vector<std::string> text(a.size());
+    for (std::size_t i = 0; i < a.size(); ++i)
+      for (const auto& column : a.values) text[i] += yaml_to_string(column[i]) + '\x1f';
+    a.occurrence.assign(a.size(), 0);
+    a.multiplicity.assign(a.size(), 0);
+    for (std::size_t i = 0; i < a.size(); ++i)
+      for (std::size_t j = 0; j < a.size(); ++j)
+        if (text[i] == text[j]) {
+          ++a.multiplicity[i];
+          if (j < i) ++a.occurrence[i];
+        }
+    if (a.size() > kMaxSweepPoints / size_)
+      throw InvalidConfig("sweep: expands to more than " + std::to_string(kMaxSweepPoints) +
+                          " runs (the limit); split it into several experiments or use --shard");
+    size_ *= a.size();
+  }
+}
+
+std::vector<std::string> SweepSpace::keys() const {
   std::vector<std::string> keys;
-  for (const auto& a : axes_of(root)) keys.insert(keys.end(), a.keys.begin(), a.keys.end());
+  for (const auto& a : axes_) keys.insert(keys.end(), a.keys.begin(), a.keys.end());
   return keys;
+}
+
+RunPoint SweepSpace::point(std::size_t index) const {
+  FAIRSHAPE_ASSERT(index < size_, "sweep point out of range");
+  RunPoint p;
+  p.index = index;
+  p.config = YAML::Clone(base_);
+  // The last axis varies fastest, like nested loops written in config order.
+  std::vector<std::size_t> pos(axes_.size());
+  std::size_t rest = index;
+  for (std::size_t a = axes_.size(); a-- > 0;) {
+    pos[a] = rest % axes_[a].size();
+    rest /= axes_[a].size();
+  }
+  // Identical points differ only in which duplicate position each axis took; in flat order
+  // they come in the lexicographic order of those choices, a mixed-radix number.
+  std::size_t repeat = 0;
+  for (std::size_t a = 0; a < axes_.size(); ++a) {
+    repeat = repeat * axes_[a].multiplicity[pos[a]] + axes_[a].occurrence[pos[a]];
+    for (std::size_t k = 0; k < axes_[a].keys.size(); ++k) {
+      const YAML::Node& v = axes_[a].values[k][pos[a]];
+      set_by_path(p.config, axes_[a].keys[k], YAML::Clone(v));
+      p.params.emplace_back(axes_[a].keys[k], yaml_to_string(v));
+    }
+  }
+  p.run_id = run_id_of(p.config);
+  if (repeat > 0) {
+    p.run_id += '-';
+    p.run_id.append(std::to_string(repeat + 1));
+  }
+  return p;
 }
 
 std::string run_id_of(const YAML::Node& run_config) {
   YAML::Node c = YAML::Clone(run_config);
-  c.remove("output");  // where results go does not change what is computed
-  c.remove("name");
-  c.remove("description");
-  const std::string text = yaml_to_string(c);
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char ch : text) {
-    h ^= ch;
-    h *= 1099511628211ull;
-  }
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-  return buf;
+  c.remove("sweep");
+  return sha256_hex(yaml_to_string(c)).substr(0, 16);
 }
 
 std::vector<RunPoint> expand_sweep(const YAML::Node& root) {
-  const auto axes = axes_of(root);
-  std::size_t total = 1;
-  for (const auto& a : axes) total *= a.size();
-  if (total > 1000000) throw InvalidConfig("sweep: expands to " + std::to_string(total) + " runs (limit 1e6)");
-  YAML::Node base = YAML::Clone(root);
-  base.remove("sweep");
+  const SweepSpace space(root);
   std::vector<RunPoint> runs;
-  for (std::size_t flat = 0; flat < total; ++flat) {
-    RunPoint p;
-    p.index = static_cast<int>(flat);
-    p.config = YAML::Clone(base);
-    std::size_t rest = flat;
-    // The last axis varies fastest, like nested loops written in config order.
-    std::vector<std::size_t> pos(axes.size());
-    for (std::size_t a = axes.size(); a-- > 0;) {
-      pos[a] = rest % axes[a].size();
-      rest /= axes[a].size();
-    }
-    for (std::size_t a = 0; a < axes.size(); ++a)
-      for (std::size_t k = 0; k < axes[a].keys.size(); ++k) {
-        const YAML::Node& v = axes[a].values[k][pos[a]];
-        set_by_path(p.config, axes[a].keys[k], YAML::Clone(v));
-        p.params.emplace_back(axes[a].keys[k], yaml_to_string(v));
-      }
-    p.run_id = run_id_of(p.config);
-    runs.push_back(std::move(p));
-  }
+  for (std::size_t i = 0; i < space.size(); ++i) runs.push_back(space.point(i));
   return runs;
 }
+
+std::vector<std::string> swept_keys(const YAML::Node& root) { return SweepSpace(root).keys(); }
 
 }  // namespace fairshape

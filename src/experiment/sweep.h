@@ -1,7 +1,9 @@
-// Expands `sweep:` into runs: a Cartesian product over its keys, where `zip:` lists of equal
-// length count as one axis. Each run is the base config with the swept values set.
+// The points of an experiment: `sweep:` is a Cartesian product over its keys, where the
+// lists under `zip:` count as one axis. Points are made on demand from their flat index, so
+// a shard of a large sweep builds only its own.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <utility>
 #include <vector>
@@ -11,17 +13,45 @@
 namespace fairshape {
 
 struct RunPoint {
-  int index = 0;                                            // position in the full sweep
-  std::vector<std::pair<std::string, std::string>> params;  // swept key -> value, for the CSV
+  std::size_t index = 0;                                    // position in the full sweep
+  std::vector<std::pair<std::string, std::string>> params;  // swept key -> value, for the tables
   YAML::Node config;                                        // resolved, without `sweep`
-  std::string run_id;                                       // hash of the resolved config
+  //! 16 hex digits of the SHA-256 of the point's whole resolved config (outputs, name and
+  //! description included: anything that can change a result file), then `-k` for the k-th
+  //! (k >= 2) occurrence of a point the sweep lists more than once (a repeat).
+  std::string run_id;
 };
 
-//! Swept keys in CSV column order (zip keys in their order, then the others).
-std::vector<std::string> swept_keys(const YAML::Node& root);
-//! \throw InvalidConfig for a non-list value, an empty list or zip lists of unequal length.
+//! The largest sweep fairshape expands (points, after the product).
+constexpr std::size_t kMaxSweepPoints = 10'000'000;
+
+class SweepSpace {
+ public:
+  //! \throw InvalidConfig for a non-list value, an empty list, zip lists of unequal length,
+  //! or more than kMaxSweepPoints points (counted without overflow).
+  explicit SweepSpace(const YAML::Node& root);
+  std::size_t size() const { return size_; }
+  //! Swept keys in table column order (zip keys in their order, then the others).
+  std::vector<std::string> keys() const;
+  RunPoint point(std::size_t index) const;
+
+ private:
+  struct Axis {
+    std::vector<std::string> keys;
+    std::vector<std::vector<YAML::Node>> values;  // values[k][i]: key k at position i
+    std::vector<std::size_t> occurrence;          // earlier positions with the same values
+    std::vector<std::size_t> multiplicity;        // positions with the same values
+    std::size_t size() const { return values.front().size(); }
+  };
+  YAML::Node base_;
+  std::vector<Axis> axes_;
+  std::size_t size_ = 1;
+};
+
+//! Every point (small sweeps and tests; the harness iterates a SweepSpace).
 std::vector<RunPoint> expand_sweep(const YAML::Node& root);
-//! 16 hex digits of a 64-bit FNV-1a hash of the run's canonical YAML (output settings excluded).
+std::vector<std::string> swept_keys(const YAML::Node& root);
+//! The hash part of a run_id.
 std::string run_id_of(const YAML::Node& run_config);
 
 }  // namespace fairshape

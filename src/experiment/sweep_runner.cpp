@@ -1,250 +1,368 @@
 #include "experiment/sweep_runner.h"
 
-#include <spawn.h>
-#include <sys/wait.h>
-#include <tbb/global_control.h>
-
 #include <algorithm>
+#include <csignal>
+#include <cstdlib>
 #include <filesystem>
-#include <map>
+#include <fstream>
 #include <iostream>
+#include <map>
 #include <set>
+#include <stdexcept>
 
 #include "core/atomic_file.h"
 #include "core/config.h"
 #include "core/error.h"
+#include "core/summary.h"
 #include "experiment/config_loader.h"
-#include "experiment/curve_run.h"
-#include "experiment/feature_run.h"
-#include "experiment/sheet_run.h"
-#include "experiment/run_metadata.h"
+#include "experiment/output_folder.h"
 #include "experiment/progress.h"
-#include "experiment/run_one.h"
+#include "experiment/run_kind.h"
+#include "experiment/run_metadata.h"
+#include "experiment/run_spec.h"
+#include "experiment/supervisor.h"
 #include "experiment/sweep.h"
 #include "io/csv.h"
-#include "io/json_io.h"
-
-extern char** environ;
 
 namespace fairshape {
 namespace fs = std::filesystem;
 namespace {
 
-struct Plan {
-  YAML::Node root;
-  std::string name;
-  bool curve = false;  // curve runs (input.curve) or surface runs (input.mesh)
-  bool sheet = false;  // B-spline sheet runs (sheets:)
-  bool feature = false;  // feature-curve runs (features:)
-  std::vector<std::string> search_dirs, columns;
-  std::map<std::string, std::string> swept_key_of;  // CSV column -> swept key (they differ by a prefix)
-  std::vector<RunPoint> runs;  // after --filter
+struct Filter {
+  std::string key, value;
 };
 
-bool passes_filters(const RunPoint& p, const std::vector<std::string>& filters) {
+struct Plan {
+  YAML::Node root;
+  std::vector<std::string> notes;  // what the --set options replaced
+  std::vector<std::string> search_dirs;
+  std::vector<std::unique_ptr<RunKind>> kinds;
+  RunKind* kind = nullptr;
+  std::unique_ptr<SweepSpace> space;
+  std::vector<Filter> filters;
+  TableLayout layout;
+  std::map<std::string, std::string> swept_key_of;  // column -> swept key (they differ by a prefix)
+  std::string name;
+  std::vector<std::string> input_files;
+  std::vector<std::size_t> selected;  // flat indices of this process's points, in order
+};
+
+std::vector<Filter> parse_filters(const std::vector<std::string>& filters, const std::vector<std::string>& swept) {
+  std::vector<Filter> out;
   for (const auto& f : filters) {
     const auto eq = f.find('=');
-    if (eq == std::string::npos) throw InvalidConfig("--filter '" + f + "': expected key=value");
-    const YAML::Node v = get_by_path(p.config, f.substr(0, eq));
-    if (!v.IsDefined() || yaml_to_string(v) != f.substr(eq + 1)) return false;
+    if (eq == std::string::npos || eq == 0) throw InvalidConfig("--filter '" + f + "': expected key=value");
+    Filter flt{f.substr(0, eq), f.substr(eq + 1)};
+    if (std::find(swept.begin(), swept.end(), flt.key) == swept.end()) {
+      std::string valid;
+      for (const auto& k : swept) valid += (valid.empty() ? "" : ", ") + k;
+      throw InvalidConfig("--filter " + flt.key + ": not a swept key (swept: " + (valid.empty() ? "none" : valid) + ")");
+    }
+    out.push_back(std::move(flt));
+  }
+  return out;
+}
+
+bool passes(const RunPoint& p, const std::vector<Filter>& filters) {
+  for (const auto& f : filters) {
+    const auto it = std::find_if(p.params.begin(), p.params.end(), [&](const auto& kv) { return kv.first == f.key; });
+    if (it == p.params.end() || it->second != f.value) return false;
   }
   return true;
 }
 
-// Loads, expands and validates every run; all problems are reported together.
-Plan make_plan(const SweepOptions& opt) {
+TableLayout layout_of(const RunKind& kind, const std::vector<std::string>& swept,
+                      std::map<std::string, std::string>& swept_key_of) {
+  TableLayout l;
+  std::set<std::string> taken(kind.metric_columns().begin(), kind.metric_columns().end());
+  for (const auto& t : kind.tables()) taken.insert(t.columns.begin(), t.columns.end());
+  l.key_columns = {"run_id"};
+  for (const auto& k : swept) {  // a swept key named like a column (energy) gets a prefix
+    const std::string column = taken.count(k) ? "param." + k : k;
+    l.key_columns.push_back(column);
+    swept_key_of[column] = k;
+  }
+  for (const auto& k : kind.identity_columns())
+    if (std::find(l.key_columns.begin(), l.key_columns.end(), k) == l.key_columns.end()) l.key_columns.push_back(k);
+  l.runs_columns = l.key_columns;
+  for (const auto& m : kind.metric_columns())
+    if (std::find(l.key_columns.begin(), l.key_columns.end(), m) == l.key_columns.end()) l.runs_columns.push_back(m);
+  for (const auto& t : kind.tables()) {
+    TableSchema s{t.name, l.key_columns};
+    s.columns.insert(s.columns.end(), t.columns.begin(), t.columns.end());
+    l.tables.push_back(std::move(s));
+  }
+  return l;
+}
+
+// Loads the config, picks this process's points and, in the supervisor, validates each of
+// them (all problems reported together, before anything runs).
+Plan make_plan(const SweepOptions& opt, bool validate) {
   Plan plan;
-  plan.root = load_experiment_config(opt.config_path, opt.sets);
+  plan.root = load_experiment_config(opt.config_path, opt.sets, &plan.notes);
   plan.search_dirs = input_search_dirs(opt.config_path);
-  plan.curve = is_curve_config(plan.root);
-  plan.sheet = is_sheet_config(plan.root);
-  plan.feature = is_feature_config(plan.root);
-  std::set<std::string> problems;
-  for (auto& p : expand_sweep(plan.root)) {
+  plan.kinds = make_run_kinds();
+  plan.space = std::make_unique<SweepSpace>(plan.root);
+  plan.filters = parse_filters(opt.filters, plan.space->keys());
+  std::set<std::string> problems, inputs;
+  std::size_t position = 0;
+  for (std::size_t i = opt.shard.index; i < plan.space->size(); i += opt.shard.count) {
+    const RunPoint p = plan.space->point(i);
+    if (!passes(p, plan.filters)) continue;
+    if (position++ % opt.worker.count != static_cast<std::size_t>(opt.worker.index)) continue;
+    plan.selected.push_back(i);
+    if (!validate && plan.kind) continue;
     try {
-      plan.name = plan.feature ? FeatureRunSpec::from_config(p.config, plan.search_dirs).name
-                  : plan.sheet ? SheetRunSpec::from_config(p.config).name
-                  : plan.curve ? CurveRunSpec::from_config(p.config, plan.search_dirs).name
-                               : RunSpec::from_config(p.config, components(), plan.search_dirs).name;
+      RunKind& kind = kind_of(p.config, plan.kinds);
+      if (plan.kind && plan.kind != &kind)
+        throw InvalidConfig("point " + std::to_string(i) + " is a " + kind.name() + " run but point " +
+                            std::to_string(plan.selected.front()) + " is a " + plan.kind->name() +
+                            " run: one experiment holds one kind of run");
+      plan.kind = &kind;
+      if (!validate) continue;
+      const ValidatedRun v = kind.validate(p.config, plan.search_dirs);
+      if (plan.name.empty()) plan.name = v.name;
+      inputs.insert(v.input_files.begin(), v.input_files.end());
     } catch (const InvalidConfig& e) {
       problems.insert(e.what());
-      continue;
     } catch (const YAML::Exception& e) {
       problems.insert(std::string("YAML: ") + e.what());
-      continue;
     }
-    if (passes_filters(p, opt.filters)) plan.runs.push_back(std::move(p));
   }
   if (!problems.empty()) {
     std::string msg = opt.config_path + ": " + std::to_string(problems.size()) + " problem(s), nothing was run:";
     for (const auto& p : problems) msg += "\n  - " + p;
     throw InvalidConfig(msg);
   }
-  plan.columns = {"run_id"};
-  const auto& metrics = plan.feature ? feature_metric_columns() : plan.sheet ? sheet_metric_columns() : plan.curve ? curve_metric_columns() : metric_columns();
-  for (const auto& k : swept_keys(plan.root)) {  // a swept key named like a metric (energy) gets a prefix
-    plan.columns.push_back(std::find(metrics.begin(), metrics.end(), k) == metrics.end() ? k : "param." + k);
-    plan.swept_key_of[plan.columns.back()] = k;
-  }
-  for (const char* k : {"implementation", "solver.type"})
-    if (std::find(plan.columns.begin(), plan.columns.end(), k) == plan.columns.end()) plan.columns.push_back(k);
-  for (const auto& m : metrics) plan.columns.push_back(m);
+  if (plan.selected.empty() && !opt.is_worker)
+    throw InvalidConfig(opt.config_path + ": no point of the sweep " +
+                        (opt.filters.empty() ? std::string("falls in --shard ") + std::to_string(opt.shard.index) + "/" +
+                                                   std::to_string(opt.shard.count)
+                                             : std::string("passes the --filter options")) +
+                        ": nothing to run");
+  if (!plan.kind) plan.kind = &kind_of(plan.space->point(0).config, plan.kinds);  // a worker with no point
+  plan.input_files.assign(inputs.begin(), inputs.end());
+  plan.layout = layout_of(*plan.kind, plan.space->keys(), plan.swept_key_of);
   return plan;
 }
 
-std::string default_out_dir(const std::string& name) {
-  const fs::path base = fs::path("results") / name;
-  const fs::path dir = base / (utc_timestamp("%Y%m%d-%H%M%S") + "_" + git_short_sha());
-  fs::create_directories(dir);
-  const fs::path link = base / "latest";
-  std::error_code ec;
-  fs::remove(link, ec);
-  fs::create_directory_symlink(dir.filename(), link, ec);
-  return dir.string();
+std::string value_at(const YAML::Node& config, const std::string& key) {
+  const YAML::Node v = get_by_path(config, key);
+  return v.IsDefined() ? yaml_to_string(v) : "";
 }
 
-// Prepares the folder; returns the run_ids already finished there (for --resume).
-std::set<std::string> prepare_out_dir(const SweepOptions& opt, const Plan& plan, const std::string& dir) {
-  const fs::path runs_csv = fs::path(dir) / "runs.csv";
-  if (fs::exists(runs_csv) && !opt.resume) {
-    if (!opt.force)
-      throw InvalidConfig(dir + " already holds results (runs.csv): use --resume to continue or --force to start over");
-    for (const char* f : {"runs.csv", "iterations.csv", "steps.csv", "cells.csv", "run.json", "config.resolved.yaml", "final.obj"})
-      fs::remove(fs::path(dir) / f);
-    fs::remove_all(fs::path(dir) / "vtk");
-    fs::remove_all(fs::path(dir) / "curves");
-    fs::remove_all(fs::path(dir) / "final");
-  }
-  fs::create_directories(fs::path(dir) / "vtk");
-  std::set<std::string> done;
-  if (fs::exists(runs_csv)) {
-    truncate_partial_tail(runs_csv.string());
-    const CsvTable t = read_csv(runs_csv.string());
-    if (t.header != plan.columns)
-      throw InvalidConfig(runs_csv.string() + ": its columns differ from this config's; resume it with the same "
-                          "config and --set options, or use another --out");
-    for (const auto& r : t.rows) done.insert(r[0]);
-  } else if (opt.worker.count == 1) {
-    write_atomically(runs_csv, [&](std::ostream& os) { os << csv_record(plan.columns); });
-  }
-  const fs::path it_csv = fs::path(dir) / "iterations.csv";
-  if (fs::exists(it_csv)) truncate_partial_tail(it_csv.string());
-  else write_atomically(it_csv, [](std::ostream& os) { os << csv_record({"run_id", "iteration", "residual", "energy", "seconds", "error_vs_reference"}); });
-  const fs::path steps_csv = fs::path(dir) / "steps.csv";
-  if (fs::exists(steps_csv)) truncate_partial_tail(steps_csv.string());
-  else write_atomically(steps_csv, [&](std::ostream& os) { os << csv_record(plan.sheet ? sheet_step_columns() : plan.curve ? curve_step_columns() : step_columns()); });
-  return done;
-}
-
-void write_metadata(const SweepOptions& opt, const Plan& plan, const std::string& dir, const std::string& started,
-                    const std::string& ended) {
-  nlohmann::json j = build_and_machine_info();
-  j["name"] = plan.name;
-  j["config_file"] = opt.config_path;
-  j["set"] = opt.sets;
-  j["seed"] = yaml_to_json(plan.root["seed"]);
-  j["threads_requested"] = yaml_to_json(plan.root["threads"]);
-  j["runs_planned"] = plan.runs.size();
-  j["started"] = started;
-  if (!ended.empty()) j["ended"] = ended;
-  j["config"] = yaml_to_json(plan.root);
-  write_json(j, (fs::path(dir) / "run.json").string());
-  write_atomically(fs::path(dir) / "config.resolved.yaml",
-                   [&](std::ostream& os) { os << YAML::Dump(plan.root) << '\n'; });
-}
-
-// `m` carries the metrics plus implementation and solver.type.
-std::vector<std::string> row_fields(const Plan& plan, const RunPoint& p, const MetricRow& m) {
+std::vector<std::string> key_fields(const Plan& plan, const RunPoint& p, const MetricRow& m) {
   std::vector<std::string> out;
-  for (const auto& c : plan.columns) {
+  for (const auto& c : plan.layout.key_columns) {
     if (c == "run_id") out.push_back(p.run_id);
-    else if (m.count(c)) out.push_back(m.at(c));
-    else out.push_back(yaml_to_string(get_by_path(p.config, plan.swept_key_of.at(c))));
+    else if (const auto s = plan.swept_key_of.find(c); s != plan.swept_key_of.end()) out.push_back(value_at(p.config, s->second));
+    else if (const auto v = m.find(c); v != m.end()) out.push_back(v->second);
+    else out.push_back(value_at(p.config, c));
   }
   return out;
 }
 
-std::unique_ptr<tbb::global_control> limit_threads(int threads) {
-  if (threads <= 0) return nullptr;
-  return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
+std::vector<std::string> runs_row(const Plan& plan, const std::vector<std::string>& keys, const MetricRow& m) {
+  std::vector<std::string> out = keys;
+  for (std::size_t c = keys.size(); c < plan.layout.runs_columns.size(); ++c) {
+    const auto it = m.find(plan.layout.runs_columns[c]);
+    out.push_back(it == m.end() ? "" : it->second);
+  }
+  return out;
 }
 
-MetricRow execute_surface(const RunPoint& p, const Plan& plan, RunCache& cache, const std::string& dir, bool single) {
-  RunSpec spec = RunSpec::from_config(p.config, components(), plan.search_dirs);
-  const auto threads = limit_threads(spec.threads);
-  MetricRow m = execute_run(spec, cache, {dir, p.run_id, single});
-  m["implementation"] = std::string(to_string(spec.implementation));
-  m["solver.type"] = spec.solver_type;
-  return m;
+MetricRow crashed_row(const std::string& message) {
+  return {{"termination", std::string(to_string(Termination::Crashed))}, {"message", message}};
 }
 
-MetricRow execute_curve(const RunPoint& p, const Plan& plan, const std::string& dir, bool single) {
-  CurveRunSpec spec = CurveRunSpec::from_config(p.config, plan.search_dirs);
-  const auto threads = limit_threads(spec.threads);
-  return execute_curve_run(spec, {dir, p.run_id, single});
+fs::path marker_of(const fs::path& dir, int worker) {
+  return dir / ".fairshape" / ("worker-" + std::to_string(worker) + ".run");
 }
 
-MetricRow execute_feature(const RunPoint& p, const Plan& plan, const std::string& dir, bool single) {
-  FeatureRunSpec spec = FeatureRunSpec::from_config(p.config, plan.search_dirs);
-  const auto threads = limit_threads(spec.threads);
-  return execute_feature_run(spec, {dir, p.run_id, single});
+// A testing aid (documented in configs/README.md): FAIRSHAPE_FAULT_INJECTION=length_error@K
+// or segv@K makes the run at sweep index K throw std::length_error or raise SIGSEGV.
+void inject_fault(std::size_t index) {
+  const char* spec = std::getenv("FAIRSHAPE_FAULT_INJECTION");
+  if (!spec) return;
+  const std::string s = spec;
+  const auto at = s.find('@');
+  if (at == std::string::npos || s.substr(at + 1) != std::to_string(index)) return;
+  if (s.compare(0, at, "length_error") == 0) throw std::length_error("fault injection: std::length_error");
+  if (s.compare(0, at, "segv") == 0) std::raise(SIGSEGV);
 }
 
-MetricRow execute_sheet(const RunPoint& p, const std::string& dir, bool single) {
-  SheetRunSpec spec = SheetRunSpec::from_config(p.config);
-  const auto threads = limit_threads(spec.threads);
-  return execute_sheet_run(spec, {dir, p.run_id, single});
+MetricRow execute_guarded(Plan& plan, const RunPoint& p, const RunOutputs& out) {
+  try {
+    inject_fault(p.index);
+    return plan.kind->execute(p.config, plan.search_dirs, out);
+  } catch (const std::bad_alloc&) {
+    return crashed_row("out of memory (std::bad_alloc)");
+  } catch (const Error& e) {  // a kind lets its own errors through only by mistake
+    return crashed_row(std::string("unhandled fairshape error: ") + e.what());
+  } catch (const std::exception& e) {
+    return crashed_row(std::string("unexpected exception: ") + e.what());
+  } catch (...) {
+    return crashed_row("unexpected exception of unknown type");
+  }
 }
 
-int run_in_process(const SweepOptions& opt, const Plan& plan, const std::vector<const RunPoint*>& todo,
-                   const std::string& dir) {
-  CsvAppender rows((fs::path(dir) / "runs.csv").string());
-  RunCache cache;
+bool succeeded(const MetricRow& m) {
+  const auto it = m.find("termination");
+  if (it == m.end()) return false;
+  try {
+    return is_success(termination_from_string(it->second));
+  } catch (const Error&) {
+    return false;
+  }
+}
+
+// A worker: runs its points that have no row yet, committing each run's rows together.
+int run_worker(const SweepOptions& opt) {
+  bind_worker_to_supervisor();
+  Plan plan = make_plan(opt, false);
+  const fs::path dir = opt.out_dir;
+  std::set<std::string> done;
+  if (fs::exists(dir / "runs.csv"))
+    for (const auto& r : read_csv((dir / "runs.csv").string(), true).rows) done.insert(r[0]);
+  std::vector<RunPoint> todo;
+  for (std::size_t i : plan.selected) {
+    RunPoint p = plan.space->point(i);
+    if (!done.count(p.run_id)) todo.push_back(std::move(p));
+  }
   const std::string prefix = opt.worker.count > 1 ? "[worker " + std::to_string(opt.worker.index) + "] " : "";
   Progress progress(static_cast<int>(todo.size()), prefix);
-  int failed = 0, done = 0;
-  const bool single = plan.runs.size() == 1;
-  for (const RunPoint* p : todo) {
-    const MetricRow m = plan.feature ? execute_feature(*p, plan, dir, single)
-                        : plan.sheet ? execute_sheet(*p, dir, single)
-                        : plan.curve ? execute_curve(*p, plan, dir, single)
-                                     : execute_surface(*p, plan, cache, dir, single);
-    rows.append(row_fields(plan, *p, m));
+  const bool single = plan.space->size() == 1;
+  const fs::path marker = marker_of(dir, opt.worker.index);
+  int failed = 0, finished = 0;
+  for (const RunPoint& p : todo) {
+    write_atomically(marker, [&](std::ostream& os) { os << p.run_id << "\n"; });
+    RunTables tables;
+    const RunOutputs out{dir.string(), p.run_id, single, &tables};
+    const MetricRow m = execute_guarded(plan, p, out);
+    const auto keys = key_fields(plan, p, m);
+    commit_run(dir, plan.layout, keys, runs_row(plan, keys, m), tables);
+    fs::remove(marker);
     const std::string& term = m.at("termination");
-    if (term != "converged" && term != "max_iterations") {
+    if (!succeeded(m)) {
       ++failed;
-      std::cerr << prefix << "run " << p->run_id << " " << term << ": " << m.at("message") << "\n";
+      std::cerr << prefix << "run " << p.run_id << " " << term << ": " << m.at("message") << "\n";
     }
-    progress.finished(++done, p->run_id, term, std::stod(m.at("time_s")));
+    const auto t = m.find("time_s");
+    progress.finished(++finished, p.run_id, term, t == m.end() || t->second.empty() ? 0.0 : std::stod(t->second));
   }
   progress.close();
   return failed ? 3 : 0;
 }
 
-int spawn_workers(const SweepOptions& opt, const std::string& dir) {
-  std::vector<pid_t> pids;
-  for (int w = 0; w < opt.jobs; ++w) {
-    std::vector<std::string> args{opt.executable, "run", opt.config_path, "--out", dir, "--resume",
-                                  "--worker", std::to_string(w) + "/" + std::to_string(opt.jobs),
+// The keys (dotted paths) whose values differ between two configs.
+void differing_keys(const YAML::Node& a, const YAML::Node& b, const std::string& path, std::vector<std::string>& out) {
+  if (a.IsMap() && b.IsMap()) {
+    std::set<std::string> keys;
+    for (const auto& kv : a) keys.insert(kv.first.as<std::string>());
+    for (const auto& kv : b) keys.insert(kv.first.as<std::string>());
+    for (const auto& k : keys) differing_keys(a[k], b[k], path.empty() ? k : path + "." + k, out);
+    return;
+  }
+  const std::string sa = a.IsDefined() ? yaml_to_string(a) : "(absent)", sb = b.IsDefined() ? yaml_to_string(b) : "(absent)";
+  if (sa != sb) out.push_back(path + " (" + sa + " there, " + sb + " now)");
+}
+
+// A resume continues the same experiment: its configuration outside `sweep` must be the one
+// the folder was started with (the sweep may grow: new points simply run).
+void check_same_experiment(const fs::path& dir, const YAML::Node& root) {
+  const fs::path stored = dir / "config.resolved.yaml";
+  if (!fs::exists(stored)) return;
+  YAML::Node before = YAML::LoadFile(stored.string());
+  YAML::Node now = YAML::Clone(root);
+  before.remove("sweep");
+  now.remove("sweep");
+  std::vector<std::string> diff;
+  differing_keys(before, now, "", diff);
+  if (diff.empty()) return;
+  std::string msg = dir.string() + " holds another experiment; --resume needs the same config and --set options. "
+                                   "Differing keys:";
+  for (const auto& d : diff) msg += "\n  - " + d;
+  throw InvalidConfig(msg + "\nUse another --out for the changed experiment.");
+}
+
+int supervise(const SweepOptions& opt) {
+  const Plan plan = make_plan(opt, true);
+  for (const auto& n : plan.notes) std::cerr << "fairshape: " << n << "\n";
+  if (opt.dry_run) {
+    std::cout << plan.selected.size() << " of " << plan.space->size() << " point(s) (" << plan.kind->name()
+              << " runs):\n";
+    for (std::size_t i : plan.selected) {
+      const RunPoint p = plan.space->point(i);
+      std::cout << "  " << p.index << "  " << p.run_id;
+      for (const auto& [k, v] : p.params) std::cout << "  " << k << "=" << v;
+      std::cout << "\n";
+    }
+    return 0;
+  }
+  const fs::path dir = !opt.out_dir.empty() ? fs::path(opt.out_dir) : default_out_dir(plan.name);
+  OutputFolder folder(dir);
+  if (fs::exists(folder.runs_csv()) && !opt.resume) {
+    if (!opt.force)
+      throw InvalidConfig(dir.string() + " already holds results (runs.csv): use --resume to continue or --force to start over");
+    folder.clear_results();
+  }
+  if (opt.resume) check_same_experiment(dir, plan.root);
+  folder.remove_temporaries();
+  fs::remove_all(dir / ".fairshape");
+  fs::create_directories(dir / ".fairshape");
+  fs::create_directories(dir / "vtk");
+  if (opt.retry_failed) {
+    const std::size_t n = folder.drop_failed_runs();
+    std::cerr << "fairshape: --retry-failed: " << n << " failed run(s) will run again\n";
+  }
+  folder.roll_back_orphan_rows(plan.layout);
+  const std::set<std::string> done = folder.finished_runs(plan.layout);
+  std::size_t todo = 0;
+  for (std::size_t i : plan.selected)
+    if (!done.count(plan.space->point(i).run_id)) ++todo;
+  RunJournal journal(dir, opt, plan.root, plan.name, plan.input_files, plan.selected.size(), done.size());
+  std::cerr << plan.name << ": " << plan.space->size() << " run(s) in the sweep, " << todo << " to do here"
+            << (done.empty() ? "" : " (" + std::to_string(done.size()) + " already done)") << " -> " << dir.string()
+            << "\n";
+
+  const int jobs = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(opt.jobs), std::max<std::size_t>(todo, 1)));
+  const auto argv_of = [&](int w) {
+    std::vector<std::string> args{opt.executable, "run", opt.config_path, "--out", dir.string(),
+                                  "--worker", std::to_string(w) + "/" + std::to_string(jobs),
                                   "--shard", std::to_string(opt.shard.index) + "/" + std::to_string(opt.shard.count)};
     for (const auto& s : opt.sets) args.insert(args.end(), {"--set", s});
     for (const auto& f : opt.filters) args.insert(args.end(), {"--filter", f});
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    pid_t pid;
-    if (posix_spawn(&pid, opt.executable.c_str(), nullptr, nullptr, argv.data(), environ) != 0)
-      throw Error("cannot start worker process " + opt.executable);
-    pids.push_back(pid);
-  }
-  int worst = 0;
-  for (pid_t pid : pids) {
-    int status = 0;
-    waitpid(pid, &status, 0);
-    const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 4;
-    worst = std::max(worst, code);
-  }
-  return worst;
+    return args;
+  };
+  const auto run_in_progress = [&](int w) {
+    std::ifstream in(marker_of(dir, w));
+    std::string id;
+    std::getline(in, id);
+    return id;
+  };
+  std::set<std::string> crashed;
+  const auto on_crash = [&](const WorkerCrash& c) {
+    for (std::size_t i : plan.selected) {
+      const RunPoint p = plan.space->point(i);
+      if (p.run_id != c.run_id) continue;
+      const MetricRow m = crashed_row("the worker process was " + c.reason + " during this run");
+      const auto keys = key_fields(plan, p, m);
+      commit_run(dir, plan.layout, keys, runs_row(plan, keys, m), RunTables{});
+      crashed.insert(p.run_id);  // its table rows, if it committed some, go at the end
+      std::cerr << "fairshape: run " << p.run_id << " crashed: the worker was " << c.reason << "\n";
+    }
+    fs::remove(marker_of(dir, c.worker));
+  };
+  const SupervisorResult r = supervise_workers(jobs, argv_of, run_in_progress, on_crash);
+  folder.roll_back_orphan_rows(plan.layout, crashed);
+  folder.remove_temporaries();
+  fs::remove_all(dir / ".fairshape");
+  const int status = r.interrupted_by ? 128 + r.interrupted_by : r.status;
+  journal.close(status, folder.finished_runs(plan.layout).size());
+  if (r.interrupted_by)
+    std::cerr << "fairshape: interrupted by signal " << r.interrupted_by << "; continue with --resume --out "
+              << dir.string() << "\n";
+  return status;
 }
 
 }  // namespace
@@ -252,64 +370,21 @@ int spawn_workers(const SweepOptions& opt, const std::string& dir) {
 Slice Slice::parse(const std::string& text, const std::string& option) {
   Slice s;
   const auto slash = text.find('/');
+  std::size_t end_i = 0, end_n = 0;
   try {
     if (slash == std::string::npos) throw std::invalid_argument("");
-    s.index = std::stoi(text.substr(0, slash));
-    s.count = std::stoi(text.substr(slash + 1));
+    s.index = std::stoi(text.substr(0, slash), &end_i);
+    s.count = std::stoi(text.substr(slash + 1), &end_n);
   } catch (const std::exception&) {
     throw InvalidConfig(option + " '" + text + "': expected i/n, e.g. 0/4");
   }
+  if (end_i != slash || end_n != text.size() - slash - 1)
+    throw InvalidConfig(option + " '" + text + "': expected i/n, e.g. 0/4");
   if (s.count < 1 || s.index < 0 || s.index >= s.count)
     throw InvalidConfig(option + " '" + text + "': need 0 <= i < n");
   return s;
 }
 
-int run_sweep(const SweepOptions& opt) {
-  const Plan plan = make_plan(opt);
-  const bool is_worker = opt.worker.count > 1;
-  const std::string dir = !opt.out_dir.empty() ? opt.out_dir : default_out_dir(plan.name);
-  fs::create_directories(dir);
-  const std::set<std::string> done = prepare_out_dir(opt, plan, dir);
-  const std::string started = utc_timestamp();
-  if (!is_worker) write_metadata(opt, plan, dir, started, "");
-
-  std::vector<const RunPoint*> todo;
-  int position = 0;
-  for (const auto& p : plan.runs) {
-    if (p.index % opt.shard.count != opt.shard.index) continue;
-    if (position++ % opt.worker.count != opt.worker.index) continue;
-    if (!done.count(p.run_id)) todo.push_back(&p);
-  }
-  if (!is_worker)
-    std::cerr << plan.name << ": " << plan.runs.size() << " run(s) in the sweep, " << todo.size()
-              << " to do here" << (done.empty() ? "" : " (" + std::to_string(done.size()) + " already done)")
-              << " -> " << dir << "\n";
-  const int status = opt.jobs > 1 && !is_worker ? spawn_workers(opt, dir) : run_in_process(opt, plan, todo, dir);
-  if (!is_worker) write_metadata(opt, plan, dir, started, utc_timestamp());
-  return status;
-}
-
-void merge_run_tables(const std::vector<std::string>& inputs, const std::string& output) {
-  if (inputs.empty()) throw InvalidConfig("merge: no input CSV given");
-  CsvTable out;
-  std::vector<CsvTable> tables;
-  for (const auto& in : inputs) {
-    tables.push_back(read_csv(in, true));
-    if (tables.back().column("run_id") < 0) throw InvalidInput(in + ": no run_id column (not a runs.csv?)");
-    for (const auto& h : tables.back().header)
-      if (out.column(h) < 0) out.header.push_back(h);
-  }
-  std::set<std::string> seen;
-  for (const auto& t : tables) {
-    const int id_col = t.column("run_id");
-    for (const auto& r : t.rows) {
-      if (!seen.insert(r[id_col]).second) continue;
-      std::vector<std::string> row(out.header.size());
-      for (std::size_t c = 0; c < t.header.size(); ++c) row[out.column(t.header[c])] = r[c];
-      out.rows.push_back(std::move(row));
-    }
-  }
-  write_csv(out, output);
-}
+int run_sweep(const SweepOptions& opt) { return opt.is_worker ? run_worker(opt) : supervise(opt); }
 
 }  // namespace fairshape

@@ -1,5 +1,10 @@
-// `fairshape run`: validate every run of an experiment, then execute them (in this process,
-// in --jobs worker processes, or one --shard of them), appending one CSV row per run.
+// `fairshape run`: validate the points of an experiment, then execute them in worker
+// processes that a supervisor watches, appending each run's rows to the tables of the
+// output folder. Exit status (the same for every run kind):
+//   0  every run succeeded (converged, energy_stalled or schedule_completed);
+//   2  invalid input, config or command line: nothing was run;
+//   3  some run did not succeed (its row's termination and message say why);
+//   1  an internal error outside any run; 128+N  interrupted by signal N.
 #pragma once
 
 #include <string>
@@ -18,17 +23,22 @@ struct SweepOptions {
   std::vector<std::string> filters;  // --filter key=value: only runs whose swept key has that value
   std::string out_dir;               // empty: results/<name>/<timestamp>_<sha7>
   bool resume = false, force = false;
+  bool retry_failed = false;         // --retry-failed: a resume runs the failed rows again
+  bool dry_run = false;              // --dry-run: print the points and their ids, run nothing
   int jobs = 1;
   Slice shard;                 // --shard i/n
-  Slice worker;                // internal: --worker i/n, set for processes spawned by --jobs
+  Slice worker;                // internal: --worker i/n, set for processes the supervisor starts
+  bool is_worker = false;      // this process is one of them
   std::string executable;      // this program, to spawn workers
+  std::vector<std::string> argv;  // the command line, for run.json
 };
 
-//! Exit status: 0 when every run converged or hit its iteration cap, 3 when some run failed
-//! (its row says why), 2 for an invalid config (nothing was run). \throw Error for I/O problems.
+//! \return the exit status above. \throw InvalidConfig for invalid input (exit 2).
 int run_sweep(const SweepOptions& opt);
 
-//! `fairshape merge`: rows of several runs.csv joined (columns united, duplicate run_ids kept once).
-void merge_run_tables(const std::vector<std::string>& inputs, const std::string& output);
+//! `fairshape merge OUT IN...`: the shards' output folders joined into OUT (every table, and
+//! a run.json naming each shard); or, given CSV files, those tables joined into OUT.csv. A
+//! run's rows come from the first input holding that run. Folders whose configs differ are refused.
+void merge_results(const std::vector<std::string>& inputs, const std::string& output);
 
 }  // namespace fairshape

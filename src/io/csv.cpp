@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -114,21 +115,36 @@ CsvAppender::~CsvAppender() {
   if (fd_ >= 0) ::close(fd_);
 }
 
-void CsvAppender::append(const std::vector<std::string>& fields) {
-  const std::string rec = csv_record(fields);
+void CsvAppender::append(const std::vector<std::string>& fields) { write_locked(csv_record(fields), false, ""); }
+
+void CsvAppender::append_table_rows(const std::vector<std::string>& header,
+                                    const std::vector<std::vector<std::string>>& rows) {
+  std::string records;
+  for (const auto& r : rows) records += csv_record(r);
+  write_locked(records, true, csv_record(header));
+}
+
+void CsvAppender::write_locked(const std::string& records, bool header_if_empty, const std::string& header) {
   ::flock(fd_, LOCK_EX);
+  struct stat st {};
+  const bool empty = ::fstat(fd_, &st) == 0 && st.st_size == 0;
+  const std::string out = header_if_empty && empty ? header + records : records;
   std::size_t done = 0;
-  while (done < rec.size()) {
-    const ssize_t n = ::write(fd_, rec.data() + done, rec.size() - done);
+  while (done < out.size()) {
+    const ssize_t n = ::write(fd_, out.data() + done, out.size() - done);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) {
+      const int err = errno;
+      // Never leave half a record behind: cut the file back to where this write began.
+      if (done > 0 && ::ftruncate(fd_, static_cast<off_t>(::lseek(fd_, 0, SEEK_END) - done)) != 0) {}
       ::flock(fd_, LOCK_UN);
-      throw IOError(path_ + ": append failed: " + std::strerror(errno));
+      throw IOError(path_ + ": append failed: " + std::strerror(n < 0 ? err : ENOSPC));
     }
     done += static_cast<std::size_t>(n);
   }
-  ::fdatasync(fd_);
+  const bool synced = ::fdatasync(fd_) == 0;
   ::flock(fd_, LOCK_UN);
+  if (!synced) throw IOError(path_ + ": append not durable: " + std::strerror(errno));
 }
 
 void truncate_partial_tail(const std::string& path) {

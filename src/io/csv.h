@@ -31,8 +31,12 @@ class CsvAppender {
   CsvAppender(const CsvAppender&) = delete;
   CsvAppender& operator=(const CsvAppender&) = delete;
   void append(const std::vector<std::string>& fields);
+  //! Appends `rows` in one write under the lock, preceded by `header` when the file is empty
+  //! (so the first of several concurrent writers creates the table, the others only add rows).
+  void append_table_rows(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows);
 
  private:
+  void write_locked(const std::string& records, bool header_if_empty, const std::string& header);
   std::string path_;
   int fd_ = -1;
 };

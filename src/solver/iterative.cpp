@@ -4,20 +4,10 @@
 #include <tbb/parallel_reduce.h>
 
 #include <cmath>
+#include <cstdio>
 #include <functional>
 
 namespace fairshape {
-
-std::string_view to_string(Termination t) {
-  switch (t) {
-    case Termination::Converged: return "converged";
-    case Termination::EnergyStalled: return "energy_stalled";
-    case Termination::MaxIterations: return "max_iterations";
-    case Termination::NumericalFailure: return "numerical_failure";
-    case Termination::InvalidInput: return "invalid_input";
-  }
-  return "unknown";
-}
 
 IterativeOptions IterativeOptions::from_config(Config& cfg) {
   IterativeOptions o;
@@ -79,7 +69,10 @@ bool IterationMonitor::record(int iteration, double residual, const Eigen::Matri
     fail("diverged at iteration " + std::to_string(iteration) + " (residual " + std::to_string(residual) + ")");
     return false;
   }
-  const bool stop = cb_ && !cb_({iteration, residual, timer_.seconds() - summary_.observe_s, energy, &x});
+  // Solve time so far: the wall time less all observation, this one's energy included, so
+  // the seconds of successive records never decrease.
+  const double solving_s = timer_.seconds() - (summary_.observe_s + observing.seconds());
+  const bool stop = cb_ && !cb_({iteration, residual, solving_s, energy, &x});
   summary_.observe_s += observing.seconds();
   if (stop) {
     summary_.message = "stopped by the callback";
@@ -92,6 +85,12 @@ bool IterationMonitor::record(int iteration, double residual, const Eigen::Matri
   if (stalled) {
     summary_.termination = Termination::EnergyStalled;
     return false;
+  }
+  if (iteration >= opt_.max_iterations && summary_.termination == Termination::MaxIterations) {
+    char text[160];
+    std::snprintf(text, sizeof text, "the iteration cap (%d) came before the tolerance %.3g: relative residual %.3g",
+                  opt_.max_iterations, opt_.tolerance, residual);
+    summary_.message = text;
   }
   return iteration < opt_.max_iterations;
 }

@@ -30,7 +30,12 @@ class IterationMonitor {
  public:
   //! `energy` is evaluated only when the energy rule is on or a callback listens.
   IterationMonitor(const IterativeOptions& opt, const IterationCallback& cb, SystemEnergy energy)
-      : opt_(opt), cb_(cb), energy_(std::move(energy)) {}
+      : opt_(opt), cb_(cb), energy_(std::move(energy)) {
+    // Reaching the cap is the stopping rule itself only when no tolerance was asked for
+    // (the papers' fixed sweep counts); otherwise it means the tolerance was not reached.
+    const bool tolerance_asked = opt.tolerance > 0 || opt.energy_tolerance > 0;
+    summary_.termination = tolerance_asked ? Termination::MaxIterations : Termination::ScheduleCompleted;
+  }
   //! Records the residual after `iteration` sweeps; false when the loop must stop.
   bool record(int iteration, double residual, const Eigen::MatrixXd& x);
   //! Whether record() looks at x (energy rule or a callback): solvers that keep their own
@@ -60,7 +65,7 @@ class IterationMonitor {
   SystemEnergy energy_;
   double first_residual_ = -1;
   double first_energy_ = 0, last_energy_ = 0;
-  SolveSummary summary_{Termination::MaxIterations, 0, -1, ""};
+  SolveSummary summary_;
 };
 
 // Checks the diagonal before a Gauss-Seidel/Jacobi sweep: a non-positive entry means the

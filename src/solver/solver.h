@@ -9,25 +9,10 @@
 #include <string_view>
 
 #include "core/registry.h"
+#include "core/summary.h"
 #include "core/types.h"
 
 namespace fairshape {
-
-// Converged: the residual tolerance was met; EnergyStalled: the energy stopped decreasing
-// (energy_tolerance); MaxIterations: the iteration cap, which is the paper's fixed count when
-// both tolerances are 0.
-enum class Termination { Converged, EnergyStalled, MaxIterations, NumericalFailure, InvalidInput };
-std::string_view to_string(Termination t);
-
-struct SolveSummary {
-  Termination termination = Termination::NumericalFailure;
-  int iterations = 0;
-  double residual = -1;  // relative: ‖b − A x‖ / ‖b‖
-  std::string message;
-  //! Seconds spent observing the iterations (energies, callbacks, iterate copies for them):
-  //! callers subtract it, so a monitored solve is timed like an unmonitored one.
-  double observe_s = 0;
-};
 
 struct IterationRecord {
   int iteration;

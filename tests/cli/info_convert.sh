@@ -16,7 +16,7 @@ diff "$SCRATCH/i0.txt" "$SCRATCH/i1.txt" || fail "round trip changed the mesh"
 "$FS" info --help | grep -q "mesh file" || fail "help"
 # Every registered component documents itself (factories run on empty blocks).
 "$FS" list > "$SCRATCH/list.txt" || fail "list failed"
-for name in detail-preserving normal rigid curve gauss_seidel energy_tolerance boundary_loop_near snap_ratio; do
+for name in detail_preserving normal rigid curve gauss_seidel energy_tolerance boundary_loop_near snap_ratio; do
   grep -q "$name" "$SCRATCH/list.txt" || fail "list lacks $name"
 done
 echo "info_convert: ok"

@@ -8,7 +8,7 @@ grep -q ",converged," "$SCRATCH/fig1/runs.csv" || fail "fig1 did not converge"
 [ "$(ls "$SCRATCH/fig1/vtk/"*_step*.vtp | wc -l)" -eq 4 ] || fail "expected one VTK per design step"
 [ "$(wc -l < "$SCRATCH/fig1/steps.csv")" -eq 5 ] || fail "expected a header and 4 step rows"
 # Every registered constrained solver runs the figure.
-"$FS" run $C --out "$SCRATCH/solvers" --set 'sweep={solver.type: [kkt, qr_penalty, range_space]}' --set output.vtk=false 2>/dev/null \
+"$FS" run $C --out "$SCRATCH/solvers" --set 'sweep={solver.type: [kkt, qr_penalty, range_space]}' --set output.vtk=none 2>/dev/null \
   || fail "solver sweep failed"
 [ "$(grep -c ',converged,' "$SCRATCH/solvers/runs.csv")" -eq 3 ] || fail "a solver did not converge"
 # Automatic refinement lowers the error of Figure 3's single span below the tolerance.
@@ -19,7 +19,7 @@ row = next(csv.DictReader(open(sys.argv[1])))
 sys.exit(0 if int(row["spans_refined"]) > 0 and float(row["max_constraint_error"]) <= 0.002 else 1)
 PYEOF
 # The a-posteriori estimate: a finer solve changes Figure 1's locked surface noticeably.
-"$FS" run $C --out "$SCRATCH/estimate" --set refinement.estimate_objective_error=true --set output.vtk=false 2>/dev/null \
+"$FS" run $C --out "$SCRATCH/estimate" --set refinement.estimate_objective_error=true --set output.vtk=none 2>/dev/null \
   || fail "estimate run failed"
 $PY - "$SCRATCH/estimate/runs.csv" <<'PYEOF' || fail "no objective error estimate"
 import csv, sys

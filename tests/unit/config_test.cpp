@@ -1,8 +1,11 @@
 #include <catch2/catch.hpp>
 
+#include <filesystem>
 #include <fstream>
+#include <set>
 
 #include "core/config.h"
+#include "core/summary.h"
 #include "experiment/components.h"
 #include "experiment/config_loader.h"
 #include "experiment/run_spec.h"
@@ -60,10 +63,33 @@ TEST_CASE("sweep expansion: Cartesian product, zip axes, stable run ids", "[conf
   CHECK(swept_keys(root) == std::vector<std::string>{"seed", "solver.tolerance", "solver.type", "implementation"});
   // zipped keys move together
   for (const auto& r : runs) CHECK((r.config["seed"].as<int>() == 1) == (r.config["solver"]["tolerance"].as<double>() == 1e-6));
-  // identical points (implementation listed twice) share an id; different ones do not
-  CHECK(runs[0].run_id == runs[2].run_id);
+  // identical points (implementation listed twice) are repeats: the same hash, a repeat suffix
+  CHECK(runs[2].run_id == runs[0].run_id + "-2");
   CHECK(runs[0].run_id != runs[1].run_id);
   CHECK(expand_sweep(root)[5].run_id == runs[5].run_id);
+  std::set<std::string> ids;
+  for (const auto& r : runs) ids.insert(r.run_id);
+  CHECK(ids.size() == runs.size());  // no two points share an id, repeats included
+  // the lazy space makes the same points as the full expansion
+  const SweepSpace space(root);
+  REQUIRE(space.size() == runs.size());
+  for (std::size_t i = 0; i < runs.size(); ++i) CHECK(space.point(i).run_id == runs[i].run_id);
+
+  // keys that change only outputs or labels still change the id (they change result files)
+  YAML::Node labelled = smoke_config();
+  labelled["sweep"] = YAML::Load("{description: [a, b], output.vtk: [none, final]}");
+  std::set<std::string> labelled_ids;
+  for (const auto& r : expand_sweep(labelled)) labelled_ids.insert(r.run_id);
+  CHECK(labelled_ids.size() == 4);
+
+  // a product beyond the limit is refused without overflowing, however many axes
+  YAML::Node huge = smoke_config();
+  for (int a = 0; a < 64; ++a) {
+    std::string key = "k";  // (not "k" + to_string: GCC 12's -Wrestrict false positive)
+    key += std::to_string(a);
+    huge["sweep"][key] = YAML::Load("[0, 1]");
+  }
+  CHECK_THROWS_WITH(SweepSpace(huge), Contains("the limit"));
 
   root["sweep"] = YAML::Load("{zip: {seed: [1, 2], solver.tolerance: [1.0e-6]}}");
   CHECK_THROWS_WITH(expand_sweep(root), Contains("equally long"));
@@ -87,4 +113,30 @@ TEST_CASE("run validation catches bad components, keys and values before running
   CHECK_THROWS_WITH(spec_with("energy", "[{type: membrane, wieght: 2}]"), Contains("energy[0].wieght: unknown key"));
   CHECK_THROWS_WITH(spec_with("constraints", "[{type: fixed, region: {axis: w}}]"), Contains("valid: x, y, z"));
   CHECK_THROWS_WITH(spec_with("colour", "red"), Contains("colour: unknown key"));
+}
+
+TEST_CASE("outcome vocabulary: names round-trip, success is what was asked", "[config][summary]") {
+  for (const auto& name : termination_names()) CHECK(to_string(termination_from_string(name)) == name);
+  CHECK_THROWS_WITH(termination_from_string("done"), Contains("valid: converged"));
+  CHECK(is_success(Termination::Converged));
+  CHECK(is_success(Termination::EnergyStalled));
+  CHECK(is_success(Termination::ScheduleCompleted));
+  CHECK_FALSE(is_success(Termination::MaxIterations));
+  CHECK_FALSE(is_success(Termination::Crashed));
+  CHECK_FALSE(is_success(Termination::NumericalFailure));
+}
+
+TEST_CASE("a --set on a swept key replaces its axis, one overlapping it is refused", "[config]") {
+  const std::string dir = std::filesystem::temp_directory_path() / "fairshape_set_sweep_test";
+  std::filesystem::create_directories(dir);
+  const std::string path = dir + "/c.yaml";
+  std::ofstream(path) << "name: t\nsweep:\n  seed: [1, 2]\n  zip: {energy: [[a], [b]], threads: [1, 2]}\n";
+  std::vector<std::string> notes;
+  YAML::Node root = load_experiment_config(path, {"seed=5", "threads=3"}, &notes);
+  CHECK(root["seed"].as<int>() == 5);
+  CHECK_FALSE(root["sweep"]["seed"]);
+  CHECK(root["sweep"]["zip"]["energy"]);
+  CHECK_FALSE(root["sweep"]["zip"]["threads"]);
+  CHECK(notes.size() == 2);
+  CHECK_THROWS_WITH(load_experiment_config(path, {"energy.0.type=x"}), Contains("overlaps the swept key"));
 }

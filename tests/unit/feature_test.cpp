@@ -154,7 +154,7 @@ TEST_CASE("a straight groove on a plane has exactly the cubic cross-section and 
   }
 }
 
-TEST_CASE("zero height and crease change nothing; points beyond the region never move", "[feature]") {
+TEST_CASE("zero height and crease change nothing, points beyond the region never move", "[feature]") {
   const SurfaceMesh plane = plane_grid(32, 1.0);
   const TriangleSurface flat(plane, up_normals(plane));
   FeatureParams zero;
@@ -202,7 +202,7 @@ TEST_CASE("zero height and crease change nothing; points beyond the region never
   }
 }
 
-TEST_CASE("overlapping features on a plane do not depend on their order; deleting one loses nothing", "[feature]") {
+TEST_CASE("overlapping features on a plane do not depend on their order, deleting one loses nothing", "[feature]") {
   FeaturedSurface ab(loop_hierarchy(plane_grid(24, 1.0), 1), Backend::Optimized);
   FeaturedSurface ba(loop_hierarchy(plane_grid(24, 1.0), 1), Backend::Optimized);
   const SurfaceMesh& base = ab.original().mesh(0);
@@ -226,7 +226,7 @@ TEST_CASE("overlapping features on a plane do not depend on their order; deletin
   CHECK((ba.result().mesh(1).positions() - original).norm() == 0.0);
 }
 
-TEST_CASE("feature application commutes with rigid motions; reference equals optimized", "[feature]") {
+TEST_CASE("feature application commutes with rigid motions, reference equals optimized", "[feature]") {
   const SurfaceMesh mushroom = read_mesh(test::data_path("mushroom.off"));
   const SurfaceMesh& m = mushroom;
   const Eigen::AngleAxisd rot(0.7, Vec3(1, 2, 3).normalized());

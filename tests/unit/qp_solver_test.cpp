@@ -90,7 +90,7 @@ TEST_CASE("KKT reuses UMFPACK's symbolic analysis for a program with the same pa
   CHECK(r.constraint_residual < 1e-10 * (1 + pr.qp.b.norm()));
 }
 
-TEST_CASE("QR-penalty: each refinement step shrinks the residual; agrees with KKT as mu grows", "[qp]") {
+TEST_CASE("QR-penalty: each refinement step shrinks the residual and agrees with KKT as mu grows", "[qp]") {
   SheetProblem pr;
   auto kkt = make("kkt", Backend::Optimized);
   kkt->analyze(pr.qp);

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "design/multilevel_edit.h"
-#include "experiment/run_one.h"
+#include "experiment/kinds/surface_edit/run_one.h"
 
 namespace fairshape {
 

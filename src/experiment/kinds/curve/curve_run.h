@@ -10,7 +10,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include "curve_design/editing_loop.h"
-#include "experiment/run_one.h"
+#include "experiment/run_outputs.h"
+#include "experiment/vtk_policy.h"
 #include "experiment/run_spec.h"
 
 namespace fairshape {
@@ -24,7 +25,7 @@ struct CurveRunSpec : RunBasics {
   std::unique_ptr<CurveEnergy> smoothness;
   std::vector<std::unique_ptr<CurveConstraintKind>> constraints;
   std::unique_ptr<LengthSolver> solver;
-  std::string vtk = "stages";  // none | final | stages
+  VtkPolicy vtk = VtkPolicy::Final;
   bool final_curve = true;
 
   CurveObjective objective() const;

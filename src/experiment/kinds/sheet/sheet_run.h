@@ -12,7 +12,8 @@
 
 #include "bspline/uniform_basis.h"
 #include "bspline/variational_sheet.h"
-#include "experiment/run_one.h"
+#include "experiment/run_outputs.h"
+#include "experiment/vtk_policy.h"
 #include "experiment/run_spec.h"
 #include "qp/qp_solver.h"
 
@@ -59,7 +60,7 @@ struct SheetRunSpec : RunBasics {
   bool estimate_objective_error = false;
   std::unique_ptr<qp::QpSolver> solver;
   int samples_per_span = 6;
-  bool vtk = true;  // vtk/<run>_step<k>.vtp
+  VtkPolicy vtk = VtkPolicy::Final;  // vtk/<run>_step<k>.vtp: the last step, or every step
   int steps() const;
 
   //! \throw InvalidConfig naming the key (unknown sheets or curves, uv outside the domain, ...).
@@ -69,6 +70,7 @@ struct SheetRunSpec : RunBasics {
 bool is_sheet_config(const YAML::Node& run_config);
 const std::vector<std::string>& sheet_metric_columns();  // runs.csv
 const std::vector<std::string>& sheet_step_columns();    // steps.csv: one row per step and sheet
+const std::vector<std::string>& sheet_cell_columns();    // cells.csv: constraint error per leaf cell
 
 //! Runs every step, writes steps.csv rows, cells.csv (constraint error per leaf cell before and
 //! after refinement), vtk/<run>_step<k>.vtp (every sheet, point array displacement_norm),

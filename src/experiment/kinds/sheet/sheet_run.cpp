@@ -1,4 +1,4 @@
-#include "experiment/sheet_run.h"
+#include "experiment/kinds/sheet/sheet_run.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,11 +7,14 @@
 
 #include <Eigen/Geometry>
 
+#include "core/statistics.h"
+#include "core/summary.h"
 #include "core/config.h"
 #include "core/timer.h"
 #include "experiment/metric_format.h"
 #include "io/csv.h"
 #include "io/mesh_io.h"
+#include "experiment/vtk_policy.h"
 #include "io/vtk_io.h"
 #include "mesh/polyline.h"
 #include "mesh/surface_mesh.h"
@@ -288,7 +291,7 @@ SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config) {
   rc.check_no_unknown_keys();
   Config oc = root.child("output", "what each run writes");
   s.samples_per_span = oc.get_int("samples_per_span", 6, 1, 64, "tessellation of final.obj and the VTK per base span");
-  s.vtk = oc.get<bool>("vtk", true, "write vtk/<run>_step<k>.vtp (all sheets) after every step");
+  s.vtk = read_vtk_policy(oc, "vtk/<run>_step<k>.vtp of all sheets after every step");
   oc.check_no_unknown_keys();
   root.check_no_unknown_keys();
   return s;
@@ -302,8 +305,13 @@ const std::vector<std::string>& sheet_metric_columns() {
   return cols;
 }
 
+const std::vector<std::string>& sheet_cell_columns() {
+  static const std::vector<std::string> cols{"sheet", "when", "level", "u0", "v0", "size", "error"};
+  return cols;
+}
+
 const std::vector<std::string>& sheet_step_columns() {
-  static const std::vector<std::string> cols{"run_id", "step", "sheet", "dofs", "levels", "constraint_rows", "dropped_rows",
+  static const std::vector<std::string> cols{"step", "sheet", "dofs", "levels", "constraint_rows", "dropped_rows",
                                              "constraint_residual", "max_constraint_error", "energy", "spans_refined",
                                              "refinement_rounds", "analyze_s", "solve_s"};
   return cols;
@@ -396,7 +404,7 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
   row["solver.type"] = spec.solver_type;
   row["sheets"] = std::to_string(spec.sheets.size());
   row["steps"] = std::to_string(spec.steps());
-  row["termination"] = "converged";
+  row["termination"] = std::string(to_string(Termination::Converged));
   const Timer wall;
   int step = 0;
   try {
@@ -422,7 +430,6 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
       base_curves[c.name] = c.from_sheet.empty() ? c.points
                                                  : bspline::surface_curve(sheets[k].surface(), sheets[k].coefficients(), c.uv, c.samples);
     }
-    CsvAppender steps((fs::path(out.dir) / "steps.csv").string());
     std::map<std::string, std::vector<Vec3>> final_curves;  // the space curves at the last step
     double analyze_s = 0, solve_s = 0, energy = 0, residual = 0, max_err = 0, cond = 0;
     int dofs = 0, rows = 0, dropped = 0, refined = 0, rounds = 0, levels = 0;
@@ -443,15 +450,14 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
           times.push_back(r.solve_s);
           if (rep + 1 == spec.repeat) sheets[k] = std::move(trial);
         }
-        std::sort(times.begin(), times.end());
-        r.solve_s = times[times.size() / 2];
+        r.solve_s = median(times);
         const auto& s = sheets[k].surface();
         const qp::QuadraticProgram program = bspline::assemble(sheets[k], spec.energy, active, spec.implementation);
-        steps.append({out.run_id, std::to_string(step), spec.sheets[k].name, std::to_string(s.dof_count()),
+        out.add_row("steps", {std::to_string(step), spec.sheets[k].name, std::to_string(s.dof_count()),
                       std::to_string(s.level_count()), std::to_string(program.A.rows()), std::to_string(r.qp.dropped_rows),
                       num(r.qp.constraint_residual), num(r.max_constraint_error), num(r.energy),
                       std::to_string(r.spans_refined), std::to_string(r.rounds), num(r.analyze_s), num(r.solve_s)});
-        if (r.qp.termination != Termination::Converged) {
+        if (!is_success(r.qp.termination)) {
           row["termination"] = std::string(to_string(r.qp.termination));
           row["message"] = "step " + std::to_string(step) + ", sheet " + spec.sheets[k].name + ": " + r.message;
           failed = true;
@@ -477,7 +483,7 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
       }
       // Per step: all sheets in one polydata (point array displacement_norm) and the space curves.
       if (!failed) {
-        if (spec.vtk) {
+        if (spec.vtk == VtkPolicy::All || (spec.vtk == VtkPolicy::Final && step + 1 == spec.steps())) {
           std::vector<SurfaceMesh> meshes;
           for (std::size_t k = 0; k < sheets.size(); ++k)
             meshes.push_back(tessellate(sheets[k], spec.samples_per_span, initial_P[k], initial_surfaces[k]));
@@ -491,7 +497,7 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
         }
       }
     }
-    if (spec.estimate_objective_error && row["termination"] == "converged") {
+    if (spec.estimate_objective_error && row["termination"] == to_string(Termination::Converged)) {
       double energy_change = 0, surface_change = 0;
       for (std::size_t k = 0; k < sheets.size(); ++k) {
         const auto active = active_constraints(spec, k, spec.steps() - 1, final_curves, initial_surfaces[k], initial_P[k]);
@@ -506,15 +512,11 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
       row["surface_change_estimate"] = num(surface_change);
     }
     // Constraint error per leaf cell, first and last solve of the last step (Figure 3).
-    const fs::path cells_csv = fs::path(out.dir) / "cells.csv";
-    const bool new_cells = !fs::exists(cells_csv);
-    CsvAppender cells(cells_csv.string());
-    if (new_cells) cells.append({"run_id", "sheet", "when", "level", "u0", "v0", "size", "error"});
     for (std::size_t k = 0; k < sheets.size(); ++k)
       for (const auto& [list, when] : {std::pair{&before[k], "before"}, std::pair{&after[k], "after"}})
         for (const bspline::CellError& e : *list) {
           const double h = std::ldexp(1.0, -e.cell.level);
-          cells.append({out.run_id, spec.sheets[k].name, when, std::to_string(e.cell.level), num(e.cell.i * h), num(e.cell.j * h),
+          out.add_row("cells", {spec.sheets[k].name, when, std::to_string(e.cell.level), num(e.cell.i * h), num(e.cell.j * h),
                         num(h), num(e.error)});
         }
     std::vector<SurfaceMesh> meshes;
@@ -534,7 +536,7 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
     row["analyze_s"] = num(analyze_s);
     row["solve_s"] = num(solve_s);
   } catch (const Error& e) {
-    row["termination"] = "invalid_input";
+    row["termination"] = std::string(to_string(Termination::InvalidInput));
     row["message"] = "step " + std::to_string(step) + ": " + e.what();
   }
   row["time_s"] = num(wall.seconds());

@@ -1,8 +1,10 @@
-#include "experiment/curve_run.h"
+#include "experiment/kinds/curve/curve_run.h"
 
 #include <algorithm>
 #include <filesystem>
 
+#include "core/statistics.h"
+#include "core/summary.h"
 #include "core/config.h"
 #include "core/timer.h"
 #include "curve_design/curve_metrics.h"
@@ -10,6 +12,7 @@
 #include "experiment/metric_format.h"
 #include "io/csv.h"
 #include "io/mesh_io.h"
+#include "experiment/vtk_policy.h"
 #include "io/vtk_io.h"
 
 namespace fairshape {
@@ -131,7 +134,7 @@ CurveRunSpec CurveRunSpec::from_config(const YAML::Node& run_config, const std::
   if (s.edits.empty()) throw InvalidConfig("edits: at least one edit is required");
   read_optimization(root, s);
   Config out = root.child("output", "what each run writes");
-  s.vtk = out.get_choice("vtk", s.vtk, {"none", "final", "stages"}, "VTK polylines: none, the final curve, or every stage");
+  s.vtk = read_vtk_policy(out, "every stage of every edit");
   s.final_curve = out.get<bool>("final_curve", true, "write final.obj (final/<run_id>.obj in sweeps)");
   out.check_no_unknown_keys();
   root.check_no_unknown_keys();
@@ -148,7 +151,7 @@ const std::vector<std::string>& curve_metric_columns() {
 
 const std::vector<std::string>& curve_step_columns() {
   static const std::vector<std::string> cols{
-      "run_id", "edit", "stage", "length_error_max", "length_error_rms", "total_length_change", "bending_energy",
+      "edit", "stage", "length_error_max", "length_error_rms", "total_length_change", "bending_energy",
       "distance_to_attractor", "wrinkles", "solves", "time_s"};
   return cols;
 }
@@ -164,21 +167,17 @@ void write_stage(const CurveRunSpec& spec, const RunOutputs& out, int edit, cons
   const fs::path curves = fs::path(out.dir) / "curves";
   fs::create_directories(curves);
   write_polyline(c, (curves / (stem + ".obj")).string());
-  if (spec.vtk == "stages" || (spec.vtk == "final" && std::string(stage) == "final"))
+  if (spec.vtk == VtkPolicy::All || (spec.vtk == VtkPolicy::Final && std::string(stage) == "final"))
     write_vtp(c, {{"displacement", Eigen::MatrixXd(X - reference)}}, (fs::path(out.dir) / "vtk" / (stem + ".vtp")).string());
 }
 
-std::vector<std::string> step_row(const std::string& run_id, int edit, const char* stage, const CurveMetrics& m,
-                                  const std::string& solves, const std::string& time) {
-  return {run_id, std::to_string(edit), stage, num(m.length_error_max), num(m.length_error_rms),
+std::vector<std::string> step_row(int edit, const char* stage, const CurveMetrics& m, const std::string& solves,
+                                  const std::string& time) {
+  return {std::to_string(edit), stage, num(m.length_error_max), num(m.length_error_rms),
           num(m.total_length_change), num(m.bending_energy), num(m.distance_to_attractor), std::to_string(m.wrinkles),
           solves, time};
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
 
 }  // namespace
 
@@ -188,7 +187,7 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
   row["implementation"] = std::string(to_string(spec.implementation));
   row["solver.type"] = spec.solver_type;
   row["n_points"] = std::to_string(spec.curve.n_points());
-  row["termination"] = "converged";
+  row["termination"] = std::string(to_string(Termination::Converged));
   const Timer wall;
   double time_s = 0, explicit_s = 0, solve_s = 0;
   int solves = 0, outer = 0, done = 0;
@@ -196,7 +195,6 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
     const Eigen::VectorXd original = segment_lengths(spec.curve.points, spec.curve.closed);
     Polyline current = spec.curve;
     EditStages last;
-    CsvAppender steps((fs::path(out.dir) / "steps.csv").string());
     for (std::size_t k = 0; k < spec.edits.size(); ++k) {
       std::vector<double> totals;
       for (int r = 0; r < spec.repeat; ++r) {
@@ -215,13 +213,13 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
       for (int st = 0; st < 4; ++st) {
         const CurveMetrics m = measure_curve(*stage_points[st], current.closed, lengths, last.attracting);
         const bool fin = st == 3;
-        steps.append(step_row(out.run_id, edit, kStages[st], m, fin ? std::to_string(last.solve.solves) : "",
+        out.add_row("steps", step_row(edit, kStages[st], m, fin ? std::to_string(last.solve.solves) : "",
                               fin ? num(median(totals)) : ""));
-        if (spec.vtk != "none") write_stage(spec, out, edit, kStages[st], *stage_points[st], last.reference);
+        if (spec.vtk != VtkPolicy::None) write_stage(spec, out, edit, kStages[st], *stage_points[st], last.reference);
       }
       current.points = last.final;
       if (!last.solve.converged) {
-        row["termination"] = "max_iterations";
+        row["termination"] = std::string(to_string(Termination::MaxIterations));
         row["message"] = "edit " + std::to_string(k) + ": " + last.solve.message;
         break;
       }
@@ -240,7 +238,7 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
     if (row["message"].empty()) row["message"] = last.solve.message;
     if (spec.final_curve) write_polyline(current, out.final_path());
   } catch (const Error& e) {
-    row["termination"] = "invalid_input";
+    row["termination"] = std::string(to_string(Termination::InvalidInput));
     row["message"] = "edit " + std::to_string(done) + ": " + e.what();
   }
   row["edits"] = std::to_string(done);

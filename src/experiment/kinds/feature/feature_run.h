@@ -8,7 +8,7 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "experiment/run_one.h"
+#include "experiment/run_outputs.h"
 #include "experiment/run_spec.h"
 #include "feature/feature_curve.h"
 

@@ -5,6 +5,7 @@
 #include <memory>
 #include <string>
 
+#include "experiment/run_outputs.h"
 #include "experiment/run_spec.h"
 #include "subdivision/multires_surface.h"
 
@@ -13,11 +14,11 @@ namespace fairshape {
 // Metric columns of runs.csv, in order; every run fills every one (empty when not applicable).
 const std::vector<std::string>& metric_columns();
 
-using MetricRow = std::map<std::string, std::string>;
-
 // Columns of steps.csv: one row per design step of a drag (problem.drag_steps), the
 // yardstick's prefactored solve time beside each step's.
 const std::vector<std::string>& step_columns();
+// Columns of iterations.csv: one row per residual check of the solve (output.iterations).
+const std::vector<std::string>& iteration_columns();
 
 // CHOLMOD's solution of a run's system and the time of its solve with the factor in hand.
 struct ReferenceSolution {
@@ -37,14 +38,6 @@ class RunCache {
  private:
   std::map<std::string, std::pair<MultiresSurface, double>> hierarchies_;
   std::map<std::string, ReferenceSolution> references_;
-};
-
-struct RunOutputs {
-  std::string dir;       // the experiment's output folder
-  std::string run_id;
-  bool single_run = true;  // final.obj, or final/<run_id>.obj in a sweep
-  //! Where the run's final geometry goes (creates final/ in a sweep).
-  std::string final_path() const;
 };
 
 //! Never throws for problems of the input, the numerics or the outputs: they become the

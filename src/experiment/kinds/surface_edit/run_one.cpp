@@ -1,14 +1,15 @@
-#include "experiment/run_one.h"
+#include "experiment/kinds/surface_edit/run_one.h"
 
 #include <algorithm>
 #include <filesystem>
 #include <random>
 
 #include "core/error.h"
+#include "core/statistics.h"
 #include "core/memory.h"
 #include "core/timer.h"
-#include "experiment/assemble_problem.h"
-#include "experiment/drag_run.h"
+#include "experiment/kinds/surface_edit/assemble_problem.h"
+#include "experiment/kinds/surface_edit/drag_run.h"
 #include "experiment/metric_format.h"
 #include "io/csv.h"
 #include "io/mesh_io.h"
@@ -22,19 +23,8 @@
 namespace fairshape {
 namespace fs = std::filesystem;
 
-std::string RunOutputs::final_path() const {
-  if (single_run) return (fs::path(dir) / "final.obj").string();
-  fs::create_directories(fs::path(dir) / "final");
-  return (fs::path(dir) / "final" / (run_id + ".obj")).string();
-}
-
 namespace {
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 Eigen::MatrixXd random_start(const RunSpec& spec, Eigen::Index rows) {
   std::mt19937_64 gen(static_cast<std::uint64_t>(spec.seed));
@@ -68,10 +58,8 @@ SurfaceMesh result_mesh(const SurfaceMesh& before, const MatrixX3& after, int le
 // Boier-Martin et al.'s claim as a number: the RMS change of the local-frame detail vectors
 // (re-analysed from the edited finest level) relative to their RMS size before the edit.
 // Empty for hierarchies without details.
-std::string detail_change(const MultiresSurface& before, const SurfaceMesh& edited_finest, Backend backend) {
+std::string detail_change(const MultiresSurface& before, const MultiresSurface& after) {
   if (before.levels() == 0) return "";
-  const MultiresSurface after =
-      MultiresSurface::analyze(before.mesh(0), edited_finest.positions(), before.options(), before.levels(), backend);
   double change = 0, size = 0;
   for (int l = 1; l <= before.levels(); ++l) {
     change += (after.details(l, DetailSpace::Local) - before.details(l, DetailSpace::Local)).squaredNorm();
@@ -93,13 +81,12 @@ class IterationSink {
   IterationSink(const RunSpec& spec, const RunOutputs& out, const SurfaceMesh& rest, int level,
                 const DesignConstraints& placed, const Eigen::MatrixXd* reference)
       : spec_(spec), out_(out), rest_(rest), level_(level), placed_(placed), reference_(reference) {
-    if (spec.output.iterations) csv_ = std::make_unique<CsvAppender>((fs::path(out.dir) / "iterations.csv").string());
   }
   bool operator()(const IterationRecord& r) {
-    if (csv_)
-      csv_->append({out_.run_id, std::to_string(r.iteration), num(r.residual), num(r.energy), num(r.seconds),
+    if (spec_.output.iterations)
+      out_.add_row("iterations", {std::to_string(r.iteration), num(r.residual), num(r.energy), num(r.seconds),
                     reference_ ? num(relative_error(*r.x, *reference_)) : ""});
-    if (spec_.output.vtk == "every_iteration" && r.iteration % spec_.output.vtk_every == 0) {
+    if (spec_.output.vtk == VtkPolicy::All && r.iteration % spec_.output.vtk_every == 0) {
       const std::string file = out_.run_id + "_it" + std::to_string(r.iteration) + ".vtp";
       write_vtp(result_mesh(rest_, rest_.positions() + MatrixX3(*r.x), level_, placed_),
                 (fs::path(out_.dir) / "vtk" / file).string());
@@ -118,7 +105,6 @@ class IterationSink {
   int level_;
   const DesignConstraints& placed_;
   const Eigen::MatrixXd* reference_;
-  std::unique_ptr<CsvAppender> csv_;
   std::vector<std::pair<double, std::string>> steps_;
 };
 
@@ -159,7 +145,7 @@ void measure_accuracy(const EditProblem& p, const EditSolution& sol, const Refer
 
 void write_geometry(const RunSpec& spec, const RunOutputs& out, const SurfaceMesh& result, const MultiresSurface& h) {
   if (spec.output.final_mesh) write_mesh(result, out.final_path());
-  if (spec.output.vtk == "none") return;
+  if (spec.output.vtk == VtkPolicy::None) return;
   write_vtp(result, (fs::path(out.dir) / "vtk" / (out.run_id + ".vtp")).string());
   if (h.levels() > 0) h.save((fs::path(out.dir) / "vtk" / (out.run_id + "_levels.vtm")).string());
 }
@@ -168,7 +154,7 @@ void write_geometry(const RunSpec& spec, const RunOutputs& out, const SurfaceMes
 // propagated constraints reach there.
 void write_ladder(const RunSpec& spec, const RunOutputs& out, const MultiresSurface& rest, const EditLadder& ladder,
                   int coarse, const std::vector<Eigen::MatrixXd>& solutions) {
-  if (spec.output.vtk == "none") return;
+  if (spec.output.vtk == VtkPolicy::None) return;
   for (std::size_t k = 0; k < solutions.size(); ++k) {
     if (solutions[k].size() == 0) continue;  // a level the mode did not solve on
     const int l = coarse + static_cast<int>(k);
@@ -186,8 +172,13 @@ void write_ladder(const RunSpec& spec, const RunOutputs& out, const MultiresSurf
 }  // namespace
 
 const std::vector<std::string>& step_columns() {
-  static const std::vector<std::string> cols{"run_id", "step", "scale", "accuracy", "solve_s", "iterations",
+  static const std::vector<std::string> cols{"step", "scale", "accuracy", "solve_s", "iterations",
                                              "error_vs_reference", "constraint_violation", "reference_solve_s"};
+  return cols;
+}
+
+const std::vector<std::string>& iteration_columns() {
+  static const std::vector<std::string> cols{"iteration", "residual", "energy", "seconds", "error_vs_reference"};
   return cols;
 }
 
@@ -195,7 +186,7 @@ const std::vector<std::string>& metric_columns() {
   static const std::vector<std::string> cols{
       "n_dofs", "n_fine", "n_constrained", "repeat", "subdivide_s", "assemble_s", "analyze_s", "solve_s", "solve_min_s",
       "time_s", "iterations", "residual", "energy", "constraint_violation", "error_vs_reference", "detail_change",
-      "peak_rss_mb", "solve_extra_mb", "termination", "message"};
+      "peak_rss_mb", "solve_extra_mb", "unused_keys", "termination", "message"};
   return cols;
 }
 
@@ -231,6 +222,7 @@ MetricRow execute_run(RunSpec& spec, RunCache& cache, const RunOutputs& out) {
   MetricRow row;
   for (const auto& c : metric_columns()) row[c] = "";
   row["repeat"] = std::to_string(spec.repeat);
+  for (const auto& k : spec.unused_keys) row["unused_keys"] += (row["unused_keys"].empty() ? "" : " ") + k;
   reset_peak_rss();
   Timer total;
   try {
@@ -287,8 +279,15 @@ MetricRow execute_run(RunSpec& spec, RunCache& cache, const RunOutputs& out) {
       edited.set_level_positions(level, rest.mesh(level).positions() + MatrixX3(sol.delta));
       edited.synthesize_from(level, DetailSpace::Local);
       const SurfaceMesh& finest = edited.mesh(edited.levels());
-      row["detail_change"] = detail_change(rest, finest, spec.implementation);
-      write_geometry(spec, out, result_mesh(rest.mesh(rest.levels()), finest.positions(), rest.levels(), placed), edited);
+      // The edited surface analysed anew: its details are what the edit left of the rest
+      // shape's (synthesize_from keeps the rest details, whatever the energy did to them).
+      const MultiresSurface reanalysed =
+          rest.levels() > 0 ? MultiresSurface::analyze(rest.mesh(0), finest.positions(), rest.options(), rest.levels(),
+                                                       spec.implementation)
+                            : edited;
+      row["detail_change"] = detail_change(rest, reanalysed);
+      write_geometry(spec, out, result_mesh(rest.mesh(rest.levels()), finest.positions(), rest.levels(), placed),
+                     reanalysed);
       write_ladder(spec, out, rest, ladder, coarse, level_solutions);
     }
   } catch (const SolverError& e) {

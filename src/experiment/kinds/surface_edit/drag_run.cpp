@@ -1,4 +1,4 @@
-#include "experiment/drag_run.h"
+#include "experiment/kinds/surface_edit/drag_run.h"
 
 #include <filesystem>
 
@@ -36,16 +36,14 @@ DragOutcome run_drag(const RunSpec& spec, const RunOutputs& out, const EditLadde
   };
   MultilevelEdit edit(ladder, accuracy_from_string(a.mode), direct, relaxer, *spec.solver, backend,
                       a.coarse_constraint_mode == "kkt" ? ConstraintMode::Kkt : ConstraintMode::Paper);
-  std::unique_ptr<CsvAppender> csv;
-  if (write_steps) csv = std::make_unique<CsvAppender>((std::filesystem::path(out.dir) / "steps.csv").string());
   const std::vector<double> scales = drag_scales(a.drag_steps);
   DragOutcome result;
   for (std::size_t s = 0; s < scales.size(); ++s) {
     const bool last = s + 1 == scales.size();
     result.last = edit.solve(scales[s], last ? last_step : IterationCallback());
     const ReferenceSolution* ref = references[s];
-    if (csv)
-      csv->append({out.run_id, std::to_string(s + 1), num(scales[s]), a.mode, num(result.last.solve_s),
+    if (write_steps)
+      out.add_row("steps", {std::to_string(s + 1), num(scales[s]), a.mode, num(result.last.solve_s),
                    std::to_string(result.last.summary.iterations),
                    ref ? num(relative_error(result.last.delta, ref->u)) : "", num(result.last.constraint_residual),
                    ref ? num(ref->solve_s) : ""});

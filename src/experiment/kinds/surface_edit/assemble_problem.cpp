@@ -1,4 +1,4 @@
-#include "experiment/assemble_problem.h"
+#include "experiment/kinds/surface_edit/assemble_problem.h"
 
 #include "subdivision/subdivider.h"
 

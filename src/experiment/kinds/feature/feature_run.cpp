@@ -1,15 +1,18 @@
-#include "experiment/feature_run.h"
+#include "experiment/kinds/feature/feature_run.h"
 
 #include <cmath>
 #include <filesystem>
 #include <map>
 
+#include "core/statistics.h"
+#include "core/summary.h"
 #include "core/config.h"
 #include "core/timer.h"
 #include "experiment/metric_format.h"
 #include "feature/adaptive_mesh.h"
 #include "feature/featured_surface.h"
 #include "io/mesh_io.h"
+#include "experiment/vtk_policy.h"
 #include "io/vtk_io.h"
 #include "mesh/polyline.h"
 
@@ -122,7 +125,7 @@ FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const s
   s.adaptive = ac.get<bool>("enabled", true, "write adaptive/<run>.obj refined by the features' flatness thresholds");
   ac.check_no_unknown_keys();
   Config oc = root.child("output", "what each run writes");
-  s.vtk = oc.get<bool>("vtk", true, "write vtk/<run>.vtp with the displacement array");
+  s.vtk = read_vtk_policy(oc, "the same as final: a feature run has one state") != VtkPolicy::None;
   oc.check_no_unknown_keys();
   root.check_no_unknown_keys();
   return s;
@@ -139,10 +142,9 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
   MetricRow row;
   for (const auto& c : feature_metric_columns()) row[c] = "";
   row["implementation"] = std::string(to_string(spec.implementation));
-  row["solver.type"] = "";  // no solver: the perturbation is explicit
   row["features"] = std::to_string(spec.features.size());
   row["levels"] = std::to_string(spec.levels);
-  row["termination"] = "converged";
+  row["termination"] = std::string(to_string(Termination::Converged));
   const Timer wall;
   try {
     SubdivisionOptions opt;
@@ -182,8 +184,7 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
       (void)surface.result();
       times.push_back(t.seconds());
     }
-    std::sort(times.begin(), times.end());
-    row["apply_s"] = num(times[times.size() / 2]);
+    row["apply_s"] = num(median(times));
     const MultiresSurface& result = surface.result();
     SurfaceMesh fine = result.mesh(spec.levels);
     const MatrixX3 d = fine.positions() - surface.original().mesh(spec.levels).positions();
@@ -220,7 +221,7 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
     if (spec.vtk) write_vtp(fine, (fs::path(out.dir) / "vtk" / (out.run_id + ".vtp")).string());
     write_mesh(fine, out.final_path());
   } catch (const Error& e) {
-    row["termination"] = "invalid_input";
+    row["termination"] = std::string(to_string(Termination::InvalidInput));
     row["message"] = e.what();
   }
   row["time_s"] = num(wall.seconds());

@@ -1,0 +1,54 @@
+// One outcome vocabulary for every solve and every run (linear solvers, constrained QPs,
+// length-constrained curve solves, whole experiment runs): how it stopped, and whether
+// that is what was asked.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace fairshape {
+
+// Success:
+//   converged          — the tolerance that was asked for was met;
+//   energy_stalled     — the configured energy_tolerance rule fired (a documented stopping rule);
+//   schedule_completed — no tolerance was asked: a fixed procedure (the papers' fixed sweep
+//                        counts, the interactive ladder) ran to its end.
+// Failure:
+//   max_iterations     — a tolerance was asked and the iteration cap came first;
+//   numerical_failure  — diverged, singular, non-finite, or the result fails its own checks;
+//   invalid_input      — the input (files, constraints) made the run impossible;
+//   output_failed      — the result could not be written (disk full, permissions);
+//   crashed            — an unexpected exception or a signal ended the run.
+enum class Termination {
+  Converged,
+  EnergyStalled,
+  ScheduleCompleted,
+  MaxIterations,
+  NumericalFailure,
+  InvalidInput,
+  OutputFailed,
+  Crashed
+};
+
+std::string_view to_string(Termination t);
+//! \throw InvalidInput naming the valid choices for an unknown name.
+Termination termination_from_string(std::string_view name);
+//! The run delivered what was asked (see the table above).
+bool is_success(Termination t);
+//! Every name, in declaration order (for docs and errors).
+const std::vector<std::string>& termination_names();
+
+// What every solver reports, whatever it solves.
+struct SolveSummary {
+  Termination termination = Termination::NumericalFailure;
+  int iterations = 0;
+  double residual = -1;  // relative: ‖b − A x‖ / ‖b‖ (−1: not measured)
+  std::string message;
+  //! Seconds spent observing the iterations (energies, callbacks, iterate copies for them):
+  //! callers subtract it, so a monitored solve is timed like an unmonitored one.
+  double observe_s = 0;
+  bool succeeded() const { return is_success(termination); }
+};
+
+}  // namespace fairshape

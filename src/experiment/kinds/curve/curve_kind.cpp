@@ -1,0 +1,31 @@
+// Sauvage et al.'s length-preserving curve edits as a run kind.
+#include "experiment/kinds/curve/curve_run.h"
+#include "experiment/kinds/kinds.h"
+#include "experiment/kinds/thread_limit.h"
+
+namespace fairshape {
+namespace {
+
+class CurveKind final : public RunKind {
+ public:
+  std::string name() const override { return "curve"; }
+  std::string marker() const override { return "input.curve"; }
+  bool owns(const YAML::Node& c) const override { return is_curve_config(c); }
+  ValidatedRun validate(const YAML::Node& c, const std::vector<std::string>& dirs) const override {
+    const CurveRunSpec spec = CurveRunSpec::from_config(c, dirs);
+    return {spec.name, {spec.curve_path}};
+  }
+  const std::vector<std::string>& metric_columns() const override { return curve_metric_columns(); }
+  std::vector<TableSchema> tables() const override { return {{"steps", curve_step_columns()}}; }
+  MetricRow execute(const YAML::Node& c, const std::vector<std::string>& dirs, const RunOutputs& out) override {
+    CurveRunSpec spec = CurveRunSpec::from_config(c, dirs);
+    const auto threads = limit_threads(spec.threads);
+    return execute_curve_run(spec, out);
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<RunKind> make_curve_kind() { return std::make_unique<CurveKind>(); }
+
+}  // namespace fairshape

@@ -1,0 +1,14 @@
+#include "experiment/run_outputs.h"
+
+#include <filesystem>
+
+namespace fairshape {
+namespace fs = std::filesystem;
+
+std::string RunOutputs::final_path() const {
+  if (single_run) return (fs::path(dir) / "final.obj").string();
+  fs::create_directories(fs::path(dir) / "final");
+  return (fs::path(dir) / "final" / (run_id + ".obj")).string();
+}
+
+}  // namespace fairshape

@@ -1,0 +1,44 @@
+// What one run hands back to the harness besides its runs.csv row: the rows of its other
+// tables (buffered, so the harness writes them together with the run's row and a killed run
+// never leaves half of them behind) and where its geometry goes.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace fairshape {
+
+using MetricRow = std::map<std::string, std::string>;
+
+//! A table a run kind writes beside runs.csv: `<name>.csv` with these columns after the
+//! columns the harness puts first (run_id, the swept parameters, the solver columns).
+struct TableSchema {
+  std::string name;                  // "iterations", "steps", "cells"
+  std::vector<std::string> columns;  // the kind's own columns
+};
+
+class RunTables {
+ public:
+  //! One row of `table` (its kind's own columns, in schema order).
+  void add(const std::string& table, std::vector<std::string> row) { rows_[table].push_back(std::move(row)); }
+  const std::map<std::string, std::vector<std::vector<std::string>>>& rows() const { return rows_; }
+  void clear() { rows_.clear(); }
+
+ private:
+  std::map<std::string, std::vector<std::vector<std::string>>> rows_;
+};
+
+struct RunOutputs {
+  std::string dir;  // the experiment's output folder
+  std::string run_id;
+  bool single_run = true;            // final.obj, or final/<run_id>.obj in a sweep
+  RunTables* tables = nullptr;       // null: the run's table rows are not kept
+  //! Where the run's final geometry goes (creates final/ in a sweep).
+  std::string final_path() const;
+  void add_row(const std::string& table, std::vector<std::string> row) const {
+    if (tables) tables->add(table, std::move(row));
+  }
+};
+
+}  // namespace fairshape

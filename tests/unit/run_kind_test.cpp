@@ -1,0 +1,109 @@
+// The run-kind interface: every shipped config belongs to exactly one kind and validates, and
+// a kind's outputs say what the run did (the surface edit's _levels.vtm is re-analysed).
+#include <catch2/catch.hpp>
+
+#include <cctype>
+#include <filesystem>
+#include <map>
+#include <set>
+
+#include "core/config.h"
+#include "curve_design/curve_components.h"
+#include "experiment/components.h"
+#include "experiment/config_loader.h"
+#include "experiment/run_kind.h"
+#include "experiment/run_spec.h"
+#include "experiment/sweep.h"
+#include "qp/qp_solver.h"
+#include "subdivision/multires_surface.h"
+#include "test_support.h"
+
+using namespace fairshape;
+namespace fs = std::filesystem;
+
+TEST_CASE("every config under configs/ is one kind's, and each of its points validates", "[experiment][kinds]") {
+  const auto kinds = make_run_kinds();
+  std::set<std::string> names;
+  for (const auto& k : kinds) CHECK(names.insert(k->name()).second);  // names are unique
+  int configs = 0;
+  for (const auto& e : fs::recursive_directory_iterator(test::source_path("configs"))) {
+    if (e.path().extension() != ".yaml" || e.path().parent_path().filename() == "base") continue;
+    INFO(e.path().string());
+    const YAML::Node root = load_experiment_config(e.path().string(), {});
+    const SweepSpace space(root);
+    const auto dirs = input_search_dirs(e.path().string());
+    const RunKind& first = kind_of(space.point(0).config, kinds);
+    for (std::size_t i = 0; i < space.size(); ++i) {
+      const RunPoint p = space.point(i);
+      CHECK(&kind_of(p.config, kinds) == &first);
+      CHECK_NOTHROW(first.validate(p.config, dirs));
+    }
+    ++configs;
+  }
+  CHECK(configs > 20);
+}
+
+TEST_CASE("a config with no kind's keys, or two kinds' keys, is refused naming the kinds", "[experiment][kinds]") {
+  const auto kinds = make_run_kinds();
+  CHECK_THROWS_WITH(kind_of(YAML::Load("{name: x}"), kinds), Catch::Contains("sheets"));
+  CHECK_THROWS_WITH(kind_of(YAML::Load("{name: x, sheets: [], input: {curve: c.obj}}"), kinds),
+                    Catch::Contains("several run kinds"));
+}
+
+TEST_CASE("_levels.vtm holds the details of the edited surface, analysed anew", "[experiment][kinds]") {
+  const auto kinds = make_run_kinds();
+  const std::string cfg = test::source_path("configs/boier-martin/fig2_nose_pull.yaml");
+  YAML::Node root = load_experiment_config(cfg, {"input.remesh_base_faces=200", "input.levels=2"});
+  const SweepSpace space(root);
+  REQUIRE(space.size() == 2);  // thin-plate, detail-preserving
+  const fs::path dir = test::scratch_dir("levels_vtm");
+  fs::create_directories(dir / "vtk");
+  std::vector<MultiresSurface> edited;
+  for (std::size_t i = 0; i < 2; ++i) {
+    const RunPoint p = space.point(i);
+    RunKind& kind = kind_of(p.config, kinds);
+    RunTables tables;
+    const MetricRow row = kind.execute(p.config, input_search_dirs(cfg), {dir.string(), p.run_id, false, &tables});
+    REQUIRE(row.at("termination") == "converged");
+    edited.push_back(MultiresSurface::load((dir / "vtk" / (p.run_id + "_levels.vtm")).string(), Backend::Optimized));
+  }
+  const int L = edited[0].levels();
+  REQUIRE(L == 2);
+  // Thin plate fairs the details away, detail preservation keeps them: the two runs' details differ.
+  const double size = edited[1].details(L, DetailSpace::Local).norm();
+  const double diff = (edited[0].details(L, DetailSpace::Local) - edited[1].details(L, DetailSpace::Local)).norm();
+  CHECK(diff > 1e-3 * size);
+  // and the saved hierarchy reproduces the edited finest level it was analysed from
+  MultiresSurface copy = edited[0];
+  copy.synthesize(DetailSpace::Local);
+  CHECK((copy.mesh(L).positions() - edited[0].mesh(L).positions()).norm() < 1e-8 * edited[0].mesh(L).positions().norm());
+}
+
+TEST_CASE("registered names share one style: snake_case, none a punctuation mark from another", "[experiment][names]") {
+  std::vector<std::vector<std::string>> registries{components().energies.names(), components().constraints.names(),
+                                                   components().solvers.names(), curve_components().energies.names(),
+                                                   curve_components().constraints.names(),
+                                                   curve_components().solvers.names()};
+  qp::QpSolverRegistry qp_solvers("qp solver");
+  qp::register_qp_solvers(qp_solvers);
+  registries.push_back(qp_solvers.names());
+  std::map<std::string, std::string> by_letters;  // the name without punctuation -> the name
+  for (const auto& names : registries)
+    for (const auto& name : names) {
+      INFO(name);
+      CHECK(name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_") == std::string::npos);
+      std::string letters;
+      for (char ch : name)
+        if (std::isalnum(static_cast<unsigned char>(ch))) letters += ch;
+      const auto [it, fresh] = by_letters.emplace(letters, name);
+      CHECK((fresh || it->second == name));
+    }
+  // The former names are errors that say the new one.
+  Config none;
+  CHECK_THROWS_WITH(components().energies.create("thin-plate", Backend::Optimized, none),
+                    Catch::Contains("surface_thin_plate"));
+  CHECK_THROWS_WITH(components().energies.create("thin_plate", Backend::Optimized, none),
+                    Catch::Contains("umbrella_thin_plate"));
+  CHECK_THROWS_WITH(components().energies.create("detail-preserving", Backend::Optimized, none),
+                    Catch::Contains("detail_preserving"));
+}

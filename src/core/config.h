@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/name_table.h"
 
 namespace fairshape {
 
@@ -40,6 +41,11 @@ class Config {
   int get_int(const std::string& key, int fallback, int lo, int hi, const std::string& doc);
   std::string get_choice(const std::string& key, const std::string& fallback,
                          const std::vector<std::string>& choices, const std::string& doc);
+  //! An enumeration spelled by `names`. \throw InvalidConfig naming the key and the valid names.
+  template <class E>
+  E get_enum(const std::string& key, E fallback, const NameTable<E>& names, const std::string& doc) {
+    return names.value(get_choice(key, std::string(names.name(fallback)), names.names(), doc), key_path(key));
+  }
   template <class T>
   T require(const std::string& key, const std::string& doc);
 

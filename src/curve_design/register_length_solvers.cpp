@@ -26,9 +26,8 @@ LengthSolverRegistry::Factory linearized(Backend backend) {
                                    "newton: use the Lagrangian Hessian once the length error is below this");
     o.line_search = own.get<bool>("line_search", o.line_search,
                                   "shorten steps until the l1 merit decreases (false: the paper's full steps, which can cycle)");
-    o.kkt = own.get_choice("kkt", "direct", {"direct", "minres"}, "KKT solve: sparse direct or MINRES") == "minres"
-                ? KktMethod::Minres
-                : KktMethod::Direct;
+    static const NameTable<KktMethod> kkt_methods{{KktMethod::Direct, "direct"}, {KktMethod::Minres, "minres"}};
+    o.kkt = own.get_enum("kkt", KktMethod::Direct, kkt_methods, "KKT solve: sparse direct or MINRES");
     o.minres_tolerance = own.get_number("minres_tolerance", o.minres_tolerance, 1e-16, 1e-2, "MINRES relative residual");
     own.check_no_unknown_keys();
     return std::make_unique<LinearizedLengthSolver>(o);

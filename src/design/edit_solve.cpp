@@ -231,6 +231,14 @@ Eigen::MatrixXd stacked_targets(const LinearConstraints& lc, const Eigen::Matrix
   return out;
 }
 
+const NameTable<ConstraintMode>& constraint_mode_names() {
+  static const NameTable<ConstraintMode> t{{ConstraintMode::Paper, "paper"},
+                                           {ConstraintMode::Kkt, "kkt"},
+                                           {ConstraintMode::QrPenalty, "qr_penalty"},
+                                           {ConstraintMode::RangeSpace, "range_space"}};
+  return t;
+}
+
 PreparedEdit::PreparedEdit(const EditProblem& p, ConstraintMode mode, Solver& solver, Backend backend)
     : solver_(solver) {
   Timer setup;

@@ -17,6 +17,7 @@
 #include "design/multires_constraints.h"
 #include "solver/level_operators.h"
 #include "problem/constrained_system.h"
+#include "core/name_table.h"
 #include "solver/solver.h"
 
 namespace fairshape {
@@ -24,6 +25,8 @@ namespace fairshape {
 // QrPenalty / RangeSpace: the Welch & Witkin solvers of src/qp (eq. 10 with Van Loan's
 // refinement, default options; CHOLMOD range space) on the same program.
 enum class ConstraintMode { Paper, Kkt, QrPenalty, RangeSpace };
+//! paper | kkt | qr_penalty | range_space, as in problem.constraint_mode.
+const NameTable<ConstraintMode>& constraint_mode_names();
 
 struct EditProblem {
   SparseMatrix H;      // n × n, shared by x, y, z

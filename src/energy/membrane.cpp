@@ -22,9 +22,10 @@ class Membrane : public Energy {
 }  // namespace
 
 std::unique_ptr<Energy> make_membrane(Config& cfg) {
-  const std::string w = cfg.get_choice("weights", "uniform", {"uniform", "cotangent"},
-                                       "edge weights of the Laplacian");
-  return std::make_unique<Membrane>(w == "uniform" ? LaplacianWeights::Uniform : LaplacianWeights::Cotangent);
+  static const NameTable<LaplacianWeights> names{{LaplacianWeights::Uniform, "uniform"},
+                                                 {LaplacianWeights::Cotangent, "cotangent"}};
+  return std::make_unique<Membrane>(
+      cfg.get_enum("weights", LaplacianWeights::Uniform, names, "edge weights of the Laplacian"));
 }
 
 }  // namespace fairshape

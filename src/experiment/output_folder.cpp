@@ -112,9 +112,11 @@ void OutputFolder::roll_back_orphan_rows(const TableLayout& layout, const std::s
 
 void commit_run(const fs::path& dir, const TableLayout& layout, const std::vector<std::string>& key_fields,
                 const std::vector<std::string>& runs_row, const RunTables& tables) {
-  for (const auto& [name, rows] : tables.rows()) {
+  for (const auto& table : tables.rows()) {
+    const std::string& name = table.first;
+    const auto& rows = table.second;
     const auto schema = std::find_if(layout.tables.begin(), layout.tables.end(),
-                                     [&](const TableSchema& s) { return s.name == name; });
+                                     [&name](const TableSchema& s) { return s.name == name; });
     FAIRSHAPE_ASSERT(schema != layout.tables.end(), "a run wrote to table '" + name + "' its kind did not declare");
     std::vector<std::vector<std::string>> full;
     for (const auto& r : rows) {

@@ -21,8 +21,51 @@ std::string resolve_input(const std::string& path, const std::vector<std::string
 }
 
 bool solver_is_used(const RunSpec& s) {
-  return s.constraint_mode == "paper" && (s.accuracy.mode == "single-level" || s.accuracy.mode == "converged");
+  return s.constraint_mode == ConstraintMode::Paper &&
+         (s.accuracy.mode == AccuracyMode::SingleLevel || s.accuracy.mode == AccuracyMode::Converged);
 }
+
+Accuracy AccuracyOptions::ladder() const {
+  FAIRSHAPE_ASSERT(multilevel(), "a single-level run has no ladder");
+  return mode == AccuracyMode::Interactive ? Accuracy::Interactive
+         : mode == AccuracyMode::Improved  ? Accuracy::Improved
+                                           : Accuracy::Converged;
+}
+
+SubdivisionOptions RunSpec::subdivision() const {
+  FAIRSHAPE_ASSERT(representation != Representation::Mesh, "the mesh representation has no subdivision");
+  return {representation == Representation::Loop ? SchemeType::Loop : SchemeType::CatmullClark, boundary, loop_weights};
+}
+
+namespace {
+
+const NameTable<Representation>& representation_names() {
+  static const NameTable<Representation> t{{Representation::Mesh, "mesh"},
+                                           {Representation::CatmullClark, "catmull-clark"},
+                                           {Representation::Loop, "loop"}};
+  return t;
+}
+const NameTable<AccuracyMode>& accuracy_names() {
+  static const NameTable<AccuracyMode> t{{AccuracyMode::SingleLevel, "single-level"},
+                                         {AccuracyMode::Interactive, "interactive"},
+                                         {AccuracyMode::Improved, "improved"},
+                                         {AccuracyMode::Converged, "converged"}};
+  return t;
+}
+const NameTable<Formulation>& formulation_names() {
+  static const NameTable<Formulation> t{{Formulation::Displacement, "displacement"}, {Formulation::Position, "position"}};
+  return t;
+}
+const NameTable<InitialGuess>& initial_guess_names() {
+  static const NameTable<InitialGuess> t{{InitialGuess::Zero, "zero"}, {InitialGuess::Random, "random"}};
+  return t;
+}
+const NameTable<ConstraintMode>& coarse_mode_names() {  // the ladder's coarse solve: two of the modes
+  static const NameTable<ConstraintMode> t{{ConstraintMode::Kkt, "kkt"}, {ConstraintMode::Paper, "paper"}};
+  return t;
+}
+
+}  // namespace
 
 namespace {
 
@@ -57,8 +100,8 @@ void read_solver(Config& root, const Components& c, Backend backend, RunSpec& s)
   Config sc = root.child("solver", "linear solver: {type, tolerance, max_iterations, <type>: {...}}");
   const auto read_common = [&](Config& block) {
     s.solver_type = block.get_choice("type", "cholesky", c.solvers.names(), "solver name");
-    s.initial_guess = block.get_choice("initial_guess", "zero", {"zero", "random"},
-                                       "start of iterative solvers (random uses the seed)");
+    s.initial_guess = block.get_enum("initial_guess", InitialGuess::Zero, initial_guess_names(),
+                                     "start of iterative solvers (random uses the seed)");
   };
   read_common(sc);
   for (const auto& name : c.solvers.names())
@@ -91,13 +134,13 @@ void read_output(Config& root, OutputOptions& o) {
 
 void read_accuracy(Config& pc, RunSpec& s) {
   AccuracyOptions& a = s.accuracy;
-  a.mode = pc.get_choice("accuracy", a.mode, {"single-level", "interactive", "improved", "converged"},
+  a.mode = pc.get_enum("accuracy", a.mode, accuracy_names(),
                          "single-level: the solver on the edit level alone; interactive | improved | converged: "
                          "Boier-Martin et al. §5's ladder from problem.coarse_level");
   const int edit_level = s.edit_level < 0 ? s.levels : s.edit_level;
   a.coarse_level = pc.get_int("coarse_level", a.coarse_level, 0, 8, "level of the ladder's direct coarse solve");
-  a.coarse_constraint_mode = pc.get_choice(
-      "coarse_constraint_mode", a.coarse_constraint_mode, {"kkt", "paper"},
+  a.coarse_constraint_mode = pc.get_enum(
+      "coarse_constraint_mode", a.coarse_constraint_mode, coarse_mode_names(),
       "the ladder's coarse solve: kkt (exact minimizer) or paper (minimum-norm constrained vertices, which "
       "turns a fine handle into a spike on a coarse level)");
   a.relaxation = pc.get_choice("relaxation", a.relaxation, {"gauss_seidel", "sor"}, "improved: the cascade's smoother");
@@ -113,8 +156,9 @@ void read_accuracy(Config& pc, RunSpec& s) {
   if (a.coarse_level > edit_level)
     throw InvalidConfig(pc.key_path("coarse_level") + ": " + std::to_string(a.coarse_level) +
                         " is above the edit level " + std::to_string(edit_level));
-  if (s.constraint_mode != "paper")
-    throw InvalidConfig(pc.key_path("accuracy") + ": " + a.mode + " needs problem.constraint_mode paper");
+  if (s.constraint_mode != ConstraintMode::Paper)
+    throw InvalidConfig(pc.key_path("accuracy") + ": " + std::string(accuracy_names().name(a.mode)) +
+                        " needs problem.constraint_mode paper");
 }
 
 }  // namespace
@@ -162,11 +206,11 @@ RunSpec RunSpec::from_config(const YAML::Node& run_config, const Components& c,
   Config in = root.child("input", "input geometry");
   s.mesh_path = resolve_input(in.require<std::string>("mesh", "mesh file (.obj, .off, .ply)"), search_dirs,
                               in.key_path("mesh"));
-  s.representation = in.get_choice("representation", "mesh", {"mesh", "catmull-clark", "loop"},
-                                   "shape representation: the mesh itself or its subdivision surface");
+  s.representation = in.get_enum("representation", Representation::Mesh, representation_names(),
+                                 "shape representation: the mesh itself or its subdivision surface");
   s.levels = in.get_int("levels", 0, 0, 8, "uniform subdivision steps; the problem lives on the finest level");
-  s.boundary = in.get_choice("boundary", "edge-only", {"edge-only", "edge-and-corner"}, "subdivision boundary rule");
-  s.loop_weights = in.get_choice("weights", "loop", {"loop", "warren"}, "Loop vertex weights");
+  s.boundary = in.get_enum("boundary", BoundaryMode::EdgeOnly, boundary_names(), "subdivision boundary rule");
+  s.loop_weights = in.get_enum("weights", LoopWeights::Loop, loop_weight_names(), "Loop vertex weights");
   s.remesh_base_faces = in.get_int("remesh_base_faces", 0, 0, 10000000,
                                    "remesh the input into a hierarchy with details from about this many base faces "
                                    "(0: the input mesh is the base, zero details)");
@@ -175,20 +219,18 @@ RunSpec RunSpec::from_config(const YAML::Node& run_config, const Components& c,
   if (s.edit_level > s.levels)
     throw InvalidConfig(in.key_path("edit_level") + ": " + std::to_string(s.edit_level) + " is above the finest level " +
                         std::to_string(s.levels));
-  if (s.remesh_base_faces > 0 && s.representation == "mesh")
+  if (s.remesh_base_faces > 0 && s.representation == Representation::Mesh)
     throw InvalidConfig(in.key_path("remesh_base_faces") + ": remeshing needs representation catmull-clark or loop");
-  if (s.representation == "mesh" && s.levels > 0)
+  if (s.representation == Representation::Mesh && s.levels > 0)
     throw InvalidConfig(in.key_path("levels") + ": " + std::to_string(s.levels) +
                         " subdivision levels need representation catmull-clark or loop");
   read_energies(root, c, s.implementation, s);
   read_constraints(root, c, s.implementation, s);
   Config pc = root.child("problem", "how the problem is posed");
-  s.formulation = pc.get_choice("formulation", "displacement", {"displacement", "position"},
-                                "unknowns: displacement from the rest shape, or positions") == "position"
-                      ? Formulation::Position
-                      : Formulation::Displacement;
-  s.constraint_mode = pc.get_choice("constraint_mode", "paper", {"paper", "kkt", "qr_penalty", "range_space"},
-                                    "paper: least-squares constrained vertices then the solver (§4.3); kkt: exact "
+  s.formulation = pc.get_enum("formulation", Formulation::Displacement, formulation_names(),
+                              "unknowns: displacement from the rest shape, or positions");
+  s.constraint_mode = pc.get_enum("constraint_mode", ConstraintMode::Paper, constraint_mode_names(),
+                                  "paper: least-squares constrained vertices then the solver (§4.3); kkt: exact "
                                     "Lagrange system; qr_penalty / range_space: Welch & Witkin's solvers (src/qp)");
   read_accuracy(pc, s);
   pc.check_no_unknown_keys();

@@ -10,7 +10,10 @@
 #include <yaml-cpp/yaml.h>
 
 #include "core/backend.h"
+#include "design/edit_solve.h"
+#include "design/multilevel_edit.h"
 #include "experiment/components.h"
+#include "subdivision/scheme.h"
 #include "experiment/vtk_policy.h"
 
 namespace fairshape {
@@ -27,6 +30,10 @@ struct ConstraintTerm {
 };
 
 enum class Formulation { Displacement, Position };
+enum class Representation { Mesh, CatmullClark, Loop };  // the mesh itself, or its subdivision surface
+enum class InitialGuess { Zero, Random };
+//! single-level: the solver on the edit level alone; the others: Boier-Martin et al. §5's ladder.
+enum class AccuracyMode { SingleLevel, Interactive, Improved, Converged };
 
 struct OutputOptions {
   VtkPolicy vtk = VtkPolicy::Final;
@@ -39,14 +46,15 @@ struct OutputOptions {
 // problem.accuracy: Boier-Martin et al. §5's ladder (design/multilevel_edit.h), or the
 // configured solver on the edit level alone.
 struct AccuracyOptions {
-  std::string mode = "single-level";  // single-level | interactive | improved | converged
-  int coarse_level = 0;               // where interactive solves directly
-  std::string coarse_constraint_mode = "kkt";  // kkt | paper, on the coarse level
+  AccuracyMode mode = AccuracyMode::SingleLevel;
+  int coarse_level = 0;                                      // where interactive solves directly
+  ConstraintMode coarse_constraint_mode = ConstraintMode::Kkt;  // kkt | paper, on the coarse level
   std::string relaxation = "gauss_seidel";  // improved: gauss_seidel | sor
   int relaxation_sweeps = 10;               // improved: sweeps per level
   double relaxation_omega = 1.5;            // improved with sor
   int drag_steps = 1;                       // > 1: the handles dragged in this many steps
-  bool multilevel() const { return mode != "single-level"; }
+  bool multilevel() const { return mode != AccuracyMode::SingleLevel; }
+  Accuracy ladder() const;  // the ladder's mode (multilevel() only)
 };
 
 //! The keys every experiment config starts with, whatever it runs (surfaces, curves, sheets).
@@ -59,17 +67,22 @@ struct RunBasics {
 RunBasics read_run_basics(Config& root);
 
 struct RunSpec : RunBasics {
-  std::string mesh_path, representation;  // representation: mesh | catmull-clark | loop
+  std::string mesh_path;
+  Representation representation = Representation::Mesh;
   int levels = 0;                          // uniform subdivision steps of the input mesh
   int remesh_base_faces = 0;               // > 0: remesh the input into a hierarchy with details
   int edit_level = -1;                     // where the problem is solved (-1: the finest)
-  std::string constraint_mode = "paper";   // paper | kkt
+  ConstraintMode constraint_mode = ConstraintMode::Paper;
   AccuracyOptions accuracy;
-  std::string boundary = "edge-only", loop_weights = "loop";
+  BoundaryMode boundary = BoundaryMode::EdgeOnly;
+  LoopWeights loop_weights = LoopWeights::Loop;
+  //! The subdivision of a catmull-clark or loop representation.
+  SubdivisionOptions subdivision() const;
   std::vector<EnergyTerm> energies;
   std::vector<ConstraintTerm> constraints;
   Formulation formulation = Formulation::Displacement;
-  std::string solver_type, initial_guess;
+  std::string solver_type;
+  InitialGuess initial_guess = InitialGuess::Zero;
   std::unique_ptr<Solver> solver;
   OutputOptions output;
   std::string system_key;  // equal for runs that solve the same linear system

@@ -8,25 +8,49 @@
 
 namespace fairshape {
 
+namespace {
+
+using Cycle = MultigridOptions::Cycle;
+using CoarseOperator = MultigridOptions::CoarseOperator;
+using CoarseSpace = MultigridOptions::CoarseSpace;
+using Smoother = MultigridOptions::Smoother;
+
+const NameTable<Cycle>& cycle_names() {
+  static const NameTable<Cycle> t{{Cycle::V, "v"}, {Cycle::W, "w"}, {Cycle::Fmg, "fmg"}};
+  return t;
+}
+const NameTable<CoarseOperator>& coarse_operator_names() {
+  static const NameTable<CoarseOperator> t{{CoarseOperator::Galerkin, "galerkin"},
+                                           {CoarseOperator::Reassembly, "reassembly"}};
+  return t;
+}
+const NameTable<CoarseSpace>& coarse_space_names() {
+  static const NameTable<CoarseSpace> t{{CoarseSpace::Nested, "nested"},
+                                        {CoarseSpace::Truncated, "truncated"},
+                                        {CoarseSpace::Conforming, "conforming"}};
+  return t;
+}
+const NameTable<Smoother>& smoother_names() {
+  static const NameTable<Smoother> t{{Smoother::Block, "block"}, {Smoother::Multicolor, "multicolor"}};
+  return t;
+}
+
+}  // namespace
+
 MultigridOptions MultigridOptions::from_config(Config& cfg) {
   MultigridOptions o;
   Config sub = cfg.child("multigrid", "options of the multigrid solvers");
-  const std::string cycle = sub.get_choice("cycle", "v", {"v", "w", "fmg"},
-                                           "v / w cycles, or full multigrid (fmg: coarse-to-fine start, then v-cycles)");
-  o.cycle = cycle == "w" ? Cycle::W : cycle == "fmg" ? Cycle::Fmg : Cycle::V;
-  const std::string coarse = sub.get_choice("coarse_operator", "galerkin", {"galerkin", "reassembly"},
-                                            "coarse operators: Galerkin product PᵀAP, or the energy re-assembled on "
-                                            "each coarser mesh");
-  o.coarse_operator = coarse == "reassembly" ? CoarseOperator::Reassembly : CoarseOperator::Galerkin;
-  const std::string space = sub.get_choice(
-      "coarse_space", "nested", {"nested", "truncated", "conforming"},
+  o.cycle = sub.get_enum("cycle", o.cycle, cycle_names(),
+                         "v / w cycles, or full multigrid (fmg: coarse-to-fine start, then v-cycles)");
+  o.coarse_operator = sub.get_enum("coarse_operator", o.coarse_operator, coarse_operator_names(),
+                                   "coarse operators: Galerkin product PᵀAP, or the energy re-assembled on "
+                                   "each coarser mesh");
+  o.coarse_space = sub.get_enum(
+      "coarse_space", o.coarse_space, coarse_space_names(),
       "coarse unknowns: nested (coarse vertices whose own fine vertex is free), truncated (every coarse vertex "
       "whose subdivided basis function reaches a free fine vertex, cut to the free ones; with coarse_operator "
       "reassembly it is nested) or conforming (only those whose basis function vanishes on every constrained "
       "fine vertex)");
-  o.coarse_space = space == "truncated" ? CoarseSpace::Truncated
-                   : space == "nested"  ? CoarseSpace::Nested
-                                        : CoarseSpace::Conforming;
   o.pre_smooth = sub.get_int("pre_smooth", o.pre_smooth, 0, 1000, "forward smoothing sweeps before the coarse correction");
   o.post_smooth = sub.get_int("post_smooth", o.post_smooth, 0, 1000, "backward smoothing sweeps after it");
   o.omega = sub.get<double>("omega", o.omega, "smoother relaxation in (0, 2): 1 = Gauss-Seidel, else SOR");
@@ -34,11 +58,10 @@ MultigridOptions MultigridOptions::from_config(Config& cfg) {
     throw InvalidConfig(sub.key_path("omega") + ": " + std::to_string(o.omega) + " is outside (0, 2), where SOR diverges");
   o.patch_smoothing = sub.get<bool>("patch_smoothing", o.patch_smoothing,
                                     "exact solves on patches around extraordinary vertices after each sweep set");
-  const std::string smoother = sub.get_choice(
-      "smoother", "block", {"block", "multicolor"},
+  o.smoother = sub.get_enum(
+      "smoother", o.smoother, smoother_names(),
       "optimized back end: block multicolour Gauss-Seidel on a renumbered system (contiguous blocks) or point "
       "multicolour on the subdivision numbering; the reference is lexicographic either way");
-  o.smoother = smoother == "multicolor" ? Smoother::Multicolor : Smoother::Block;
   o.block_size = sub.get_int("block_size", o.block_size, 16, 1 << 16, "largest rows per block of the block smoother (a level uses smaller blocks when it has fewer than 64 of them)");
   o.max_levels = sub.get_int("max_levels", o.max_levels, 0, 64, "coarse levels to use (0: all the hierarchy has)");
   if (o.pre_smooth + o.post_smooth == 0 && !sub.documenting())

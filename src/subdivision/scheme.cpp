@@ -6,27 +6,26 @@
 
 namespace fairshape {
 
-std::string_view to_string(SchemeType s) { return s == SchemeType::CatmullClark ? "catmull-clark" : "loop"; }
-std::string_view to_string(BoundaryMode b) { return b == BoundaryMode::EdgeOnly ? "edge-only" : "edge-and-corner"; }
-std::string_view to_string(LoopWeights w) { return w == LoopWeights::Loop ? "loop" : "warren"; }
-
-SchemeType scheme_from_string(std::string_view s) {
-  if (s == "catmull-clark") return SchemeType::CatmullClark;
-  if (s == "loop") return SchemeType::Loop;
-  throw InvalidConfig("unknown subdivision scheme '" + std::string(s) + "' (valid: catmull-clark, loop)");
+const NameTable<SchemeType>& scheme_names() {
+  static const NameTable<SchemeType> t{{SchemeType::CatmullClark, "catmull-clark"}, {SchemeType::Loop, "loop"}};
+  return t;
+}
+const NameTable<BoundaryMode>& boundary_names() {
+  static const NameTable<BoundaryMode> t{{BoundaryMode::EdgeOnly, "edge-only"},
+                                         {BoundaryMode::EdgeAndCorner, "edge-and-corner"}};
+  return t;
+}
+const NameTable<LoopWeights>& loop_weight_names() {
+  static const NameTable<LoopWeights> t{{LoopWeights::Loop, "loop"}, {LoopWeights::Warren, "warren"}};
+  return t;
 }
 
-BoundaryMode boundary_from_string(std::string_view s) {
-  if (s == "edge-only") return BoundaryMode::EdgeOnly;
-  if (s == "edge-and-corner") return BoundaryMode::EdgeAndCorner;
-  throw InvalidConfig("unknown boundary mode '" + std::string(s) + "' (valid: edge-only, edge-and-corner)");
-}
-
-LoopWeights loop_weights_from_string(std::string_view s) {
-  if (s == "loop") return LoopWeights::Loop;
-  if (s == "warren") return LoopWeights::Warren;
-  throw InvalidConfig("unknown Loop weights '" + std::string(s) + "' (valid: loop, warren)");
-}
+std::string_view to_string(SchemeType s) { return scheme_names().name(s); }
+std::string_view to_string(BoundaryMode b) { return boundary_names().name(b); }
+std::string_view to_string(LoopWeights w) { return loop_weight_names().name(w); }
+SchemeType scheme_from_string(std::string_view s) { return scheme_names().value(s, "subdivision scheme"); }
+BoundaryMode boundary_from_string(std::string_view s) { return boundary_names().value(s, "boundary mode"); }
+LoopWeights loop_weights_from_string(std::string_view s) { return loop_weight_names().value(s, "Loop weights"); }
 
 double loop_beta(int k, LoopWeights weights) {
   if (weights == LoopWeights::Warren) return k == 3 ? 3.0 / 16.0 : 3.0 / (8.0 * k);

@@ -5,6 +5,8 @@
 #include <string>
 #include <string_view>
 
+#include "core/name_table.h"
+
 namespace fairshape {
 
 enum class SchemeType { CatmullClark, Loop };
@@ -23,6 +25,9 @@ struct SubdivisionOptions {
   LoopWeights weights = LoopWeights::Loop;
 };
 
+const NameTable<SchemeType>& scheme_names();
+const NameTable<BoundaryMode>& boundary_names();
+const NameTable<LoopWeights>& loop_weight_names();
 std::string_view to_string(SchemeType s);
 std::string_view to_string(BoundaryMode b);
 std::string_view to_string(LoopWeights w);

@@ -160,10 +160,10 @@ SheetConstraintSpec read_constraint(Config& c, const std::string& label, const s
     k.kind = SheetConstraint::Kind::Curve;
     s.curve = c.require<std::string>("curve", "space curve name");
     k.curve.uv = read_uv_list(c, "uv", "uv polyline on the sheet (default: the curve's from_surface uv)");
-    k.quadrature = c.get_choice("quadrature", "exact", {"exact", "reduced"}, "eq. 7 integration: exact, or reduced against locking") ==
-                           "exact"
-                       ? bspline::CurveQuadrature::Exact
-                       : bspline::CurveQuadrature::Reduced;
+    static const NameTable<bspline::CurveQuadrature> quadratures{{bspline::CurveQuadrature::Exact, "exact"},
+                                                                 {bspline::CurveQuadrature::Reduced, "reduced"}};
+    k.quadrature = c.get_enum("quadrature", bspline::CurveQuadrature::Exact, quadratures,
+                              "eq. 7 integration: exact, or reduced against locking");
   } else {
     const Eigen::Vector2d uv = read_uv(c, "uv", "parameter point [u, v]");
     k.u = uv.x();
@@ -252,10 +252,10 @@ SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config) {
     check_uv(cs.sheet, cs.curve.empty() ? std::vector<Eigen::Vector2d>{{cs.constraint.u, cs.constraint.v}} : cs.constraint.curve.uv,
              cs.label);
   Config ec = root.child("energy", "objective (§4.1): {metric, alpha, beta, rest_shape}");
-  s.energy.metric = ec.get_choice("metric", "thin_plate", {"thin_plate", "displacement"},
-                                  "thin plate under tension (eq. 4/6) or control-point displacement |p - p0|^2") == "thin_plate"
-                        ? bspline::ShapeMetric::ThinPlate
-                        : bspline::ShapeMetric::Displacement;
+  static const NameTable<bspline::ShapeMetric> metrics{{bspline::ShapeMetric::ThinPlate, "thin_plate"},
+                                                       {bspline::ShapeMetric::Displacement, "displacement"}};
+  s.energy.metric = ec.get_enum("metric", bspline::ShapeMetric::ThinPlate, metrics,
+                                "thin plate under tension (eq. 4/6) or control-point displacement |p - p0|^2");
   s.energy.weights.alpha = read_weights(ec, "alpha", 0.0, Eigen::Matrix2d::Identity(),
                                            "stretching weights alpha_ij: a number a (a·I: membrane) or a 2x2 matrix");
   s.energy.weights.beta = read_weights(ec, "beta", 1.0, Eigen::Matrix2d::Ones(),

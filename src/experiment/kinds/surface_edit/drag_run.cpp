@@ -34,8 +34,8 @@ DragOutcome run_drag(const RunSpec& spec, const RunOutputs& out, const EditLadde
     Config c(n, "problem.relaxation");
     return components().solvers.create(a.relaxation, backend, c);
   };
-  MultilevelEdit edit(ladder, accuracy_from_string(a.mode), direct, relaxer, *spec.solver, backend,
-                      a.coarse_constraint_mode == "kkt" ? ConstraintMode::Kkt : ConstraintMode::Paper);
+  MultilevelEdit edit(ladder, a.ladder(), direct, relaxer, *spec.solver, backend,
+                      a.coarse_constraint_mode);
   const std::vector<double> scales = drag_scales(a.drag_steps);
   DragOutcome result;
   for (std::size_t s = 0; s < scales.size(); ++s) {
@@ -43,7 +43,7 @@ DragOutcome run_drag(const RunSpec& spec, const RunOutputs& out, const EditLadde
     result.last = edit.solve(scales[s], last ? last_step : IterationCallback());
     const ReferenceSolution* ref = references[s];
     if (write_steps)
-      out.add_row("steps", {std::to_string(s + 1), num(scales[s]), a.mode, num(result.last.solve_s),
+      out.add_row("steps", {std::to_string(s + 1), num(scales[s]), std::string(to_string(a.ladder())), num(result.last.solve_s),
                    std::to_string(result.last.summary.iterations),
                    ref ? num(relative_error(result.last.delta, ref->u)) : "", num(result.last.constraint_residual),
                    ref ? num(ref->solve_s) : ""});

@@ -68,13 +68,6 @@ std::string detail_change(const MultiresSurface& before, const MultiresSurface& 
   return size > 0 ? num(std::sqrt(change / size)) : "";
 }
 
-ConstraintMode mode_of(const RunSpec& spec) {
-  if (spec.constraint_mode == "kkt") return ConstraintMode::Kkt;
-  if (spec.constraint_mode == "qr_penalty") return ConstraintMode::QrPenalty;
-  if (spec.constraint_mode == "range_space") return ConstraintMode::RangeSpace;
-  return ConstraintMode::Paper;
-}
-
 // Writes iterations.csv rows and VTK snapshots of the edit level while a solve runs.
 class IterationSink {
  public:
@@ -116,7 +109,7 @@ std::vector<const ReferenceSolution*> reference_solutions(const RunSpec& spec, R
   std::vector<const ReferenceSolution*> refs(scales.size(), nullptr);
   if (!spec.output.reference_solution) return refs;
   const auto key = [&](std::size_t s) {
-    std::string k = spec.system_key + spec.constraint_mode;
+    std::string k = spec.system_key + std::string(constraint_mode_names().name(spec.constraint_mode));
     return s + 1 == scales.size() ? k : k.append("|scale ").append(num(scales[s]));
   };
   std::unique_ptr<Solver> direct;
@@ -126,7 +119,7 @@ std::vector<const ReferenceSolution*> reference_solutions(const RunSpec& spec, R
       if (!exact) {
         Config none;
         direct = components().solvers.create("cholesky", Backend::Optimized, none);
-        exact = std::make_unique<PreparedEdit>(p, mode_of(spec), *direct, Backend::Optimized);
+        exact = std::make_unique<PreparedEdit>(p, spec.constraint_mode, *direct, Backend::Optimized);
       }
       const EditSolution sol = exact->solve(scales[s] * p.constraints.C);
       if (sol.summary.termination != Termination::Converged) continue;
@@ -191,17 +184,18 @@ const std::vector<std::string>& metric_columns() {
 }
 
 const MultiresSurface& RunCache::hierarchy(const RunSpec& spec, double* build_s) {
-  const std::string key = spec.mesh_path + "|" + spec.representation + "|" + std::to_string(spec.levels) + "|" +
-                          spec.boundary + "|" + spec.loop_weights + "|" + std::to_string(spec.remesh_base_faces) +
+  const bool subdivided = spec.representation != Representation::Mesh;
+  const std::string key = spec.mesh_path + "|" +
+                          (subdivided ? std::string(to_string(spec.subdivision().scheme)) : std::string("mesh")) + "|" +
+                          std::to_string(spec.levels) + "|" + std::string(to_string(spec.boundary)) + "|" +
+                          std::string(to_string(spec.loop_weights)) + "|" + std::to_string(spec.remesh_base_faces) +
                           "|" + std::string(to_string(spec.implementation));
   auto it = hierarchies_.find(key);
   if (it == hierarchies_.end()) {
     const SurfaceMesh input = read_mesh(spec.mesh_path);
     Timer t;
     SubdivisionOptions opt;
-    if (spec.representation != "mesh")
-      opt = {scheme_from_string(spec.representation), boundary_from_string(spec.boundary),
-             loop_weights_from_string(spec.loop_weights)};
+    if (subdivided) opt = spec.subdivision();
     MultiresSurface h = spec.remesh_base_faces > 0
                             ? remesh(input, {opt, spec.remesh_base_faces, spec.levels, spec.implementation}, nullptr)
                             : MultiresSurface(input, opt, spec.levels, spec.implementation);
@@ -239,7 +233,7 @@ MetricRow execute_run(RunSpec& spec, RunCache& cache, const RunOutputs& out) {
     row["n_dofs"] = std::to_string(problem.H.rows());
     row["n_fine"] = std::to_string(rest.mesh(rest.levels()).n_vertices());
     row["n_constrained"] = std::to_string(problem.constraints.A.rows() + problem.constraints.A_coupled.rows());
-    const Eigen::MatrixXd start = spec.initial_guess == "random" ? random_start(spec, problem.H.rows()) : Eigen::MatrixXd();
+    const Eigen::MatrixXd start = spec.initial_guess == InitialGuess::Random ? random_start(spec, problem.H.rows()) : Eigen::MatrixXd();
     const auto references = reference_solutions(spec, cache, problem, drag_scales(spec.accuracy.drag_steps));
     const ReferenceSolution* reference = references.back();
     // peak_rss_mb: the solve's peak (analysis included), not the yardstick's; solve_extra_mb:
@@ -258,7 +252,7 @@ MetricRow execute_run(RunSpec& spec, RunCache& cache, const RunOutputs& out) {
         sol = std::move(drag.last);
         level_solutions = std::move(drag.level_solutions);
       } else {
-        sol = solve_edit(problem, mode_of(spec), *spec.solver, spec.implementation, cb, start.size() ? &start : nullptr);
+        sol = solve_edit(problem, spec.constraint_mode, *spec.solver, spec.implementation, cb, start.size() ? &start : nullptr);
       }
       times.push_back(sol.solve_s);
     }

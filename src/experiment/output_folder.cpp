@@ -6,7 +6,6 @@
 
 #include <cstring>
 #include <fstream>
-#include <map>
 
 #include "core/error.h"
 #include "core/summary.h"
@@ -92,10 +91,16 @@ std::size_t OutputFolder::drop_failed_runs() {
   return before - t.rows.size();
 }
 
+std::set<std::string> recorded_runs(const fs::path& dir) {
+  std::set<std::string> ids;
+  const fs::path runs = table_path(dir, "runs");
+  if (fs::exists(runs))
+    for (const auto& r : read_csv(runs.string(), true).rows) ids.insert(r[0]);
+  return ids;
+}
+
 void OutputFolder::roll_back_orphan_rows(const TableLayout& layout, const std::set<std::string>& also) const {
-  std::set<std::string> done;
-  if (fs::exists(runs_csv()))
-    for (const auto& r : read_csv(runs_csv().string(), true).rows) done.insert(r[0]);
+  const std::set<std::string> done = recorded_runs(dir_);
   for (const auto& schema : layout.tables) {
     const fs::path path = table_csv(schema.name);
     if (!fs::exists(path)) continue;
@@ -124,9 +129,9 @@ void commit_run(const fs::path& dir, const TableLayout& layout, const std::vecto
       full.push_back(key_fields);
       full.back().insert(full.back().end(), r.begin(), r.end());
     }
-    CsvAppender((dir / (name + ".csv")).string()).append_table_rows(schema->columns, full);
+    CsvAppender(table_path(dir, name).string()).append_table_rows(schema->columns, full);
   }
-  CsvAppender((dir / "runs.csv").string()).append_table_rows(layout.runs_columns, {runs_row});
+  CsvAppender(table_path(dir, "runs").string()).append_table_rows(layout.runs_columns, {runs_row});
 }
 
 fs::path default_out_dir(const std::string& name) {

@@ -21,6 +21,11 @@ struct TableLayout {
   std::vector<TableSchema> tables;        // the kind's other tables, full columns
 };
 
+//! Where a table of an output folder lives: `<dir>/<name>.csv` (runs.csv is the table "runs").
+inline std::filesystem::path table_path(const std::filesystem::path& dir, const std::string& name) {
+  return dir / (name + ".csv");
+}
+
 class OutputFolder {
  public:
   //! Takes the folder's lock. \throw InvalidConfig when another process holds it.
@@ -30,9 +35,8 @@ class OutputFolder {
   OutputFolder& operator=(const OutputFolder&) = delete;
 
   const std::filesystem::path& dir() const { return dir_; }
-  std::filesystem::path runs_csv() const { return dir_ / "runs.csv"; }
-  //! Where a run's table rows go: `<name>.csv`.
-  std::filesystem::path table_csv(const std::string& name) const { return dir_ / (name + ".csv"); }
+  std::filesystem::path runs_csv() const { return table_path(dir_, "runs"); }
+  std::filesystem::path table_csv(const std::string& name) const { return table_path(dir_, name); }
 
   //! Removes every result a previous sweep left (for --force).
   void clear_results();
@@ -52,6 +56,9 @@ class OutputFolder {
   std::filesystem::path dir_;
   int lock_fd_ = -1;
 };
+
+//! The run_ids runs.csv in `dir` holds (a partly written last row left out).
+std::set<std::string> recorded_runs(const std::filesystem::path& dir);
 
 //! Appends one run to the tables in `dir`: its rows of the other tables, then its runs.csv row.
 void commit_run(const std::filesystem::path& dir, const TableLayout& layout, const std::vector<std::string>& key_fields,

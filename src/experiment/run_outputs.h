@@ -23,7 +23,6 @@ class RunTables {
   //! One row of `table` (its kind's own columns, in schema order).
   void add(const std::string& table, std::vector<std::string> row) { rows_[table].push_back(std::move(row)); }
   const std::map<std::string, std::vector<std::vector<std::string>>>& rows() const { return rows_; }
-  void clear() { rows_.clear(); }
 
  private:
   std::map<std::string, std::vector<std::vector<std::string>>> rows_;

@@ -22,7 +22,6 @@
 #include "experiment/run_spec.h"
 #include "experiment/supervisor.h"
 #include "experiment/sweep.h"
-#include "io/csv.h"
 
 namespace fairshape {
 namespace fs = std::filesystem;
@@ -221,9 +220,7 @@ int run_worker(const SweepOptions& opt) {
   bind_worker_to_supervisor();
   Plan plan = make_plan(opt, false);
   const fs::path dir = opt.out_dir;
-  std::set<std::string> done;
-  if (fs::exists(dir / "runs.csv"))
-    for (const auto& r : read_csv((dir / "runs.csv").string(), true).rows) done.insert(r[0]);
+  const std::set<std::string> done = recorded_runs(dir);
   std::vector<RunPoint> todo;
   for (std::size_t i : plan.selected) {
     RunPoint p = plan.space->point(i);

@@ -10,7 +10,6 @@
 #include "curve_design/curve_metrics.h"
 #include "curves/multires_polyline.h"
 #include "experiment/metric_format.h"
-#include "io/csv.h"
 #include "io/mesh_io.h"
 #include "experiment/vtk_policy.h"
 #include "io/vtk_io.h"
@@ -177,8 +176,6 @@ std::vector<std::string> step_row(int edit, const char* stage, const CurveMetric
           num(m.total_length_change), num(m.bending_energy), num(m.distance_to_attractor), std::to_string(m.wrinkles),
           solves, time};
 }
-
-
 }  // namespace
 
 MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {

@@ -12,7 +12,6 @@
 #include "core/config.h"
 #include "core/timer.h"
 #include "experiment/metric_format.h"
-#include "io/csv.h"
 #include "io/mesh_io.h"
 #include "experiment/vtk_policy.h"
 #include "io/vtk_io.h"

@@ -4,7 +4,6 @@
 
 #include "core/config.h"
 #include "experiment/metric_format.h"
-#include "io/csv.h"
 #include "problem/constrained_system.h"
 
 namespace fairshape {

@@ -11,7 +11,6 @@
 #include "experiment/kinds/surface_edit/assemble_problem.h"
 #include "experiment/kinds/surface_edit/drag_run.h"
 #include "experiment/metric_format.h"
-#include "io/csv.h"
 #include "io/mesh_io.h"
 #include "io/vtk_io.h"
 #include "design/edit_solve.h"

@@ -12,12 +12,13 @@ VertexSelection VertexSelection::from_config(Config& cfg) {
   s.loop_near_ = cfg.get<std::vector<double>>("boundary_loop_near", {},
                                                "select the boundary loop closest to [x, y, z]");
   Config region = cfg.child("region", "vertices in a slab of the bounding box: {axis, from, to}");
-  const std::string axis = region.get_choice("axis", "x", {"x", "y", "z"}, "slab axis");
+  static const NameTable<int> axes{{0, "x"}, {1, "y"}, {2, "z"}};
+  const int axis = region.get_enum("axis", 0, axes, "slab axis");
   s.from_ = region.get_number("from", 0.0, 0.0, 1.0, "slab start, as a fraction of the box");
   s.to_ = region.get_number("to", 0.0, 0.0, 1.0, "slab end, as a fraction of the box");
   region.check_no_unknown_keys();
   const bool has_region = cfg.has("region");
-  if (has_region) s.axis_ = axis[0] - 'x';
+  if (has_region) s.axis_ = axis;
   if (has_region && s.from_ > s.to_)
     throw InvalidConfig(region.key_path("from") + ": must not exceed 'to'");
   if (!s.nearest_.empty() && s.nearest_.size() != 3)

@@ -4,14 +4,13 @@
 
 namespace fairshape {
 
-std::string_view to_string(Backend b) {
-  return b == Backend::Reference ? "reference" : "optimized";
+const NameTable<Backend>& backend_names() {
+  static const NameTable<Backend> t{{Backend::Reference, "reference"}, {Backend::Optimized, "optimized"}};
+  return t;
 }
 
-Backend backend_from_string(std::string_view s) {
-  if (s == "reference") return Backend::Reference;
-  if (s == "optimized") return Backend::Optimized;
-  throw InvalidConfig("unknown backend '" + std::string(s) + "' (valid: reference, optimized)");
-}
+std::string_view to_string(Backend b) { return backend_names().name(b); }
+
+Backend backend_from_string(std::string_view s) { return backend_names().value(s, "implementation"); }
 
 }  // namespace fairshape

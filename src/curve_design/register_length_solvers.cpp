@@ -20,8 +20,9 @@ LengthSolverRegistry::Factory linearized(Backend backend) {
     o.backend = backend;
     o.tolerances = read_tolerances(c);
     Config own = c.child("linearized", "options of the linearized loop");
-    o.newton = own.get_choice("linearization", "paper", {"paper", "newton"},
-                            "paper: W = Q as published; newton: W = Q + sum lambda Hess f (quadratic convergence)") == "newton";
+    static const NameTable<bool> linearizations{{false, "paper"}, {true, "newton"}};
+    o.newton = own.get_enum("linearization", false, linearizations,
+                            "paper: W = Q as published; newton: W = Q + sum lambda Hess f (quadratic convergence)");
     o.newton_switch = own.get_number("newton_switch", o.newton_switch, 0, 1,
                                    "newton: use the Lagrangian Hessian once the length error is below this");
     o.line_search = own.get<bool>("line_search", o.line_search,

@@ -3,8 +3,9 @@
 // `paper`: the constrained vertices' deformations from the minimum-norm least-squares
 //          solution of A ΔP_c = C, then fixed; the free ones from the given solver (Gauss-
 //          Seidel, SOR, CG, Cholesky) on the reduced system.
-// `kkt`:   the exact Lagrange system [H Aᵀ; A 0] (reference Eigen SparseLU, optimized UMFPACK),
-//          for comparison: it satisfies the constraints exactly and minimizes the energy.
+// `kkt`, `qr_penalty`, `range_space`: the registered constrained solvers of src/qp (Welch &
+//          Witkin §4.3) on the same program — the exact minimizer, for comparison; one
+//          dependent-row policy (qp/row_dependence.h).
 // Point constraints alone keep x, y and z apart (three right-hand sides of one n × n system);
 // normal constraints couple them, and both modes then solve the one 3n × 3n system of §5.
 #pragma once
@@ -17,13 +18,13 @@
 #include "design/multires_constraints.h"
 #include "solver/level_operators.h"
 #include "problem/constrained_system.h"
+#include "core/config.h"
 #include "core/name_table.h"
 #include "solver/solver.h"
 
 namespace fairshape {
 
-// QrPenalty / RangeSpace: the Welch & Witkin solvers of src/qp (eq. 10 with Van Loan's
-// refinement, default options; CHOLMOD range space) on the same program.
+// Kkt / QrPenalty / RangeSpace: the qp registry's solver of that name.
 enum class ConstraintMode { Paper, Kkt, QrPenalty, RangeSpace };
 //! paper | kkt | qr_penalty | range_space, as in problem.constraint_mode.
 const NameTable<ConstraintMode>& constraint_mode_names();
@@ -48,11 +49,11 @@ struct EditSolution {
 //! for translation-invariant energies) or sizes disagree.
 //! `initial` (optional, n × 3) starts the iterative solvers on the free vertices; `cb` gets
 //! the full n × 3 deformation as its iterate.
+//! `qp_options`: the options of a QP mode's solver (problem.<mode>: {...}).
 EditSolution solve_edit(const EditProblem& p, ConstraintMode mode, Solver& free_solver, Backend backend,
-                        const IterationCallback& cb = {}, const Eigen::MatrixXd* initial = nullptr);
+                        const IterationCallback& cb = {}, const Eigen::MatrixXd* initial = nullptr, Config qp_options = {});
 
 class MinNormLeastSquares;
-class KktFactorization;
 namespace qp {
 class QpSolver;
 }
@@ -64,15 +65,15 @@ enum class ConstrainedStart { MinimumNorm, NearestToInitial };
 
 //! solve_edit split where a drag splits it: what depends only on H and the constraint rows
 //! (paper: the least-squares factorization of the constrained vertices, the reduced system,
-//! the solver's analysis; kkt: the factored Lagrange system) is done once; then any targets
+//! the solver's analysis; the QP modes: their solver's analyze()) is done once; then any targets
 //! of the same rows are solved. `p` and `solver` must outlive this object.
 class PreparedEdit {
  public:
   //! \throw InvalidInput like solve_edit.
-  PreparedEdit(const EditProblem& p, ConstraintMode mode, Solver& solver, Backend backend);
+  PreparedEdit(const EditProblem& p, ConstraintMode mode, Solver& solver, Backend backend, Config qp_options = {});
   ~PreparedEdit();
-  //! C: targets of p.constraints.A (m × 3); normal constraints keep their own. The KKT mode
-  //! is direct: it ignores `cb` and `initial`.
+  //! C: targets of p.constraints.A (m × 3); normal constraints keep their own. The QP modes
+  //! are direct: they ignore `cb` and `initial`.
   EditSolution solve(const Eigen::MatrixXd& C, const IterationCallback& cb = {}, const Eigen::MatrixXd* initial = nullptr,
                      ConstrainedStart constrained = ConstrainedStart::MinimumNorm);
   double analyze_s() const { return analyze_s_; }
@@ -90,8 +91,8 @@ class PreparedEdit {
   const EditProblem* original_ = nullptr;
   std::optional<EditProblem> stacked_;  // the coupled 3n system when there are normal constraints
   Solver& solver_;
-  std::unique_ptr<KktFactorization> kkt_;
-  std::unique_ptr<qp::QpSolver> qp_;  // QrPenalty / RangeSpace
+  std::unique_ptr<qp::QpSolver> qp_;  // the QP modes
+  int constrained_vertices_ = 0;      // the QP modes: unknowns some constraint row reaches
   std::vector<int> touched_;  // paper: vertices some constraint row reaches, fixed by least squares
   std::unique_ptr<MinNormLeastSquares> ls_;
   ReducedSystem red_;

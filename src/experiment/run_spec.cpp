@@ -5,6 +5,7 @@
 
 #include "core/config.h"
 #include "experiment/vtk_policy.h"
+#include "qp/qp_solver.h"
 
 namespace fairshape {
 namespace fs = std::filesystem;
@@ -30,6 +31,11 @@ Accuracy AccuracyOptions::ladder() const {
   return mode == AccuracyMode::Interactive ? Accuracy::Interactive
          : mode == AccuracyMode::Improved  ? Accuracy::Improved
                                            : Accuracy::Converged;
+}
+
+Config RunSpec::qp_config() const {
+  return Config(qp_options ? YAML::Clone(qp_options) : YAML::Node(YAML::NodeType::Map),
+                "problem." + std::string(constraint_mode_names().name(constraint_mode)));
 }
 
 SubdivisionOptions RunSpec::subdivision() const {
@@ -121,6 +127,22 @@ void read_solver(Config& root, const Components& c, Backend backend, RunSpec& s)
   }
 }
 
+// problem.kkt, problem.qr_penalty, problem.range_space: each QP mode's options, validated
+// against its solver's schema whichever mode is chosen (a sweep over constraint_mode carries
+// them all); the blocks of modes not chosen are recorded as unused.
+void read_qp_options(Config& pc, Backend backend, RunSpec& s) {
+  const auto& registry = qp::qp_solver_registry();
+  for (const auto& name : registry.names()) {
+    Config block = pc.child(name, "options of constraint_mode " + name + " (see `fairshape list`)");
+    (void)registry.create(name, registry.has(name, backend) ? backend : Backend::Optimized, block);
+    block.check_no_unknown_keys();
+    const bool chosen = s.constraint_mode != ConstraintMode::Paper && constraint_mode_names().name(s.constraint_mode) == name;
+    if (chosen) s.qp_options = block.node();
+    else if (block.node().IsMap())
+      for (const auto& kv : block.node()) s.unused_keys.push_back(block.key_path(kv.first.as<std::string>()));
+  }
+}
+
 void read_output(Config& root, OutputOptions& o) {
   Config oc = root.child("output", "what each run writes");
   o.vtk = read_vtk_policy(oc, "also the iterate every output.vtk_every iterations, as a .pvd series");
@@ -193,8 +215,7 @@ RunBasics read_run_basics(Config& root) {
   b.seed = root.get_int("seed", 0, 0, INT32_MAX, "random seed (runs without randomness ignore it)");
   b.threads = root.get_int("threads", 0, 0, 4096, "TBB threads for optimized back ends (0 = all cores)");
   b.repeat = root.get_int("repeat", 1, 1, 1000, "timing repeats (the median is reported; surface runs also report the minimum)");
-  b.implementation = backend_from_string(
-      root.get_choice("implementation", "optimized", {"reference", "optimized"}, "back end of every component"));
+  b.implementation = root.get_enum("implementation", Backend::Optimized, backend_names(), "back end of every component");
   return b;
 }
 
@@ -233,6 +254,7 @@ RunSpec RunSpec::from_config(const YAML::Node& run_config, const Components& c,
                                   "paper: least-squares constrained vertices then the solver (§4.3); kkt: exact "
                                     "Lagrange system; qr_penalty / range_space: Welch & Witkin's solvers (src/qp)");
   read_accuracy(pc, s);
+  read_qp_options(pc, s.implementation, s);
   pc.check_no_unknown_keys();
   read_solver(root, c, s.implementation, s);
   read_output(root, s.output);

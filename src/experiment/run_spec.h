@@ -73,6 +73,9 @@ struct RunSpec : RunBasics {
   int remesh_base_faces = 0;               // > 0: remesh the input into a hierarchy with details
   int edit_level = -1;                     // where the problem is solved (-1: the finest)
   ConstraintMode constraint_mode = ConstraintMode::Paper;
+  //! The QP modes: problem.<mode>, the options of that mode's solver (src/qp's schema).
+  YAML::Node qp_options;
+  Config qp_config() const;
   AccuracyOptions accuracy;
   BoundaryMode boundary = BoundaryMode::EdgeOnly;
   LoopWeights loop_weights = LoopWeights::Loop;

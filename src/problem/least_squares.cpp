@@ -37,7 +37,12 @@ SparseMatrix compressed(SparseMatrix M) {
 // the least-squares solution of least norm, A⁺C, and stays sparse whatever the size.
 template <class QR>
 std::vector<int> independent_rows_by(const SparseMatrix& A) {
-  QR qr(compressed(A.transpose()));
+  const SparseMatrix At = compressed(A.transpose());
+  double largest = 0;
+  for (int c = 0; c < At.outerSize(); ++c) largest = std::max(largest, At.col(c).norm());
+  QR qr;
+  qr.setPivotThreshold(kRowDependenceTolerance * largest);
+  qr.compute(At);
   if (qr.info() != Eigen::Success) throw SolverError("least squares: QR of the constraint rows failed");
   const auto permutation = qr.colsPermutation();  // SPQR returns it by value: keep it alive
   const auto& perm = permutation.indices();

@@ -46,8 +46,13 @@ class MinNormLeastSquares {
 //! \throw InvalidInput for non-finite input or mismatched sizes.
 LeastSquaresResult min_norm_least_squares(const SparseMatrix& A, const Eigen::MatrixXd& C, Backend backend);
 
+//! Relative size (to the strongest) below which a direction of constraint rows counts as
+//! dependent: the one rank policy of every constrained solve (see qp/row_dependence.h).
+inline constexpr double kRowDependenceTolerance = 1e-8;
+
 //! A maximal set of linearly independent rows of A (ascending), from a rank-revealing QR of Aᵀ
-//! (reference Eigen SparseQR, optimized SuiteSparseQR).
+//! (reference Eigen SparseQR, optimized SuiteSparseQR) whose pivots below
+//! kRowDependenceTolerance × the largest row norm count as zero.
 std::vector<int> independent_rows(const SparseMatrix& A, Backend backend);
 
 //! The columns of A with at least one entry (ascending): the unknowns its rows reach.

@@ -2,18 +2,15 @@
 //   [H   sĀᵀ] [p]   [ f  ]
 //   [sĀ   0 ] [y] = [s b̄],
 // over Ā p = b̄, a maximal independent subset of the constraint rows (§4.3), chosen by a
-// rank-revealing QR of Aᵀ (dense column-pivoted Householder on the unknowns A reaches when that
-// is small, SPQR / Eigen SparseQR otherwise). When the kept rows are still too close to
+// rank-revealing QR of Aᵀ, or, when A has more rows than the unknowns it reaches, reduced
+// orthogonally at once (the policy of qp/row_dependence.h). When the kept rows are still too close to
 // dependent for the LU, or the dropped rows disagree with the kept ones, the rows are reduced
 // instead to Ā = R₁Pᵀ, b̄ = Q₁ᵀ b from A P = Q R: well conditioned, and for inconsistent targets
 // the least-squares fit (the paper's AᵀA p = Aᵀb, without squaring A's condition number),
 // reported with its residual. Scaled by s = max diag H so the LU keeps its digits. Optimized:
 // UMFPACK (symmetric strategy), whose symbolic analysis is reused while the pattern stays the
 // same; reference: Eigen SparseLU.
-#include <Eigen/QR>
-#include <Eigen/SPQRSupport>
 #include <Eigen/SparseLU>
-#include <Eigen/SparseQR>
 #include <Eigen/UmfPackSupport>
 
 #include <algorithm>
@@ -127,79 +124,6 @@ SparseMatrix lagrange_matrix(const SparseMatrix& H, const SparseMatrix& A, doubl
   return K;
 }
 
-CompressedRows independent_rows_of(const SparseMatrix& A, Backend backend, double relative_tolerance) {
-  const std::vector<int> reached = reached_columns(A);
-  std::vector<int> keep;
-  if (static_cast<double>(A.rows()) * static_cast<double>(reached.size()) <= kDenseReductionEntries) {
-    // Column pivoting on Aᵀ picks rows in order of independence: rank-revealing in practice.
-    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr;
-    qr.setThreshold(relative_tolerance);
-    qr.compute(Eigen::MatrixXd(SparseMatrix(A * row_picker(A.cols(), reached)).transpose()));
-    for (Eigen::Index k = 0; k < qr.rank(); ++k) keep.push_back(qr.colsPermutation().indices()[k]);
-    std::sort(keep.begin(), keep.end());
-  } else {
-    keep = independent_rows(A, backend);
-  }
-  const SparseMatrix pick_t = SparseMatrix(row_picker(A.rows(), keep).transpose());
-  return {pick_t * A, [pick_t](const Eigen::MatrixXd& b) { return Eigen::MatrixXd(pick_t * b); }};
-}
-
-CompressedRows compress_rows(const SparseMatrix& A, Backend backend, double relative_tolerance) {
-  const std::vector<int> reached = reached_columns(A);
-  if (static_cast<double>(A.rows()) * static_cast<double>(reached.size()) <= kDenseReductionEntries) {
-    // Column-pivoted Householder QR of A on the unknowns it reaches: rank-revealing in practice
-    // (SPQR's pivot threshold is a heuristic that keeps nearly dependent curve rows).
-    auto qr = std::make_shared<Eigen::ColPivHouseholderQR<Eigen::MatrixXd>>();
-    qr->setThreshold(relative_tolerance);
-    qr->compute(Eigen::MatrixXd(A * row_picker(A.cols(), reached)));
-    const Eigen::Index k = qr->rank();
-    const Eigen::MatrixXd R = qr->matrixR().topRows(k).triangularView<Eigen::Upper>();
-    Triplets t;
-    for (Eigen::Index c = 0; c < R.cols(); ++c)
-      for (Eigen::Index r = 0; r < k; ++r)
-        if (R(r, c) != 0) t.emplace_back(static_cast<int>(r), reached[qr->colsPermutation().indices()[c]], R(r, c));
-    CompressedRows out;
-    out.rows.resize(k, A.cols());
-    out.rows.setFromTriplets(t.begin(), t.end());
-    out.targets = [qr, k](const Eigen::MatrixXd& b) {
-      return Eigen::MatrixXd((qr->householderQ().transpose() * b).topRows(k));
-    };
-    return out;
-  }
-  double largest = 0;
-  for (int c = 0; c < A.outerSize(); ++c) largest = std::max(largest, A.col(c).norm());
-  SparseMatrix compressed = A;
-  compressed.makeCompressed();
-  const auto run = [&](auto& qr) {
-    qr.setPivotThreshold(relative_tolerance * largest);
-    qr.compute(compressed);
-    if (qr.info() != Eigen::Success) throw SolverError("KKT: QR of the constraint rows failed");
-    const Eigen::Index k = qr.rank();
-    const auto permutation = qr.colsPermutation();  // SPQR returns it by value: keep it alive
-    const Eigen::VectorXi perm = permutation.indices().template cast<int>();
-    const SparseMatrix R = SparseMatrix(qr.matrixR()).topRows(k);
-    Triplets t;
-    for (int c = 0; c < R.outerSize(); ++c)
-      for (SparseMatrix::InnerIterator it(R, c); it; ++it) t.emplace_back(static_cast<int>(it.row()), perm[c], it.value());
-    CompressedRows out;
-    out.rows.resize(k, A.cols());
-    out.rows.setFromTriplets(t.begin(), t.end());
-    const SparseMatrix R11t = SparseMatrix(R.leftCols(k)).transpose();
-    std::vector<int> leading(perm.data(), perm.data() + k);
-    const SparseMatrix AP1t = SparseMatrix(row_picker(A.cols(), leading).transpose()) * SparseMatrix(A.transpose());
-    out.targets = [R11t, AP1t](const Eigen::MatrixXd& b) {
-      return Eigen::MatrixXd(R11t.triangularView<Eigen::Lower>().solve(Eigen::MatrixXd(AP1t * b)));
-    };
-    return out;
-  };
-  if (backend == Backend::Reference) {
-    Eigen::SparseQR<SparseMatrix, Eigen::COLAMDOrdering<int>> qr;
-    return run(qr);
-  }
-  Eigen::SPQR<SparseMatrix> qr;
-  return run(qr);
-}
-
 // The factored Lagrange system over the compressed constraint rows.
 struct KktSolver::System {
   CompressedRows rows;
@@ -242,14 +166,14 @@ void KktSolver::analyze(const QuadraticProgram& qp) {
   scale_ = diag > 0 ? diag : 1.0;
   least_squares_.reset();
   reduced_ = false;
-  CompressedRows rows = A_.rows() ? independent_rows_of(A_, backend_, kRowDependenceTolerance)
-                                  : CompressedRows{SparseMatrix(0, A_.cols()), [](const Eigen::MatrixXd& b) { return b; }};
+  CompressedRows rows = without_dependent_rows(A_, backend_);
+  reduced_ = rows.orthogonal;
   const bool dropped = rows.rows.rows() < A_.rows();
   main_ = build(std::move(rows), main_ ? std::move(main_->lu) : nullptr);
-  if (main_->singular && dropped) {
+  if (main_->singular && dropped && !reduced_) {
     // The kept original rows are still nearly dependent (curve rows along a curved path): the
     // orthogonal reduction R₁Pᵀ is well conditioned where a subset of the rows is not.
-    main_ = build(compress_rows(A_, backend_, kRowDependenceTolerance), nullptr);
+    main_ = build(compress_rows(A_, backend_), nullptr);
     reduced_ = true;
   }
   analyze_s_ = timer.seconds();
@@ -290,7 +214,7 @@ QpReport KktSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) {
     out.message = inconsistent_message(out.constraint_residual);
   else if (out.termination == Termination::Converged && out.dropped_rows > 0 && out.constraint_residual > 1e-9 * (1 + b.norm())) {
     // The dropped rows disagree with the kept ones: fit all of them in the least-squares sense.
-    if (!least_squares_) least_squares_ = build(compress_rows(A_, backend_, kRowDependenceTolerance), nullptr);
+    if (!least_squares_) least_squares_ = build(compress_rows(A_, backend_), nullptr);
     const int dropped = out.dropped_rows;
     out = solve_with(*least_squares_, f, b);
     out.dropped_rows = dropped;

@@ -1,4 +1,5 @@
 #include "qp/range_space_solver.h"
+#include "qp/row_dependence.h"
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/QR>
@@ -74,6 +75,9 @@ void RangeSpaceSolver::rebuild_schur() {
   }
   Z_ = solve_h(Eigen::MatrixXd(SparseMatrix(A_.transpose())));
   S_ = A_ * Z_;
+  // qp/row_dependence.h's rank policy: S = A H⁻¹ Aᵀ squares A's singular values, so a
+  // direction of A at the tolerance is one of S at its square.
+  schur_.setThreshold(kRowDependenceTolerance * kRowDependenceTolerance);
   schur_.compute(S_);
 }
 

@@ -12,9 +12,9 @@ QrPenaltyOptions read_penalty(Config& cfg) {
                         "penalty weight of the constraint rows, relative to the energy's scale (sqrt(max diag H) / max|A|)");
   o.refinement_steps = cfg.get_int("refinement_steps", o.refinement_steps, 0, 100,
                                    "Van Loan weighting-method steps refining the constraint residual with the same factorization");
-  o.orthogonal = cfg.get_choice("solve", "semi_normal", {"semi_normal", "orthogonal"},
-                                "semi_normal: R only (corrected semi-normal equations, fast); orthogonal: through Q (slow, accurate)") ==
-                 "orthogonal";
+  static const NameTable<bool> solves{{false, "semi_normal"}, {true, "orthogonal"}};
+  o.orthogonal = cfg.get_enum("solve", false, solves,
+                              "semi_normal: R only (corrected semi-normal equations, fast); orthogonal: through Q (slow, accurate)");
   return o;
 }
 }  // namespace

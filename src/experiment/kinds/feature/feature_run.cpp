@@ -70,7 +70,7 @@ FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const s
   Config in = root.child("input", "the base mesh: {mesh, levels, weights}");
   s.mesh_path = resolve_input(in.require<std::string>("mesh", "a triangle mesh (OFF/OBJ/PLY)"), dirs, in.key_path("mesh"));
   s.levels = in.get_int("levels", 3, 0, 8, "uniform Loop subdivision steps");
-  s.loop_weights = in.get_choice("weights", "loop", {"loop", "warren"}, "Loop vertex weights (warren: 3/8k, the paper's)");
+  s.loop_weights = in.get_enum("weights", LoopWeights::Loop, loop_weight_names(), "Loop vertex weights (warren: 3/8k, the paper's)");
   in.check_no_unknown_keys();
   Config dc = root.child("feature_defaults", "parameters every feature starts from (sweepable: feature_defaults.height)");
   const feature::FeatureParams defaults = read_params(dc, feature::FeatureParams{});
@@ -149,7 +149,7 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
   try {
     SubdivisionOptions opt;
     opt.scheme = SchemeType::Loop;
-    opt.weights = spec.loop_weights == "warren" ? LoopWeights::Warren : LoopWeights::Loop;
+    opt.weights = spec.loop_weights;
     const SurfaceMesh base = read_mesh(spec.mesh_path);
     feature::FeaturedSurface surface(MultiresSurface(base, opt, spec.levels, spec.implementation), spec.implementation);
     const SurfaceMesh& fine0 = surface.original().mesh(spec.levels);

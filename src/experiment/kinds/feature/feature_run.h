@@ -11,6 +11,7 @@
 #include "experiment/run_outputs.h"
 #include "experiment/run_spec.h"
 #include "feature/feature_curve.h"
+#include "subdivision/scheme.h"
 
 namespace fairshape {
 
@@ -27,7 +28,8 @@ struct BaseEditSpec {
 };
 
 struct FeatureRunSpec : RunBasics {
-  std::string mesh_path, loop_weights = "loop";
+  std::string mesh_path;
+  LoopWeights loop_weights = LoopWeights::Loop;
   int levels = 3;
   std::vector<FeatureSpec> features;
   BaseEditSpec base_edit;

@@ -65,8 +65,9 @@ SheetSpec read_sheet(Config& c) {
   s.shape.spans_u = spans[0];
   s.shape.spans_v = spans[1];
   s.shape.degree = c.get_int("degree", 3, bspline::kMinDegree, bspline::kMaxDegree, "B-spline degree r");
-  s.geometry = c.get_choice("geometry", "plane", {"plane", "cylinder"}, "initial shape (a cylinder is periodic in u)");
-  s.shape.periodic_u = s.geometry == "cylinder";
+  static const NameTable<SheetGeometry> geometries{{SheetGeometry::Plane, "plane"}, {SheetGeometry::Cylinder, "cylinder"}};
+  s.geometry = c.get_enum("geometry", SheetGeometry::Plane, geometries, "initial shape (a cylinder is periodic in u)");
+  s.shape.periodic_u = s.geometry == SheetGeometry::Cylinder;
   s.origin = read_vec3(c, "origin", s.origin, "plane: corner at (0, 0); cylinder: center of the base circle");
   s.u_axis = read_vec3(c, "u_axis", s.u_axis, "world direction of u (plane) / first radial axis (cylinder)");
   s.v_axis = read_vec3(c, "v_axis", s.v_axis, "world direction of v (plane and cylinder axis)");
@@ -100,7 +101,7 @@ Eigen::MatrixXd initial_coefficients(const SheetSpec& s, const bspline::Hierarch
   for (int k = 0; k < surface.dof_count(); ++k) {
     const bspline::ControlId c = surface.dofs()[k];
     const double v = c.j - shift;
-    if (s.geometry == "plane") {
+    if (s.geometry == SheetGeometry::Plane) {
       P.row(k) = (s.origin + (c.i - shift) * (s.size_u / s.shape.spans_u) * a + v * (s.size_v / s.shape.spans_v) * n).transpose();
     } else {
       const int m = s.shape.spans_u;
@@ -176,7 +177,8 @@ SheetConstraintSpec read_constraint(Config& c, const std::string& label, const s
       if (!s.relative) (void)c.get<std::vector<double>>("by", {0, 0, 0}, "offset from the initial surface point");
     } else if (type == "tangent") {
       k.kind = SheetConstraint::Kind::Tangent;
-      k.direction = c.get_choice("direction", "u", {"u", "v"}, "parametric derivative D_u or D_v") == "u" ? 0 : 1;
+      static const NameTable<int> directions{{0, "u"}, {1, "v"}};
+      k.direction = c.get_enum("direction", 0, directions, "parametric derivative D_u or D_v");
       k.target = read_vec3(c, "target", Vec3::UnitX(), "the derivative vector");
     } else {
       k.kind = SheetConstraint::Kind::Normal;

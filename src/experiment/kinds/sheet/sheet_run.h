@@ -19,10 +19,12 @@
 
 namespace fairshape {
 
+enum class SheetGeometry { Plane, Cylinder };
+
 struct SheetSpec {
   std::string name;
   bspline::SheetShape shape;
-  std::string geometry = "plane";  // plane | cylinder
+  SheetGeometry geometry = SheetGeometry::Plane;
   Vec3 origin = Vec3::Zero(), u_axis = Vec3::UnitX(), v_axis = Vec3::UnitY();
   double size_u = 1, size_v = 1;  // plane: world extent; cylinder: radius (size_u) and height (size_v)
   std::vector<bspline::SpanId> refine;

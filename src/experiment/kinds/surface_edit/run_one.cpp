@@ -118,7 +118,7 @@ std::vector<const ReferenceSolution*> reference_solutions(const RunSpec& spec, R
       if (!exact) {
         Config none;
         direct = components().solvers.create("cholesky", Backend::Optimized, none);
-        exact = std::make_unique<PreparedEdit>(p, spec.constraint_mode, *direct, Backend::Optimized);
+        exact = std::make_unique<PreparedEdit>(p, spec.constraint_mode, *direct, Backend::Optimized, spec.qp_config());
       }
       const EditSolution sol = exact->solve(scales[s] * p.constraints.C);
       if (sol.summary.termination != Termination::Converged) continue;
@@ -251,7 +251,8 @@ MetricRow execute_run(RunSpec& spec, RunCache& cache, const RunOutputs& out) {
         sol = std::move(drag.last);
         level_solutions = std::move(drag.level_solutions);
       } else {
-        sol = solve_edit(problem, spec.constraint_mode, *spec.solver, spec.implementation, cb, start.size() ? &start : nullptr);
+        sol = solve_edit(problem, spec.constraint_mode, *spec.solver, spec.implementation, cb, start.size() ? &start : nullptr,
+                         spec.qp_config());
       }
       times.push_back(sol.solve_s);
     }

@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -113,6 +114,25 @@ TEST_CASE("run validation catches bad components, keys and values before running
   CHECK_THROWS_WITH(spec_with("energy", "[{type: membrane, wieght: 2}]"), Contains("energy[0].wieght: unknown key"));
   CHECK_THROWS_WITH(spec_with("constraints", "[{type: fixed, region: {axis: w}}]"), Contains("valid: x, y, z"));
   CHECK_THROWS_WITH(spec_with("colour", "red"), Contains("colour: unknown key"));
+}
+
+TEST_CASE("each QP constraint mode's options are its solver's, valid whichever mode is chosen, unused ones recorded",
+          "[config]") {
+  auto spec_with = [](std::vector<std::pair<std::string, std::string>> sets) {
+    YAML::Node root = smoke_config();
+    for (const auto& [key, value] : sets) set_by_path(root, key, YAML::Load(value));
+    return RunSpec::from_config(root, components(), dirs());
+  };
+  const RunSpec penalty = spec_with({{"problem.constraint_mode", "qr_penalty"}, {"problem.qr_penalty", "{mu: 1000, solve: orthogonal}"}});
+  CHECK(penalty.qp_config().node()["mu"].as<double>() == 1000);
+  CHECK(penalty.qp_config().path() == "problem.qr_penalty");
+  CHECK(std::find(penalty.unused_keys.begin(), penalty.unused_keys.end(), "problem.qr_penalty.mu") == penalty.unused_keys.end());
+  // Under another mode the block is still validated, and recorded as not used.
+  const RunSpec paper = spec_with({{"problem.qr_penalty", "{mu: 1000}"}});
+  CHECK(std::find(paper.unused_keys.begin(), paper.unused_keys.end(), "problem.qr_penalty.mu") != paper.unused_keys.end());
+  CHECK_THROWS_WITH(spec_with({{"problem.qr_penalty", "{mu: -1}"}}), Contains("problem.qr_penalty.mu"));
+  CHECK_THROWS_WITH(spec_with({{"problem.qr_penalty", "{solve: exact}"}}), Contains("valid: semi_normal, orthogonal"));
+  CHECK_THROWS_WITH(spec_with({{"problem.kkt", "{mu: 3}"}}), Contains("problem.kkt.mu: unknown key"));
 }
 
 TEST_CASE("outcome vocabulary: names round-trip, success is what was asked", "[config][summary]") {

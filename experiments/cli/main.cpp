@@ -50,6 +50,7 @@ int main(int argc, char** argv) {
   c_run->add_option("--shard", shard, "run only slice i of n (0 <= i < n), e.g. for a cluster job array");
   c_run->add_flag("--retry-failed", run.retry_failed, "with --resume: run the runs whose row says they failed again");
   c_run->add_flag("--dry-run", run.dry_run, "validate and print the points with their run ids; run nothing");
+  c_run->add_flag("--smoke", run.smoke, "run the config's CI-sized variant: its smoke: block of key.path: value overrides");
   c_run->add_option("--worker", worker, "internal: set for processes started by --jobs")->group("");
 
   SubdivideArgs sub;

@@ -148,8 +148,20 @@ void take_key_out_of_sweep(YAML::Node root, const std::string& key, std::vector<
 }  // namespace
 
 YAML::Node load_experiment_config(const std::string& path, const std::vector<std::string>& sets,
-                                  std::vector<std::string>* notes) {
+                                  std::vector<std::string>* notes, ConfigVariant variant) {
   YAML::Node root = load_with_defaults(path, 0);
+  const YAML::Node smoke = root["smoke"];
+  if (smoke && !smoke.IsMap())
+    throw InvalidConfig(path + ": smoke: expected a map of key.path: value overrides (the CI-sized variant)");
+  if (smoke) root.remove("smoke");
+  if (variant == ConfigVariant::Smoke) {
+    if (!smoke) throw InvalidConfig(path + ": --smoke: the file has no smoke: block of overrides");
+    for (const auto& kv : smoke) {
+      const std::string key = kv.first.as<std::string>();
+      take_key_out_of_sweep(root, key, nullptr);
+      set_by_path(root, key, deep_copy(kv.second));
+    }
+  }
   for (const auto& s : sets) {
     const auto eq = s.find('=');
     if (eq == std::string::npos || eq == 0)

@@ -118,6 +118,7 @@ RunJournal::RunJournal(const fs::path& dir, const SweepOptions& opt, const YAML:
   session["started"] = utc_timestamp();
   session["argv"] = opt.argv;
   session["set"] = opt.sets;
+  session["smoke"] = opt.smoke;
   session["filter"] = opt.filters;
   session["shard"] = slice_json(opt.shard);
   session["jobs"] = opt.jobs;

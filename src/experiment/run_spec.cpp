@@ -123,7 +123,7 @@ void read_solver(Config& root, const Components& c, Backend backend, RunSpec& s)
   if (solver_is_used(s)) {
     for (const auto& k : chosen.unread_keys()) s.unused_keys.push_back(sc.key_path(k));
   } else {
-    for (const auto& kv : sc.node()) s.unused_keys.push_back(sc.key_path(kv.first.as<std::string>()));
+    s.note_unused(sc);
   }
 }
 
@@ -138,15 +138,16 @@ void read_qp_options(Config& pc, Backend backend, RunSpec& s) {
     block.check_no_unknown_keys();
     const bool chosen = s.constraint_mode != ConstraintMode::Paper && constraint_mode_names().name(s.constraint_mode) == name;
     if (chosen) s.qp_options = block.node();
-    else if (block.node().IsMap())
-      for (const auto& kv : block.node()) s.unused_keys.push_back(block.key_path(kv.first.as<std::string>()));
+    else s.note_unused(block);
   }
 }
 
-void read_output(Config& root, OutputOptions& o) {
+void read_output(Config& root, RunSpec& s) {
+  OutputOptions& o = s.output;
   Config oc = root.child("output", "what each run writes");
   o.vtk = read_vtk_policy(oc, "also the iterate every output.vtk_every iterations, as a .pvd series");
   o.vtk_every = oc.get_int("vtk_every", o.vtk_every, 1, 1000000, "iterations between VTK snapshots");
+  s.note_unused(oc, "vtk_every", o.vtk == VtkPolicy::All);
   o.iterations = oc.get<bool>("iterations", o.iterations, "write iterations.csv (residual history)");
   o.final_mesh = oc.get<bool>("final_mesh", o.final_mesh, "write final.obj (final/<run_id>.obj in sweeps)");
   o.reference_solution = oc.get<bool>("reference_solution", o.reference_solution,
@@ -170,6 +171,10 @@ void read_accuracy(Config& pc, RunSpec& s) {
   a.relaxation_omega = pc.get_number("relaxation_omega", a.relaxation_omega, 1e-3, 1.999, "improved with sor: ω");
   a.drag_steps = pc.get_int("drag_steps", a.drag_steps, 1, 100000,
                             "solve the edit as a drag in this many steps, each warm-started from the last");
+  // What only the ladder reads, and what only the improved ladder's sor cascade reads.
+  for (const char* key : {"coarse_level", "coarse_constraint_mode", "drag_steps"}) s.note_unused(pc, key, a.multilevel());
+  for (const char* key : {"relaxation", "relaxation_sweeps"}) s.note_unused(pc, key, a.mode == AccuracyMode::Improved);
+  s.note_unused(pc, "relaxation_omega", a.mode == AccuracyMode::Improved && a.relaxation == "sor");
   if (!a.multilevel()) {
     if (a.drag_steps > 1) throw InvalidConfig(pc.key_path("drag_steps") + ": a drag needs problem.accuracy "
                                               "interactive, improved or converged");
@@ -199,6 +204,21 @@ std::vector<std::string> input_search_dirs(const std::string& config_path) {
     if (p == p.root_path()) break;
   }
   return dirs;
+}
+
+void RunBasics::note_unused(const Config& block, const std::string& key, bool used) {
+  if (!used && block.has(key)) unused_keys.push_back(block.key_path(key));
+}
+
+void RunBasics::note_unused(const Config& block) {
+  if (block.node().IsMap())
+    for (const auto& kv : block.node()) unused_keys.push_back(block.key_path(kv.first.as<std::string>()));
+}
+
+std::string RunBasics::unused_keys_cell() const {
+  std::string out;
+  for (const auto& k : unused_keys) out.append(out.empty() ? "" : " ").append(k);
+  return out;
 }
 
 RunBasics read_run_basics(Config& root) {
@@ -237,6 +257,8 @@ RunSpec RunSpec::from_config(const YAML::Node& run_config, const Components& c,
                                    "(0: the input mesh is the base, zero details)");
   s.edit_level = in.get_int("edit_level", -1, -1, 8, "level the deformation is solved on (-1: the finest)");
   in.check_no_unknown_keys();
+  s.note_unused(in, "boundary", s.representation != Representation::Mesh);
+  s.note_unused(in, "weights", s.representation == Representation::Loop);
   if (s.edit_level > s.levels)
     throw InvalidConfig(in.key_path("edit_level") + ": " + std::to_string(s.edit_level) + " is above the finest level " +
                         std::to_string(s.levels));
@@ -257,7 +279,7 @@ RunSpec RunSpec::from_config(const YAML::Node& run_config, const Components& c,
   read_qp_options(pc, s.implementation, s);
   pc.check_no_unknown_keys();
   read_solver(root, c, s.implementation, s);
-  read_output(root, s.output);
+  read_output(root, s);
   root.check_no_unknown_keys();
 
   for (const char* key : {"input", "energy", "constraints", "problem"})

@@ -62,6 +62,16 @@ struct RunBasics {
   std::string name;
   int seed = 0, threads = 0, repeat = 1;
   Backend implementation = Backend::Optimized;
+  //! Keys the config sets that this run does not use (solver.* under constraint_mode kkt, the
+  //! options of a solver not chosen, relaxation_omega without sor, ...), for runs.csv's
+  //! unused_keys column: recorded as not applicable, never as used.
+  std::vector<std::string> unused_keys;
+  //! Records `key` of `block` as unused when the config sets it and `used` is false.
+  void note_unused(const Config& block, const std::string& key, bool used);
+  //! Records every key the config sets in `block`.
+  void note_unused(const Config& block);
+  //! The unused_keys cell: the keys, space-separated.
+  std::string unused_keys_cell() const;
 };
 //! Reads name, description, seed, threads, repeat and implementation from the config's root.
 RunBasics read_run_basics(Config& root);
@@ -89,9 +99,6 @@ struct RunSpec : RunBasics {
   std::unique_ptr<Solver> solver;
   OutputOptions output;
   std::string system_key;  // equal for runs that solve the same linear system
-  //! Keys the config sets that this run does not use (e.g. solver.* under constraint_mode
-  //! kkt), for runs.csv's unused_keys: recorded as not applicable, never as used.
-  std::vector<std::string> unused_keys;
 
   //! \param search_dirs where relative input paths are looked up after the working directory.
   static RunSpec from_config(const YAML::Node& run_config, const Components& c,

@@ -98,7 +98,8 @@ TableLayout layout_of(const RunKind& kind, const std::vector<std::string>& swept
 // them (all problems reported together, before anything runs).
 Plan make_plan(const SweepOptions& opt, bool validate) {
   Plan plan;
-  plan.root = load_experiment_config(opt.config_path, opt.sets, &plan.notes);
+  plan.root = load_experiment_config(opt.config_path, opt.sets, &plan.notes,
+                                     opt.smoke ? ConfigVariant::Smoke : ConfigVariant::Full);
   plan.search_dirs = input_search_dirs(opt.config_path);
   plan.kinds = make_run_kinds();
   plan.space = std::make_unique<SweepSpace>(plan.root);
@@ -327,6 +328,7 @@ int supervise(const SweepOptions& opt) {
     std::vector<std::string> args{opt.executable, "run", opt.config_path, "--out", dir.string(),
                                   "--worker", std::to_string(w) + "/" + std::to_string(jobs),
                                   "--shard", std::to_string(opt.shard.index) + "/" + std::to_string(opt.shard.count)};
+    if (opt.smoke) args.emplace_back("--smoke");
     for (const auto& s : opt.sets) args.insert(args.end(), {"--set", s});
     for (const auto& f : opt.filters) args.insert(args.end(), {"--filter", f});
     return args;

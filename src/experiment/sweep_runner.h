@@ -25,6 +25,7 @@ struct SweepOptions {
   bool resume = false, force = false;
   bool retry_failed = false;         // --retry-failed: a resume runs the failed rows again
   bool dry_run = false;              // --dry-run: print the points and their ids, run nothing
+  bool smoke = false;                // --smoke: the config's CI-sized variant (its smoke: block)
   int jobs = 1;
   Slice shard;                 // --shard i/n
   Slice worker;                // internal: --worker i/n, set for processes the supervisor starts

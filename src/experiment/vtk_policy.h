@@ -23,8 +23,8 @@ inline VtkPolicy read_vtk_policy(Config& output, const std::string& all_means) {
       throw InvalidConfig(output.key_path("vtk") + ": '" + old + "' is the old spelling; use " + replacement +
                           " (valid: none, final, all)");
   }
-  const std::string v = output.get_choice("vtk", "final", {"none", "final", "all"}, doc);
-  return v == "none" ? VtkPolicy::None : v == "final" ? VtkPolicy::Final : VtkPolicy::All;
+  static const NameTable<VtkPolicy> names{{VtkPolicy::None, "none"}, {VtkPolicy::Final, "final"}, {VtkPolicy::All, "all"}};
+  return output.get_enum("vtk", VtkPolicy::Final, names, doc);
 }
 
 }  // namespace fairshape

@@ -1,5 +1,8 @@
 #include "subdivision/multires_surface.h"
 
+#include <cmath>
+#include <limits>
+
 #include <Eigen/Geometry>
 #include <Eigen/SparseCholesky>
 #include <filesystem>
@@ -183,6 +186,15 @@ MultiresSurface MultiresSurface::load(const std::string& vtm_path, Backend backe
                          std::to_string(err) + "): not a hierarchy of this scheme?");
   }
   return h;
+}
+
+double relative_detail_change(const MultiresSurface& before, const MultiresSurface& after) {
+  double change = 0, size = 0;
+  for (int l = 1; l <= before.levels(); ++l) {
+    change += (after.details(l, DetailSpace::Local) - before.details(l, DetailSpace::Local)).squaredNorm();
+    size += before.details(l, DetailSpace::Local).squaredNorm();
+  }
+  return size > 0 ? std::sqrt(change / size) : std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace fairshape

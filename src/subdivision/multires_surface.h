@@ -72,4 +72,9 @@ class MultiresSurface {
   std::vector<MatrixX3> world_, local_;  // index = level; entry 0 unused
 };
 
+//! Boier-Martin et al.'s claim as a number: the RMS change of the local-frame detail vectors
+//! from `before` to `after` (a re-analysed edit of it), relative to their RMS size before.
+//! NaN for a hierarchy without details (no levels, or all details zero).
+double relative_detail_change(const MultiresSurface& before, const MultiresSurface& after);
+
 }  // namespace fairshape

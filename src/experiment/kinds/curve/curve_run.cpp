@@ -60,13 +60,17 @@ CurveEdit read_edit(Config& ec, const CurveRunSpec& s) {
 }
 
 // The solver block: common tolerances, then one sub-block per solver name; every present
-// sub-block is validated so sweeping solver.type stays valid.
+// sub-block is validated so sweeping solver.type stays valid, and recorded as unused unless
+// it is the chosen solver's.
 void read_solver(Config& oc, CurveRunSpec& s) {
   const auto& reg = curve_components().solvers;
   Config sc = oc.child("solver", "length solver: {type, length_tolerance, stationarity_tolerance, max_solves, <type>: {...}}");
   s.solver_type = sc.get_choice("type", "linearized", reg.names(), "length solver");
   for (const auto& name : reg.names())
-    if (name != s.solver_type && sc.has(name)) (void)reg.create(name, s.implementation, sc);
+    if (name != s.solver_type && sc.has(name)) {
+      (void)reg.create(name, reg.has(name, s.implementation) ? s.implementation : Backend::Optimized, sc);
+      s.note_unused(Config(sc.node()[name], sc.key_path(name)));
+    }
   s.solver = reg.create(s.solver_type, s.implementation, sc);
   sc.check_no_unknown_keys();
 }
@@ -144,7 +148,7 @@ const std::vector<std::string>& curve_metric_columns() {
   static const std::vector<std::string> cols{
       "n_points", "edits", "length_error_max", "length_error_rms", "total_length_change", "bending_energy",
       "distance_to_attractor", "wrinkles", "attractor_length_error", "solves", "outer_iterations", "stationarity",
-      "explicit_s", "solve_s", "time_s", "termination", "message"};
+      "explicit_s", "solve_s", "time_s", "unused_keys", "termination", "message"};
   return cols;
 }
 
@@ -184,6 +188,7 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
   row["implementation"] = std::string(to_string(spec.implementation));
   row["solver.type"] = spec.solver_type;
   row["n_points"] = std::to_string(spec.curve.n_points());
+  row["unused_keys"] = spec.unused_keys_cell();
   row["termination"] = std::string(to_string(Termination::Converged));
   const Timer wall;
   double time_s = 0, explicit_s = 0, solve_s = 0;

@@ -45,20 +45,6 @@ feature::FeatureParams read_params(Config& c, const feature::FeatureParams& d) {
   return p;
 }
 
-// A smooth (C²) bump of the base level around its vertex nearest to `nearest`.
-MatrixX3 edited_base(const SurfaceMesh& base, const BaseEditSpec& e, double diag) {
-  Eigen::Index centre = 0;
-  (base.positions().rowwise() - e.nearest.transpose()).rowwise().squaredNorm().minCoeff(&centre);
-  const Vec3 c = base.position(static_cast<int>(centre));
-  MatrixX3 X = base.positions();
-  const double R = e.radius * diag;
-  for (int v = 0; v < base.n_vertices(); ++v) {
-    const double t = (base.position(v) - c).norm() / R;
-    if (t < 1) X.row(v) += std::pow(1 - t * t, 3) * e.offset.transpose();
-  }
-  return X;
-}
-
 }  // namespace
 
 bool is_feature_config(const YAML::Node& c) { return c.IsMap() && c["features"].IsDefined(); }
@@ -117,9 +103,9 @@ FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const s
   if (s.features.empty()) throw InvalidConfig("features: at least one feature curve");
   Config ec = root.child("base_edit", "a coarse edit of the base surface (Figure 15): {enabled, nearest, offset, radius}");
   s.base_edit.enabled = ec.get<bool>("enabled", ec.has("offset"), "apply the edit");
-  s.base_edit.nearest = read_vec3(ec, "nearest", Vec3::Zero(), "the edit's centre: the base vertex nearest to this point");
-  s.base_edit.offset = read_vec3(ec, "offset", Vec3::Zero(), "displacement of the centre");
-  s.base_edit.radius = ec.get_number("radius", 0.3, 1e-6, 10, "falloff radius × bounding-box diagonal");
+  s.base_edit.edit.nearest = read_vec3(ec, "nearest", Vec3::Zero(), "the edit's centre: the base vertex nearest to this point");
+  s.base_edit.edit.offset = read_vec3(ec, "offset", Vec3::Zero(), "displacement of the centre");
+  s.base_edit.edit.radius = ec.get_number("radius", 0.3, 1e-6, 10, "falloff radius × bounding-box diagonal");
   ec.check_no_unknown_keys();
   Config ac = root.child("adaptive", "adaptive output mesh (§2.5): {enabled}");
   s.adaptive = ac.get<bool>("enabled", true, "write adaptive/<run>.obj refined by the features' flatness thresholds");
@@ -134,7 +120,7 @@ FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const s
 const std::vector<std::string>& feature_metric_columns() {
   static const std::vector<std::string> cols{"features", "levels", "n_fine", "segments", "apply_s", "vertices_moved",
                                              "max_displacement", "triangles_uniform", "triangles_adaptive", "time_s",
-                                             "termination", "message"};
+                                             "unused_keys", "termination", "message"};
   return cols;
 }
 
@@ -143,6 +129,7 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
   for (const auto& c : feature_metric_columns()) row[c] = "";
   row["implementation"] = std::string(to_string(spec.implementation));
   row["features"] = std::to_string(spec.features.size());
+  row["unused_keys"] = spec.unused_keys_cell();
   row["levels"] = std::to_string(spec.levels);
   row["termination"] = std::string(to_string(Termination::Converged));
   const Timer wall;
@@ -174,7 +161,7 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
     // edit carries them.
     if (spec.base_edit.enabled) {
       MultiresSurface& original = surface.original();
-      original.set_base_positions(edited_base(original.mesh(0), spec.base_edit, diag));
+      original.set_base_positions(feature::bumped_positions(original.mesh(0), spec.base_edit.edit, diag));
       original.synthesize(DetailSpace::Local);
     }
     std::vector<double> times;

@@ -10,6 +10,7 @@
 
 #include "experiment/run_outputs.h"
 #include "experiment/run_spec.h"
+#include "feature/base_edit.h"
 #include "feature/feature_curve.h"
 #include "subdivision/scheme.h"
 
@@ -23,8 +24,7 @@ struct FeatureSpec {
 
 struct BaseEditSpec {
   bool enabled = false;
-  Vec3 nearest = Vec3::Zero(), offset = Vec3::Zero();
-  double radius = 0.3;  // × bounding-box diagonal: smooth falloff around the nearest base vertex
+  feature::BaseEdit edit;
 };
 
 struct FeatureRunSpec : RunBasics {

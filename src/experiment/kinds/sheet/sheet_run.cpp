@@ -15,6 +15,7 @@
 #include "io/mesh_io.h"
 #include "experiment/vtk_policy.h"
 #include "io/vtk_io.h"
+#include "mesh/disjoint_union.h"
 #include "mesh/polyline.h"
 #include "mesh/surface_mesh.h"
 
@@ -65,17 +66,19 @@ SheetSpec read_sheet(Config& c) {
   s.shape.spans_u = spans[0];
   s.shape.spans_v = spans[1];
   s.shape.degree = c.get_int("degree", 3, bspline::kMinDegree, bspline::kMaxDegree, "B-spline degree r");
+  using bspline::SheetGeometry;
+  bspline::SheetPlacement& p = s.placement;
   static const NameTable<SheetGeometry> geometries{{SheetGeometry::Plane, "plane"}, {SheetGeometry::Cylinder, "cylinder"}};
-  s.geometry = c.get_enum("geometry", SheetGeometry::Plane, geometries, "initial shape (a cylinder is periodic in u)");
-  s.shape.periodic_u = s.geometry == SheetGeometry::Cylinder;
-  s.origin = read_vec3(c, "origin", s.origin, "plane: corner at (0, 0); cylinder: center of the base circle");
-  s.u_axis = read_vec3(c, "u_axis", s.u_axis, "world direction of u (plane) / first radial axis (cylinder)");
-  s.v_axis = read_vec3(c, "v_axis", s.v_axis, "world direction of v (plane and cylinder axis)");
+  p.geometry = c.get_enum("geometry", SheetGeometry::Plane, geometries, "initial shape (a cylinder is periodic in u)");
+  s.shape.periodic_u = p.geometry == SheetGeometry::Cylinder;
+  p.origin = read_vec3(c, "origin", p.origin, "plane: corner at (0, 0); cylinder: center of the base circle");
+  p.u_axis = read_vec3(c, "u_axis", p.u_axis, "world direction of u (plane) / first radial axis (cylinder)");
+  p.v_axis = read_vec3(c, "v_axis", p.v_axis, "world direction of v (plane and cylinder axis)");
   const std::vector<double> size = c.get<std::vector<double>>("size", {1, 1}, "plane: extent [u, v]; cylinder: [radius, height]");
   if (size.size() != 2 || !(size[0] > 0) || !(size[1] > 0)) throw InvalidConfig(c.key_path("size") + ": expected two positive numbers");
-  s.size_u = size[0];
-  s.size_v = size[1];
-  if (s.u_axis.norm() == 0 || s.v_axis.norm() == 0 || s.u_axis.cross(s.v_axis).norm() < 1e-9 * s.u_axis.norm() * s.v_axis.norm())
+  p.size_u = size[0];
+  p.size_v = size[1];
+  if (p.u_axis.norm() == 0 || p.v_axis.norm() == 0 || p.u_axis.cross(p.v_axis).norm() < 1e-9 * p.u_axis.norm() * p.v_axis.norm())
     throw InvalidConfig(c.key_path("u_axis") + ", " + c.key_path("v_axis") + ": must be nonzero and not parallel");
   for (const auto& r : c.get<std::vector<std::vector<int>>>("refine", {}, "spans refined up front: [[level, i, j], ...]")) {
     if (r.size() != 3) throw InvalidConfig(c.key_path("refine") + ": expected [level, i, j] entries");
@@ -88,32 +91,6 @@ SheetSpec read_sheet(Config& c) {
     throw InvalidConfig(c.key_path("spans") + ": " + e.what());
   }
   return s;
-}
-
-// The initial control points: Greville abscissae mapped onto the plane (linear precision
-// makes the surface exactly that plane), or around a circle scaled so the periodic cubic
-// passes through radius R at the control points' parameters.
-Eigen::MatrixXd initial_coefficients(const SheetSpec& s, const bspline::HierarchicalSurface& surface) {
-  Eigen::MatrixXd P(surface.dof_count(), 3);
-  const double shift = (s.shape.degree - 1) / 2.0;
-  const Vec3 a = s.u_axis.normalized(), n = s.v_axis.normalized();
-  const Vec3 b = n.cross(a).normalized();
-  for (int k = 0; k < surface.dof_count(); ++k) {
-    const bspline::ControlId c = surface.dofs()[k];
-    const double v = c.j - shift;
-    if (s.geometry == SheetGeometry::Plane) {
-      P.row(k) = (s.origin + (c.i - shift) * (s.size_u / s.shape.spans_u) * a + v * (s.size_v / s.shape.spans_v) * n).transpose();
-    } else {
-      const int m = s.shape.spans_u;
-      const double theta = 2 * M_PI * (c.i - shift) / m;
-      double blend = 0;  // the periodic B-spline's value at the node, relative to its control point
-      const bspline::SpanBasis sb = bspline::uniform_span_basis(s.shape.degree, 0);
-      for (int i = 0; i <= s.shape.degree; ++i) blend += sb.value[i] * std::cos(2 * M_PI * (i - shift) / m);
-      const double radius = s.size_u / blend;
-      P.row(k) = (s.origin + radius * (std::cos(theta) * a + std::sin(theta) * b) + v * (s.size_v / s.shape.spans_v) * n).transpose();
-    }
-  }
-  return P;
 }
 
 SpaceCurveSpec read_curve(Config& c) {
@@ -271,11 +248,14 @@ SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config) {
   Config sc = root.child("solver", "constrained solver: {type, <type>: {...}}");
   const auto& reg = qp::qp_solver_registry();
   s.solver_type = sc.get_choice("type", "kkt", reg.names(), "kkt (eq. 9), qr_penalty (eq. 10) or range_space (CHOLMOD)");
+  // Every solver's block is validated against its schema whichever is chosen (a sweep over
+  // solver.type carries them all); the blocks of solvers not chosen are recorded as unused.
   for (const auto& name : reg.names())
     if (name != s.solver_type && sc.has(name)) {
       Config sub = sc.child(name, "options of " + name);
-      if (reg.has(name, s.implementation)) (void)reg.create(name, s.implementation, sub);
+      (void)reg.create(name, reg.has(name, s.implementation) ? s.implementation : Backend::Optimized, sub);
       sub.check_no_unknown_keys();
+      s.note_unused(sub);
     }
   {
     Config sub = sc.child(s.solver_type, "options of the chosen solver");
@@ -302,7 +282,7 @@ const std::vector<std::string>& sheet_metric_columns() {
   static const std::vector<std::string> cols{
       "sheets", "steps", "dofs", "levels", "constraint_rows", "dropped_rows", "constraint_residual", "max_constraint_error",
       "energy", "spans_refined", "refinement_rounds", "objective_error_estimate", "surface_change_estimate",
-      "condition_estimate", "analyze_s", "solve_s", "time_s", "termination", "message"};
+      "condition_estimate", "analyze_s", "solve_s", "time_s", "unused_keys", "termination", "message"};
   return cols;
 }
 
@@ -348,52 +328,14 @@ std::vector<SheetConstraint> active_constraints(const SheetRunSpec& spec, std::s
   return active;
 }
 
-SurfaceMesh tessellate(const bspline::VariationalSheet& sheet, int per_span, const Eigen::MatrixXd& initial_P,
-                       const bspline::HierarchicalSurface& initial_surface) {
-  const bspline::HierarchicalSurface& s = sheet.surface();
-  const bool periodic = s.shape().periodic_u;
-  const int nu = s.shape().spans_u * per_span, nv = s.shape().spans_v * per_span;
-  const int cols = periodic ? nu : nu + 1;
-  MatrixX3 V(cols * (nv + 1), 3);
-  Eigen::MatrixXd displacement(V.rows(), 1);
-  for (int i = 0; i < cols; ++i)
-    for (int j = 0; j <= nv; ++j) {
-      const double u = static_cast<double>(i) / per_span, v = static_cast<double>(j) / per_span;
-      const Vec3 x = s.position(sheet.coefficients(), u, v);
-      V.row(i * (nv + 1) + j) = x.transpose();
-      displacement(i * (nv + 1) + j) = (x - initial_surface.position(initial_P, u, v)).norm();
-    }
-  PolygonList faces;
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      const int i1 = periodic ? (i + 1) % nu : i + 1;
-      faces.push_back({i * (nv + 1) + j, i1 * (nv + 1) + j, i1 * (nv + 1) + j + 1, i * (nv + 1) + j + 1});
-    }
-  SurfaceMesh m = SurfaceMesh::from_polygons(V, faces);
-  m.vertex_data["displacement_norm"] = displacement;
-  return m;
-}
-
-// The sheets as one mesh (separate components), with their displacement_norm arrays.
-SurfaceMesh combine(const std::vector<SurfaceMesh>& meshes) {
-  Eigen::Index n = 0;
-  for (const auto& m : meshes) n += m.n_vertices();
-  MatrixX3 V(n, 3);
-  Eigen::MatrixXd displacement(n, 1);
-  PolygonList faces;
-  Eigen::Index offset = 0;
-  for (const auto& m : meshes) {
-    V.middleRows(offset, m.n_vertices()) = m.positions();
-    displacement.middleRows(offset, m.n_vertices()) = m.vertex_data.at("displacement_norm");
-    for (auto f : m.polygons()) {
-      for (int& v : f) v += static_cast<int>(offset);
-      faces.push_back(f);
-    }
-    offset += m.n_vertices();
-  }
-  SurfaceMesh out = SurfaceMesh::from_polygons(V, faces);
-  out.vertex_data["displacement_norm"] = displacement;
-  return out;
+// The sheets at their current shape as one mesh (separate components) with displacement_norm.
+SurfaceMesh sheets_mesh(const std::vector<bspline::VariationalSheet>& sheets, int per_span,
+                        const std::vector<bspline::HierarchicalSurface>& initial_surfaces,
+                        const std::vector<Eigen::MatrixXd>& initial_P) {
+  std::vector<SurfaceMesh> meshes;
+  for (std::size_t k = 0; k < sheets.size(); ++k)
+    meshes.push_back(bspline::tessellate(sheets[k].surface(), sheets[k].coefficients(), per_span, initial_surfaces[k], initial_P[k]));
+  return disjoint_union(meshes);
 }
 
 }  // namespace
@@ -402,6 +344,7 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
   MetricRow row;
   for (const auto& c : sheet_metric_columns()) row[c] = "";
   row["implementation"] = std::string(to_string(spec.implementation));
+  row["unused_keys"] = spec.unused_keys_cell();
   row["solver.type"] = spec.solver_type;
   row["sheets"] = std::to_string(spec.sheets.size());
   row["steps"] = std::to_string(spec.steps());
@@ -415,7 +358,7 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
     std::vector<Eigen::MatrixXd> initial_P;
     for (const SheetSpec& ss : spec.sheets) {
       bspline::HierarchicalSurface surface(ss.shape);
-      sheets.emplace_back(ss.shape, initial_coefficients(ss, surface));
+      sheets.emplace_back(ss.shape, bspline::initial_coefficients(ss.placement, surface));
       if (!ss.refine.empty()) sheets.back().refine(ss.refine);
       initial_surfaces.push_back(sheets.back().surface());
       initial_P.push_back(sheets.back().coefficients());
@@ -484,12 +427,9 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
       }
       // Per step: all sheets in one polydata (point array displacement_norm) and the space curves.
       if (!failed) {
-        if (spec.vtk == VtkPolicy::All || (spec.vtk == VtkPolicy::Final && step + 1 == spec.steps())) {
-          std::vector<SurfaceMesh> meshes;
-          for (std::size_t k = 0; k < sheets.size(); ++k)
-            meshes.push_back(tessellate(sheets[k], spec.samples_per_span, initial_P[k], initial_surfaces[k]));
-          write_vtp(combine(meshes), (fs::path(out.dir) / "vtk" / (out.run_id + "_step" + std::to_string(step) + ".vtp")).string());
-        }
+        if (spec.vtk == VtkPolicy::All || (spec.vtk == VtkPolicy::Final && step + 1 == spec.steps()))
+          write_vtp(sheets_mesh(sheets, spec.samples_per_span, initial_surfaces, initial_P),
+                    (fs::path(out.dir) / "vtk" / (out.run_id + "_step" + std::to_string(step) + ".vtp")).string());
         fs::create_directories(fs::path(out.dir) / "curves");
         for (const auto& [name, pts] : curves_now) {
           MatrixX3 X(static_cast<Eigen::Index>(pts.size()), 3);
@@ -520,10 +460,7 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
           out.add_row("cells", {spec.sheets[k].name, when, std::to_string(e.cell.level), num(e.cell.i * h), num(e.cell.j * h),
                         num(h), num(e.error)});
         }
-    std::vector<SurfaceMesh> meshes;
-    for (std::size_t k = 0; k < sheets.size(); ++k)
-      meshes.push_back(tessellate(sheets[k], spec.samples_per_span, initial_P[k], initial_surfaces[k]));
-    write_mesh(combine(meshes), out.final_path());
+    write_mesh(sheets_mesh(sheets, spec.samples_per_span, initial_surfaces, initial_P), out.final_path());
     row["dofs"] = std::to_string(dofs);
     row["levels"] = std::to_string(levels);
     row["constraint_rows"] = std::to_string(rows);

@@ -10,6 +10,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "bspline/sheet_geometry.h"
 #include "bspline/uniform_basis.h"
 #include "bspline/variational_sheet.h"
 #include "experiment/run_outputs.h"
@@ -19,14 +20,10 @@
 
 namespace fairshape {
 
-enum class SheetGeometry { Plane, Cylinder };
-
 struct SheetSpec {
   std::string name;
   bspline::SheetShape shape;
-  SheetGeometry geometry = SheetGeometry::Plane;
-  Vec3 origin = Vec3::Zero(), u_axis = Vec3::UnitX(), v_axis = Vec3::UnitY();
-  double size_u = 1, size_v = 1;  // plane: world extent; cylinder: radius (size_u) and height (size_v)
+  bspline::SheetPlacement placement;
   std::vector<bspline::SpanId> refine;
 };
 

@@ -54,19 +54,6 @@ SurfaceMesh result_mesh(const SurfaceMesh& before, const MatrixX3& after, int le
   return m;
 }
 
-// Boier-Martin et al.'s claim as a number: the RMS change of the local-frame detail vectors
-// (re-analysed from the edited finest level) relative to their RMS size before the edit.
-// Empty for hierarchies without details.
-std::string detail_change(const MultiresSurface& before, const MultiresSurface& after) {
-  if (before.levels() == 0) return "";
-  double change = 0, size = 0;
-  for (int l = 1; l <= before.levels(); ++l) {
-    change += (after.details(l, DetailSpace::Local) - before.details(l, DetailSpace::Local)).squaredNorm();
-    size += before.details(l, DetailSpace::Local).squaredNorm();
-  }
-  return size > 0 ? num(std::sqrt(change / size)) : "";
-}
-
 // Writes iterations.csv rows and VTK snapshots of the edit level while a solve runs.
 class IterationSink {
  public:
@@ -215,7 +202,7 @@ MetricRow execute_run(RunSpec& spec, RunCache& cache, const RunOutputs& out) {
   MetricRow row;
   for (const auto& c : metric_columns()) row[c] = "";
   row["repeat"] = std::to_string(spec.repeat);
-  for (const auto& k : spec.unused_keys) row["unused_keys"] += (row["unused_keys"].empty() ? "" : " ") + k;
+  row["unused_keys"] = spec.unused_keys_cell();
   reset_peak_rss();
   Timer total;
   try {
@@ -279,7 +266,8 @@ MetricRow execute_run(RunSpec& spec, RunCache& cache, const RunOutputs& out) {
           rest.levels() > 0 ? MultiresSurface::analyze(rest.mesh(0), finest.positions(), rest.options(), rest.levels(),
                                                        spec.implementation)
                             : edited;
-      row["detail_change"] = detail_change(rest, reanalysed);
+      const double change = relative_detail_change(rest, reanalysed);
+      row["detail_change"] = std::isnan(change) ? "" : num(change);
       write_geometry(spec, out, result_mesh(rest.mesh(rest.levels()), finest.positions(), rest.levels(), placed),
                      reanalysed);
       write_ladder(spec, out, rest, ladder, coarse, level_solutions);

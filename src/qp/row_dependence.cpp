@@ -18,7 +18,8 @@ static_assert(kRowDependenceTolerance == fairshape::kRowDependenceTolerance, "on
 namespace {
 
 bool dense_enough(const SparseMatrix& A, const std::vector<int>& reached) {
-  return static_cast<double>(A.rows()) * static_cast<double>(reached.size()) <= kDenseReductionEntries;
+  const double m = static_cast<double>(A.rows()), k = static_cast<double>(reached.size());
+  return m * k * std::min(m, k) <= kDenseReductionFlops;
 }
 
 // R₁Pᵀ on the full unknowns: the leading rows S of R, whose column c is unknown column_of(c).

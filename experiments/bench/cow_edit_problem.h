@@ -1,22 +1,24 @@
 // The edit every issue-5 benchmark solves: the Figure 2 nose handle on the Catmull-Clark
 // ladder of data/cow.off (level 4 = 1,114,370 vertices), back 30% along x fixed, detail-
-// preserving stretch+bend energy; built through the same config path as
-// configs/boier-martin/solvers.yaml, so the benchmark and the sweep solve one system.
+// preserving stretch+bend energy — the system configs/boier-martin/solvers.yaml solves, built
+// here from the energy and constraint objects themselves (no config).
 #pragma once
 
 #include <map>
 #include <memory>
 #include <string>
 
-#include "experiment/kinds/surface_edit/assemble_problem.h"
+#include "constraint/constraint_factories.h"
+#include "design/edit_assembly.h"
+#include "energy/local_quadratic.h"
 #include "experiment/components.h"
 #include "io/mesh_io.h"
-#include "experiment/run_spec.h"
 
 namespace fairshape::bench {
 
 struct CowEdit {
-  RunSpec spec;
+  std::unique_ptr<Energy> energy;
+  std::unique_ptr<Constraint> back, nose;
   std::unique_ptr<MultiresSurface> hierarchy;
   EditLadder ladder;  // levels coarse..level
 };
@@ -27,21 +29,19 @@ inline const CowEdit& cow_edit(int level, int coarse, const std::string& solver 
   const std::string key = std::to_string(level) + "/" + std::to_string(coarse) + "/" + solver;
   auto& slot = cache[key];
   if (slot) return *slot;
-  const std::string yaml = R"(
-name: bench
-input: { mesh: data/cow.off, representation: catmull-clark, levels: )" + std::to_string(level) + R"( }
-energy: [ { type: detail_preserving, alpha: 0.1, beta: 1.0 } ]
-constraints:
-  - { type: fixed, region: { axis: x, from: 0.0, to: 0.3 } }
-  - { type: position, nearest: [0.5, 0.0, 0.0], offset: [0.15, 0.0, 0.08] }
-solver: { type: )" + solver + R"( }
-)";
   auto e = std::make_unique<CowEdit>();
-  e->spec = RunSpec::from_config(YAML::Load(yaml), components(), {FAIRSHAPE_SOURCE_DIR});
-  e->hierarchy = std::make_unique<MultiresSurface>(read_mesh(e->spec.mesh_path), SubdivisionOptions{}, level,
-                                                   Backend::Optimized);
+  e->energy = make_stretch_bend({0.1, 1.0}, StretchBendOf::Deformation, Backend::Optimized);
+  e->back = prescribed_offset(VertexSelection::slab(0, 0.0, 0.3), Vec3::Zero(), -1, false, "back");
+  e->nose = prescribed_offset(VertexSelection::nearest({0.5, 0.0, 0.0}), {0.15, 0.0, 0.08}, -1, false, "nose");
+  e->hierarchy = std::make_unique<MultiresSurface>(read_mesh(std::string(FAIRSHAPE_SOURCE_DIR) + "/data/cow.off"),
+                                                   SubdivisionOptions{}, level, Backend::Optimized);
+  Config none;
+  EditTerms terms;
+  terms.energies = {{e->energy.get(), 1.0}};
+  terms.constraints = {e->back.get(), e->nose.get()};
+  terms.levels = components().solvers.create(solver, Backend::Optimized, none)->uses_levels();
   DesignConstraints placed;
-  e->ladder = assemble_ladder(e->spec, *e->hierarchy, coarse, level, placed);
+  e->ladder = assemble_edit_ladder(terms, *e->hierarchy, coarse, level, placed);
   slot = std::move(e);
   return *slot;
 }

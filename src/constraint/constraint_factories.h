@@ -5,6 +5,7 @@
 #include <string>
 
 #include "constraint/constraint.h"
+#include "constraint/vertex_selection.h"
 #include "core/config.h"
 
 namespace fairshape {
@@ -13,6 +14,11 @@ namespace fairshape {
 std::string constraint_label(const Config& cfg);
 //! The `level` key of a selection-based constraint (-1: the finest).
 int level_from_config(Config& cfg);
+
+//! `fixed` (offset zero) and `position` without a config: the selected vertices of `level`
+//! (-1: the finest) move by `offset`; `label` names the constraint in error messages.
+std::unique_ptr<Constraint> prescribed_offset(VertexSelection selection, const Vec3& offset, int level = -1,
+                                              bool on_limit = false, std::string label = "constraint");
 
 std::unique_ptr<Constraint> make_fixed(Config& cfg);
 std::unique_ptr<Constraint> make_position(Config& cfg);

@@ -50,6 +50,12 @@ int level_from_config(Config& cfg) {
 
 std::string constraint_label(const Config& cfg) { return cfg.path().empty() ? "constraint" : cfg.path(); }
 
+std::unique_ptr<Constraint> prescribed_offset(VertexSelection selection, const Vec3& offset, int level, bool on_limit,
+                                              std::string label) {
+  if (!offset.allFinite()) throw InvalidInput(label + ": the offset is not finite");
+  return std::make_unique<PositionConstraint>(std::move(selection), offset, level, on_limit, std::move(label));
+}
+
 std::unique_ptr<Constraint> make_fixed(Config& cfg) { return make(cfg, false); }
 std::unique_ptr<Constraint> make_position(Config& cfg) { return make(cfg, true); }
 

@@ -31,6 +31,34 @@ VertexSelection VertexSelection::from_config(Config& cfg) {
   return s;
 }
 
+VertexSelection VertexSelection::vertices(std::vector<int> ids) {
+  VertexSelection s;
+  s.ids_ = std::move(ids);
+  return s;
+}
+
+VertexSelection VertexSelection::nearest(const Vec3& p) {
+  VertexSelection s;
+  s.nearest_ = {p.x(), p.y(), p.z()};
+  return s;
+}
+
+VertexSelection VertexSelection::slab(int axis, double from, double to) {
+  if (axis < 0 || axis > 2 || !(from >= 0) || !(to <= 1) || !(from <= to))
+    throw InvalidInput("slab selection: axis 0..2 and 0 <= from <= to <= 1");
+  VertexSelection s;
+  s.axis_ = axis;
+  s.from_ = from;
+  s.to_ = to;
+  return s;
+}
+
+VertexSelection VertexSelection::boundary_loop_near(const Vec3& p) {
+  VertexSelection s;
+  s.loop_near_ = {p.x(), p.y(), p.z()};
+  return s;
+}
+
 std::vector<int> VertexSelection::resolve(const SurfaceMesh& mesh, const std::string& who) const {
   std::vector<int> out;
   const int nv = mesh.n_vertices();

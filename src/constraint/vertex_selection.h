@@ -17,6 +17,11 @@ namespace fairshape {
 class VertexSelection {
  public:
   static VertexSelection from_config(Config& cfg);
+  static VertexSelection vertices(std::vector<int> ids);
+  static VertexSelection nearest(const Vec3& p);
+  //! Vertices whose coordinate along axis (0, 1, 2) lies in [from, to] of the bounding box.
+  static VertexSelection slab(int axis, double from, double to);
+  static VertexSelection boundary_loop_near(const Vec3& p);
   //! \throw InvalidInput when an id is out of range or the selection is empty.
   std::vector<int> resolve(const SurfaceMesh& mesh, const std::string& who) const;
 

@@ -5,6 +5,8 @@
 // difference as a row over {i} ∪ R(i), so H = 2 Σ_i Σ_m w_m g_mᵀ g_m.
 #pragma once
 
+#include <memory>
+
 #include "core/backend.h"
 #include "core/types.h"
 #include "mesh/surface_mesh.h"
@@ -27,5 +29,11 @@ SparseMatrix stretch_bend_hessian(const SurfaceMesh& mesh, const StretchBendWeig
 inline SparseMatrix stretch_bend_hessian(const SurfaceMesh& mesh, const StretchBendWeights& w, Backend backend) {
   return stretch_bend_hessian(mesh, w, 1.0, backend);
 }
+
+class Energy;
+//! The registered stretch + bend energies without a config: of the deformed positions
+//! (`surface_thin_plate`, §3.4) or of the deformation (`detail_preserving`, §4.1).
+enum class StretchBendOf { Positions, Deformation };
+std::unique_ptr<Energy> make_stretch_bend(StretchBendWeights w, StretchBendOf of, Backend backend);
 
 }  // namespace fairshape

@@ -38,14 +38,20 @@ StretchBendWeights weights_from(Config& cfg) {
 
 }  // namespace
 
+std::unique_ptr<Energy> make_stretch_bend(StretchBendWeights w, StretchBendOf of, Backend backend) {
+  if (!(w.alpha >= 0) || !(w.beta >= 0) || (w.alpha == 0 && w.beta == 0))
+    throw InvalidInput("stretch + bend energy: alpha and beta must be >= 0 and not both zero");
+  return std::make_unique<StretchBend>(w, backend, of == StretchBendOf::Positions);
+}
+
 void register_stretch_bend(EnergyRegistry& r) {
   for (Backend b : {Backend::Reference, Backend::Optimized}) {
     r.add("surface_thin_plate", b,
           "α·stretch + β·bend of the deformed surface, local quadratic fits (Boier-Martin et al. §3.4)",
-          [b](Config& cfg) -> std::unique_ptr<Energy> { return std::make_unique<StretchBend>(weights_from(cfg), b, true); });
+          [b](Config& cfg) { return make_stretch_bend(weights_from(cfg), StretchBendOf::Positions, b); });
     r.add("detail_preserving", b,
           "α·stretch + β·bend of the deformation ΔP, fits from the rest shape (Boier-Martin et al. §4.1)",
-          [b](Config& cfg) -> std::unique_ptr<Energy> { return std::make_unique<StretchBend>(weights_from(cfg), b, false); });
+          [b](Config& cfg) { return make_stretch_bend(weights_from(cfg), StretchBendOf::Deformation, b); });
   }
   // Their names until this release: `thin-plate` was one punctuation mark from the umbrella
   // energy's `thin_plate`, a different energy.

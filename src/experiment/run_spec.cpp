@@ -33,6 +33,15 @@ Accuracy AccuracyOptions::ladder() const {
                                            : Accuracy::Converged;
 }
 
+EditTerms RunSpec::edit_terms() const {
+  EditTerms t;
+  for (const auto& e : energies) t.energies.push_back({e.energy.get(), e.weight});
+  for (const auto& c : constraints) t.constraints.push_back(c.constraint.get());
+  t.positions = formulation == Formulation::Position;
+  t.levels = solver->uses_levels();  // the levels below: only a multilevel solver reads them
+  return t;
+}
+
 Config RunSpec::qp_config() const {
   return Config(qp_options ? YAML::Clone(qp_options) : YAML::Node(YAML::NodeType::Map),
                 "problem." + std::string(constraint_mode_names().name(constraint_mode)));

@@ -10,6 +10,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "core/backend.h"
+#include "design/edit_assembly.h"
 #include "design/edit_solve.h"
 #include "design/multilevel_edit.h"
 #include "experiment/components.h"
@@ -83,6 +84,8 @@ struct RunSpec : RunBasics {
   int remesh_base_faces = 0;               // > 0: remesh the input into a hierarchy with details
   int edit_level = -1;                     // where the problem is solved (-1: the finest)
   ConstraintMode constraint_mode = ConstraintMode::Paper;
+  //! The energies and constraints as the design module takes them (pointers into this spec).
+  EditTerms edit_terms() const;
   //! The QP modes: problem.<mode>, the options of that mode's solver (src/qp's schema).
   YAML::Node qp_options;
   Config qp_config() const;

@@ -7,7 +7,11 @@
 #include <map>
 #include <set>
 
+#include "constraint/constraint_factories.h"
 #include "core/config.h"
+#include "design/edit_assembly.h"
+#include "energy/local_quadratic.h"
+#include "io/mesh_io.h"
 #include "curve_design/curve_components.h"
 #include "experiment/components.h"
 #include "experiment/config_loader.h"
@@ -106,4 +110,35 @@ TEST_CASE("registered names share one style: snake_case, none a punctuation mark
                     Catch::Contains("umbrella_thin_plate"));
   CHECK_THROWS_WITH(components().energies.create("detail-preserving", Backend::Optimized, none),
                     Catch::Contains("detail_preserving"));
+}
+
+TEST_CASE("an edit assembled from energy and constraint objects equals the one a config describes", "[experiment][design]") {
+  const YAML::Node cfg = YAML::Load(R"(
+name: same_edit
+input: { mesh: data/cow.off, representation: catmull-clark, levels: 1 }
+energy: [ { type: detail_preserving, alpha: 0.1, beta: 1.0 } ]
+constraints:
+  - { type: fixed, region: { axis: x, from: 0.0, to: 0.3 } }
+  - { type: position, nearest: [0.5, 0.0, 0.0], offset: [0.15, 0.0, 0.08] }
+)");
+  const RunSpec spec = RunSpec::from_config(cfg, components(), {test::source_path("")});
+  const MultiresSurface h(read_mesh(test::data_path("cow.off")), SubdivisionOptions{}, 1, Backend::Optimized);
+  DesignConstraints from_config_placed, typed_placed;
+  const EditProblem from_config = assemble_edit_problem(spec.edit_terms(), h, 1, from_config_placed);
+
+  const auto energy = make_stretch_bend({0.1, 1.0}, StretchBendOf::Deformation, Backend::Optimized);
+  const auto back = prescribed_offset(VertexSelection::slab(0, 0.0, 0.3), Vec3::Zero());
+  const auto nose = prescribed_offset(VertexSelection::nearest({0.5, 0.0, 0.0}), {0.15, 0.0, 0.08});
+  EditTerms terms;
+  terms.energies = {{energy.get(), 1.0}};
+  terms.constraints = {back.get(), nose.get()};
+  const EditProblem typed = assemble_edit_problem(terms, h, 1, typed_placed);
+
+  CHECK((typed.H - from_config.H).norm() == 0);
+  CHECK((typed.g - from_config.g).norm() == 0);
+  CHECK((typed.constraints.A - from_config.constraints.A).norm() == 0);
+  CHECK((typed.constraints.C - from_config.constraints.C).norm() == 0);
+  CHECK(typed_placed.points.size() == from_config_placed.points.size());
+  CHECK_THROWS_AS(VertexSelection::slab(3, 0, 1), InvalidInput);
+  CHECK_THROWS_AS(make_stretch_bend({0, 0}, StretchBendOf::Deformation, Backend::Optimized), InvalidInput);
 }

@@ -8,7 +8,7 @@
 #include "core/statistics.h"
 #include "core/memory.h"
 #include "core/timer.h"
-#include "experiment/kinds/surface_edit/assemble_problem.h"
+#include "design/edit_assembly.h"
 #include "experiment/kinds/surface_edit/drag_run.h"
 #include "experiment/metric_format.h"
 #include "io/mesh_io.h"
@@ -213,7 +213,7 @@ MetricRow execute_run(RunSpec& spec, RunCache& cache, const RunOutputs& out) {
     Timer t;
     DesignConstraints placed;
     const int coarse = spec.accuracy.multilevel() ? spec.accuracy.coarse_level : level;
-    const EditLadder ladder = assemble_ladder(spec, rest, coarse, level, placed);
+    const EditLadder ladder = assemble_edit_ladder(spec.edit_terms(), rest, coarse, level, placed);
     const EditProblem& problem = ladder.problems.back();
     row["assemble_s"] = num(t.seconds());
     row["n_dofs"] = std::to_string(problem.H.rows());

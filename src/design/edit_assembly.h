@@ -1,0 +1,41 @@
+// The edit problem on one level of a hierarchy, or on a ladder of levels, from energies and
+// constraints as objects (a config, a benchmark or a test builds them alike): H and the
+// linear term from the weighted energies, the designer's constraints propagated from the
+// levels they are placed on (Boier-Martin et al. §4.2, Table 1).
+#pragma once
+
+#include <vector>
+
+#include "constraint/constraint.h"
+#include "design/multilevel_edit.h"
+#include "energy/energy.h"
+#include "subdivision/multires_surface.h"
+
+namespace fairshape {
+
+struct WeightedEnergy {
+  const Energy* energy = nullptr;
+  double weight = 1.0;
+};
+
+//! What an edit is made of. The pointers are not owned and must outlive the problems built
+//! from them (a multilevel solver re-assembles coarse operators through them).
+struct EditTerms {
+  std::vector<WeightedEnergy> energies;
+  std::vector<const Constraint*> constraints;
+  //! The energies measure positions P_rest + ΔP (the position formulation); energies whose
+  //! measures_positions() is true always do.
+  bool positions = false;
+  //! Attach the levels below (LevelOperators) for a multilevel solver.
+  bool levels = false;
+};
+
+//! `placed` receives the constraints as placed on their own levels.
+//! \throw InvalidInput for an empty energy list or a constraint that cannot be placed.
+EditProblem assemble_edit_problem(const EditTerms& terms, const MultiresSurface& h, int level, DesignConstraints& placed);
+
+//! Levels coarse..level; the last problem is assemble_edit_problem(level).
+EditLadder assemble_edit_ladder(const EditTerms& terms, const MultiresSurface& h, int coarse, int level,
+                                DesignConstraints& placed);
+
+}  // namespace fairshape

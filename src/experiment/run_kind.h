@@ -11,6 +11,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "experiment/repeats.h"
 #include "experiment/run_outputs.h"
 
 namespace fairshape {
@@ -33,12 +34,15 @@ class RunKind {
   virtual ValidatedRun validate(const YAML::Node& run_config, const std::vector<std::string>& search_dirs) const = 0;
   //! runs.csv's columns after run_id and the swept parameters, termination and message included.
   virtual const std::vector<std::string>& metric_columns() const = 0;
+  //! The metric columns that vary from one execution to the next (timings, memory): over a
+  //! run's `repeat` executions the harness reports their median (experiment/repeats.h).
+  virtual std::vector<std::string> measured_columns() const { return measured_by_name(metric_columns()); }
   //! The other tables its runs fill through RunOutputs::add_row.
   virtual std::vector<TableSchema> tables() const = 0;
   //! Metric columns the harness also puts on every row of every table, to key plots by
   //! solver rather than by hash (e.g. implementation, solver.type).
   virtual std::vector<std::string> identity_columns() const { return {"implementation", "solver.type"}; }
-  //! Runs one validated config. Problems of the input or the numerics become the row's
+  //! Runs one validated config once (the harness repeats it for `repeat:`). Problems of the input or the numerics become the row's
   //! termination and message; anything else thrown is turned into a `crashed` row by the harness.
   virtual MetricRow execute(const YAML::Node& run_config, const std::vector<std::string>& search_dirs,
                             const RunOutputs& out) = 0;

@@ -11,4 +11,6 @@ std::string RunOutputs::final_path() const {
   return (fs::path(dir) / "final" / (run_id + ".obj")).string();
 }
 
+void create_run_folders(const std::string& dir) { fs::create_directories(fs::path(dir) / "vtk"); }
+
 }  // namespace fairshape

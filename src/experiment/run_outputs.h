@@ -28,6 +28,9 @@ class RunTables {
   std::map<std::string, std::vector<std::vector<std::string>>> rows_;
 };
 
+//! The folders every run may write into (vtk/), created under an output folder.
+void create_run_folders(const std::string& dir);
+
 struct RunOutputs {
   std::string dir;  // the experiment's output folder
   std::string run_id;

@@ -191,10 +191,23 @@ void inject_fault(std::size_t index) {
   if (s.compare(0, at, "segv") == 0) std::raise(SIGSEGV);
 }
 
+bool succeeded(const MetricRow& m) {
+  const auto it = m.find("termination");
+  if (it == m.end()) return false;
+  try {
+    return is_success(termination_from_string(it->second));
+  } catch (const Error&) {
+    return false;
+  }
+}
+
 MetricRow execute_guarded(Plan& plan, const RunPoint& p, const RunOutputs& out) {
   try {
     inject_fault(p.index);
-    return plan.kind->execute(p.config, plan.search_dirs, out);
+    // `repeat` was validated with the run (1..1000) by its kind.
+    const int repeat = p.config["repeat"] ? p.config["repeat"].as<int>() : 1;
+    return run_repeated(repeat, plan.kind->measured_columns(), out,
+                        [&](const RunOutputs& o) { return plan.kind->execute(p.config, plan.search_dirs, o); }, succeeded);
   } catch (const std::bad_alloc&) {
     return crashed_row("out of memory (std::bad_alloc)");
   } catch (const Error& e) {  // a kind lets its own errors through only by mistake
@@ -203,16 +216,6 @@ MetricRow execute_guarded(Plan& plan, const RunPoint& p, const RunOutputs& out) 
     return crashed_row(std::string("unexpected exception: ") + e.what());
   } catch (...) {
     return crashed_row("unexpected exception of unknown type");
-  }
-}
-
-bool succeeded(const MetricRow& m) {
-  const auto it = m.find("termination");
-  if (it == m.end()) return false;
-  try {
-    return is_success(termination_from_string(it->second));
-  } catch (const Error&) {
-    return false;
   }
 }
 
@@ -308,7 +311,7 @@ int supervise(const SweepOptions& opt) {
   folder.remove_temporaries();
   fs::remove_all(dir / ".fairshape");
   fs::create_directories(dir / ".fairshape");
-  fs::create_directories(dir / "vtk");
+  create_run_folders(dir.string());
   if (opt.retry_failed) {
     const std::size_t n = folder.drop_failed_runs();
     std::cerr << "fairshape: --retry-failed: " << n << " failed run(s) will run again\n";

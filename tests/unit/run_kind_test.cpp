@@ -15,6 +15,7 @@
 #include "curve_design/curve_components.h"
 #include "experiment/components.h"
 #include "experiment/config_loader.h"
+#include "experiment/repeats.h"
 #include "experiment/run_kind.h"
 #include "experiment/run_spec.h"
 #include "experiment/sweep.h"
@@ -23,6 +24,7 @@
 #include "test_support.h"
 
 using namespace fairshape;
+using Catch::Matchers::Contains;
 namespace fs = std::filesystem;
 
 TEST_CASE("every config under configs/ is one kind's, and each of its points validates", "[experiment][kinds]") {
@@ -141,4 +143,49 @@ constraints:
   CHECK(typed_placed.points.size() == from_config_placed.points.size());
   CHECK_THROWS_AS(VertexSelection::slab(3, 0, 1), InvalidInput);
   CHECK_THROWS_AS(make_stretch_bend({0, 0}, StretchBendOf::Deformation, Backend::Optimized), InvalidInput);
+}
+
+TEST_CASE("the harness's repeats: medians of what is measured, the minimum beside it, results that must agree",
+          "[experiment][repeats]") {
+  const fs::path dir = test::scratch_dir("repeats");
+  RunTables tables;
+  const RunOutputs out{dir.string(), "abc", true, &tables};
+  const auto ok = [](const MetricRow& m) { return m.at("termination") == "converged"; };
+  std::vector<double> solve{0.4, 0.1, 0.3, 0.2};
+  std::vector<std::string> dirs_seen;
+  int k = 0;
+  const auto execute = [&](const RunOutputs& o) {
+    dirs_seen.push_back(o.dir);
+    o.add_row("iterations", {"row of execution " + std::to_string(k)});
+    const double s = solve[static_cast<std::size_t>(k++)];
+    return MetricRow{{"solve_s", std::to_string(s)}, {"solve_min_s", std::to_string(s)}, {"energy", "1.5"},
+                     {"termination", "converged"}, {"message", ""}};
+  };
+  const std::vector<std::string> measured = measured_by_name({"solve_s", "solve_min_s", "energy", "peak_rss_mb"});
+  CHECK(measured == std::vector<std::string>{"solve_s", "solve_min_s", "peak_rss_mb"});
+  const MetricRow m = run_repeated(4, measured, out, execute, ok);
+  CHECK(std::stod(m.at("solve_s")) == Approx(0.25));  // even count: the mean of the middle two
+  CHECK(std::stod(m.at("solve_min_s")) == Approx(0.1));
+  CHECK(m.at("repeat") == "4");
+  CHECK(m.at("message").empty());
+  // Only the first execution writes into the output folder and its tables; the scratch is gone.
+  CHECK(dirs_seen.front() == dir.string());
+  for (std::size_t i = 1; i < dirs_seen.size(); ++i) CHECK(dirs_seen[i] != dir.string());
+  CHECK(tables.rows().at("iterations").size() == 1);
+  CHECK(!fs::exists(dirs_seen.back()));
+
+  // A result that changes between executions is named; a repeat that fails stops the repeats.
+  k = 0;
+  const auto drifting = [&](const RunOutputs&) {
+    ++k;
+    return MetricRow{{"solve_s", "0.1"}, {"energy", std::to_string(k)}, {"termination", k == 3 ? "numerical_failure" : "converged"},
+                     {"message", ""}};
+  };
+  const MetricRow d = run_repeated(5, {"solve_s"}, out, drifting, ok);
+  CHECK_THAT(d.at("message"), Contains("repeat 3 ended numerical_failure") && Contains("repeats disagree in energy"));
+  CHECK(d.at("repeat") == "2");
+  CHECK(d.at("energy") == "1");
+  // A run that fails the first time is not repeated.
+  k = 2;
+  CHECK(run_repeated(5, {"solve_s"}, out, drifting, ok).at("repeat") == "1");
 }

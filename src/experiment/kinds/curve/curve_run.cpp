@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "core/statistics.h"
 #include "core/summary.h"
 #include "core/config.h"
 #include "core/timer.h"
@@ -198,13 +197,9 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
     Polyline current = spec.curve;
     EditStages last;
     for (std::size_t k = 0; k < spec.edits.size(); ++k) {
-      std::vector<double> totals;
-      for (int r = 0; r < spec.repeat; ++r) {
-        last = run_editing_loop(current, spec.levels, spec.edits[k], spec.objective(), *spec.solver, spec.implementation);
-        totals.push_back(last.total_s);
-      }
+      last = run_editing_loop(current, spec.levels, spec.edits[k], spec.objective(), *spec.solver, spec.implementation);
       const int edit = static_cast<int>(k);
-      time_s += median(totals);
+      time_s += last.total_s;
       explicit_s += last.explicit_s;
       solve_s += last.solve_s;
       solves += last.solve.solves;
@@ -216,7 +211,7 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
         const CurveMetrics m = measure_curve(*stage_points[st], current.closed, lengths, last.attracting);
         const bool fin = st == 3;
         out.add_row("steps", step_row(edit, kStages[st], m, fin ? std::to_string(last.solve.solves) : "",
-                              fin ? num(median(totals)) : ""));
+                              fin ? num(last.total_s) : ""));
         if (spec.vtk != VtkPolicy::None) write_stage(spec, out, edit, kStages[st], *stage_points[st], last.reference);
       }
       current.points = last.final;

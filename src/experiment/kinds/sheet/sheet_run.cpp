@@ -7,7 +7,6 @@
 
 #include <Eigen/Geometry>
 
-#include "core/statistics.h"
 #include "core/summary.h"
 #include "core/config.h"
 #include "core/timer.h"
@@ -386,15 +385,8 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
       for (std::size_t k = 0; k < sheets.size(); ++k) {
         const std::vector<SheetConstraint> active = active_constraints(spec, k, step, curves_now, initial_surfaces[k], initial_P[k]);
         if (active.empty()) continue;  // nothing acts on this sheet yet: it keeps its shape
-        bspline::DesignReport r;
-        std::vector<double> times;
-        for (int rep = 0; rep < spec.repeat; ++rep) {
-          bspline::VariationalSheet trial = sheets[k];
-          r = bspline::solve_sheet(trial, spec.energy, active, *spec.solver, spec.refinement, spec.implementation);
-          times.push_back(r.solve_s);
-          if (rep + 1 == spec.repeat) sheets[k] = std::move(trial);
-        }
-        r.solve_s = median(times);
+        const bspline::DesignReport r =
+            bspline::solve_sheet(sheets[k], spec.energy, active, *spec.solver, spec.refinement, spec.implementation);
         const auto& s = sheets[k].surface();
         const qp::QuadraticProgram program = bspline::assemble(sheets[k], spec.energy, active, spec.implementation);
         out.add_row("steps", {std::to_string(step), spec.sheets[k].name, std::to_string(s.dof_count()),

@@ -132,8 +132,8 @@ DesignReport solve_sheet(VariationalSheet& sheet, const SheetEnergy& energy, con
     report.qp = solver.solve(program.f, program.b);
     report.solve_s += timer.seconds();
     ++report.rounds;
-    if (report.qp.termination != Termination::Converged) {
-      report.message = report.qp.message;
+    if (report.qp.summary.termination != Termination::Converged) {
+      report.message = report.qp.summary.message;
       return report;
     }
     sheet.set_coefficients(report.qp.p);
@@ -163,7 +163,7 @@ DesignReport solve_sheet(VariationalSheet& sheet, const SheetEnergy& energy, con
     }
     report.spans_refined += sheet.refine(spans);
   }
-  if (!report.qp.message.empty()) report.message = report.message.empty() ? report.qp.message : report.qp.message + "; " + report.message;
+  if (!report.qp.summary.message.empty()) report.message = report.message.empty() ? report.qp.summary.message : report.qp.summary.message + "; " + report.message;
   return report;
 }
 
@@ -182,7 +182,7 @@ ObjectiveErrorEstimate estimate_objective_error(const VariationalSheet& sheet, c
   finer.refine(spans);
   const DesignReport r = solve_sheet(finer, energy, constraints, solver, {}, backend);
   out.finer_dofs = finer.surface().dof_count();
-  if (r.qp.termination != Termination::Converged) {
+  if (r.qp.summary.termination != Termination::Converged) {
     out.message = "objective error estimate: the finer solve failed: " + r.message;
     return out;
   }

@@ -8,6 +8,7 @@
 #include "problem/constrained_system.h"
 #include "problem/least_squares.h"
 #include "qp/qp_solver.h"
+#include "qp/split_solver.h"
 
 namespace fairshape {
 
@@ -57,34 +58,26 @@ const NameTable<ConstraintMode>& constraint_mode_names() {
   return t;
 }
 
-PreparedEdit::PreparedEdit(const EditProblem& p, ConstraintMode mode, Solver& solver, Backend backend, Config qp_options)
-    : solver_(solver) {
+PreparedEdit::PreparedEdit(const EditProblem& p, ConstraintMode mode, Solver& solver, Backend backend, Config qp_options) {
   Timer setup;
   check_sizes(p);
   original_ = &p;
   if (p.constraints.coupled()) stacked_ = stacked(p);
   const EditProblem& s = solved();
-  if (mode != ConstraintMode::Paper) {
-    // The QP modes are the registered constrained solvers of src/qp, on the same program.
+  // Every mode is a constrained solver of src/qp on one program: the paper's split with this
+  // run's linear solver for the free vertices, the others the registered solver of that name.
+  if (mode == ConstraintMode::Paper) {
+    qp_ = std::make_unique<qp::SplitSolver>(solver, backend);
+  } else {
     const std::string name(constraint_mode_names().name(mode));
     const auto& registry = qp::qp_solver_registry();
     qp_ = registry.create(name, registry.has(name, backend) ? backend : Backend::Optimized, qp_options);
-    qp_->analyze({s.H, s.g, s.constraints.A, Eigen::MatrixXd::Zero(s.constraints.A.rows(), s.g.cols()), {}});
-    constrained_vertices_ = static_cast<int>(reached_columns(s.constraints.A).size());
-    analyze_s_ = setup.seconds();
-    return;
   }
-  touched_ = reached_columns(s.constraints.A);
-  ls_ = std::make_unique<MinNormLeastSquares>(s.constraints.A * row_picker(s.constraints.A.cols(), touched_), backend);
-  red_ = reduce({s.H, s.g, touched_, Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(touched_.size()), s.g.cols())});
-  if (!red_.free.empty()) {
-    if (solver.uses_levels()) {
-      if (!s.levels) throw InvalidInput("edit: a multilevel solver needs a hierarchy below the edit level");
-      // The solver sees the reduced system: its finest unknowns are the free vertices.
-      solver.set_levels(s.levels, {red_.free, static_cast<int>(s.H.rows() / s.levels->prolongation.back().rows())});
-    }
-    solver.analyze(red_.A);
-  }
+  qp::QuadraticProgram program{s.H, s.g, s.constraints.A, Eigen::MatrixXd::Zero(s.constraints.A.rows(), s.g.cols()), {}, {}};
+  program.levels = s.levels;
+  qp_->analyze(program);
+  constrained_vertices_ = static_cast<int>(reached_columns(s.constraints.A).size());
+  paper_ = mode == ConstraintMode::Paper;
   analyze_s_ = setup.seconds();
 }
 
@@ -96,17 +89,25 @@ EditSolution PreparedEdit::solve(const Eigen::MatrixXd& C, const IterationCallba
   const bool coupled = stacked_.has_value();
   const Eigen::MatrixXd targets = coupled ? stacked_targets(original_->constraints, C) : C;
   const Eigen::MatrixXd start = initial ? (coupled ? Eigen::MatrixXd(stack(*initial)) : *initial) : Eigen::MatrixXd();
+  // Callers see the n × 3 deformation, not the coupled system's stacked [Δx; Δy; Δz].
+  Eigen::MatrixXd unstacked;
+  const IterationCallback as_columns = [&](const IterationRecord& r) {
+    unstacked = unstack(*r.x);
+    return cb({r.iteration, r.residual, r.seconds, r.energy, &unstacked});
+  };
+  qp::QpSolveOptions options;
+  options.initial = initial ? &start : nullptr;
+  options.callback = cb && coupled ? as_columns : cb;
+  options.nearest_to_initial = constrained == ConstrainedStart::NearestToInitial;
+  options.measure_residual = false;  // measured below, when asked
   EditSolution out;
-  if (qp_) {
-    Timer t;
-    const qp::QpReport r = qp_->solve(s.g, targets);
-    out.delta = r.p;
-    out.summary = {r.termination, 1, r.constraint_residual, r.message};
-    out.constrained_vertices = constrained_vertices_;
-    out.solve_s = t.seconds();
-  } else {
-    out = solve_paper(targets, initial ? &start : nullptr, constrained, cb);
-  }
+  Timer t;
+  const qp::QpReport r = qp_->solve(s.g, targets, options);
+  out.solve_s = t.seconds() - r.summary.observe_s;
+  out.delta = r.p;
+  out.summary = r.summary;
+  if (!paper_) out.summary.residual = r.constraint_residual;  // a direct solve: its constraint residual
+  out.constrained_vertices = constrained_vertices_;
   out.analyze_s = analyze_s_;
   out.constraint_residual = measure_constraints_ ? (s.constraints.A * out.delta - targets).norm()
                                                  : std::numeric_limits<double>::quiet_NaN();
@@ -117,48 +118,6 @@ EditSolution PreparedEdit::solve(const Eigen::MatrixXd& C, const IterationCallba
 double PreparedEdit::constraint_residual(const Eigen::MatrixXd& delta, const Eigen::MatrixXd& C) const {
   if (!stacked_) return (original_->constraints.A * delta - C).norm();
   return (stacked_->constraints.A * stack(delta) - stacked_targets(original_->constraints, C)).norm();
-}
-
-EditSolution PreparedEdit::solve_paper(const Eigen::MatrixXd& targets, const Eigen::MatrixXd* start,
-                                       ConstrainedStart constrained, const IterationCallback& cb) {
-  const EditProblem& s = solved();
-  const bool coupled = stacked_.has_value();
-  // Minimum norm: the paper's A⁺C. Nearest to the start: start + A⁺(C − A·start), the
-  // smallest change that satisfies the rows (a prolongated coarse solution keeps its shape).
-  Eigen::MatrixXd fixed;
-  if (constrained == ConstrainedStart::NearestToInitial && start) {
-    Eigen::MatrixXd on_touched(static_cast<Eigen::Index>(touched_.size()), start->cols());
-    for (std::size_t k = 0; k < touched_.size(); ++k) on_touched.row(static_cast<Eigen::Index>(k)) = start->row(touched_[k]);
-    fixed = on_touched + ls_->solve(targets - s.constraints.A * *start).X;
-  } else {
-    fixed = ls_->solve(targets).X;
-  }
-  red_.set_fixed_values(fixed);
-  EditSolution out;
-  out.constrained_vertices = static_cast<int>(touched_.size());
-  Eigen::MatrixXd x = start ? red_.restrict_to_free(*start)
-                            : Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(red_.free.size()), s.g.cols());
-  if (red_.free.empty()) {
-    out.summary = {Termination::Converged, 0, 0.0, "every vertex is constrained"};
-  } else {
-    // Callers see the whole n × 3 deformation, not the solver's reduced unknowns. The
-    // reduced energy differs from the full one by a constant (the fixed vertices' part):
-    // measured once, so a check costs no product with the full H.
-    Eigen::MatrixXd full;
-    std::optional<double> energy_offset;
-    const IterationCallback expanded = [&](const IterationRecord& r) {
-      full = red_.expand(*r.x);
-      if (coupled) full = unstack(full);
-      if (!std::isnan(r.energy) && !energy_offset)
-        energy_offset = quadratic_energy(original_->H, original_->g, full) - r.energy;
-      return cb({r.iteration, r.residual, r.seconds, r.energy + energy_offset.value_or(0.0), &full});
-    };
-    Timer t;
-    out.summary = solver_.solve(red_.A, red_.b, x, cb ? expanded : IterationCallback());
-    out.solve_s = t.seconds() - out.summary.observe_s;
-  }
-  out.delta = red_.expand(x);
-  return out;
 }
 
 EditSolution solve_edit(const EditProblem& p, ConstraintMode mode, Solver& free_solver, Backend backend,

@@ -53,7 +53,6 @@ struct EditSolution {
 EditSolution solve_edit(const EditProblem& p, ConstraintMode mode, Solver& free_solver, Backend backend,
                         const IterationCallback& cb = {}, const Eigen::MatrixXd* initial = nullptr, Config qp_options = {});
 
-class MinNormLeastSquares;
 namespace qp {
 class QpSolver;
 }
@@ -86,16 +85,11 @@ class PreparedEdit {
 
  private:
   const EditProblem& solved() const { return stacked_ ? *stacked_ : *original_; }
-  EditSolution solve_paper(const Eigen::MatrixXd& targets, const Eigen::MatrixXd* start, ConstrainedStart constrained,
-                           const IterationCallback& cb);
   const EditProblem* original_ = nullptr;
   std::optional<EditProblem> stacked_;  // the coupled 3n system when there are normal constraints
-  Solver& solver_;
-  std::unique_ptr<qp::QpSolver> qp_;  // the QP modes
-  int constrained_vertices_ = 0;      // the QP modes: unknowns some constraint row reaches
-  std::vector<int> touched_;  // paper: vertices some constraint row reaches, fixed by least squares
-  std::unique_ptr<MinNormLeastSquares> ls_;
-  ReducedSystem red_;
+  std::unique_ptr<qp::QpSolver> qp_;    // every mode: src/qp's solver (paper: the split)
+  bool paper_ = false;
+  int constrained_vertices_ = 0;  // unknowns some constraint row reaches
   double analyze_s_ = 0;
   bool measure_constraints_ = true;
 };

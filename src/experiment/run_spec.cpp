@@ -142,6 +142,7 @@ void read_solver(Config& root, const Components& c, Backend backend, RunSpec& s)
 void read_qp_options(Config& pc, Backend backend, RunSpec& s) {
   const auto& registry = qp::qp_solver_registry();
   for (const auto& name : registry.names()) {
+    if (name == "paper") continue;  // the split's free solver is the solver: block
     Config block = pc.child(name, "options of constraint_mode " + name + " (see `fairshape list`)");
     (void)registry.create(name, registry.has(name, backend) ? backend : Backend::Optimized, block);
     block.check_no_unknown_keys();

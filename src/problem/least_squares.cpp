@@ -95,7 +95,12 @@ struct ReferenceWide final : Factorization {
 struct OptimizedWide final : Factorization {
   SparseMatrix At;
   Eigen::CholmodSupernodalLLT<SparseMatrix> llt;
-  explicit OptimizedWide(const SparseMatrix& A) : At(A.transpose()) { llt.compute(A * At); }
+  explicit OptimizedWide(const SparseMatrix& A) : At(A.transpose()) {
+    // Dependent rows make A Aᵀ singular: expected, detected by usable() and routed to the QR
+    // (a CHOLMOD "not positive definite" warning on stderr would only alarm).
+    llt.cholmod().print = 0;
+    llt.compute(A * At);
+  }
   // CHOLMOD may factor a numerically singular A Aᵀ (dependent rows): a probe solve decides.
   bool usable(const SparseMatrix& A) const {
     if (llt.info() != Eigen::Success) return false;

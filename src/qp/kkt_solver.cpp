@@ -187,7 +187,7 @@ QpReport KktSolver::solve_with(const System& sys, const Eigen::MatrixXd& f, cons
   out.dropped_rows = static_cast<int>(A_.rows() - sys.rows.rows.rows());
   if (sys.singular) {
     out.p = Eigen::MatrixXd::Zero(n, f.cols());
-    out.message = "KKT system is singular: the constraints do not pin the energy's null space";
+    out.summary.message = "KKT system is singular: the constraints do not pin the energy's null space";
     return out;
   }
   Eigen::MatrixXd rhs(sys.K.rows(), f.cols());
@@ -196,11 +196,12 @@ QpReport KktSolver::solve_with(const System& sys, const Eigen::MatrixXd& f, cons
   const Eigen::MatrixXd x = refined_solve(*sys.lu, sys.K, rhs);
   if (!x.allFinite()) {
     out.p = Eigen::MatrixXd::Zero(n, f.cols());
-    out.message = "KKT solve produced non-finite values";
+    out.summary.message = "KKT solve produced non-finite values";
     return out;
   }
   out.p = x.topRows(n);
-  out.termination = Termination::Converged;
+  out.summary.termination = Termination::Converged;
+  out.summary.iterations = 1;  // one direct solve
   return out;
 }
 
@@ -210,20 +211,20 @@ QpReport KktSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) {
     throw InvalidInput("KKT solve: right-hand sides do not match the analyzed program");
   QpReport out = solve_with(*main_, f, b);
   out.constraint_residual = constraint_residual(A_, b, out.p);
-  if (reduced_ && out.termination == Termination::Converged && out.constraint_residual > 1e-9 * (1 + b.norm()))
-    out.message = inconsistent_message(out.constraint_residual);
-  else if (out.termination == Termination::Converged && out.dropped_rows > 0 && out.constraint_residual > 1e-9 * (1 + b.norm())) {
+  if (reduced_ && out.summary.termination == Termination::Converged && out.constraint_residual > 1e-9 * (1 + b.norm()))
+    out.summary.message = inconsistent_message(out.constraint_residual);
+  else if (out.summary.termination == Termination::Converged && out.dropped_rows > 0 && out.constraint_residual > 1e-9 * (1 + b.norm())) {
     // The dropped rows disagree with the kept ones: fit all of them in the least-squares sense.
     if (!least_squares_) least_squares_ = build(compress_rows(A_, backend_), nullptr);
     const int dropped = out.dropped_rows;
     out = solve_with(*least_squares_, f, b);
     out.dropped_rows = dropped;
     out.constraint_residual = constraint_residual(A_, b, out.p);
-    out.message = inconsistent_message(out.constraint_residual);
+    out.summary.message = inconsistent_message(out.constraint_residual);
   }
   if (out.dropped_rows) {
     const std::string note = "dropped " + std::to_string(out.dropped_rows) + " dependent constraint rows";
-    out.message = out.message.empty() ? note : out.message + "; " + note;
+    out.summary.message = out.summary.message.empty() ? note : out.summary.message + "; " + note;
   }
   return out;
 }

@@ -104,7 +104,7 @@ QpReport QrPenaltySolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd&
   out.condition_estimate = condition_;
   if (rank_ < H_.cols()) {
     out.p = Eigen::MatrixXd::Zero(H_.rows(), f.cols());
-    out.message = "[mu A; K] is numerically singular (rank " + std::to_string(rank_) + " of " + std::to_string(H_.cols()) +
+    out.summary.message = "[mu A; K] is numerically singular (rank " + std::to_string(rank_) + " of " + std::to_string(H_.cols()) +
                   "): the constraints do not pin the energy's null space, or mu is too large for the energy's scale";
     return out;
   }
@@ -127,9 +127,10 @@ QpReport QrPenaltySolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd&
     shifted += residual;
   }
   out.constraint_residual = out.residual_history.back();
-  out.termination = out.p.allFinite() ? Termination::Converged : Termination::NumericalFailure;
+  out.summary.termination = out.p.allFinite() ? Termination::Converged : Termination::NumericalFailure;
+  out.summary.iterations = 1;  // one direct solve
   if (condition_ > 1e12)
-    out.message = "warning: [mu A; K] is badly conditioned (estimate " + std::to_string(condition_) +
+    out.summary.message = "warning: [mu A; K] is badly conditioned (estimate " + std::to_string(condition_) +
                   "): mu is too large for double precision";
   return out;
 }

@@ -4,9 +4,11 @@
 // with one column of p, f and b per coordinate (x, y, z share H and A).
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "core/types.h"
+#include "solver/level_operators.h"
 
 namespace fairshape::qp {
 
@@ -18,6 +20,9 @@ struct QuadraticProgram {
   //! Optional sum-of-squares form of the energy, KᵀK = H (the QR-penalty solver factors [μA; K]
   //! instead of H); empty: derived from H when needed.
   SparseMatrix K;
+  //! Optional levels below the program's unknowns, for a multilevel solver of the free
+  //! unknowns (the split solver with multigrid).
+  std::shared_ptr<const LevelOperators> levels;
 };
 
 //! \throw InvalidInput naming the mismatched or non-finite part.

@@ -160,7 +160,7 @@ QpReport RangeSpaceSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd
   QpReport out;
   if (singular_) {
     out.p = Eigen::MatrixXd::Zero(H_.rows(), f.cols());
-    out.message = "H + rho AᵀA is not positive definite: the constraints do not pin the energy's null space";
+    out.summary.message = "H + rho AᵀA is not positive definite: the constraints do not pin the energy's null space";
     return out;
   }
   // g = f + ρ A_Fᵀ b_F over the rows that are part of H_ρ (the augmented Lagrangian's term).
@@ -176,8 +176,9 @@ QpReport RangeSpaceSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd
     out.dropped_rows = static_cast<int>(A_.rows() - schur_.rank());
   }
   out.constraint_residual = constraint_residual(A_, b, out.p);
-  out.termination = out.p.allFinite() ? Termination::Converged : Termination::NumericalFailure;
-  if (out.dropped_rows) out.message = std::to_string(out.dropped_rows) + " dependent constraint rows (minimum-norm multipliers)";
+  out.summary.termination = out.p.allFinite() ? Termination::Converged : Termination::NumericalFailure;
+  out.summary.iterations = 1;  // one direct solve
+  if (out.dropped_rows) out.summary.message = std::to_string(out.dropped_rows) + " dependent constraint rows (minimum-norm multipliers)";
   return out;
 }
 

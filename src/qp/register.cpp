@@ -2,6 +2,7 @@
 #include "qp/kkt_solver.h"
 #include "qp/qr_penalty_solver.h"
 #include "qp/range_space_solver.h"
+#include "qp/split_solver.h"
 
 namespace fairshape::qp {
 
@@ -17,6 +18,25 @@ QrPenaltyOptions read_penalty(Config& cfg) {
                               "semi_normal: R only (corrected semi-normal equations, fast); orthogonal: through Q (slow, accurate)");
   return o;
 }
+// Every linear solver, both back ends: the split's free unknowns.
+const SolverRegistry& linear_solvers() {
+  static const SolverRegistry registry = [] {
+    SolverRegistry r("solver");
+    register_solvers(r);
+    reference::register_solvers(r);
+    return r;
+  }();
+  return registry;
+}
+
+std::unique_ptr<QpSolver> make_split(Backend backend, Config& cfg) {
+  Config fc = cfg.child("free_solver", "the free unknowns' linear solver: {type, tolerance, max_iterations, <type>: {...}}");
+  const std::string type = fc.get_choice("type", "cholesky", linear_solvers().names(), "linear solver name");
+  auto free = linear_solvers().create(type, linear_solvers().has(type, backend) ? backend : Backend::Optimized, fc);
+  fc.check_no_unknown_keys();
+  return std::make_unique<SplitSolver>(std::move(free), backend);
+}
+
 }  // namespace
 
 void register_qp_solvers(QpSolverRegistry& r) {
@@ -34,6 +54,12 @@ void register_qp_solvers(QpSolverRegistry& r) {
           [backend](Config& cfg) -> std::unique_ptr<QpSolver> {
             return std::make_unique<QrPenaltySolver>(backend, read_penalty(cfg));
           });
+    r.add("paper", backend,
+          ref ? "Boier-Martin et al. 4.3's split: the unknowns the rows reach by minimum-norm least squares (Eigen SparseQR), "
+                "then fixed; the others by free_solver (the paper's answer, not the minimizer)"
+              : "Boier-Martin et al. 4.3's split: the unknowns the rows reach by minimum-norm least squares (CHOLMOD on A "
+                "A' / SuiteSparseQR), then fixed; the others by free_solver (the paper's answer, not the minimizer)",
+          [backend](Config& cfg) { return make_split(backend, cfg); });
   }
   r.add("range_space", Backend::Optimized,
         "CHOLMOD on H + rho A'A and the dense Schur complement of the constraints; added rows border it, removed ones "

@@ -258,7 +258,7 @@ TEST_CASE("rest shape: installed shapes are kept, melt returns to the remembered
   auto kkt = qp::qp_solver_registry().create("kkt", Backend::Optimized, none);
   sheet.refine({{0, 1, 1}});
   DesignReport r = solve_sheet(sheet, e, {hold}, *kkt, {}, Backend::Optimized);
-  REQUIRE(r.qp.termination == Termination::Converged);
+  REQUIRE(r.qp.summary.termination == Termination::Converged);
   CHECK((sheet.surface().position(sheet.coefficients(), 1.3, 0.7) - probe.position(bent, 1.3, 0.7)).norm() < 1e-9);
   sheet.melt();  // back to the flat sheet: the same solve now returns the plane through the held point
   r = solve_sheet(sheet, e, {hold}, *kkt, {}, Backend::Optimized);

@@ -64,10 +64,10 @@ TEST_CASE("KKT: constraints to 1e-10, dependent curve rows dropped and reported,
     auto solver = make("kkt", backend);
     solver->analyze(pr.qp);
     QpReport r = solver->solve(pr.qp.f, pr.qp.b);
-    REQUIRE(r.termination == Termination::Converged);
+    REQUIRE(r.summary.termination == Termination::Converged);
     CHECK(r.constraint_residual < 1e-10 * (1 + pr.qp.b.norm()));
     CHECK(r.dropped_rows > 0);  // an isoparametric curve: r+1 independent rows per span
-    CHECK(r.message.find("dropped") != std::string::npos);
+    CHECK(r.summary.message.find("dropped") != std::string::npos);
     reports[backend == Backend::Optimized] = r;
   }
   CHECK((reports[0].p - reports[1].p).norm() <= 1e-8 * reports[1].p.norm());
@@ -99,7 +99,7 @@ TEST_CASE("QR-penalty: each refinement step shrinks the residual and agrees with
     auto penalty = make("qr_penalty", backend, "{mu: 10, refinement_steps: 4}");
     penalty->analyze(pr.qp);
     const QpReport r = penalty->solve(pr.qp.f, pr.qp.b);
-    REQUIRE(r.termination == Termination::Converged);
+    REQUIRE(r.summary.termination == Termination::Converged);
     REQUIRE(r.residual_history.size() == 5);
     for (std::size_t k = 1; k < r.residual_history.size(); ++k) CHECK(r.residual_history[k] < r.residual_history[k - 1]);
     INFO("residuals " << r.residual_history[0] << " ... " << r.residual_history.back());
@@ -135,7 +135,7 @@ TEST_CASE("range space: agrees with KKT, and added/removed rows (bordered S, CHO
   RangeSpaceSolver rs;
   rs.analyze(pr.qp);
   const QpReport r = rs.solve(pr.qp.f, pr.qp.b);
-  REQUIRE(r.termination == Termination::Converged);
+  REQUIRE(r.summary.termination == Termination::Converged);
   CHECK((r.p - exact).norm() < 1e-7 * exact.norm());
   CHECK(r.constraint_residual < 1e-8 * (1 + pr.qp.b.norm()));
 
@@ -175,10 +175,10 @@ TEST_CASE("constrained solvers report singular and inconsistent problems instead
     auto solver = make(name, Backend::Optimized);
     solver->analyze(loose);
     const QpReport r = solver->solve(loose.f, loose.b);
-    INFO(name << ": " << r.message);
-    CHECK(r.termination == Termination::NumericalFailure);
+    INFO(name << ": " << r.summary.message);
+    CHECK(r.summary.termination == Termination::NumericalFailure);
     CHECK(r.p.allFinite());
-    CHECK(r.message.find("null space") != std::string::npos);
+    CHECK(r.summary.message.find("null space") != std::string::npos);
   }
   // A μ far beyond the energy's scale: warned (badly conditioned) or refused (numerically
   // singular), never a silent answer.
@@ -186,8 +186,8 @@ TEST_CASE("constrained solvers report singular and inconsistent problems instead
     auto huge = make("qr_penalty", Backend::Optimized, "{mu: 1.0e12, refinement_steps: 0}");
     huge->analyze(pr.qp);
     const QpReport r = huge->solve(pr.qp.f, pr.qp.b);
-    INFO(r.message);
-    CHECK((r.message.find("badly conditioned") != std::string::npos || r.message.find("numerically singular") != std::string::npos));
+    INFO(r.summary.message);
+    CHECK((r.summary.message.find("badly conditioned") != std::string::npos || r.summary.message.find("numerically singular") != std::string::npos));
     CHECK(r.p.allFinite());
   }
   // The same point pulled to two places: least-squares fit with the residual reported.
@@ -198,8 +198,35 @@ TEST_CASE("constrained solvers report singular and inconsistent problems instead
   auto kkt = make("kkt", Backend::Optimized);
   kkt->analyze(inconsistent);
   const QpReport r = kkt->solve(inconsistent.f, inconsistent.b);
-  CHECK(r.termination == Termination::Converged);
-  CHECK(r.message.find("inconsistent") != std::string::npos);
+  CHECK(r.summary.termination == Termination::Converged);
+  CHECK(r.summary.message.find("inconsistent") != std::string::npos);
   CHECK(r.constraint_residual == Approx(3.0 / std::sqrt(2.0)).epsilon(1e-6));  // midway: 1.5 off each way
   CHECK(r.p.allFinite());
+}
+
+TEST_CASE("the paper's split: feasible, never below the minimizer's energy, the minimizer itself when started there",
+          "[qp]") {
+  SheetProblem pr;
+  auto kkt = make("kkt", Backend::Optimized);
+  kkt->analyze(pr.qp);
+  const QpReport exact = kkt->solve(pr.qp.f, pr.qp.b);
+  REQUIRE(exact.summary.termination == Termination::Converged);
+  for (Backend b : {Backend::Reference, Backend::Optimized}) {
+    INFO(to_string(b));
+    auto split = make("paper", b, "{free_solver: {type: conjugate_gradient, tolerance: 1.0e-13, max_iterations: 100000}}");
+    split->analyze(pr.qp);
+    const QpReport r = split->solve(pr.qp.f, pr.qp.b);
+    REQUIRE(r.summary.succeeded());
+    CHECK(r.constraint_residual <= 1e-7 * (1 + pr.qp.b.norm()));
+    // Feasible, so no better than the constrained minimizer; the constrained unknowns are not
+    // optimized, so on this sheet (positions as unknowns) much worse.
+    CHECK(objective(pr.qp, r.p) >= objective(pr.qp, exact.p) - 1e-9 * std::abs(objective(pr.qp, exact.p)));
+    // Started at the minimizer with the least change that keeps the rows, it stays there.
+    QpSolveOptions from_exact;
+    from_exact.initial = &exact.p;
+    from_exact.nearest_to_initial = true;
+    const QpReport again = split->solve(pr.qp.f, pr.qp.b, from_exact);
+    CHECK((again.p - exact.p).norm() <= 1e-6 * exact.p.norm());
+  }
+  CHECK_THROWS_WITH(make("paper", Backend::Optimized, "{free_solver: {type: lu}}"), Catch::Matchers::Contains("valid:"));
 }

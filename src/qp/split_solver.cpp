@@ -1,0 +1,79 @@
+#include "qp/split_solver.h"
+
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "core/error.h"
+#include "core/timer.h"
+#include "problem/least_squares.h"
+
+namespace fairshape::qp {
+
+SplitSolver::SplitSolver(Solver& free_solver, Backend backend) : free_(free_solver), backend_(backend) {}
+SplitSolver::SplitSolver(std::unique_ptr<Solver> free_solver, Backend backend)
+    : owned_(std::move(free_solver)), free_(*owned_), backend_(backend) {}
+SplitSolver::~SplitSolver() = default;
+
+void SplitSolver::analyze(const QuadraticProgram& qp) {
+  validate(qp);
+  const Timer timer;
+  H_ = qp.H;
+  A_ = qp.A;
+  touched_ = reached_columns(A_);
+  if (touched_.empty()) throw InvalidInput("paper: no constraint row reaches an unknown: the split has nothing to fix");
+  ls_ = std::make_unique<MinNormLeastSquares>(A_ * row_picker(A_.cols(), touched_), backend_);
+  red_ = reduce({H_, qp.f, touched_, Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(touched_.size()), qp.f.cols())});
+  if (!red_.free.empty()) {
+    if (free_.uses_levels()) {
+      if (!qp.levels) throw InvalidInput("paper: a multilevel solver needs a hierarchy below the edit level");
+      // The solver sees the reduced system: its finest unknowns are the free ones.
+      free_.set_levels(qp.levels, {red_.free, static_cast<int>(H_.rows() / qp.levels->prolongation.back().rows())});
+    }
+    free_.analyze(red_.A);
+  }
+  analyze_s_ = timer.seconds();
+}
+
+QpReport SplitSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) { return solve(f, b, {}); }
+
+QpReport SplitSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b, const QpSolveOptions& o) {
+  FAIRSHAPE_ASSERT(ls_, "SplitSolver::solve before analyze");
+  if (f.rows() != H_.rows() || b.rows() != A_.rows() || b.cols() != f.cols() || (o.initial && o.initial->rows() != H_.rows()))
+    throw InvalidInput("paper solve: right-hand sides or start do not match the analyzed program");
+  // Minimum norm: the paper's A⁺b. Nearest to the start: start + A⁺(b − A·start), the
+  // smallest change that satisfies the rows.
+  Eigen::MatrixXd fixed;
+  if (o.nearest_to_initial && o.initial) {
+    Eigen::MatrixXd on_touched(static_cast<Eigen::Index>(touched_.size()), o.initial->cols());
+    for (std::size_t k = 0; k < touched_.size(); ++k) on_touched.row(static_cast<Eigen::Index>(k)) = o.initial->row(touched_[k]);
+    fixed = on_touched + ls_->solve(b - A_ * *o.initial).X;
+  } else {
+    fixed = ls_->solve(b).X;
+  }
+  red_.g_free.resize(static_cast<Eigen::Index>(red_.free.size()), f.cols());
+  for (std::size_t k = 0; k < red_.free.size(); ++k) red_.g_free.row(static_cast<Eigen::Index>(k)) = f.row(red_.free[k]);
+  red_.set_fixed_values(fixed);
+  QpReport out;
+  Eigen::MatrixXd x = o.initial ? red_.restrict_to_free(*o.initial)
+                                : Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(red_.free.size()), f.cols());
+  if (red_.free.empty()) {
+    out.summary = {Termination::Converged, 0, 0.0, "every unknown is constrained"};
+  } else {
+    // Callers see the whole n × k iterate. The reduced energy differs from the full one by a
+    // constant (the fixed unknowns' part): measured once, so a check costs no product with H.
+    Eigen::MatrixXd full;
+    std::optional<double> energy_offset;
+    const IterationCallback expanded = [&](const IterationRecord& r) {
+      full = red_.expand(*r.x);
+      if (!std::isnan(r.energy) && !energy_offset) energy_offset = quadratic_energy(H_, f, full) - r.energy;
+      return o.callback({r.iteration, r.residual, r.seconds, r.energy + energy_offset.value_or(0.0), &full});
+    };
+    out.summary = free_.solve(red_.A, red_.b, x, o.callback ? expanded : IterationCallback());
+  }
+  out.p = red_.expand(x);
+  out.constraint_residual = o.measure_residual ? constraint_residual(A_, b, out.p) : std::numeric_limits<double>::quiet_NaN();
+  return out;
+}
+
+}  // namespace fairshape::qp

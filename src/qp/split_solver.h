@@ -1,0 +1,46 @@
+// Boier-Martin et al. §4.3's constrained solve as a QpSolver: the unknowns some constraint
+// row reaches take the minimum-norm least-squares solution of their rows A p_c = b (or the
+// one nearest to a start) and are then fixed; the free unknowns come from a linear solver on
+// the reduced system H_ff p_f = f_f − H_fc p_c. This is the paper's answer, not the QP's
+// minimizer (kkt gives that): the constrained unknowns are not optimized.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "core/backend.h"
+#include "problem/constrained_system.h"
+#include "qp/qp_solver.h"
+#include "solver/solver.h"
+
+namespace fairshape {
+class MinNormLeastSquares;
+}
+
+namespace fairshape::qp {
+
+class SplitSolver final : public QpSolver {
+ public:
+  //! `free_solver` solves the free unknowns; the first form does not own it (it must outlive
+  //! this solver). `backend`: the least-squares factorization's.
+  SplitSolver(Solver& free_solver, Backend backend);
+  SplitSolver(std::unique_ptr<Solver> free_solver, Backend backend);
+  ~SplitSolver() override;
+  //! \throw InvalidInput without constraint rows, or for a multilevel free solver without levels.
+  void analyze(const QuadraticProgram& qp) override;
+  QpReport solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) override;
+  QpReport solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b, const QpSolveOptions& options) override;
+  //! The unknowns some constraint row reaches (fixed by least squares).
+  int constrained_unknowns() const { return static_cast<int>(touched_.size()); }
+
+ private:
+  std::unique_ptr<Solver> owned_;
+  Solver& free_;
+  Backend backend_;
+  SparseMatrix H_, A_;
+  std::vector<int> touched_;
+  std::unique_ptr<MinNormLeastSquares> ls_;
+  ReducedSystem red_;
+};
+
+}  // namespace fairshape::qp

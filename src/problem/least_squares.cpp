@@ -38,10 +38,8 @@ SparseMatrix compressed(SparseMatrix M) {
 template <class QR>
 std::vector<int> independent_rows_by(const SparseMatrix& A) {
   const SparseMatrix At = compressed(A.transpose());
-  double largest = 0;
-  for (int c = 0; c < At.outerSize(); ++c) largest = std::max(largest, At.col(c).norm());
   QR qr;
-  qr.setPivotThreshold(kRowDependenceTolerance * largest);
+  qr.setPivotThreshold(kRowDependenceTolerance * largest_column_norm(At));
   qr.compute(At);
   if (qr.info() != Eigen::Success) throw SolverError("least squares: QR of the constraint rows failed");
   const auto permutation = qr.colsPermutation();  // SPQR returns it by value: keep it alive
@@ -187,6 +185,12 @@ SparseMatrix row_picker(Eigen::Index m, const std::vector<int>& rows) {
   SparseMatrix pick(m, static_cast<Eigen::Index>(rows.size()));
   pick.setFromTriplets(t.begin(), t.end());
   return pick;
+}
+
+double largest_column_norm(const SparseMatrix& M) {
+  double largest = 0;
+  for (int c = 0; c < M.outerSize(); ++c) largest = std::max(largest, M.col(c).norm());
+  return largest;
 }
 
 std::vector<int> independent_rows(const SparseMatrix& A, Backend backend) {

@@ -55,6 +55,10 @@ inline constexpr double kRowDependenceTolerance = 1e-8;
 //! kRowDependenceTolerance × the largest row norm count as zero.
 std::vector<int> independent_rows(const SparseMatrix& A, Backend backend);
 
+//! The largest Euclidean norm of a column of M (0 for an empty M): the scale a QR's pivot
+//! threshold is relative to.
+double largest_column_norm(const SparseMatrix& M);
+
 //! The columns of A with at least one entry (ascending): the unknowns its rows reach.
 std::vector<int> reached_columns(const SparseMatrix& A);
 

@@ -56,10 +56,8 @@ template <class QR>
 CompressedRows sparse_compression(const SparseMatrix& A, const std::vector<int>& reached, Backend backend) {
   SparseMatrix on_reached = A * row_picker(A.cols(), reached);
   on_reached.makeCompressed();
-  double largest = 0;
-  for (int c = 0; c < on_reached.outerSize(); ++c) largest = std::max(largest, on_reached.col(c).norm());
   QR qr;
-  qr.setPivotThreshold(kRowDependenceTolerance * largest);
+  qr.setPivotThreshold(kRowDependenceTolerance * largest_column_norm(on_reached));
   qr.compute(on_reached);
   if (qr.info() != Eigen::Success) throw SolverError("constraint rows: sparse QR failed");
   const Eigen::Index rank = qr.rank();

@@ -59,19 +59,27 @@ std::vector<NamedMesh> test_meshes() {
 
 double relative(const SparseMatrix& a, const SparseMatrix& b) { return (a - b).norm() / std::max(1e-300, b.norm()); }
 
+// Every registered energy on every back end it has, with its default options.
+template <class F>
+void for_each_energy(F&& f) {
+  const EnergyRegistry& reg = components().energies;
+  REQUIRE(!reg.names().empty());
+  for (const auto& name : reg.names())
+    for (Backend b : backends_of(name, reg)) {
+      INFO(name << " (" << to_string(b) << ")");
+      Config defaults;
+      f(*reg.create(name, b, defaults));
+    }
+}
+
 }  // namespace
 
 TEST_CASE("every energy: symmetric PSD Hessian, constants in its null space, linear in the weight, one assembly route",
           "[conformance][energy]") {
-  const EnergyRegistry& reg = components().energies;
-  REQUIRE(!reg.names().empty());
   for (const auto& mesh : test_meshes())
-    for (const auto& name : reg.names())
-      for (Backend b : backends_of(name, reg)) {
-        INFO(name << " (" << to_string(b) << ") on the " << mesh.name);
-        Config defaults;
-        const auto e = reg.create(name, b, defaults);
-        const SparseMatrix H = hessian_of(*e, mesh.mesh, 1.0);
+    for_each_energy([&](const Energy& e) {
+        INFO("on the " << mesh.name);
+        const SparseMatrix H = hessian_of(e, mesh.mesh, 1.0);
         REQUIRE(H.rows() == mesh.mesh.n_vertices());
         REQUIRE(H.norm() > 0);
         CHECK(Eigen::MatrixXd(H).allFinite());
@@ -80,13 +88,12 @@ TEST_CASE("every energy: symmetric PSD Hessian, constants in its null space, lin
         CHECK((H * Eigen::VectorXd::Ones(H.rows())).norm() <= 1e-10 * H.norm());
         const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig{Eigen::MatrixXd(H)};
         CHECK(eig.eigenvalues().minCoeff() >= -1e-10 * eig.eigenvalues().maxCoeff());
-        CHECK(relative(hessian_of(*e, mesh.mesh, 2.5), 2.5 * H) <= 1e-12);
-        CHECK(relative(e->hessian(mesh.mesh, 1.0), H) <= 1e-12);
-      }
+        CHECK(relative(hessian_of(e, mesh.mesh, 2.5), 2.5 * H) <= 1e-12);
+        CHECK(relative(e.hessian(mesh.mesh, 1.0), H) <= 1e-12);
+      });
 }
 
 TEST_CASE("every energy is independent of the vertex numbering", "[conformance][energy]") {
-  const EnergyRegistry& reg = components().energies;
   for (const auto& mesh : test_meshes()) {
     std::vector<int> perm(static_cast<std::size_t>(mesh.mesh.n_vertices()));
     std::iota(perm.begin(), perm.end(), 0);
@@ -94,16 +101,13 @@ TEST_CASE("every energy is independent of the vertex numbering", "[conformance][
     const SurfaceMesh shuffled = renumbered(mesh.mesh, perm);
     Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> P(mesh.mesh.n_vertices());
     for (std::size_t k = 0; k < perm.size(); ++k) P.indices()[static_cast<Eigen::Index>(perm[k])] = static_cast<int>(k);
-    for (const auto& name : reg.names())
-      for (Backend b : backends_of(name, reg)) {
-        INFO(name << " (" << to_string(b) << ") on the " << mesh.name);
-        Config defaults;
-        const auto e = reg.create(name, b, defaults);
-        const SparseMatrix H = hessian_of(*e, mesh.mesh, 1.0);
+    for_each_energy([&](const Energy& e) {
+        INFO("on the " << mesh.name);
+        const SparseMatrix H = hessian_of(e, mesh.mesh, 1.0);
         // P maps old ids to new ones: H_new = P H Pᵀ.
         const SparseMatrix expected = SparseMatrix(P * H * P.transpose());
-        CHECK(relative(hessian_of(*e, shuffled, 1.0), expected) <= 1e-10);
-      }
+        CHECK(relative(hessian_of(e, shuffled, 1.0), expected) <= 1e-10);
+      });
   }
 }
 

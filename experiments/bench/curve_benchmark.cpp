@@ -61,7 +61,7 @@ void run(benchmark::State& state, const Polyline& curve, int levels, const Curve
   double error = 0;
   for (auto _ : state) {
     const EditStages st = run_editing_loop(curve, levels, edit, s.objective, *s.solver, b);
-    if (!st.solve.converged) state.SkipWithError(st.solve.message.c_str());
+    if (!st.solve.converged()) state.SkipWithError(st.solve.summary.message.c_str());
     solves = st.solve.solves;
     error = st.solve.length_error;
     benchmark::DoNotOptimize(st.final.data());

@@ -121,24 +121,26 @@ LengthSolveReport CeresLengthSolver::solve(const LengthProblem& p, const MatrixX
     ceres::Solver::Summary summary;
     ceres::Solve(so, &problem, &summary);
     rep.solves += summary.num_successful_steps + summary.num_unsuccessful_steps;
+    rep.summary.iterations = rep.solves;
     rep.outer_iterations = round + 1;
     if (summary.termination_type == ceres::FAILURE || !X.allFinite()) {
       rep.points = X;
-      rep.message = "Ceres failed in round " + std::to_string(round + 1) + ": " + summary.message;
+      rep.summary.message = "Ceres failed in round " + std::to_string(round + 1) + ": " + summary.message;
       return rep;
     }
     const std::vector<ConstraintRow> rows = p.rows(X);
     double violation = 0;
     for (int r = 0; r < m; ++r) violation = std::max(violation, std::abs(rows[r].value / p.row_scale(r)));
     rep.length_error = p.max_relative_length_error(X);
+    rep.summary.residual = rep.length_error;
     rep.pin_error = p.max_relative_pin_error(X);
     const double stat = o_.tolerances.stationarity > 0 ? p.stationarity(X) : 0.0;
     rep.history.push_back({rep.solves, rep.length_error, stat, timer.seconds()});
     if (rep.length_error <= o_.tolerances.length && rep.pin_error <= o_.tolerances.length &&
         stat <= o_.tolerances.stationarity) {
       rep.points = X;
-      rep.converged = true;
-      rep.message = "converged after " + std::to_string(round + 1) + " augmented-Lagrangian round(s)";
+      rep.summary.termination = Termination::Converged;
+      rep.summary.message = "converged after " + std::to_string(round + 1) + " augmented-Lagrangian round(s)";
       return rep;
     }
     for (int r = 0; r < m; ++r) lambda[r] += mu * rows[r].value / p.row_scale(r);
@@ -146,7 +148,8 @@ LengthSolveReport CeresLengthSolver::solve(const LengthProblem& p, const MatrixX
     previous_violation = violation;
   }
   rep.points = X;
-  rep.message = "not converged after " + std::to_string(rep.outer_iterations) + " augmented-Lagrangian rounds (" +
+  rep.summary.termination = Termination::MaxIterations;
+  rep.summary.message = "not converged after " + std::to_string(rep.outer_iterations) + " augmented-Lagrangian rounds (" +
                 std::to_string(rep.solves) + " Gauss-Newton steps): max relative length error " +
                 format_default(rep.length_error);
   return rep;

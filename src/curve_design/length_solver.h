@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/registry.h"
+#include "core/summary.h"
 #include "core/types.h"
 #include "curve_design/length_problem.h"
 
@@ -21,11 +22,14 @@ struct LengthSolveStep {
 
 struct LengthSolveReport {
   MatrixX3 points;
-  bool converged = false;
+  //! The outcome in every solver's vocabulary (core/summary.h): converged, max_iterations (the
+  //! solve budget before the tolerances) or numerical_failure (a KKT system that cannot be
+  //! factored, non-finite values, Ceres failing); iterations = solves; message says why.
+  SolveSummary summary;
+  bool converged() const { return summary.termination == Termination::Converged; }
   int solves = 0;            // linear systems solved (Ceres: its inner Gauss-Newton steps)
   int outer_iterations = 0;  // linearizations, or augmented-Lagrangian rounds
   double length_error = 0, pin_error = 0;
-  std::string message;       // why it stopped
   std::vector<LengthSolveStep> history;
 };
 
@@ -39,7 +43,7 @@ struct LengthTolerances {
 class LengthSolver {
  public:
   virtual ~LengthSolver() = default;
-  //! Never throws for numerical failure: the report says converged = false and why.
+  //! Never throws for numerical failure: the report's summary says numerical_failure and why.
   virtual LengthSolveReport solve(const LengthProblem& problem, const MatrixX3& start) const = 0;
   virtual const LengthTolerances& tolerances() const = 0;
 };

@@ -73,7 +73,7 @@ LengthSolveReport LinearizedLengthSolver::solve(const LengthProblem& p, const Ma
     const std::vector<ConstraintRow> rows = p.rows(X);
     const bool newton = o_.newton && rep.solves > 0 && rep.length_error < o_.newton_switch;
     if (!kkt->factor(rows, newton ? &lambda : nullptr)) {
-      rep.message = "the KKT system could not be factored at solve " + std::to_string(rep.solves + 1) +
+      rep.summary.message = "the KKT system could not be factored at solve " + std::to_string(rep.solves + 1) +
                     " (singular: dependent constraints?) " + kkt->last_error();
       return rep;
     }
@@ -96,9 +96,10 @@ LengthSolveReport LinearizedLengthSolver::solve(const LengthProblem& p, const Ma
     }
     const Eigen::VectorXd sol = kkt->solve(rhs);
     ++rep.solves;
+    rep.summary.iterations = rep.solves;
     rep.outer_iterations = rep.solves;
     if (!sol.allFinite()) {
-      rep.message = "solve " + std::to_string(rep.solves) + " produced NaN or infinite values";
+      rep.summary.message = "solve " + std::to_string(rep.solves) + " produced NaN or infinite values";
       return rep;
     }
     const MatrixX3 full = Eigen::Map<const MatrixX3>(sol.data(), p.n_points(), 3);
@@ -111,17 +112,19 @@ LengthSolveReport LinearizedLengthSolver::solve(const LengthProblem& p, const Ma
       rep.points = full;
     }
     rep.length_error = p.max_relative_length_error(rep.points);
+    rep.summary.residual = rep.length_error;
     rep.pin_error = p.max_relative_pin_error(rep.points);
     const double stat = o_.tolerances.stationarity > 0 ? stationarity_estimate(p, rep.points, lambda) : 0.0;
     rep.history.push_back({rep.solves, rep.length_error, stat, timer.seconds()});
     if (rep.length_error <= o_.tolerances.length && rep.pin_error <= o_.tolerances.length &&
         stat <= o_.tolerances.stationarity) {
-      rep.converged = true;
-      rep.message = "converged after " + std::to_string(rep.solves) + " solve(s)";
+      rep.summary.termination = Termination::Converged;
+      rep.summary.message = "converged after " + std::to_string(rep.solves) + " solve(s)";
       return rep;
     }
   }
-  rep.message = "not converged after " + std::to_string(rep.solves) + " solves: max relative length error " +
+  rep.summary.termination = Termination::MaxIterations;
+  rep.summary.message = "not converged after " + std::to_string(rep.solves) + " solves: max relative length error " +
                 format_default(rep.length_error) + " (tolerance " + format_default(o_.tolerances.length) +
                 "); raise max_solves, start from a curve nearer the lengths (wrinkle_level), or use newton";
   return rep;

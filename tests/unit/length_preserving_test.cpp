@@ -100,8 +100,8 @@ TEST_CASE("linearized loop: lengths to 1e-10 at a constrained stationary point, 
     const auto solver = make_solver("linearized", b, "{length_tolerance: 1e-12, stationarity_tolerance: 1e-9}");
     stages[i] = run_editing_loop(wave, 7, compress(0.8, 0, 4), recipe.objective, *solver, b);
     const EditStages& s = stages[i++];
-    INFO(s.solve.message);
-    REQUIRE(s.solve.converged);
+    INFO(s.solve.summary.message);
+    REQUIRE(s.solve.converged());
     const CurveMetrics m = measure_curve(s.final, false, segment_lengths(wave.points, false), s.attracting);
     CHECK(m.length_error_max <= 1e-10);
     CHECK(std::abs(m.total_length_change) <= 1e-10);
@@ -124,7 +124,7 @@ TEST_CASE("linearized loop: beta = 1 and an attractor already of the right lengt
   for (Backend b : {Backend::Reference, Backend::Optimized}) {
     const auto solver = make_solver("linearized", b);
     const EditStages s = run_editing_loop(ring, 5, CurveEdit{}, recipe.objective, *solver, b);
-    REQUIRE(s.solve.converged);
+    REQUIRE(s.solve.converged());
     CHECK(s.solve.solves == 1);
     CHECK((s.final - ring.points).cwiseAbs().maxCoeff() <= 1e-13);
   }
@@ -141,7 +141,7 @@ TEST_CASE("editing loop without moves reproduces the reference at every stage", 
   CHECK((s.edited - helix.points).cwiseAbs().maxCoeff() <= 1e-14);
   CHECK((s.attracting - helix.points).cwiseAbs().maxCoeff() <= 1e-12);
   CHECK(s.explicit_step.moved_midpoints == 0);
-  REQUIRE(s.solve.converged);  // β < 1: the result is smoother than the helix, of its lengths
+  REQUIRE(s.solve.converged());  // β < 1: the result is smoother than the helix, of its lengths
   CHECK(measure_curve(s.final, false, segment_lengths(helix.points, false), s.attracting).length_error_max <= 1e-12);
 }
 
@@ -176,8 +176,8 @@ TEST_CASE("the explicit step brings the attracting curve near the lengths and cu
   const auto solver = make_solver("linearized", Backend::Optimized, "{stationarity_tolerance: 0, max_solves: 5000}");
   const EditStages plain = run_editing_loop(wave, 7, compress(0.7, 0, -1), recipe.objective, *solver, Backend::Optimized);
   const EditStages two_step = run_editing_loop(wave, 7, compress(0.7, 0, 4), recipe.objective, *solver, Backend::Optimized);
-  REQUIRE(plain.solve.converged);
-  REQUIRE(two_step.solve.converged);
+  REQUIRE(plain.solve.converged());
+  REQUIRE(two_step.solve.converged());
   const Eigen::VectorXd l = segment_lengths(wave.points, false);
   const auto before = [&](const MatrixX3& X) { return measure_curve(X, false, l, X).length_error_max; };
   CHECK(before(two_step.attracting) < before(plain.attracting));
@@ -193,9 +193,9 @@ TEST_CASE("newton linearization and MINRES reach the same curve as the paper's d
   const EditStages a = run_editing_loop(wave, 7, compress(0.85, 0, 3), recipe.objective, *paper, Backend::Optimized);
   const EditStages b = run_editing_loop(wave, 7, compress(0.85, 0, 3), recipe.objective, *newton, Backend::Optimized);
   const EditStages c = run_editing_loop(wave, 7, compress(0.85, 0, 3), recipe.objective, *minres, Backend::Reference);
-  REQUIRE(a.solve.converged);
-  REQUIRE(b.solve.converged);
-  REQUIRE(c.solve.converged);
+  REQUIRE(a.solve.converged());
+  REQUIRE(b.solve.converged());
+  REQUIRE(c.solve.converged());
   CHECK(b.solve.solves <= a.solve.solves);
   CHECK((a.final - b.final).cwiseAbs().maxCoeff() <= 1e-8);
   CHECK((a.final - c.final).cwiseAbs().maxCoeff() <= 1e-6);
@@ -208,9 +208,9 @@ TEST_CASE("ceres and the linearized loop agree where both converge", "[sauvage]"
   const auto ceres = make_solver("ceres", Backend::Optimized, "{length_tolerance: 1e-11, stationarity_tolerance: 1e-8}");
   const EditStages a = run_editing_loop(wave, 7, compress(0.85, 0, 3), recipe.objective, *lin, Backend::Optimized);
   const EditStages b = run_editing_loop(wave, 7, compress(0.85, 0, 3), recipe.objective, *ceres, Backend::Optimized);
-  INFO(b.solve.message);
-  REQUIRE(a.solve.converged);
-  REQUIRE(b.solve.converged);
+  INFO(b.solve.summary.message);
+  REQUIRE(a.solve.converged());
+  REQUIRE(b.solve.converged());
   CHECK(b.solve.length_error <= 1e-11);
   CHECK((a.final - b.final).cwiseAbs().maxCoeff() <= 1e-6 * scale_of(wave.points));
 }
@@ -220,7 +220,7 @@ TEST_CASE("pinned edits: held exactly, and an unreachable pin is reported before
   const Recipe recipe(0.01, /*pin_edited=*/true);
   const auto solver = make_solver("linearized", Backend::Optimized);
   const EditStages s = run_editing_loop(wave, 7, compress(0.8, 0, 2), recipe.objective, *solver, Backend::Optimized);
-  REQUIRE(s.solve.converged);
+  REQUIRE(s.solve.converged());
   CHECK((s.final.row(128) - s.edited.row(128)).norm() <= 1e-12);
 
   // Endpoints pinned and pulled farther apart than the curve is long: infeasible.
@@ -266,8 +266,8 @@ TEST_CASE("a linearized loop that cannot converge says so instead of looping", "
   const Recipe recipe(0.01);
   const auto solver = make_solver("linearized", Backend::Optimized, "{max_solves: 2, stationarity_tolerance: 0}");
   const EditStages s = run_editing_loop(wave, 7, compress(0.5), recipe.objective, *solver, Backend::Optimized);
-  CHECK_FALSE(s.solve.converged);
+  CHECK_FALSE(s.solve.converged());
   CHECK(s.solve.solves == 2);
-  CHECK_THAT(s.solve.message, Catch::Contains("not converged after 2 solves"));
+  CHECK_THAT(s.solve.summary.message, Catch::Contains("not converged after 2 solves"));
   CHECK(s.final.allFinite());
 }

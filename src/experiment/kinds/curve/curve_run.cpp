@@ -215,9 +215,9 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
         if (spec.vtk != VtkPolicy::None) write_stage(spec, out, edit, kStages[st], *stage_points[st], last.reference);
       }
       current.points = last.final;
-      if (!last.solve.converged) {
-        row["termination"] = std::string(to_string(Termination::MaxIterations));
-        row["message"] = "edit " + std::to_string(k) + ": " + last.solve.message;
+      if (!last.solve.converged()) {  // the budget ran out, or the numerics failed: the solver says which
+        row["termination"] = std::string(to_string(last.solve.summary.termination));
+        row["message"] = "edit " + std::to_string(k) + ": " + last.solve.summary.message;
         break;
       }
     }
@@ -232,7 +232,7 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
         num(measure_curve(last.attracting, current.closed, segment_lengths(last.reference, current.closed), last.attracting)
                 .length_error_max);
     if (!last.solve.history.empty()) row["stationarity"] = num(last.solve.history.back().stationarity);
-    if (row["message"].empty()) row["message"] = last.solve.message;
+    if (row["message"].empty()) row["message"] = last.solve.summary.message;
     if (spec.final_curve) write_polyline(current, out.final_path());
   } catch (const Error& e) {
     row["termination"] = std::string(to_string(Termination::InvalidInput));

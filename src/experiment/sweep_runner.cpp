@@ -19,7 +19,7 @@
 #include "experiment/progress.h"
 #include "experiment/run_kind.h"
 #include "experiment/run_metadata.h"
-#include "experiment/run_spec.h"
+#include "experiment/run_basics.h"
 #include "experiment/supervisor.h"
 #include "experiment/sweep.h"
 

@@ -9,7 +9,7 @@
 #include "core/summary.h"
 #include "experiment/components.h"
 #include "experiment/config_loader.h"
-#include "experiment/run_spec.h"
+#include "experiment/kinds/surface_edit/surface_edit_spec.h"
 #include "experiment/sweep.h"
 #include "test_support.h"
 
@@ -102,7 +102,7 @@ TEST_CASE("run validation catches bad components, keys and values before running
   auto spec_with = [](const std::string& key, const std::string& value) {
     YAML::Node root = smoke_config();
     set_by_path(root, key, YAML::Load(value));
-    return RunSpec::from_config(root, components(), dirs());
+    return SurfaceEditSpec::from_config(root, components(), dirs());
   };
   CHECK_NOTHROW(spec_with("solver.type", "sor"));
   CHECK_THROWS_WITH(spec_with("solver.type", "multigrd"), Contains("solver.type: unknown value 'multigrd'"));
@@ -121,14 +121,14 @@ TEST_CASE("each QP constraint mode's options are its solver's, valid whichever m
   auto spec_with = [](std::vector<std::pair<std::string, std::string>> sets) {
     YAML::Node root = smoke_config();
     for (const auto& [key, value] : sets) set_by_path(root, key, YAML::Load(value));
-    return RunSpec::from_config(root, components(), dirs());
+    return SurfaceEditSpec::from_config(root, components(), dirs());
   };
-  const RunSpec penalty = spec_with({{"problem.constraint_mode", "qr_penalty"}, {"problem.qr_penalty", "{mu: 1000, solve: orthogonal}"}});
+  const SurfaceEditSpec penalty = spec_with({{"problem.constraint_mode", "qr_penalty"}, {"problem.qr_penalty", "{mu: 1000, solve: orthogonal}"}});
   CHECK(penalty.qp_config().node()["mu"].as<double>() == 1000);
   CHECK(penalty.qp_config().path() == "problem.qr_penalty");
   CHECK(std::find(penalty.unused_keys.begin(), penalty.unused_keys.end(), "problem.qr_penalty.mu") == penalty.unused_keys.end());
   // Under another mode the block is still validated, and recorded as not used.
-  const RunSpec paper = spec_with({{"problem.qr_penalty", "{mu: 1000}"}});
+  const SurfaceEditSpec paper = spec_with({{"problem.qr_penalty", "{mu: 1000}"}});
   CHECK(std::find(paper.unused_keys.begin(), paper.unused_keys.end(), "problem.qr_penalty.mu") != paper.unused_keys.end());
   CHECK_THROWS_WITH(spec_with({{"problem.qr_penalty", "{mu: -1}"}}), Contains("problem.qr_penalty.mu"));
   CHECK_THROWS_WITH(spec_with({{"problem.qr_penalty", "{solve: exact}"}}), Contains("valid: semi_normal, orthogonal"));

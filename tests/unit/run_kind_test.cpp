@@ -17,7 +17,7 @@
 #include "experiment/config_loader.h"
 #include "experiment/repeats.h"
 #include "experiment/run_kind.h"
-#include "experiment/run_spec.h"
+#include "experiment/kinds/surface_edit/surface_edit_spec.h"
 #include "experiment/sweep.h"
 #include "qp/qp_solver.h"
 #include "subdivision/multires_surface.h"
@@ -123,7 +123,7 @@ constraints:
   - { type: fixed, region: { axis: x, from: 0.0, to: 0.3 } }
   - { type: position, nearest: [0.5, 0.0, 0.0], offset: [0.15, 0.0, 0.08] }
 )");
-  const RunSpec spec = RunSpec::from_config(cfg, components(), {test::source_path("")});
+  const SurfaceEditSpec spec = SurfaceEditSpec::from_config(cfg, components(), {test::source_path("")});
   const MultiresSurface h(read_mesh(test::data_path("cow.off")), SubdivisionOptions{}, 1, Backend::Optimized);
   DesignConstraints from_config_placed, typed_placed;
   const EditProblem from_config = assemble_edit_problem(spec.edit_terms(), h, 1, from_config_placed);

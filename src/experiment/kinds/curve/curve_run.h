@@ -12,7 +12,7 @@
 #include "curve_design/editing_loop.h"
 #include "experiment/run_outputs.h"
 #include "experiment/vtk_policy.h"
-#include "experiment/run_spec.h"
+#include "experiment/run_basics.h"
 
 namespace fairshape {
 

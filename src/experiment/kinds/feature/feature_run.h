@@ -9,7 +9,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "experiment/run_outputs.h"
-#include "experiment/run_spec.h"
+#include "experiment/run_basics.h"
 #include "feature/base_edit.h"
 #include "feature/feature_curve.h"
 #include "subdivision/scheme.h"

@@ -15,7 +15,7 @@
 #include "bspline/variational_sheet.h"
 #include "experiment/run_outputs.h"
 #include "experiment/vtk_policy.h"
-#include "experiment/run_spec.h"
+#include "experiment/run_basics.h"
 #include "qp/qp_solver.h"
 
 namespace fairshape {

@@ -14,7 +14,7 @@ std::vector<double> drag_scales(int steps) {
   return s;
 }
 
-DragOutcome run_drag(const RunSpec& spec, const RunOutputs& out, const EditLadder& ladder,
+DragOutcome run_drag(const SurfaceEditSpec& spec, const RunOutputs& out, const EditLadder& ladder,
                      const std::vector<const ReferenceSolution*>& references, const IterationCallback& last_step,
                      bool write_steps) {
   const AccuracyOptions& a = spec.accuracy;

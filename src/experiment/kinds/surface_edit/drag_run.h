@@ -21,7 +21,7 @@ struct DragOutcome {
 
 //! `references[s]` is CHOLMOD's solution of step s (or null); `last_step` receives the final
 //! step's iterations. steps.csv gets a row per step when `write_steps`.
-DragOutcome run_drag(const RunSpec& spec, const RunOutputs& out, const EditLadder& ladder,
+DragOutcome run_drag(const SurfaceEditSpec& spec, const RunOutputs& out, const EditLadder& ladder,
                      const std::vector<const ReferenceSolution*>& references, const IterationCallback& last_step,
                      bool write_steps);
 

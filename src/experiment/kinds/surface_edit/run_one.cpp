@@ -24,7 +24,7 @@ namespace fs = std::filesystem;
 namespace {
 
 
-Eigen::MatrixXd random_start(const RunSpec& spec, Eigen::Index rows) {
+Eigen::MatrixXd random_start(const SurfaceEditSpec& spec, Eigen::Index rows) {
   std::mt19937_64 gen(static_cast<std::uint64_t>(spec.seed));
   std::uniform_real_distribution<double> d(-1.0, 1.0);
   Eigen::MatrixXd x(rows, 3);
@@ -56,7 +56,7 @@ SurfaceMesh result_mesh(const SurfaceMesh& before, const MatrixX3& after, int le
 // Writes iterations.csv rows and VTK snapshots of the edit level while a solve runs.
 class IterationSink {
  public:
-  IterationSink(const RunSpec& spec, const RunOutputs& out, const SurfaceMesh& rest, int level,
+  IterationSink(const SurfaceEditSpec& spec, const RunOutputs& out, const SurfaceMesh& rest, int level,
                 const DesignConstraints& placed, const Eigen::MatrixXd* reference)
       : spec_(spec), out_(out), rest_(rest), level_(level), placed_(placed), reference_(reference) {
   }
@@ -77,7 +77,7 @@ class IterationSink {
   }
 
  private:
-  const RunSpec& spec_;
+  const SurfaceEditSpec& spec_;
   const RunOutputs& out_;
   const SurfaceMesh& rest_;
   int level_;
@@ -89,7 +89,7 @@ class IterationSink {
 // The same problem solved by CHOLMOD (KKT mode: the optimized LU), cached per system and
 // drag step: the yardstick of error_vs_reference and of the per-iteration error in
 // iterations.csv. One factorization serves every step that is missing.
-std::vector<const ReferenceSolution*> reference_solutions(const RunSpec& spec, RunCache& cache, const EditProblem& p,
+std::vector<const ReferenceSolution*> reference_solutions(const SurfaceEditSpec& spec, RunCache& cache, const EditProblem& p,
                                                          const std::vector<double>& scales) {
   std::vector<const ReferenceSolution*> refs(scales.size(), nullptr);
   if (!spec.output.reference_solution) return refs;
@@ -121,7 +121,7 @@ void measure_accuracy(const EditProblem& p, const EditSolution& sol, const Refer
   if (ref) row["error_vs_reference"] = num(relative_error(sol.delta, ref->u));
 }
 
-void write_geometry(const RunSpec& spec, const RunOutputs& out, const SurfaceMesh& result, const MultiresSurface& h) {
+void write_geometry(const SurfaceEditSpec& spec, const RunOutputs& out, const SurfaceMesh& result, const MultiresSurface& h) {
   if (spec.output.final_mesh) write_mesh(result, out.final_path());
   if (spec.output.vtk == VtkPolicy::None) return;
   write_vtp(result, (fs::path(out.dir) / "vtk" / (out.run_id + ".vtp")).string());
@@ -130,7 +130,7 @@ void write_geometry(const RunSpec& spec, const RunOutputs& out, const SurfaceMes
 
 // Figure 8 (d–f): each level of the ladder with its deformation and the vertices the
 // propagated constraints reach there.
-void write_ladder(const RunSpec& spec, const RunOutputs& out, const MultiresSurface& rest, const EditLadder& ladder,
+void write_ladder(const SurfaceEditSpec& spec, const RunOutputs& out, const MultiresSurface& rest, const EditLadder& ladder,
                   int coarse, const std::vector<Eigen::MatrixXd>& solutions) {
   if (spec.output.vtk == VtkPolicy::None) return;
   for (std::size_t k = 0; k < solutions.size(); ++k) {
@@ -168,7 +168,7 @@ const std::vector<std::string>& metric_columns() {
   return cols;
 }
 
-const MultiresSurface& RunCache::hierarchy(const RunSpec& spec, double* build_s) {
+const MultiresSurface& RunCache::hierarchy(const SurfaceEditSpec& spec, double* build_s) {
   const bool subdivided = spec.representation != Representation::Mesh;
   const std::string key = spec.mesh_path + "|" +
                           (subdivided ? std::string(to_string(spec.subdivision().scheme)) : std::string("mesh")) + "|" +
@@ -197,7 +197,7 @@ const ReferenceSolution* RunCache::reference_solution(const std::string& key) co
 
 void RunCache::store_reference_solution(const std::string& key, ReferenceSolution r) { references_[key] = std::move(r); }
 
-MetricRow execute_run(RunSpec& spec, RunCache& cache, const RunOutputs& out) {
+MetricRow execute_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& out) {
   MetricRow row;
   for (const auto& c : metric_columns()) row[c] = "";
   row["unused_keys"] = spec.unused_keys_cell();

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "experiment/run_outputs.h"
-#include "experiment/run_spec.h"
+#include "experiment/kinds/surface_edit/surface_edit_spec.h"
 #include "subdivision/multires_surface.h"
 
 namespace fairshape {
@@ -31,7 +31,7 @@ class RunCache {
  public:
   //! The hierarchy a run works on: the input mesh (0 levels), its subdivision (zero details)
   //! or its remesh (details); *build_s is the time it took to make.
-  const MultiresSurface& hierarchy(const RunSpec& spec, double* build_s);
+  const MultiresSurface& hierarchy(const SurfaceEditSpec& spec, double* build_s);
   const ReferenceSolution* reference_solution(const std::string& key) const;
   void store_reference_solution(const std::string& key, ReferenceSolution r);
 
@@ -42,6 +42,6 @@ class RunCache {
 
 //! Never throws for problems of the input, the numerics or the outputs: they become the
 //! row's termination and message, and the sweep goes on.
-MetricRow execute_run(RunSpec& spec, RunCache& cache, const RunOutputs& out);
+MetricRow execute_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& out);
 
 }  // namespace fairshape

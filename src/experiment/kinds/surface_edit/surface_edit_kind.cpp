@@ -15,7 +15,7 @@ class SurfaceEditKind final : public RunKind {
     return c.IsMap() && c["input"] && c["input"].IsMap() && c["input"]["mesh"] && !c["features"] && !c["sheets"];
   }
   ValidatedRun validate(const YAML::Node& c, const std::vector<std::string>& dirs) const override {
-    const RunSpec spec = RunSpec::from_config(c, components(), dirs);
+    const SurfaceEditSpec spec = SurfaceEditSpec::from_config(c, components(), dirs);
     return {spec.name, {spec.mesh_path}};
   }
   const std::vector<std::string>& metric_columns() const override { return fairshape::metric_columns(); }
@@ -23,7 +23,7 @@ class SurfaceEditKind final : public RunKind {
     return {{"iterations", iteration_columns()}, {"steps", step_columns()}};
   }
   MetricRow execute(const YAML::Node& c, const std::vector<std::string>& dirs, const RunOutputs& out) override {
-    RunSpec spec = RunSpec::from_config(c, components(), dirs);
+    SurfaceEditSpec spec = SurfaceEditSpec::from_config(c, components(), dirs);
     const auto threads = limit_threads(spec.threads);
     MetricRow m = execute_run(spec, cache_, out);
     m["implementation"] = std::string(to_string(spec.implementation));

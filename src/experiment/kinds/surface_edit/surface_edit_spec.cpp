@@ -1,4 +1,4 @@
-#include "experiment/run_spec.h"
+#include "experiment/kinds/surface_edit/surface_edit_spec.h"
 
 #include <cmath>
 #include <filesystem>
@@ -10,18 +10,7 @@
 namespace fairshape {
 namespace fs = std::filesystem;
 
-std::string resolve_input(const std::string& path, const std::vector<std::string>& dirs, const std::string& key) {
-  if (fs::path(path).is_absolute()) {
-    if (fs::is_regular_file(path)) return path;
-  } else {
-    for (const auto& d : dirs)
-      if (fs::is_regular_file(fs::path(d) / path)) return (fs::path(d) / path).lexically_normal().string();
-  }
-  throw InvalidConfig(key + ": input file '" + path + "' not found (looked in the current directory and "
-                      "beside the config)");
-}
-
-bool solver_is_used(const RunSpec& s) {
+bool solver_is_used(const SurfaceEditSpec& s) {
   return s.constraint_mode == ConstraintMode::Paper &&
          (s.accuracy.mode == AccuracyMode::SingleLevel || s.accuracy.mode == AccuracyMode::Converged);
 }
@@ -33,7 +22,7 @@ Accuracy AccuracyOptions::ladder() const {
                                            : Accuracy::Converged;
 }
 
-EditTerms RunSpec::edit_terms() const {
+EditTerms SurfaceEditSpec::edit_terms() const {
   EditTerms t;
   for (const auto& e : energies) t.energies.push_back({e.energy.get(), e.weight});
   for (const auto& c : constraints) t.constraints.push_back(c.constraint.get());
@@ -42,12 +31,12 @@ EditTerms RunSpec::edit_terms() const {
   return t;
 }
 
-Config RunSpec::qp_config() const {
+Config SurfaceEditSpec::qp_config() const {
   return Config(qp_options ? YAML::Clone(qp_options) : YAML::Node(YAML::NodeType::Map),
                 "problem." + std::string(constraint_mode_names().name(constraint_mode)));
 }
 
-SubdivisionOptions RunSpec::subdivision() const {
+SubdivisionOptions SurfaceEditSpec::subdivision() const {
   FAIRSHAPE_ASSERT(representation != Representation::Mesh, "the mesh representation has no subdivision");
   return {representation == Representation::Loop ? SchemeType::Loop : SchemeType::CatmullClark, boundary, loop_weights};
 }
@@ -84,7 +73,7 @@ const NameTable<ConstraintMode>& coarse_mode_names() {  // the ladder's coarse s
 
 namespace {
 
-void read_energies(Config& root, const Components& c, Backend backend, RunSpec& s) {
+void read_energies(Config& root, const Components& c, Backend backend, SurfaceEditSpec& s) {
   for (Config e : root.child_list("energy", "energy terms: [{type, weight, options...}]")) {
     EnergyTerm t;
     t.type = e.require<std::string>("type", "energy name (see `fairshape list`)");
@@ -96,7 +85,7 @@ void read_energies(Config& root, const Components& c, Backend backend, RunSpec& 
   if (s.energies.empty()) throw InvalidConfig("energy: at least one energy term is required");
 }
 
-void read_constraints(Config& root, const Components& c, Backend backend, RunSpec& s) {
+void read_constraints(Config& root, const Components& c, Backend backend, SurfaceEditSpec& s) {
   for (Config k : root.child_list("constraints", "constraints: [{type, options...}]")) {
     ConstraintTerm t;
     t.type = k.require<std::string>("type", "constraint name (see `fairshape list`)");
@@ -111,7 +100,7 @@ void read_constraints(Config& root, const Components& c, Backend backend, RunSpe
 // solver) and a sweep over solver.type carries every solver's options; a key no solver knows
 // is an error. What the chosen solver does not read is recorded in unused_keys, never
 // reported as if it had been used.
-void read_solver(Config& root, const Components& c, Backend backend, RunSpec& s) {
+void read_solver(Config& root, const Components& c, Backend backend, SurfaceEditSpec& s) {
   Config sc = root.child("solver", "linear solver: {type, tolerance, max_iterations, <type>: {...}}");
   const auto read_common = [&](Config& block) {
     s.solver_type = block.get_choice("type", "cholesky", c.solvers.names(), "solver name");
@@ -139,7 +128,7 @@ void read_solver(Config& root, const Components& c, Backend backend, RunSpec& s)
 // problem.kkt, problem.qr_penalty, problem.range_space: each QP mode's options, validated
 // against its solver's schema whichever mode is chosen (a sweep over constraint_mode carries
 // them all); the blocks of modes not chosen are recorded as unused.
-void read_qp_options(Config& pc, Backend backend, RunSpec& s) {
+void read_qp_options(Config& pc, Backend backend, SurfaceEditSpec& s) {
   const auto& registry = qp::qp_solver_registry();
   for (const auto& name : registry.names()) {
     if (name == "paper") continue;  // the split's free solver is the solver: block
@@ -152,7 +141,7 @@ void read_qp_options(Config& pc, Backend backend, RunSpec& s) {
   }
 }
 
-void read_output(Config& root, RunSpec& s) {
+void read_output(Config& root, SurfaceEditSpec& s) {
   OutputOptions& o = s.output;
   Config oc = root.child("output", "what each run writes");
   o.vtk = read_vtk_policy(oc, "also the iterate every output.vtk_every iterations, as a .pvd series");
@@ -165,7 +154,7 @@ void read_output(Config& root, RunSpec& s) {
   oc.check_no_unknown_keys();
 }
 
-void read_accuracy(Config& pc, RunSpec& s) {
+void read_accuracy(Config& pc, SurfaceEditSpec& s) {
   AccuracyOptions& a = s.accuracy;
   a.mode = pc.get_enum("accuracy", a.mode, accuracy_names(),
                          "single-level: the solver on the edit level alone; interactive | improved | converged: "
@@ -200,59 +189,10 @@ void read_accuracy(Config& pc, RunSpec& s) {
 
 }  // namespace
 
-Vec3 read_vec3(Config& c, const std::string& key, const Vec3& fallback, const std::string& doc) {
-  const std::vector<double> v = c.get<std::vector<double>>(key, {fallback.x(), fallback.y(), fallback.z()}, doc);
-  if (v.size() != 3 || !std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
-    throw InvalidConfig(c.key_path(key) + ": expected three finite numbers [x, y, z]");
-  return {v[0], v[1], v[2]};
-}
-
-std::vector<std::string> input_search_dirs(const std::string& config_path) {
-  std::vector<std::string> dirs{"."};
-  for (fs::path p = fs::absolute(config_path).parent_path(); !p.empty(); p = p.parent_path()) {
-    dirs.push_back(p.string());
-    if (p == p.root_path()) break;
-  }
-  return dirs;
-}
-
-void RunBasics::note_unused(const Config& block, const std::string& key, bool used) {
-  if (!used && block.has(key)) unused_keys.push_back(block.key_path(key));
-}
-
-void RunBasics::note_unused(const Config& block) {
-  if (block.node().IsMap())
-    for (const auto& kv : block.node()) unused_keys.push_back(block.key_path(kv.first.as<std::string>()));
-}
-
-std::string RunBasics::unused_keys_cell() const {
-  std::string out;
-  for (const auto& k : unused_keys) out.append(out.empty() ? "" : " ").append(k);
-  return out;
-}
-
-RunBasics read_run_basics(Config& root) {
-  RunBasics b;
-  b.name = root.require<std::string>("name", "experiment name (names the results folder)");
-  // The name becomes results/<name>/: one plain folder name, so no output can land elsewhere.
-  const bool plain = !b.name.empty() && b.name.size() <= 128 && b.name != "." && b.name != ".." &&
-                     b.name.front() != '.' && b.name.find_first_not_of(
-                         "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789._-") == std::string::npos;
-  if (!plain)
-    throw InvalidConfig("name: '" + b.name + "' must be a plain folder name (letters, digits, '.', '_', '-'; not "
-                        "starting with '.'; at most 128 characters): it names results/<name>/");
-  root.get<std::string>("description", "", "free text");
-  b.seed = root.get_int("seed", 0, 0, INT32_MAX, "random seed (runs without randomness ignore it)");
-  b.threads = root.get_int("threads", 0, 0, 4096, "TBB threads for optimized back ends (0 = all cores)");
-  b.repeat = root.get_int("repeat", 1, 1, 1000, "timing repeats, run by the harness (the median of every timing column is reported, solve_min_s the minimum)");
-  b.implementation = root.get_enum("implementation", Backend::Optimized, backend_names(), "back end of every component");
-  return b;
-}
-
-RunSpec RunSpec::from_config(const YAML::Node& run_config, const Components& c,
+SurfaceEditSpec SurfaceEditSpec::from_config(const YAML::Node& run_config, const Components& c,
                              const std::vector<std::string>& search_dirs) {
   Config root(run_config, "");
-  RunSpec s;
+  SurfaceEditSpec s;
   static_cast<RunBasics&>(s) = read_run_basics(root);
   Config in = root.child("input", "input geometry");
   s.mesh_path = resolve_input(in.require<std::string>("mesh", "mesh file (.obj, .off, .ply)"), search_dirs,

@@ -1,5 +1,5 @@
-// One run of an experiment, parsed and validated from its resolved YAML. Building a RunSpec
-// is the validation step: it looks every component up, reads every key (rejecting unknown
+// One surface-edit run (Boier-Martin et al.), parsed and validated from its resolved YAML.
+// Building a SurfaceEditSpec is the validation step: it looks every component up, reads every key (rejecting unknown
 // ones and out-of-range values) and checks input files exist, before anything is computed.
 #pragma once
 
@@ -14,6 +14,7 @@
 #include "design/edit_solve.h"
 #include "design/multilevel_edit.h"
 #include "experiment/components.h"
+#include "experiment/run_basics.h"
 #include "subdivision/scheme.h"
 #include "experiment/vtk_policy.h"
 
@@ -58,26 +59,8 @@ struct AccuracyOptions {
   Accuracy ladder() const;  // the ladder's mode (multilevel() only)
 };
 
-//! The keys every experiment config starts with, whatever it runs (surfaces, curves, sheets).
-struct RunBasics {
-  std::string name;
-  int seed = 0, threads = 0, repeat = 1;
-  Backend implementation = Backend::Optimized;
-  //! Keys the config sets that this run does not use (solver.* under constraint_mode kkt, the
-  //! options of a solver not chosen, relaxation_omega without sor, ...), for runs.csv's
-  //! unused_keys column: recorded as not applicable, never as used.
-  std::vector<std::string> unused_keys;
-  //! Records `key` of `block` as unused when the config sets it and `used` is false.
-  void note_unused(const Config& block, const std::string& key, bool used);
-  //! Records every key the config sets in `block`.
-  void note_unused(const Config& block);
-  //! The unused_keys cell: the keys, space-separated.
-  std::string unused_keys_cell() const;
-};
-//! Reads name, description, seed, threads, repeat and implementation from the config's root.
-RunBasics read_run_basics(Config& root);
 
-struct RunSpec : RunBasics {
+struct SurfaceEditSpec : RunBasics {
   std::string mesh_path;
   Representation representation = Representation::Mesh;
   int levels = 0;                          // uniform subdivision steps of the input mesh
@@ -104,20 +87,11 @@ struct RunSpec : RunBasics {
   std::string system_key;  // equal for runs that solve the same linear system
 
   //! \param search_dirs where relative input paths are looked up after the working directory.
-  static RunSpec from_config(const YAML::Node& run_config, const Components& c,
+  static SurfaceEditSpec from_config(const YAML::Node& run_config, const Components& c,
                              const std::vector<std::string>& search_dirs);
 };
 
 //! Whether the run's linear solver (the solver block) takes part in its solve.
-bool solver_is_used(const RunSpec& s);
-
-//! The current directory, then `config_path`'s folder and its parents (so configs can name
-//! `data/cow.off` from anywhere inside the repository).
-//! A `[x, y, z]` key. \throw InvalidConfig naming the key unless three finite numbers.
-Vec3 read_vec3(Config& c, const std::string& key, const Vec3& fallback, const std::string& doc);
-
-std::vector<std::string> input_search_dirs(const std::string& config_path);
-//! `path` as found in `dirs`. \throw InvalidConfig naming `key` when it is nowhere.
-std::string resolve_input(const std::string& path, const std::vector<std::string>& dirs, const std::string& key);
+bool solver_is_used(const SurfaceEditSpec& s);
 
 }  // namespace fairshape

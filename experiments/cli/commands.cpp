@@ -24,7 +24,19 @@ namespace {
 
 bool is_vtp(const std::string& p) { return fs::path(p).extension() == ".vtp"; }
 
+// The commands read and write VTK polydata besides the mesh formats: name all of them.
+void require_command_format(const std::string& path) {
+  if (is_vtp(path)) return;
+  try {
+    (void)format_from_path(path);
+  } catch (const IOError&) {
+    throw IOError(path + ": unknown mesh format '" + std::filesystem::path(path).extension().string() +
+                  "' (valid: .obj, .off, .ply, .vtp)");
+  }
+}
+
 SurfaceMesh load_any(const std::string& path, std::vector<std::string>* warnings) {
+  require_command_format(path);
   if (is_vtp(path)) return read_vtp(path);
   const MeshFile f = read_mesh_file(path);
   if (warnings) *warnings = f.warnings;
@@ -58,6 +70,10 @@ int cmd_info(const InfoArgs& a) {
 }
 
 int cmd_convert(const ConvertArgs& a) {
+  require_command_format(a.input);
+  require_command_format(a.output);
+  if (a.binary && (is_vtp(a.output) || format_from_path(a.output) != MeshFormat::Ply))
+    throw InvalidConfig("--binary: only PLY output has a binary form (output: " + a.output + ")");
   if (is_vtp(a.output)) {
     write_vtp(load_any(a.input, nullptr), a.output);
     return 0;
@@ -68,6 +84,7 @@ int cmd_convert(const ConvertArgs& a) {
   }
   MeshFile f = read_mesh_file(a.input);
   for (const auto& w : f.warnings) std::cerr << "warning: " << w << "\n";
+  if (f.vertices.rows() == 0) throw InvalidInput(a.input + ": no vertices (an empty or unrecognized file): nothing to convert");
   if (!f.faces.empty()) (void)SurfaceMesh::from_polygons(f.vertices, f.faces);  // refuse to pass on bad topology
   write_mesh_file(f, a.output, {a.binary});
   return 0;

@@ -2,11 +2,34 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 
 #include "commands.h"
 #include "core/error.h"
+
+namespace {
+// CLI11's NonNegativeNumber and PositiveNumber let "nan" and "inf" through: every number a
+// command takes is finite.
+CLI::Validator finite_at_least(double lo, bool strict) {
+  return CLI::Validator(
+      [lo, strict](std::string& text) -> std::string {
+        double v = 0;
+        try {
+          std::size_t used = 0;
+          v = std::stod(text, &used);
+          if (used != text.size()) return "'" + text + "' is not a number";
+        } catch (const std::exception&) {
+          return "'" + text + "' is not a number";
+        }
+        if (!std::isfinite(v)) return "'" + text + "' is not finite";
+        if (strict ? !(v > lo) : !(v >= lo)) return text + " must be " + (strict ? "> " : ">= ") + std::to_string(lo);
+        return "";
+      },
+      strict ? "POSITIVE FINITE" : "NONNEGATIVE FINITE");
+}
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace fairshape::cli;
@@ -32,7 +55,7 @@ int main(int argc, char** argv) {
   c_ren->add_option("--array", ren.opt.color_by, "colour by this point array (e.g. displacement_norm)");
   c_ren->add_option("--azimuth", ren.opt.azimuth, "camera azimuth, degrees")->capture_default_str();
   c_ren->add_option("--elevation", ren.opt.elevation, "camera elevation, degrees")->capture_default_str();
-  c_ren->add_option("--zoom", ren.opt.zoom, "camera zoom factor")->capture_default_str()->check(CLI::PositiveNumber);
+  c_ren->add_option("--zoom", ren.opt.zoom, "camera zoom factor")->capture_default_str()->check(finite_at_least(0, true));
   c_ren->add_option("--width", ren.opt.width, "image width")->capture_default_str()->check(CLI::Range(16, 8192));
   c_ren->add_option("--height", ren.opt.height, "image height")->capture_default_str()->check(CLI::Range(16, 8192));
   c_ren->add_flag("--edges", ren.opt.edges, "draw mesh edges");
@@ -65,7 +88,7 @@ int main(int argc, char** argv) {
   c_sub->add_option("--implementation", sub.implementation, "back end")->capture_default_str()
       ->check(CLI::IsMember({"reference", "optimized"}));
   c_sub->add_option("--max-memory-gb", sub.max_memory_gb, "refuse refinements estimated to need more")
-      ->capture_default_str()->check(CLI::PositiveNumber);
+      ->capture_default_str()->check(finite_at_least(0, true));
   c_sub->add_option("input", sub.input, "base mesh (.obj, .off, .ply, .vtp)")->required();
   c_sub->add_option("output", sub.output, "finest mesh (.obj, .off, .ply, .vtp) or every level (.vtm)")->required();
 
@@ -86,8 +109,8 @@ int main(int argc, char** argv) {
                                             "of a mesh or one of its subdivision levels as Matrix Market");
   c_en->add_option("mesh", en.mesh, "mesh (.obj, .off, .ply, .vtp)")->required();
   c_en->add_option("--out", en.out, "output .mtx (SciPy: scipy.io.mmread)")->required();
-  c_en->add_option("--alpha", en.alpha, "stretch weight")->capture_default_str()->check(CLI::NonNegativeNumber);
-  c_en->add_option("--beta", en.beta, "bend weight")->capture_default_str()->check(CLI::NonNegativeNumber);
+  c_en->add_option("--alpha", en.alpha, "stretch weight")->capture_default_str()->check(finite_at_least(0, false));
+  c_en->add_option("--beta", en.beta, "bend weight")->capture_default_str()->check(finite_at_least(0, false));
   c_en->add_option("--level", en.level, "subdivide the mesh this many times first")->capture_default_str()
       ->check(CLI::Range(0, 8));
   c_en->add_option("--scheme", en.scheme, "scheme for --level")->capture_default_str()

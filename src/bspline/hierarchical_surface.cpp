@@ -15,6 +15,9 @@ HierarchicalSurface::HierarchicalSurface(const SheetShape& shape) : shape_(shape
   if (shape.spans_u < 1 || shape.spans_v < 1)
     throw InvalidInput("B-spline sheet needs at least one span in u and v (got " + std::to_string(shape.spans_u) +
                        " x " + std::to_string(shape.spans_v) + ")");
+  if (static_cast<long long>(shape.spans_u) * shape.spans_v > kMaxBaseSpans)
+    throw InvalidInput("B-spline sheet of " + std::to_string(shape.spans_u) + " x " + std::to_string(shape.spans_v) +
+                       " base spans is above the limit of " + std::to_string(kMaxBaseSpans) + " spans");
   if (shape.degree < kMinDegree || shape.degree > kMaxDegree)
     throw InvalidInput("B-spline degree " + std::to_string(shape.degree) + " is outside [" +
                        std::to_string(kMinDegree) + ", " + std::to_string(kMaxDegree) + "]");

@@ -73,6 +73,9 @@ class HierarchicalSurface {
   //! \throw InvalidInput for a span that is not in Ω_L or a level beyond kMaxLevel.
   SparseMatrix refine(const std::vector<SpanId>& spans);
   static constexpr int kMaxLevel = 12;
+  //! The largest base grid accepted: spans_u × spans_v ≤ 2^20 base spans (a 1024 × 1024 sheet,
+  //! about 1M control points per coordinate before any refinement).
+  static constexpr long long kMaxBaseSpans = 1LL << 20;
 
   //! The cells on which the surface is one polynomial patch: spans of some layer with no
   //! finer span inside, tiling the domain (used for integration and per-span errors).

@@ -8,6 +8,8 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
+
 #include <memory>
 #include <optional>
 #include <set>
@@ -76,6 +78,21 @@ std::string yaml_to_string(const YAML::Node& n);  // one-line flow style, for me
 
 std::string format_default(double v);  // shortest round-trip form, for docs
 
+namespace config_detail {
+// No config value of fairshape means anything as NaN or infinity: every number read is finite.
+inline bool finite(double v) { return std::isfinite(v); }
+template <class T>
+bool finite(const T&) {
+  return true;
+}
+template <class T>
+bool finite(const std::vector<T>& v) {
+  for (const auto& x : v)
+    if (!finite(x)) return false;
+  return true;
+}
+}  // namespace config_detail
+
 template <class T>
 T Config::get(const std::string& key, const T& fallback, const std::string& doc) {
   YAML::Node fb;
@@ -83,11 +100,14 @@ T Config::get(const std::string& key, const T& fallback, const std::string& doc)
   if constexpr (std::is_floating_point_v<T>) mark(key, format_default(fallback), doc);
   else mark(key, yaml_to_string(fb), doc);
   if (!has(key)) return fallback;
+  T v;
   try {
-    return node_[key].as<T>();
+    v = node_[key].as<T>();
   } catch (const YAML::Exception&) {
     type_error(key, yaml_to_string(fb).empty() ? "a value" : "a value like '" + yaml_to_string(fb) + "'");
   }
+  if (!config_detail::finite(v)) type_error(key, "finite numbers");
+  return v;
 }
 
 template <class T>
@@ -97,11 +117,14 @@ T Config::require(const std::string& key, const std::string& doc) {
     if (recorder_) return T{};
     throw InvalidConfig(key_path(key) + ": required key is missing (" + doc + ")");
   }
+  T v;
   try {
-    return node_[key].as<T>();
+    v = node_[key].as<T>();
   } catch (const YAML::Exception&) {
     type_error(key, doc);
   }
+  if (!config_detail::finite(v)) type_error(key, "finite numbers");
+  return v;
 }
 
 }  // namespace fairshape

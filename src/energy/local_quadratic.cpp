@@ -1,4 +1,5 @@
 #include "energy/local_quadratic.h"
+#include "energy/ring_coupling.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -44,6 +45,7 @@ void add_vertex_block(const SurfaceMesh& mesh, int v, const StretchBendWeights& 
 
 void add_stretch_bend_hessian(const SurfaceMesh& mesh, const StretchBendWeights& w, double scale, Triplets& out,
                               Backend backend) {
+  check_ring_coupling(mesh, "stretch + bend energy");
   const int nv = mesh.n_vertices();
   if (backend == Backend::Reference) {
     for (int v = 0; v < nv; ++v) add_vertex_block(mesh, v, w, scale, out);
@@ -61,6 +63,7 @@ void add_stretch_bend_hessian(const SurfaceMesh& mesh, const StretchBendWeights&
 
 SparseMatrix stretch_bend_hessian(const SurfaceMesh& mesh, const StretchBendWeights& w, double scale,
                                   Backend backend) {
+  check_ring_coupling(mesh, "stretch + bend energy");
   if (backend == Backend::Optimized) {
     // Fits in parallel chunks (each its own flat factor list, joined in chunk order), then
     // the rows of H gathered in parallel: no triplets, no serial sort.

@@ -2,6 +2,7 @@
 // its Hessian is UᵀU, which annihilates translations.
 #include "energy/energy.h"
 #include "energy/laplacian.h"
+#include "energy/ring_coupling.h"
 
 namespace fairshape {
 namespace {
@@ -9,6 +10,7 @@ namespace {
 class ThinPlate : public Energy {
  public:
   void add_hessian(const SurfaceMesh& rest, double weight, Triplets& out) const override {
+    check_ring_coupling(rest, "umbrella thin-plate energy");
     const SparseMatrix U = umbrella_operator(rest);
     const SparseMatrix H = SparseMatrix(U.transpose()) * U;
     for (int k = 0; k < H.outerSize(); ++k)

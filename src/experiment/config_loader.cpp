@@ -1,37 +1,82 @@
 #include "experiment/config_loader.h"
 
 #include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <vector>
 
 #include "core/config.h"
 #include "core/error.h"
+#include "experiment/yaml_structure.h"
 
 namespace fairshape {
 namespace fs = std::filesystem;
 namespace {
 
+// The largest config file read: a config is a page of YAML, not data.
+constexpr std::uintmax_t kMaxConfigBytes = 16u << 20;
+
 YAML::Node parse_file(const fs::path& path) {
-  if (!fs::is_regular_file(path)) throw InvalidConfig(path.string() + ": config file not found");
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw InvalidConfig(path.string() + ": config file not found");
+  // A FIFO would hang the reader and a device (/dev/zero) would never end: regular files only.
+  if (!fs::is_regular_file(path, ec)) throw InvalidConfig(path.string() + ": not a regular file (a directory, device or FIFO)");
+  if (fs::file_size(path, ec) > kMaxConfigBytes)
+    throw InvalidConfig(path.string() + ": larger than the 16 MiB a config may be");
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in && !in.eof()) throw InvalidConfig(path.string() + ": cannot be read");
+  check_yaml_structure(text.str(), path.string());
   try {
-    return YAML::LoadFile(path.string());
+    return YAML::Load(text.str());
   } catch (const YAML::ParserException& e) {
     throw InvalidConfig(path.string() + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax error: " + e.msg);
   }
 }
 
-YAML::Node load_with_defaults(const fs::path& path, int depth) {
-  if (depth > 16) throw InvalidConfig(path.string() + ": `defaults` nest more than 16 deep (a cycle?)");
-  YAML::Node node = parse_file(path);
-  if (node.IsNull()) node = YAML::Node(YAML::NodeType::Map);
-  if (!node.IsMap()) throw InvalidConfig(path.string() + ": the top level must be a map of keys");
-  YAML::Node merged(YAML::NodeType::Map);
-  if (const YAML::Node defaults = node["defaults"]) {
-    if (!defaults.IsSequence())
-      throw InvalidConfig(path.string() + ": `defaults` must be a list of YAML files");
-    for (const auto& d : defaults) merged = deep_merge(merged, load_with_defaults(path.parent_path() / d.as<std::string>(), depth + 1));
-    node.remove("defaults");
+// One load of a config and everything it includes: each file is read and merged once (a
+// diamond of includes is linear, not exponential), and a file that includes itself, directly
+// or not, is refused with the chain.
+class DefaultsLoader {
+ public:
+  YAML::Node load(const fs::path& path) {
+    std::error_code ec;
+    const fs::path key = fs::weakly_canonical(path, ec);
+    if (const auto it = loaded_.find(key); it != loaded_.end()) return YAML::Clone(it->second);
+    for (const auto& open : chain_)
+      if (open == key) throw InvalidConfig(path.string() + ": `defaults` include themselves (" + chain_text() + " -> " + path.string() + ")");
+    if (chain_.size() > 16) throw InvalidConfig(path.string() + ": `defaults` nest more than 16 deep");
+    chain_.push_back(key);
+    YAML::Node node = parse_file(path);
+    if (node.IsNull()) node = YAML::Node(YAML::NodeType::Map);
+    if (!node.IsMap()) throw InvalidConfig(path.string() + ": the top level must be a map of keys");
+    YAML::Node merged(YAML::NodeType::Map);
+    if (const YAML::Node defaults = node["defaults"]) {
+      if (!defaults.IsSequence()) throw InvalidConfig(path.string() + ": `defaults` must be a list of YAML files");
+      for (const auto& d : defaults) {
+        if (!d.IsScalar())
+          throw InvalidConfig(path.string() + ":" + std::to_string(d.Mark().line + 1) + ": a `defaults` entry must be a file name");
+        merged = deep_merge(merged, load(path.parent_path() / d.Scalar()));
+      }
+      node.remove("defaults");
+    }
+    chain_.pop_back();
+    YAML::Node out = deep_merge(merged, node);
+    loaded_.emplace(key, YAML::Clone(out));
+    return out;
   }
-  return deep_merge(merged, node);
-}
+
+ private:
+  std::string chain_text() const {
+    std::string out;
+    for (const auto& p : chain_) out.append(out.empty() ? "" : " -> ").append(p.string());
+    return out;
+  }
+  std::map<fs::path, YAML::Node> loaded_;
+  std::vector<fs::path> chain_;
+};
 
 }  // namespace
 
@@ -149,7 +194,7 @@ void take_key_out_of_sweep(YAML::Node root, const std::string& key, std::vector<
 
 YAML::Node load_experiment_config(const std::string& path, const std::vector<std::string>& sets,
                                   std::vector<std::string>* notes, ConfigVariant variant) {
-  YAML::Node root = load_with_defaults(path, 0);
+  YAML::Node root = DefaultsLoader().load(path);
   const YAML::Node smoke = root["smoke"];
   if (smoke && !smoke.IsMap())
     throw InvalidConfig(path + ": smoke: expected a map of key.path: value overrides (the CI-sized variant)");

@@ -201,13 +201,30 @@ bool succeeded(const MetricRow& m) {
   }
 }
 
+// No NaN or infinity in a row marked a success: a run whose metrics are not finite (an
+// offset of 1e308, a diverged iterate that still met its stopping rule) failed numerically.
+MetricRow with_finite_metrics(MetricRow m) {
+  if (!succeeded(m)) return m;
+  std::string bad;
+  for (const auto& [column, value] : m) {
+    std::string v = value;
+    if (!v.empty() && (v[0] == '-' || v[0] == '+')) v.erase(0, 1);
+    if (v == "nan" || v == "inf") bad.append(bad.empty() ? "" : ", ").append(column);
+  }
+  if (bad.empty()) return m;
+  m["termination"] = std::string(to_string(Termination::NumericalFailure));
+  m["message"] = "non-finite " + bad + (m["message"].empty() ? "" : "; " + m["message"]);
+  return m;
+}
+
 MetricRow execute_guarded(Plan& plan, const RunPoint& p, const RunOutputs& out) {
   try {
     inject_fault(p.index);
     // `repeat` was validated with the run (1..1000) by its kind.
     const int repeat = p.config["repeat"] ? p.config["repeat"].as<int>() : 1;
-    return run_repeated(repeat, plan.kind->measured_columns(), out,
-                        [&](const RunOutputs& o) { return plan.kind->execute(p.config, plan.search_dirs, o); }, succeeded);
+    return with_finite_metrics(run_repeated(
+        repeat, plan.kind->measured_columns(), out,
+        [&](const RunOutputs& o) { return plan.kind->execute(p.config, plan.search_dirs, o); }, succeeded));
   } catch (const std::bad_alloc&) {
     return crashed_row("out of memory (std::bad_alloc)");
   } catch (const Error& e) {  // a kind lets its own errors through only by mistake

@@ -2,14 +2,22 @@
 // and the `face` element's vertex_indices (or vertex_index) list; other elements and
 // properties are read past.
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <memory>
+#include <sstream>
 
 #include "io/mesh_io.h"
 #include "io/text_scanner.h"
 
 namespace fairshape {
 namespace {
+
+std::string format_value(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
 
 using io::internal::TextScanner;
 
@@ -196,12 +204,16 @@ void read_body(const std::vector<PlyElement>& elements, ValueSource& src, MeshFi
             if (is_vertex && xyz[c] == static_cast<int>(k)) pos[c] = v;
           continue;
         }
+        // Counts and indices may be stored as floats: only whole, finite values mean anything
+        // (a NaN or 3.7 would be undefined or silently truncated as an integer).
         const double n = src.next(p.count_type);
+        if (!std::isfinite(n) || n != std::floor(n)) src.fail("list length " + format_value(n) + " is not a whole number");
         if (n < 0 || n > static_cast<double>(src.remaining()) / src.min_bytes(p.type) + 1)
-          src.fail("list length " + std::to_string(static_cast<long long>(n)) + " is impossible");
+          src.fail("list length " + format_value(n) + " is impossible");
         std::vector<int> ids(static_cast<std::size_t>(n));
         for (auto& id : ids) {
           const double v = src.next(p.type);
+          if (!std::isfinite(v) || v != std::floor(v)) src.fail("vertex index " + format_value(v) + " is not a whole number");
           id = v >= 0 && v <= INT32_MAX ? static_cast<int>(v) : -1;
         }
         if (is_face && face_list == static_cast<int>(k)) out.faces.push_back(std::move(ids));
@@ -218,11 +230,24 @@ void read_body(const std::vector<PlyElement>& elements, ValueSource& src, MeshFi
                  ", out of range [0, " + std::to_string(nv) + ")");
 }
 
+// The newline ending the header's `end_header` line (npos: none). A comment that mentions
+// end_header is not the end of the header.
+std::size_t header_end(std::string_view bytes) {
+  for (std::size_t pos = 0; pos < bytes.size();) {
+    const std::size_t nl = bytes.find('\n', pos);
+    std::string_view line = bytes.substr(pos, nl == std::string_view::npos ? std::string_view::npos : nl - pos);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    if (line == "end_header") return nl;
+    if (nl == std::string_view::npos) break;
+    pos = nl + 1;
+  }
+  return std::string_view::npos;
+}
+
 }  // namespace
 
 MeshFile parse_ply(std::string_view bytes, const std::string& name) {
-  const std::size_t end = bytes.find("end_header");
-  const std::size_t nl = end == std::string_view::npos ? end : bytes.find('\n', end);
+  const std::size_t nl = header_end(bytes);
   TextScanner header(bytes.substr(0, nl == std::string_view::npos ? bytes.size() : nl + 1), name);
   std::string format;
   const auto elements = parse_header(header, &format);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <charconv>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -39,6 +40,10 @@ class TextScanner {
   std::vector<std::string_view> tokens_;
 };
 
-std::string read_whole_file(const std::string& path);  // throws IOError
+//! The largest input file read (meshes, curves, matrices): 2 GiB.
+inline constexpr std::uintmax_t kMaxInputBytes = std::uintmax_t{2} << 30;
+//! The file's bytes, a leading UTF-8 byte-order mark dropped. \throw IOError for a missing,
+//! unreadable or oversized file, a directory, a device, a FIFO or a socket.
+std::string read_whole_file(const std::string& path);
 
 }  // namespace fairshape::io::internal

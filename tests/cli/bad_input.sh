@@ -5,7 +5,7 @@ expect_error 2 "non-manifold edge" -- "$FS" info $M/nonmanifold_edge.off
 expect_error 2 "truncated_vertices.off:2: the vertex count is 4" -- "$FS" info $M/truncated_vertices.off
 expect_error 2 "truncated_faces.off:.*file ends after 1 of 2 faces" -- "$FS" info $M/truncated_faces.off
 expect_error 2 "only .* bytes follow" -- "$FS" info $M/absurd_count.off
-expect_error 2 "valid: .obj, .off, .ply" -- "$FS" convert data/cow.off "$SCRATCH/cow.stl"
+expect_error 2 "valid: .obj, .off, .ply, .vtp" -- "$FS" convert data/cow.off "$SCRATCH/cow.stl"
 [ ! -e "$SCRATCH/cow.stl" ] || fail "a refused conversion left a file"
 expect_error 2 "config file not found" -- "$FS" run nowhere.yaml
 expect_error 2 "colour: unknown key" -- "$FS" run configs/smoke/cow_nose_pull.yaml --set colour=red --out "$SCRATCH/x"

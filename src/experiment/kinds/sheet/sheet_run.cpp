@@ -64,6 +64,11 @@ SheetSpec read_sheet(Config& c) {
   if (spans.size() != 2) throw InvalidConfig(c.key_path("spans") + ": expected [spans_u, spans_v]");
   s.shape.spans_u = spans[0];
   s.shape.spans_v = spans[1];
+  if (spans[0] < 1 || spans[1] < 1 ||
+      static_cast<long long>(spans[0]) * spans[1] > bspline::HierarchicalSurface::kMaxBaseSpans)
+    throw InvalidConfig(c.key_path("spans") + ": " + std::to_string(spans[0]) + " x " + std::to_string(spans[1]) +
+                        " base spans: each at least 1, at most " + std::to_string(bspline::HierarchicalSurface::kMaxBaseSpans) +
+                        " in all");
   s.shape.degree = c.get_int("degree", 3, bspline::kMinDegree, bspline::kMaxDegree, "B-spline degree r");
   using bspline::SheetGeometry;
   bspline::SheetPlacement& p = s.placement;

@@ -1,0 +1,158 @@
+# Hostile input (issue: every file, parameter and mesh either works or is refused up front).
+# One line per input: the exit status expected and a fragment of the message. Every command
+# runs under a time limit and a 4 GB address-space limit, so a hang or a blow-up fails here
+# rather than the machine; exit statuses above 128 (a signal) always fail.
+source "$(dirname "$0")/lib.sh"
+H="$SCRATCH/in"
+mkdir -p "$H"
+CASES=0
+SMOKE=configs/smoke/cow_nose_pull.yaml
+
+# hostile CODE PATTERN -- command...
+hostile() {
+  local code="$1" pattern="$2"; shift 3
+  local err="$SCRATCH/stderr.txt" rc=0
+  (ulimit -v 4000000; timeout 60 "$@") 2>"$err" >/dev/null || rc=$?
+  CASES=$((CASES + 1))
+  [ "$rc" -lt 124 ] || { cat "$err" >&2; fail "case $CASES: exit $rc (signal, timeout or blow-up): $*"; }
+  [ "$rc" -eq "$code" ] || { cat "$err" >&2; fail "case $CASES: exit $rc, expected $code: $*"; }
+  grep -q -- "$pattern" "$err" || { cat "$err" >&2; fail "case $CASES: stderr lacks '$pattern': $*"; }
+  ! grep -qi "internal error" "$err" || { cat "$err" >&2; fail "case $CASES: an internal error: $*"; }
+}
+
+# --- mesh files ---------------------------------------------------------------------------
+# A fan around one vertex of valence 50,000: refused by name, not a crash after 2.3 s.
+$PY - "$H/fan.obj" 50000 <<'PYEOF'
+import math, sys
+n = int(sys.argv[2])
+with open(sys.argv[1], "w") as f:
+    f.write("v 0 0 0\n")
+    for k in range(n):
+        a = 2 * math.pi * k / n
+        f.write(f"v {math.cos(a):.9f} {math.sin(a):.9f} 0\n")
+    for k in range(n - 1):
+        f.write(f"f 1 {k + 2} {k + 3}\n")
+PYEOF
+hostile 2 "vertex 0 has valence 50000" -- "$FS" energy "$H/fan.obj" --out "$H/fan.mtx"
+[ ! -e "$H/fan.mtx" ] || fail "a refused energy wrote its matrix"
+# The umbrella thin plate couples the ring too; in a run the problem is assembled while the
+# run executes, so the refusal is the run's row (exit 3), not a crash.
+rc=0
+"$FS" run $SMOKE --out "$H/fan_run" --set "input.mesh=$H/fan.obj" --set 'energy=[{type: umbrella_thin_plate}]' \
+  --set 'constraints=[{type: fixed, vertices: [1, 2, 3]}, {type: position, vertices: [0], offset: [0, 0, 1]}]' 2>/dev/null || rc=$?
+CASES=$((CASES + 1))
+[ "$rc" -eq 3 ] || fail "the umbrella energy on the fan: exit $rc, expected 3"
+grep -q "accepts valence up to 2048" "$H/fan_run/runs.csv" || fail "the fan's row does not name the valence limit"
+# Binary PLY whose face-list count is a float NaN, or a non-integral float.
+$PY - "$H" <<'PYEOF'
+import struct, sys
+d = sys.argv[1]
+def ply(name, count, index):
+    head = (b"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+            b"property float z\nelement face 1\nproperty list float float vertex_indices\nend_header\n")
+    body = struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack("<f", count) + struct.pack("<3f", 0, 1, index)
+    open(f"{d}/{name}", "wb").write(head + body)
+ply("nan_count.ply", float("nan"), 2)
+ply("fractional_count.ply", 3.7, 2)
+ply("fractional_index.ply", 3, 1.9)
+open(f"{d}/comment_end_header.ply", "w").write(
+    "ply\nformat ascii 1.0\ncomment written before end_header by a tool\nelement vertex 3\nproperty float x\n"
+    "property float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+    "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")
+open(f"{d}/bom.obj", "wb").write(b"\xef\xbb\xbfv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+open(f"{d}/bom.off", "wb").write(b"\xef\xbb\xbfOFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")
+open(f"{d}/empty.obj", "w").write("")
+open(f"{d}/junk.obj", "w").write("this is not a mesh\nat all\n")
+PYEOF
+hostile 2 "list length nan is not a whole number" -- "$FS" info "$H/nan_count.ply"
+hostile 2 "list length 3.7 is not a whole number" -- "$FS" info "$H/fractional_count.ply"
+hostile 2 "vertex index 1.9 is not a whole number" -- "$FS" info "$H/fractional_index.ply"
+"$FS" info "$H/comment_end_header.ply" > /dev/null 2>&1 || fail "a PLY comment naming end_header broke a valid file"
+"$FS" info "$H/bom.obj" | grep -q "vertices *3" || fail "a UTF-8 BOM lost the OBJ's first vertex"
+"$FS" info "$H/bom.off" > /dev/null 2>&1 || fail "a UTF-8 BOM broke an OFF file"
+# Devices, FIFOs and directories are not meshes: refused at once (no 4 GB read, no hang).
+ln -sf /dev/zero "$H/zero.off"
+ln -sf /dev/urandom "$H/random.ply"
+mkfifo "$H/fifo.obj"
+mkdir -p "$H/folder.obj"
+hostile 2 "not a regular file" -- "$FS" info "$H/zero.off"
+hostile 2 "not a regular file" -- "$FS" info "$H/random.ply"
+hostile 2 "not a regular file" -- "$FS" info "$H/fifo.obj"
+hostile 2 "is a directory" -- "$FS" info "$H/folder.obj"
+hostile 2 "is a directory" -- "$FS" convert "$H/folder.obj" "$H/out.off"
+hostile 2 "no vertices" -- "$FS" convert "$H/empty.obj" "$H/out.off"
+hostile 2 "no vertices" -- "$FS" convert "$H/junk.obj" "$H/out.off"
+[ ! -e "$H/out.off" ] || fail "a refused conversion wrote its output"
+hostile 2 "valid: .obj, .off, .ply, .vtp" -- "$FS" convert data/cow.off "$H/cow.stl"
+hostile 2 "valid: .obj, .off, .ply, .vtp" -- "$FS" info "$H/cow.stl"
+hostile 2 "only PLY output has a binary form" -- "$FS" convert data/cow.off "$H/cow.obj" --binary
+hostile 2 "cannot open" -- "$FS" info "$H/missing.off"
+# The malformed-file corpus (tests/data/malformed, also the fuzzers' seeds): every file is
+# refused with its own name in the message.
+for f in tests/data/malformed/*.obj tests/data/malformed/*.off tests/data/malformed/*.ply tests/data/malformed/*.stl; do
+  hostile 2 "$(basename "$f")" -- "$FS" info "$f"
+done
+
+# --- configs ------------------------------------------------------------------------------
+cfg() { printf '%s\n' "$2" > "$H/$1.yaml"; echo "$H/$1.yaml"; }
+hostile 2 "key 'name' repeats the key of line 1" -- "$FS" run "$(cfg dup_key "name: a
+name: b")" --dry-run
+hostile 2 "key 'type' repeats the key of line" -- "$FS" run "$(cfg dup_nested "defaults: [$PWD/$SMOKE]
+solver: {type: sor, type: cholesky}")" --dry-run
+hostile 2 "a map key must be a plain value" -- "$FS" run "$(cfg complex_key "? [a, b]
+: 1")" --dry-run
+hostile 2 "a \`defaults\` entry must be a file name" -- "$FS" run "$(cfg bad_defaults "defaults: [[a, b]]
+name: x")" --dry-run
+hostile 2 "include themselves" -- "$FS" run "$(cfg self_include "defaults: [self_include.yaml]
+name: x")" --dry-run
+# A diamond of includes 12 deep, 4 wide: each file is loaded once (was exponential: a hang).
+for d in $(seq 0 12); do
+  if [ "$d" -eq 12 ]; then printf 'name: deep\n' > "$H/level$d.yaml"
+  else n=$((d + 1)); printf 'defaults: [level%s.yaml, level%s.yaml, level%s.yaml, level%s.yaml]\n' $n $n $n $n > "$H/level$d.yaml"; fi
+done
+hostile 2 "is no run kind's" -- "$FS" run "$H/level0.yaml" --dry-run
+ln -sf /dev/zero "$H/zero.yaml"
+hostile 2 "not a regular file" -- "$FS" run "$H/zero.yaml" --dry-run
+mkfifo "$H/fifo.yaml"
+hostile 2 "not a regular file" -- "$FS" run "$H/fifo.yaml" --dry-run
+hostile 2 "config file not found" -- "$FS" run "$H/none.yaml"
+hostile 2 "unknown key" -- "$FS" run $SMOKE --set colour=red --dry-run
+hostile 2 "valid: cholesky" -- "$FS" run $SMOKE --set solver.type=lu --dry-run
+# Non-finite or absurd parameters.
+hostile 2 "expected finite numbers" -- "$FS" run $SMOKE --set 'constraints.1.nearest=[.nan, 0, 0]' --dry-run
+hostile 2 "expected finite numbers" -- "$FS" run $SMOKE --set 'constraints.1.offset=[.inf, 0, 0]' --dry-run
+hostile 2 "expected finite numbers" -- "$FS" run $SMOKE --set 'energy.1.weight=.nan' --dry-run
+hostile 2 "out of range" -- "$FS" run $SMOKE --set 'energy.1.weight=-1' --dry-run
+hostile 2 "out of range" -- "$FS" run $SMOKE --set solver.tolerance=-1 --dry-run
+hostile 2 "out of range" -- "$FS" run $SMOKE --set repeat=0 --dry-run
+hostile 2 "out of range" -- "$FS" run $SMOKE --set input.levels=40 --dry-run
+hostile 2 "spans: 100000 x 100000 base spans" -- "$FS" run configs/welch-witkin/fig1.yaml \
+  --set 'sheets.0.spans=[100000, 100000]' --dry-run
+hostile 2 "not finite" -- "$FS" energy data/cow.off --alpha nan --out "$H/e.mtx"
+hostile 2 "not finite" -- "$FS" energy data/cow.off --beta inf --out "$H/e.mtx"
+hostile 2 "must be >= 0" -- "$FS" energy data/cow.off --alpha -1 --out "$H/e.mtx"
+# An offset so large that the solve overflows: a failure row, never NaN marked converged.
+rc=0
+"$FS" run $SMOKE --out "$H/huge" --set 'constraints.1.offset=[1.0e308, 0, 0]' 2>/dev/null || rc=$?
+CASES=$((CASES + 1))
+[ "$rc" -eq 3 ] || fail "an overflowing offset: exit $rc, expected 3"
+$PY - "$H/huge/runs.csv" <<'PYEOF'
+import csv, sys
+r = list(csv.DictReader(open(sys.argv[1])))[0]
+assert r["termination"] == "numerical_failure", r["termination"]
+assert "non-finite" in r["message"], r["message"]
+PYEOF
+
+# --- command lines ------------------------------------------------------------------------
+hostile 2 "expected i/n" -- "$FS" run $SMOKE --shard 0/2x --out "$H/s"
+hostile 2 "need 0 <= i < n" -- "$FS" run $SMOKE --shard 2/2 --out "$H/s"
+hostile 2 "--filter" -- "$FS" run configs/examples/solvers_sweep.yaml --filter solver.type=none --out "$H/f"
+touch "$H/a_file"
+hostile 2 "not a folder" -- "$FS" run $SMOKE --out "$H/a_file"
+hostile 2 "--jobs" -- "$FS" run $SMOKE --jobs 0 --out "$H/j"
+hostile 2 "expected key.path=value" -- "$FS" run $SMOKE --set novalue
+hostile 2 "must be a plain folder name" -- "$FS" run $SMOKE --set 'name=../escape' --dry-run
+hostile 2 "must be a plain folder name" -- "$FS" run $SMOKE --set 'name=/abs/dir' --dry-run
+
+[ "$CASES" -ge 60 ] || fail "only $CASES hostile cases"
+echo "hostile_input: ok ($CASES cases)"

@@ -30,17 +30,17 @@ void commit_path(const fs::path& tmp, const fs::path& target) {
   std::error_code ec;
   if (fs::is_directory(tmp) && fs::exists(target)) fs::remove_all(target, ec);
   fs::rename(tmp, target, ec);
-  if (ec) throw IOError(target.string() + ": cannot move finished output into place: " + ec.message());
+  if (ec) throw OutputError(target.string() + ": cannot move finished output into place: " + ec.message());
 }
 
 AtomicFile::AtomicFile(fs::path target, bool binary)
     : target_(std::move(target)), tmp_(temporary_sibling(target_)) {
   if (target_.has_parent_path() && !fs::exists(target_.parent_path())) {
-    throw IOError(target_.string() + ": cannot write: folder '" +
+    throw OutputError(target_.string() + ": cannot write: folder '" +
                   target_.parent_path().string() + "' does not exist");
   }
   out_.open(tmp_, binary ? std::ios::out | std::ios::binary : std::ios::out);
-  if (!out_) throw IOError(target_.string() + ": cannot open for writing");
+  if (!out_) throw OutputError(target_.string() + ": cannot open for writing");
 }
 
 AtomicFile::~AtomicFile() {
@@ -53,7 +53,7 @@ AtomicFile::~AtomicFile() {
 
 void AtomicFile::commit() {
   out_.flush();
-  if (!out_) throw IOError(target_.string() + ": write failed (disk full?)");
+  if (!out_) throw OutputError(target_.string() + ": write failed (disk full?)");
   out_.close();
   commit_path(tmp_, target_);
   committed_ = true;

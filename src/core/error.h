@@ -17,6 +17,9 @@ class InvalidConfig : public Error { using Error::Error; };
 class TopologyError : public Error { using Error::Error; };
 class IOError : public Error { using Error::Error; };
 class SolverError : public Error { using Error::Error; };
+//! Writing an output failed (disk full, a file-size limit, permissions): the run's results are
+//! incomplete, so it is not a finished run (termination output_failed; --resume runs it again).
+class OutputError : public IOError { using IOError::IOError; };
 
 // A parse error at a known place in a file: "cow.off:12: expected 3 coordinates".
 class ParseError : public IOError {

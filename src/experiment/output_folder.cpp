@@ -74,7 +74,7 @@ std::set<std::string> OutputFolder::finished_runs(const TableLayout& layout) con
   return done;
 }
 
-std::size_t OutputFolder::drop_failed_runs() {
+std::size_t OutputFolder::drop_failed_runs(bool only_output_failures) {
   if (!fs::exists(runs_csv())) return 0;
   CsvTable t = read_csv(runs_csv().string(), true);
   const int term = t.column("termination");
@@ -82,7 +82,8 @@ std::size_t OutputFolder::drop_failed_runs() {
   const std::size_t before = t.rows.size();
   std::erase_if(t.rows, [&](const std::vector<std::string>& r) {
     try {
-      return !is_success(termination_from_string(r[term]));
+      const Termination t = termination_from_string(r[term]);
+      return only_output_failures ? t == Termination::OutputFailed : !is_success(t);
     } catch (const Error&) {
       return true;  // a termination this build does not know: run it again
     }

@@ -46,7 +46,8 @@ class OutputFolder {
   //! when its columns differ from `layout`'s.
   std::set<std::string> finished_runs(const TableLayout& layout) const;
   //! Removes runs.csv rows whose termination is not a success; returns how many.
-  std::size_t drop_failed_runs();
+  //! `only_output_failures`: only the runs whose outputs could not be written (output_failed).
+  std::size_t drop_failed_runs(bool only_output_failures = false);
   //! Removes the rows of the other tables whose run has no runs.csv row (a run killed
   //! between committing its table rows and its row), and those of the runs in `also`
   //! (crashed runs, whose row the supervisor wrote). Only while no worker writes.

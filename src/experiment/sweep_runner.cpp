@@ -332,6 +332,10 @@ int supervise(const SweepOptions& opt) {
   if (opt.retry_failed) {
     const std::size_t n = folder.drop_failed_runs();
     std::cerr << "fairshape: --retry-failed: " << n << " failed run(s) will run again\n";
+  } else if (opt.resume) {
+    // A run whose outputs could not be written (disk full) never finished: run it again.
+    if (const std::size_t n = folder.drop_failed_runs(true))
+      std::cerr << "fairshape: " << n << " run(s) whose outputs could not be written will run again\n";
   }
   folder.roll_back_orphan_rows(plan.layout);
   const std::set<std::string> done = folder.finished_runs(plan.layout);

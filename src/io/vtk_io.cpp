@@ -8,6 +8,7 @@
 #include <vtkInformation.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkNew.h>
+#include <vtkObject.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
@@ -28,6 +29,10 @@
 namespace fairshape {
 namespace fs = std::filesystem;
 namespace {
+// VTK prints its own errors ("ERROR: In vtkXMLParser.cxx, line ...") on stderr; fairshape
+// reports every failure itself, with the file named, so VTK's output window stays silent.
+void quiet_vtk() { vtkObject::GlobalWarningDisplayOff(); }
+
 
 vtkSmartPointer<vtkDoubleArray> to_vtk_array(const std::string& name, const Eigen::MatrixXd& m) {
   auto a = vtkSmartPointer<vtkDoubleArray>::New();
@@ -79,16 +84,30 @@ vtkSmartPointer<vtkPolyData> io::internal::to_polydata(const SurfaceMesh& mesh, 
 namespace {
 using io::internal::to_polydata;
 
+// VTK's XML writers can report success after a failed write (ENOSPC, a file-size limit): a
+// written file is complete only if it ends with the closing </VTKFile> tag.
+bool complete_vtk_file(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary | std::ios::ate);
+  if (!in) return false;
+  const std::streamoff size = in.tellg();
+  const std::streamoff tail = std::min<std::streamoff>(size, 64);
+  std::string end(static_cast<std::size_t>(tail), '\0');
+  in.seekg(size - tail);
+  in.read(end.data(), tail);
+  return in.good() && end.find("</VTKFile>") != std::string::npos;
+}
+
 void write_polydata_atomically(vtkPolyData* pd, const std::string& path) {
+  quiet_vtk();
   const fs::path tmp = temporary_sibling(path);
   vtkNew<vtkXMLPolyDataWriter> w;
   w->SetFileName(tmp.c_str());
   w->SetInputData(pd);
   w->SetDataModeToAppended();
-  if (w->Write() != 1) {
+  if (w->Write() != 1 || w->GetErrorCode() != 0 || !complete_vtk_file(tmp)) {
     std::error_code ec;
     fs::remove(tmp, ec);
-    throw IOError(path + ": VTK could not write the file");
+    throw OutputError(path + ": VTK could not write the file completely (disk full, or a file-size limit?)");
   }
   commit_path(tmp, path);
 }
@@ -101,6 +120,34 @@ void read_arrays(vtkFieldData* fd, std::map<std::string, Eigen::MatrixXd>& out) 
     for (Eigen::Index r = 0; r < m.rows(); ++r)
       for (Eigen::Index c = 0; c < m.cols(); ++c) m(r, c) = a->GetComponent(r, static_cast<int>(c));
     out[a->GetName()] = std::move(m);
+  }
+}
+
+// The element counts a VTK XML file declares (NumberOfPoints="...", NumberOfPolys="...")
+// checked before VTK allocates for them: an absurd count is a refusal, not std::bad_alloc.
+// Compressed payloads can be far smaller than what they hold, so the bound is absolute.
+constexpr long long kMaxVtkElements = 100'000'000;
+
+
+void check_declared_counts(const std::string& path) {
+  quiet_vtk();
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw IOError(path + ": no such file (or not a regular file: a device, FIFO or folder)");
+  std::ifstream in(path, std::ios::binary);
+  std::string head(1 << 20, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  for (std::size_t pos = head.find("NumberOf"); pos != std::string::npos; pos = head.find("NumberOf", pos + 1)) {
+    const std::size_t eq = head.find("=\"", pos);
+    if (eq == std::string::npos || eq - pos > 32) continue;
+    const std::size_t end = head.find('"', eq + 2);
+    if (end == std::string::npos) continue;
+    const std::string value = head.substr(eq + 2, end - eq - 2);
+    const std::string name = head.substr(pos, eq - pos);
+    if (value.empty() || value.find_first_not_of("0123456789") != std::string::npos || value.size() > 12 ||
+        std::stoll(value) > kMaxVtkElements)
+      throw IOError(path + ": " + name + "=\"" + value.substr(0, 24) + "\" is not a count up to " +
+                    std::to_string(kMaxVtkElements) + " (the largest mesh fairshape reads)");
   }
 }
 
@@ -118,7 +165,14 @@ SurfaceMesh from_polydata(vtkPolyData* pd, const std::string& path) {
   polys->InitTraversal();
   while (polys->GetNextCell(ids)) {
     std::vector<int> f(ids->GetNumberOfIds());
-    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k) f[k] = static_cast<int>(ids->GetId(k));
+    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k) {
+      // Checked as 64-bit ids: 4294967298 must not wrap to vertex 2.
+      const vtkIdType id = ids->GetId(k);
+      if (id < 0 || id >= pd->GetNumberOfPoints())
+        throw InvalidInput(path + ": polygon " + std::to_string(faces.size()) + " references point " + std::to_string(id) +
+                           ", out of range [0, " + std::to_string(pd->GetNumberOfPoints()) + ")");
+      f[k] = static_cast<int>(id);
+    }
     faces.push_back(std::move(f));
   }
   SurfaceMesh m;
@@ -155,7 +209,7 @@ void write_vtp(const Polyline& curve, const DataArrays& point_data, const std::s
 }
 
 SurfaceMesh read_vtp(const std::string& path) {
-  if (!fs::is_regular_file(path)) throw IOError(path + ": no such file");
+  check_declared_counts(path);
   vtkNew<vtkXMLPolyDataReader> r;
   if (!r->CanReadFile(path.c_str())) throw IOError(path + ": not a VTK XML PolyData file");
   r->SetFileName(path.c_str());
@@ -164,6 +218,7 @@ SurfaceMesh read_vtp(const std::string& path) {
 }
 
 void write_vtm(const std::vector<NamedMesh>& blocks, const std::string& path) {
+  quiet_vtk();
   const fs::path target(path);
   const fs::path staging = temporary_sibling(target);  // a folder holding the .vtm and its data folder
   fs::create_directories(staging);
@@ -178,18 +233,23 @@ void write_vtm(const std::vector<NamedMesh>& blocks, const std::string& path) {
   w->SetFileName(staged_file.c_str());
   w->SetInputData(mb);
   w->SetDataModeToAppended();
-  if (w->Write() != 1) {
-    fs::remove_all(staging);
-    throw IOError(path + ": VTK could not write the multiblock file");
-  }
+  bool complete = w->Write() == 1 && w->GetErrorCode() == 0 && complete_vtk_file(staged_file);
   const fs::path data_dir = staging / target.stem();
+  std::error_code ec;
+  if (complete && fs::exists(data_dir))
+    for (const auto& piece : fs::recursive_directory_iterator(data_dir, ec))
+      if (piece.is_regular_file() && !complete_vtk_file(piece.path())) complete = false;
+  if (!complete) {
+    fs::remove_all(staging);
+    throw OutputError(path + ": VTK could not write the multiblock file completely (disk full, or a file-size limit?)");
+  }
   if (fs::exists(data_dir)) commit_path(data_dir, target.parent_path() / target.stem());
   commit_path(staged_file, target);
   fs::remove_all(staging);
 }
 
 std::vector<SurfaceMesh> read_vtm(const std::string& path) {
-  if (!fs::is_regular_file(path)) throw IOError(path + ": no such file");
+  check_declared_counts(path);
   vtkNew<vtkXMLMultiBlockDataReader> r;
   r->SetFileName(path.c_str());
   r->Update();

@@ -87,11 +87,51 @@ hostile 2 "valid: .obj, .off, .ply, .vtp" -- "$FS" convert data/cow.off "$H/cow.
 hostile 2 "valid: .obj, .off, .ply, .vtp" -- "$FS" info "$H/cow.stl"
 hostile 2 "only PLY output has a binary form" -- "$FS" convert data/cow.off "$H/cow.obj" --binary
 hostile 2 "cannot open" -- "$FS" info "$H/missing.off"
+"$FS" convert data/cow.off "$H/cow_copy.vtp" 2>/dev/null || fail "cow.off to .vtp"
 # The malformed-file corpus (tests/data/malformed, also the fuzzers' seeds): every file is
 # refused with its own name in the message.
 for f in tests/data/malformed/*.obj tests/data/malformed/*.off tests/data/malformed/*.ply tests/data/malformed/*.stl; do
   hostile 2 "$(basename "$f")" -- "$FS" info "$f"
 done
+
+# VTK polydata: counts checked before VTK allocates, ids checked as 64-bit.
+sed 's/NumberOfPoints="2904"/NumberOfPoints="1000000000000"/' "$H/cow_copy.vtp" > "$H/huge_count.vtp"
+hostile 2 "is not a count up to" -- "$FS" info "$H/huge_count.vtp"
+cat > "$H/wrapped_id.vtp" <<'VTP'
+<?xml version="1.0"?>
+<VTKFile type="PolyData" version="0.1" byte_order="LittleEndian" header_type="UInt64">
+  <PolyData>
+    <Piece NumberOfPoints="3" NumberOfPolys="1">
+      <Points><DataArray type="Float64" NumberOfComponents="3" format="ascii">0 0 0 1 0 0 0 1 0</DataArray></Points>
+      <Polys>
+        <DataArray type="Int64" Name="connectivity" format="ascii">0 1 4294967298</DataArray>
+        <DataArray type="Int64" Name="offsets" format="ascii">3</DataArray>
+      </Polys>
+    </Piece>
+  </PolyData>
+</VTKFile>
+VTP
+hostile 2 "references point 4294967298" -- "$FS" info "$H/wrapped_id.vtp"
+ln -sf /dev/zero "$H/zero.vtp"
+hostile 2 "not a regular file" -- "$FS" info "$H/zero.vtp"
+# A full disk (a 10 KB file-size limit, SIGXFSZ ignored so writes fail with EFBIG): VTK's
+# writers would report success; the output is refused and nothing truncated is left.
+FULL_DISK=(bash -c 'ulimit -f 10; trap "" XFSZ; exec "$0" "$@"')
+hostile 2 "could not write the file completely" -- "${FULL_DISK[@]}" "$FS" convert data/cow.off "$H/full.vtp"
+[ ! -e "$H/full.vtp" ] || fail "a truncated .vtp was left in place"
+hostile 2 "could not write" -- "${FULL_DISK[@]}" "$FS" subdivide data/cow.off "$H/full.vtm" --scheme catmull-clark --levels 2
+[ ! -e "$H/full.vtm" ] || fail "a truncated .vtm was left in place"
+# Inside a sweep the run's row says output_failed, and --resume runs it again.
+rc=0
+(ulimit -f 200; trap '' XFSZ; "$FS" run $SMOKE --out "$H/full_run" --set output.reference_solution=false) 2>/dev/null || rc=$?
+CASES=$((CASES + 1))
+[ "$rc" -eq 3 ] || fail "a sweep on a full disk: exit $rc, expected 3"
+grep -q "output_failed" "$H/full_run/runs.csv" || fail "no output_failed row"
+"$FS" run $SMOKE --out "$H/full_run" --set output.reference_solution=false --resume 2> "$SCRATCH/resume.txt" ||
+  { cat "$SCRATCH/resume.txt" >&2; fail "the resume after the full disk did not finish"; }
+grep -q "could not be written will run again" "$SCRATCH/resume.txt" || fail "the resume did not say it re-runs the run"
+grep -q ",converged," "$H/full_run/runs.csv" || fail "the re-run is not recorded"
+! grep -q "output_failed" "$H/full_run/runs.csv" || fail "the failed row stayed"
 
 # --- configs ------------------------------------------------------------------------------
 cfg() { printf '%s\n' "$2" > "$H/$1.yaml"; echo "$H/$1.yaml"; }

@@ -234,6 +234,9 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
     if (!last.solve.history.empty()) row["stationarity"] = num(last.solve.history.back().stationarity);
     if (row["message"].empty()) row["message"] = last.solve.summary.message;
     if (spec.final_curve) write_polyline(current, out.final_path());
+  } catch (const OutputError& e) {  // results incomplete: not a finished run
+    row["termination"] = std::string(to_string(Termination::OutputFailed));
+    row["message"] = e.what();
   } catch (const Error& e) {
     row["termination"] = std::string(to_string(Termination::InvalidInput));
     row["message"] = "edit " + std::to_string(done) + ": " + e.what();

@@ -202,6 +202,9 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
     }
     if (spec.vtk) write_vtp(fine, (fs::path(out.dir) / "vtk" / (out.run_id + ".vtp")).string());
     write_mesh(fine, out.final_path());
+  } catch (const OutputError& e) {  // results incomplete: not a finished run
+    row["termination"] = std::string(to_string(Termination::OutputFailed));
+    row["message"] = e.what();
   } catch (const Error& e) {
     row["termination"] = std::string(to_string(Termination::InvalidInput));
     row["message"] = e.what();

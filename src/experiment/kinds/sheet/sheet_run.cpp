@@ -474,6 +474,9 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
     if (cond > 0) row["condition_estimate"] = num(cond);
     row["analyze_s"] = num(analyze_s);
     row["solve_s"] = num(solve_s);
+  } catch (const OutputError& e) {  // results incomplete: not a finished run
+    row["termination"] = std::string(to_string(Termination::OutputFailed));
+    row["message"] = e.what();
   } catch (const Error& e) {
     row["termination"] = std::string(to_string(Termination::InvalidInput));
     row["message"] = "step " + std::to_string(step) + ": " + e.what();

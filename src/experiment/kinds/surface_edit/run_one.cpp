@@ -269,6 +269,9 @@ MetricRow execute_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
   } catch (const SolverError& e) {
     row["termination"] = std::string(to_string(Termination::NumericalFailure));
     row["message"] = e.what();
+  } catch (const OutputError& e) {  // results incomplete: not a finished run
+    row["termination"] = std::string(to_string(Termination::OutputFailed));
+    row["message"] = e.what();
   } catch (const Error& e) {  // the input: files, topology, constraints
     row["termination"] = std::string(to_string(Termination::InvalidInput));
     row["message"] = e.what();

@@ -1,9 +1,10 @@
 # The two commands of the README: `make demo` and `make test`. Everything else is a helper.
 JOBS ?= $(shell nproc)
+FUZZ_RUNS ?= 100000
 BUILD_DIR := build
 FAIRSHAPE := $(BUILD_DIR)/bin/fairshape
 
-.PHONY: deps configure build test demo asan-test fuzz bench clean
+.PHONY: deps configure build test demo asan-test fuzz fuzz-run bench clean
 
 deps:
 	bash scripts/install-deps.sh
@@ -27,8 +28,13 @@ asan-test: deps
 	cmake --preset asan && cmake --build build-asan -j $(JOBS)
 	cd build-asan && ASAN_OPTIONS=detect_leaks=0 ctest --output-on-failure -j $(JOBS) -L unit
 
+FUZZ_TARGETS := fuzz_read_obj fuzz_read_off fuzz_read_ply fuzz_read_vtp fuzz_config
+
 fuzz: deps
-	cmake --preset fuzz && cmake --build build-fuzz -j $(JOBS)
+	cmake --preset fuzz && cmake --build build-fuzz -j $(JOBS) --target $(FUZZ_TARGETS)
+
+fuzz-run: fuzz
+	bash scripts/fuzz.sh $(FUZZ_RUNS)
 
 bench: build
 	bash scripts/bench.sh

@@ -68,8 +68,9 @@ void check_yaml_structure(const std::string& text, const std::string& file) {
   YAML::Parser parser(in);
   KeyChecker checker(file);
   try {
-    while (parser.HandleNextDocument(checker)) {
-    }
+    // The first document only, as YAML::Load reads it (on some malformed text yaml-cpp's
+    // parser reports documents forever: a loop over them hung — found by fuzz_config).
+    parser.HandleNextDocument(checker);
   } catch (const YAML::ParserException& e) {
     throw InvalidConfig(file + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax error: " + e.msg);
   }

@@ -18,12 +18,14 @@
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "io/text_scanner.h"
 #include "io/vtk_convert.h"
 
 namespace fairshape {
@@ -129,14 +131,52 @@ void read_arrays(vtkFieldData* fd, std::map<std::string, Eigen::MatrixXd>& out) 
 constexpr long long kMaxVtkElements = 100'000'000;
 
 
+// Raw appended data: every array's header (its byte count, or for compressed data the block
+// count and sizes) must describe bytes the file holds — zlib expands at most 1032:1 — or VTK
+// allocates what a corrupted header claims (found by fuzz_read_vtp: out of memory).
+void check_appended_headers(const std::string& bytes, const std::string& path) {
+  const std::size_t tag = bytes.find("<AppendedData");
+  if (tag == std::string::npos) return;
+  const std::size_t close = bytes.find('>', tag);
+  if (close == std::string::npos || bytes.compare(tag, close - tag, "<AppendedData encoding=\"base64\"") == 0) return;
+  const std::size_t base = bytes.find('_', close);
+  if (base == std::string::npos) throw IOError(path + ": AppendedData without its '_' marker");
+  const std::string xml = bytes.substr(0, tag);
+  const std::size_t word = xml.find("header_type=\"UInt64\"") != std::string::npos ? 8 : 4;
+  const bool compressed = xml.find("compressor=\"") != std::string::npos;
+  const auto read_word = [&](std::size_t at) -> unsigned long long {
+    if (at + word > bytes.size()) throw IOError(path + ": an appended array's header lies past the end of the file");
+    unsigned long long v = 0;
+    std::memcpy(&v, bytes.data() + at, word);  // little endian, as fairshape writes and this machine reads
+    return v;
+  };
+  for (std::size_t pos = xml.find(" offset=\""); pos != std::string::npos; pos = xml.find(" offset=\"", pos + 1)) {
+    const std::size_t end = xml.find('"', pos + 9);
+    const std::string value = xml.substr(pos + 9, end == std::string::npos ? 0 : end - pos - 9);
+    if (value.empty() || value.size() > 15 || value.find_first_not_of("0123456789") != std::string::npos)
+      throw IOError(path + ": appended-data offset '" + value.substr(0, 24) + "' is not a byte offset");
+    const std::size_t at = base + 1 + std::stoull(value);
+    const unsigned long long left = bytes.size() > at ? bytes.size() - at : 0;
+    if (!compressed) {
+      if (read_word(at) > left) throw IOError(path + ": an appended array claims more bytes than the file holds");
+      continue;
+    }
+    const unsigned long long blocks = read_word(at), block = read_word(at + word), last = read_word(at + 2 * word);
+    if (blocks > left / word) throw IOError(path + ": an appended array claims more compressed blocks than the file holds");
+    unsigned long long stored = 0;
+    for (unsigned long long b = 0; b < blocks; ++b) stored += read_word(at + (3 + b) * word);
+    const long double expanded = blocks == 0 ? 0.0L : (blocks - 1.0L) * block + (last ? last : block);
+    if (stored > left || expanded > 1032.0L * stored + 4096.0L)
+      throw IOError(path + ": an appended array's compressed-block header is inconsistent with the file (corrupt?)");
+  }
+}
+
 void check_declared_counts(const std::string& path) {
   quiet_vtk();
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw IOError(path + ": no such file (or not a regular file: a device, FIFO or folder)");
-  std::ifstream in(path, std::ios::binary);
-  std::string head(1 << 20, '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<std::size_t>(in.gcount()));
+  const std::string head = io::internal::read_whole_file(path);
+  check_appended_headers(head, path);
   for (std::size_t pos = head.find("NumberOf"); pos != std::string::npos; pos = head.find("NumberOf", pos + 1)) {
     const std::size_t eq = head.find("=\"", pos);
     if (eq == std::string::npos || eq - pos > 32) continue;

@@ -112,6 +112,9 @@ cat > "$H/wrapped_id.vtp" <<'VTP'
 </VTKFile>
 VTP
 hostile 2 "references point 4294967298" -- "$FS" info "$H/wrapped_id.vtp"
+printf '<?xml version="1.0"?>\n<VTKFile type="PolyData"><PolyData><Piece NumberOfPoints="3"' > "$H/cut.vtp"
+hostile 2 "cut.vtp" -- "$FS" info "$H/cut.vtp"
+! grep -q "vtkXML\|ERROR: In" "$SCRATCH/stderr.txt" || fail "VTK's own log lines leaked onto stderr"
 ln -sf /dev/zero "$H/zero.vtp"
 hostile 2 "not a regular file" -- "$FS" info "$H/zero.vtp"
 # A full disk (a 10 KB file-size limit, SIGXFSZ ignored so writes fail with EFBIG): VTK's
@@ -151,6 +154,8 @@ for d in $(seq 0 12); do
   else n=$((d + 1)); printf 'defaults: [level%s.yaml, level%s.yaml, level%s.yaml, level%s.yaml]\n' $n $n $n $n > "$H/level$d.yaml"; fi
 done
 hostile 2 "is no run kind's" -- "$FS" run "$H/level0.yaml" --dry-run
+# Text on which yaml-cpp's event parser reports documents without end (found by fuzz_config).
+hostile 2 "" -- "$FS" run tests/fuzz/config/regression_endless_documents.yaml --dry-run
 ln -sf /dev/zero "$H/zero.yaml"
 hostile 2 "not a regular file" -- "$FS" run "$H/zero.yaml" --dry-run
 mkfifo "$H/fifo.yaml"

@@ -18,10 +18,13 @@
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string_view>
+#include <vector>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -131,43 +134,84 @@ void read_arrays(vtkFieldData* fd, std::map<std::string, Eigen::MatrixXd>& out) 
 constexpr long long kMaxVtkElements = 100'000'000;
 
 
-// Raw appended data: every array's header (its byte count, or for compressed data the block
-// count and sizes) must describe bytes the file holds — zlib expands at most 1032:1 — or VTK
-// allocates what a corrupted header claims (found by fuzz_read_vtp: out of memory).
+// Standard base64 (VTK's encoding of appended data); stops at the first character outside it.
+std::string decode_base64(std::string_view text) {
+  static const std::string alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  unsigned value = 0;
+  int bits = 0;
+  for (char c : text) {
+    const std::size_t k = alphabet.find(c);
+    if (k == std::string::npos) break;
+    value = (value << 6) | static_cast<unsigned>(k);
+    bits += 6;
+    if (bits >= 8) {
+      bits -= 8;
+      out.push_back(static_cast<char>((value >> bits) & 0xFF));
+    }
+  }
+  return out;
+}
+
+// Appended data: every array's header (its byte count, or for compressed data the block count
+// and sizes) must describe bytes the file holds — zlib expands at most 1032:1 — or VTK
+// allocates what a corrupted header claims (found by fuzz_read_vtp: 2.7 GB from a 3 KB file).
+// Raw data is read as is; base64 data is decoded header by header (VTK encodes each header
+// on its own), offsets then counting encoded characters.
 void check_appended_headers(const std::string& bytes, const std::string& path) {
   const std::size_t tag = bytes.find("<AppendedData");
   if (tag == std::string::npos) return;
   const std::size_t close = bytes.find('>', tag);
-  if (close == std::string::npos || bytes.compare(tag, close - tag, "<AppendedData encoding=\"base64\"") == 0) return;
-  const std::size_t base = bytes.find('_', close);
-  if (base == std::string::npos) throw IOError(path + ": AppendedData without its '_' marker");
+  if (close == std::string::npos) throw IOError(path + ": AppendedData tag without its end");
+  const bool base64 = bytes.substr(tag, close - tag).find("encoding=\"base64\"") != std::string::npos;
+  const std::size_t marker = bytes.find('_', close);
+  if (marker == std::string::npos) throw IOError(path + ": AppendedData without its '_' marker");
+  const std::size_t base = marker + 1;
   const std::string xml = bytes.substr(0, tag);
   const std::size_t word = xml.find("header_type=\"UInt64\"") != std::string::npos ? 8 : 4;
   const bool compressed = xml.find("compressor=\"") != std::string::npos;
-  const auto read_word = [&](std::size_t at) -> unsigned long long {
-    if (at + word > bytes.size()) throw IOError(path + ": an appended array's header lies past the end of the file");
-    unsigned long long v = 0;
-    std::memcpy(&v, bytes.data() + at, word);  // little endian, as fairshape writes and this machine reads
-    return v;
+  const auto fail = [&](const std::string& what) { throw IOError(path + ": an appended array's header " + what + " (corrupt file?)"); };
+  // `count` header words at `at` (raw bytes, or the base64 unit holding `total` words).
+  const auto words = [&](std::size_t at, std::size_t count, std::size_t total) {
+    std::string raw;
+    if (base64) {
+      const std::size_t chars = (total * word + 2) / 3 * 4;
+      if (at + chars > bytes.size()) fail("lies past the end of the file");
+      raw = decode_base64(std::string_view(bytes).substr(at, chars));
+    } else {
+      if (at + count * word > bytes.size()) fail("lies past the end of the file");
+      raw = bytes.substr(at, count * word);
+    }
+    if (raw.size() < count * word) fail("is cut short");
+    std::vector<unsigned long long> out(count, 0);
+    for (std::size_t k = 0; k < count; ++k) std::memcpy(&out[k], raw.data() + k * word, word);  // little endian
+    return out;
   };
   for (std::size_t pos = xml.find(" offset=\""); pos != std::string::npos; pos = xml.find(" offset=\"", pos + 1)) {
     const std::size_t end = xml.find('"', pos + 9);
     const std::string value = xml.substr(pos + 9, end == std::string::npos ? 0 : end - pos - 9);
     if (value.empty() || value.size() > 15 || value.find_first_not_of("0123456789") != std::string::npos)
       throw IOError(path + ": appended-data offset '" + value.substr(0, 24) + "' is not a byte offset");
-    const std::size_t at = base + 1 + std::stoull(value);
-    const unsigned long long left = bytes.size() > at ? bytes.size() - at : 0;
+    const std::size_t at = base + std::stoull(value);
+    if (at > bytes.size()) fail("starts past the end of the file");
+    // What the file holds after the header, as decoded bytes.
+    const long double held = base64 ? (bytes.size() - at) * 0.75L : static_cast<long double>(bytes.size() - at);
     if (!compressed) {
-      if (read_word(at) > left) throw IOError(path + ": an appended array claims more bytes than the file holds");
+      if (words(at, 1, 1)[0] > held) fail("claims more bytes than the file holds");
       continue;
     }
-    const unsigned long long blocks = read_word(at), block = read_word(at + word), last = read_word(at + 2 * word);
-    if (blocks > left / word) throw IOError(path + ": an appended array claims more compressed blocks than the file holds");
-    unsigned long long stored = 0;
-    for (unsigned long long b = 0; b < blocks; ++b) stored += read_word(at + (3 + b) * word);
+    const auto head = words(at, 3, 3);
+    const unsigned long long blocks = head[0], block = head[1], last = head[2];
+    if (blocks > held / word) fail("claims more compressed blocks than the file holds");
+    const auto all = words(at, 3 + static_cast<std::size_t>(blocks), 3 + static_cast<std::size_t>(blocks));
+    long double stored = 0, largest = 0;
+    for (std::size_t b = 0; b < blocks; ++b) {
+      stored += all[3 + b];
+      largest = std::max<long double>(largest, all[3 + b]);
+    }
     const long double expanded = blocks == 0 ? 0.0L : (blocks - 1.0L) * block + (last ? last : block);
-    if (stored > left || expanded > 1032.0L * stored + 4096.0L)
-      throw IOError(path + ": an appended array's compressed-block header is inconsistent with the file (corrupt?)");
+    if (stored > held || expanded > 1032.0L * stored + 4096.0L || (blocks > 0 && block > 1032.0L * largest + 4096.0L))
+      fail("is inconsistent with the compressed data that follows");
   }
 }
 

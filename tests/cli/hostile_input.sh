@@ -115,6 +115,8 @@ hostile 2 "references point 4294967298" -- "$FS" info "$H/wrapped_id.vtp"
 printf '<?xml version="1.0"?>\n<VTKFile type="PolyData"><PolyData><Piece NumberOfPoints="3"' > "$H/cut.vtp"
 hostile 2 "cut.vtp" -- "$FS" info "$H/cut.vtp"
 ! grep -q "vtkXML\|ERROR: In" "$SCRATCH/stderr.txt" || fail "VTK's own log lines leaked onto stderr"
+# A compressed base64 header claiming a 2.7 GB block in a 3 KB file (found by fuzz_read_vtp).
+hostile 2 "appended array's header" -- "$FS" info tests/fuzz/vtp/regression_oom_block_header.vtp
 ln -sf /dev/zero "$H/zero.vtp"
 hostile 2 "not a regular file" -- "$FS" info "$H/zero.vtp"
 # A full disk (a 10 KB file-size limit, SIGXFSZ ignored so writes fail with EFBIG): VTK's

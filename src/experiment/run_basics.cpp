@@ -2,13 +2,20 @@
 
 #include <cmath>
 #include <filesystem>
+#include <map>
+#include <mutex>
+
+#include "io/mesh_io.h"
 
 namespace fairshape {
 namespace fs = std::filesystem;
 
 std::string resolve_input(const std::string& path, const std::vector<std::string>& dirs, const std::string& key) {
+  std::error_code ec;
   if (fs::path(path).is_absolute()) {
-    if (fs::is_regular_file(path)) return path;
+    if (fs::is_regular_file(path, ec)) return path;
+    if (fs::exists(path, ec))
+      throw InvalidConfig(key + ": '" + path + "' is not a regular file (a device, FIFO or folder)");
   } else {
     for (const auto& d : dirs)
       if (fs::is_regular_file(fs::path(d) / path)) return (fs::path(d) / path).lexically_normal().string();
@@ -64,6 +71,23 @@ RunBasics read_run_basics(Config& root) {
   b.repeat = root.get_int("repeat", 1, 1, 1000, "timing repeats, run by the harness (the median of every timing column is reported, solve_min_s the minimum)");
   b.implementation = root.get_enum("implementation", Backend::Optimized, backend_names(), "back end of every component");
   return b;
+}
+
+void require_readable_mesh(const std::string& path, const std::string& key) {
+  static std::mutex guard;
+  static std::map<std::string, std::string> problems;  // path -> the reader's message ("" when readable)
+  std::lock_guard<std::mutex> lock(guard);
+  auto it = problems.find(path);
+  if (it == problems.end()) {
+    std::string problem;
+    try {
+      (void)read_mesh(path);
+    } catch (const Error& e) {
+      problem = e.what();
+    }
+    it = problems.emplace(path, problem).first;
+  }
+  if (!it->second.empty()) throw InvalidConfig(key + ": " + it->second);
 }
 
 }  // namespace fairshape

@@ -39,5 +39,9 @@ Vec3 read_vec3(Config& c, const std::string& key, const Vec3& fallback, const st
 std::vector<std::string> input_search_dirs(const std::string& config_path);
 //! `path` as found in `dirs`. \throw InvalidConfig naming `key` when it is nowhere.
 std::string resolve_input(const std::string& path, const std::vector<std::string>& dirs, const std::string& key);
+//! Reads the mesh at `path` once per process (validation of every sweep point asks again), so
+//! a malformed or unreadable input is an invalid config — exit 2, nothing run — rather than a
+//! failed run. \throw InvalidConfig naming `key` and the reader's message.
+void require_readable_mesh(const std::string& path, const std::string& key);
 
 }  // namespace fairshape

@@ -13,6 +13,7 @@ class FeatureKind final : public RunKind {
   bool owns(const YAML::Node& c) const override { return is_feature_config(c); }
   ValidatedRun validate(const YAML::Node& c, const std::vector<std::string>& dirs) const override {
     const FeatureRunSpec spec = FeatureRunSpec::from_config(c, dirs);
+    require_readable_mesh(spec.mesh_path, "input.mesh");
     return {spec.name, {spec.mesh_path}};
   }
   const std::vector<std::string>& metric_columns() const override { return feature_metric_columns(); }

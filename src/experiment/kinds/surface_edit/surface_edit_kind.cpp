@@ -16,6 +16,7 @@ class SurfaceEditKind final : public RunKind {
   }
   ValidatedRun validate(const YAML::Node& c, const std::vector<std::string>& dirs) const override {
     const SurfaceEditSpec spec = SurfaceEditSpec::from_config(c, components(), dirs);
+    require_readable_mesh(spec.mesh_path, "input.mesh");
     return {spec.name, {spec.mesh_path}};
   }
   const std::vector<std::string>& metric_columns() const override { return fairshape::metric_columns(); }

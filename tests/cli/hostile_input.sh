@@ -35,6 +35,25 @@ with open(sys.argv[1], "w") as f:
 PYEOF
 hostile 2 "vertex 0 has valence 50000" -- "$FS" energy "$H/fan.obj" --out "$H/fan.mtx"
 [ ! -e "$H/fan.mtx" ] || fail "a refused energy wrote its matrix"
+# Just over the documented limit and at it: a closed fan (a cone) of valence 2049 is refused,
+# one of 2048 is assembled.
+for n in 2048 2049; do
+  $PY - "$H/cone$n.obj" $n <<'PYEOF'
+import math, sys
+n = int(sys.argv[2])
+with open(sys.argv[1], "w") as f:
+    f.write("v 0 0 1\n")
+    for k in range(n):
+        a = 2 * math.pi * k / n
+        f.write(f"v {math.cos(a):.9f} {math.sin(a):.9f} 0\n")
+    for k in range(n):
+        f.write(f"f 1 {k + 2} {(k + 1) % n + 2}\n")
+PYEOF
+done
+hostile 2 "has valence 2049" -- "$FS" energy "$H/cone2049.obj" --out "$H/cone.mtx"
+(ulimit -v 4000000; timeout 60 "$FS" energy "$H/cone2048.obj" --out "$H/cone.mtx") > /dev/null 2>&1 ||
+  fail "a cone of valence 2048, at the limit, was not assembled"
+CASES=$((CASES + 1))
 # The umbrella thin plate couples the ring too; in a run the problem is assembled while the
 # run executes, so the refusal is the run's row (exit 3), not a crash.
 rc=0

@@ -1,13 +1,12 @@
 #include "experiment/config_loader.h"
 
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <vector>
 
 #include "core/config.h"
 #include "core/error.h"
+#include "core/input_file.h"
 #include "experiment/yaml_structure.h"
 
 namespace fairshape {
@@ -20,17 +19,15 @@ constexpr std::uintmax_t kMaxConfigBytes = 16u << 20;
 YAML::Node parse_file(const fs::path& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw InvalidConfig(path.string() + ": config file not found");
-  // A FIFO would hang the reader and a device (/dev/zero) would never end: regular files only.
-  if (!fs::is_regular_file(path, ec)) throw InvalidConfig(path.string() + ": not a regular file (a directory, device or FIFO)");
-  if (fs::file_size(path, ec) > kMaxConfigBytes)
-    throw InvalidConfig(path.string() + ": larger than the 16 MiB a config may be");
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (!in && !in.eof()) throw InvalidConfig(path.string() + ": cannot be read");
-  check_yaml_structure(text.str(), path.string());
+  std::string text;
   try {
-    return YAML::Load(text.str());
+    text = read_regular_file(path.string(), kMaxConfigBytes);
+  } catch (const IOError& e) {
+    throw InvalidConfig(e.what());
+  }
+  check_yaml_structure(text, path.string());
+  try {
+    return YAML::Load(text);
   } catch (const YAML::ParserException& e) {
     throw InvalidConfig(path.string() + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax error: " + e.msg);
   }

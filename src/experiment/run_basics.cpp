@@ -68,7 +68,7 @@ RunBasics read_run_basics(Config& root) {
   root.get<std::string>("description", "", "free text");
   b.seed = root.get_int("seed", 0, 0, INT32_MAX, "random seed (runs without randomness ignore it)");
   b.threads = root.get_int("threads", 0, 0, 4096, "TBB threads for optimized back ends (0 = all cores)");
-  b.repeat = root.get_int("repeat", 1, 1, 1000, "timing repeats, run by the harness (the median of every timing column is reported, solve_min_s the minimum)");
+  (void)root.get_int("repeat", 1, 1, 1000, "timing repeats, run by the harness (the median of every timing column is reported, solve_min_s the minimum)");
   b.implementation = root.get_enum("implementation", Backend::Optimized, backend_names(), "back end of every component");
   return b;
 }

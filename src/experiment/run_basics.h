@@ -15,7 +15,7 @@ namespace fairshape {
 //! The keys every experiment config starts with, whatever it runs (surfaces, curves, sheets).
 struct RunBasics {
   std::string name;
-  int seed = 0, threads = 0, repeat = 1;
+  int seed = 0, threads = 0;  // `repeat` is validated here and run by the harness (experiment/repeats.h)
   Backend implementation = Backend::Optimized;
   //! Keys the config sets that this run does not use (solver.* under constraint_mode kkt, the
   //! options of a solver not chosen, relaxation_omega without sor, ...), for runs.csv's

@@ -1,9 +1,8 @@
 #include "io/text_scanner.h"
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
+
+#include "core/input_file.h"
 
 namespace fairshape::io::internal {
 
@@ -59,22 +58,7 @@ long long TextScanner::to_count(std::string_view tok, const char* what, std::siz
 }
 
 std::string read_whole_file(const std::string& path) {
-  std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (ec || !std::filesystem::exists(status)) throw IOError(path + ": cannot open for reading (missing file or no permission)");
-  if (std::filesystem::is_directory(status)) throw IOError(path + ": is a directory, not a file");
-  // A FIFO would block the read and a device (/dev/zero, /dev/urandom) never ends.
-  if (!std::filesystem::is_regular_file(status))
-    throw IOError(path + ": not a regular file (a device, FIFO or socket); fairshape reads regular files only");
-  const std::uintmax_t size = std::filesystem::file_size(path, ec);
-  if (!ec && size > kMaxInputBytes)
-    throw IOError(path + ": " + std::to_string(size) + " bytes, above the input limit of " + std::to_string(kMaxInputBytes >> 20) + " MiB");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IOError(path + ": cannot open for reading (missing file or no permission)");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw IOError(path + ": read error");
-  std::string text = ss.str();
+  std::string text = read_regular_file(path, kMaxInputBytes);
   // A UTF-8 byte-order mark (some editors write one) is not part of the first line.
   if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);
   return text;

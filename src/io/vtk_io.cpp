@@ -218,12 +218,13 @@ void check_appended_headers(const std::string& bytes, const std::string& path) {
   }
 }
 
-void check_declared_counts(const std::string& path) {
+// The file's bytes, its declared counts and appended headers checked (see above).
+std::string checked_vtk_text(const std::string& path) {
   quiet_vtk();
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw IOError(path + ": no such file (or not a regular file: a device, FIFO or folder)");
-  const std::string head = io::internal::read_whole_file(path);
-  check_appended_headers(head, path);
+  std::string text = io::internal::read_whole_file(path);
+  check_appended_headers(text, path);
+  // The declared counts live in the XML, not in the binary payload after <AppendedData>.
+  const std::string head = text.substr(0, text.find("<AppendedData"));
   for (std::size_t pos = head.find("NumberOf"); pos != std::string::npos; pos = head.find("NumberOf", pos + 1)) {
     const std::size_t eq = head.find("=\"", pos);
     if (eq == std::string::npos || eq - pos > 32) continue;
@@ -236,6 +237,7 @@ void check_declared_counts(const std::string& path) {
       throw IOError(path + ": " + name + "=\"" + value.substr(0, 24) + "\" is not a count up to " +
                     std::to_string(kMaxVtkElements) + " (the largest mesh fairshape reads)");
   }
+  return text;
 }
 
 SurfaceMesh from_polydata(vtkPolyData* pd, const std::string& path) {
@@ -296,10 +298,12 @@ void write_vtp(const Polyline& curve, const DataArrays& point_data, const std::s
 }
 
 SurfaceMesh read_vtp(const std::string& path) {
-  check_declared_counts(path);
+  const std::string text = checked_vtk_text(path);
   vtkNew<vtkXMLPolyDataReader> r;
   if (!r->CanReadFile(path.c_str())) throw IOError(path + ": not a VTK XML PolyData file");
-  r->SetFileName(path.c_str());
+  // The bytes already read and checked, not the file again.
+  r->ReadFromInputStringOn();
+  r->SetInputString(text);
   r->Update();
   return from_polydata(r->GetOutput(), path);
 }
@@ -336,7 +340,13 @@ void write_vtm(const std::vector<NamedMesh>& blocks, const std::string& path) {
 }
 
 std::vector<SurfaceMesh> read_vtm(const std::string& path) {
-  check_declared_counts(path);
+  // The .vtm and every piece it names: VTK reads the pieces itself, so each is checked first.
+  const std::string text = checked_vtk_text(path);
+  for (std::size_t pos = text.find(" file=\""); pos != std::string::npos; pos = text.find(" file=\"", pos + 1)) {
+    const std::size_t end = text.find('"', pos + 7);
+    if (end == std::string::npos) break;
+    (void)checked_vtk_text((fs::path(path).parent_path() / text.substr(pos + 7, end - pos - 7)).string());
+  }
   vtkNew<vtkXMLMultiBlockDataReader> r;
   r->SetFileName(path.c_str());
   r->Update();

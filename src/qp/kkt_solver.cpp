@@ -165,7 +165,6 @@ void KktSolver::analyze(const QuadraticProgram& qp) {
   const double diag = H_.rows() ? H_.diagonal().cwiseAbs().maxCoeff() : 0.0;
   scale_ = diag > 0 ? diag : 1.0;
   least_squares_.reset();
-  reduced_ = false;
   CompressedRows rows = without_dependent_rows(A_, backend_);
   reduced_ = rows.orthogonal;
   const bool dropped = rows.rows.rows() < A_.rows();

@@ -30,8 +30,6 @@ class SplitSolver final : public QpSolver {
   void analyze(const QuadraticProgram& qp) override;
   QpReport solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) override;
   QpReport solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b, const QpSolveOptions& options) override;
-  //! The unknowns some constraint row reaches (fixed by least squares).
-  int constrained_unknowns() const { return static_cast<int>(touched_.size()); }
 
  private:
   std::unique_ptr<Solver> owned_;

@@ -21,35 +21,28 @@ hostile() {
 }
 
 # --- mesh files ---------------------------------------------------------------------------
-# A fan around one vertex of valence 50,000: refused by name, not a crash after 2.3 s.
-$PY - "$H/fan.obj" 50000 <<'PYEOF'
+# A fan of n triangles around vertex 1 (`closed`: around the whole circle, a cone).
+fan() {
+  $PY - "$1" "$2" "$3" <<'PYEOF'
 import math, sys
-n = int(sys.argv[2])
-with open(sys.argv[1], "w") as f:
-    f.write("v 0 0 0\n")
+path, n, closed = sys.argv[1], int(sys.argv[2]), sys.argv[3] == "closed"
+with open(path, "w") as f:
+    f.write(f"v 0 0 {1 if closed else 0}\n")
     for k in range(n):
         a = 2 * math.pi * k / n
         f.write(f"v {math.cos(a):.9f} {math.sin(a):.9f} 0\n")
-    for k in range(n - 1):
-        f.write(f"f 1 {k + 2} {k + 3}\n")
+    for k in range(n if closed else n - 1):
+        f.write(f"f 1 {k + 2} {(k + 1) % n + 2}\n")
 PYEOF
+}
+# A fan around one vertex of valence 50,000: refused by name, not a crash after 2.3 s.
+fan "$H/fan.obj" 50000 open
 hostile 2 "vertex 0 has valence 50000" -- "$FS" energy "$H/fan.obj" --out "$H/fan.mtx"
 [ ! -e "$H/fan.mtx" ] || fail "a refused energy wrote its matrix"
 # Just over the documented limit and at it: a closed fan (a cone) of valence 2049 is refused,
 # one of 2048 is assembled.
-for n in 2048 2049; do
-  $PY - "$H/cone$n.obj" $n <<'PYEOF'
-import math, sys
-n = int(sys.argv[2])
-with open(sys.argv[1], "w") as f:
-    f.write("v 0 0 1\n")
-    for k in range(n):
-        a = 2 * math.pi * k / n
-        f.write(f"v {math.cos(a):.9f} {math.sin(a):.9f} 0\n")
-    for k in range(n):
-        f.write(f"f 1 {k + 2} {(k + 1) % n + 2}\n")
-PYEOF
-done
+fan "$H/cone2048.obj" 2048 closed
+fan "$H/cone2049.obj" 2049 closed
 hostile 2 "has valence 2049" -- "$FS" energy "$H/cone2049.obj" --out "$H/cone.mtx"
 (ulimit -v 4000000; timeout 60 "$FS" energy "$H/cone2048.obj" --out "$H/cone.mtx") > /dev/null 2>&1 ||
   fail "a cone of valence 2048, at the limit, was not assembled"

@@ -114,6 +114,18 @@ TEST_CASE("VTK: vtp with point and cell data, vtm with several blocks, pvd serie
   REQUIRE(blocks.size() == 2);
   CHECK(blocks[1].positions() == fine.positions());
   CHECK(blocks[1].n_faces() == fine.n_faces());
+  {  // VTK reads a .vtm's pieces itself: an absurd count in a piece is refused before it does.
+    const fs::path piece = dir / "h" / "h_1.vtp";
+    REQUIRE(fs::exists(piece));
+    std::ifstream pin(piece, std::ios::binary);
+    std::string text((std::istreambuf_iterator<char>(pin)), {});
+    pin.close();
+    const std::size_t at = text.find("NumberOfPoints=\"");
+    REQUIRE(at != std::string::npos);
+    text.insert(at + 16, "9999999999");
+    std::ofstream(piece, std::ios::binary) << text;
+    CHECK_THROWS_WITH(read_vtm((dir / "h.vtm").string()), Catch::Matchers::Contains("h_1.vtp: NumberOfPoints"));
+  }
 
   write_pvd({{0.0, "m.vtp"}, {1.0, "m.vtp"}}, (dir / "s.pvd").string());
   std::ifstream in(dir / "s.pvd");

@@ -11,13 +11,13 @@ MatrixX3 synthesize(MatrixX3 c, const PolylineHierarchy& h, int from, int to, Ba
   return c;
 }
 
-void check_levels(const CurveEdit& e, int levels) {
-  if (e.edit_level < 0 || e.edit_level > levels)
-    throw InvalidInput("edit level e = " + std::to_string(e.edit_level) + " is outside the hierarchy (0.." +
-                       std::to_string(levels) + ")");
-  if (e.wrinkle_level != -1 && (e.wrinkle_level < e.edit_level || e.wrinkle_level >= levels))
-    throw InvalidInput("wrinkle level w = " + std::to_string(e.wrinkle_level) + " must lie in [e, levels-1] = [" +
-                       std::to_string(e.edit_level) + ", " + std::to_string(levels - 1) + "] (or -1: no explicit step)");
+// The level-e index of a move (negative ones count from the end) on a polygon of m points.
+int move_index(const CurveMove& mv, int m) {
+  const int i = mv.index < 0 ? m + mv.index : mv.index;
+  if (i < 0 || i >= m)
+    throw InvalidInput("move: control point " + std::to_string(mv.index) + " is not on the level-e polygon (" +
+                       std::to_string(m) + " points; negative indices count from the end)");
+  return i;
 }
 
 // Applies the moves to the level-e points; returns the level-e indices moved.
@@ -26,15 +26,25 @@ std::vector<int> apply_moves(MatrixX3& c, const std::vector<CurveMove>& moves) {
   std::vector<int> moved;
   const MatrixX3 before = c;
   for (const auto& mv : moves) {
-    const int i = mv.index < 0 ? m + mv.index : mv.index;
-    if (i < 0 || i >= m)
-      throw InvalidInput("move: control point " + std::to_string(mv.index) + " is not on the level-e polygon (" +
-                         std::to_string(m) + " points; negative indices count from the end)");
+    const int i = move_index(mv, m);
     if (mv.chord_scale > 0) c.row(i) = before.row(0) + mv.chord_scale * (before.row(i) - before.row(0));
     else c.row(i) += mv.offset.transpose();
     moved.push_back(i);
   }
   return moved;
+}
+
+void check_edit_placement(const Polyline& reference, int levels, const CurveEdit& e) {
+  if (e.edit_level < 0 || e.edit_level > levels)
+    throw InvalidInput("edit level e = " + std::to_string(e.edit_level) + " is outside the hierarchy (0.." +
+                       std::to_string(levels) + ")");
+  if (e.wrinkle_level != -1 && (e.wrinkle_level < e.edit_level || e.wrinkle_level >= levels))
+    throw InvalidInput("wrinkle level w = " + std::to_string(e.wrinkle_level) + " must lie in [e, levels-1] = [" +
+                       std::to_string(e.edit_level) + ", " + std::to_string(levels - 1) + "] (or -1: no explicit step)");
+  // Level e keeps every 2^(levels−e)-th point of the finest polygon.
+  const int stride = 1 << (levels - e.edit_level), n = reference.n_points();
+  const int m = reference.closed ? n / stride : (n - 1) / stride + 1;
+  for (const auto& mv : e.moves) (void)move_index(mv, m);
 }
 
 }  // namespace
@@ -49,13 +59,13 @@ std::vector<WeightedStencils> paper_objective(const CurveObjective& o, int n, bo
   return terms;
 }
 
-EditStages run_editing_loop(const Polyline& reference, int levels, const CurveEdit& edit, const CurveObjective& objective,
-                            const LengthSolver& solver, Backend backend) {
-  const Timer total;
-  check_levels(edit, levels);
+PreparedCurveEdit prepare_editing_loop(const Polyline& reference, int levels, const CurveEdit& edit,
+                                       const CurveObjective& objective, Backend backend) {
+  check_edit_placement(reference, levels, edit);
   const bool closed = reference.closed;
   const int n = reference.n_points();
-  EditStages out;
+  PreparedCurveEdit prepared;
+  EditStages& out = prepared.stages;
   out.reference = reference.points;
 
   const PolylineHierarchy h = decompose(reference, levels, backend);
@@ -81,13 +91,22 @@ EditStages run_editing_loop(const Polyline& reference, int levels, const CurveEd
   const CurveEditContext context{reference, out.edited, out.moved_points};
   std::vector<std::unique_ptr<CurveConstraint>> constraints;
   for (const auto* kind : objective.constraints) constraints.push_back(kind->build(context));
-  const LengthProblem problem(out.attracting, closed, paper_objective(objective, n, closed), std::move(constraints));
+  prepared.problem = std::make_unique<LengthProblem>(out.attracting, closed, paper_objective(objective, n, closed),
+                                                     std::move(constraints));
+  return prepared;
+}
+
+EditStages run_editing_loop(const Polyline& reference, int levels, const CurveEdit& edit, const CurveObjective& objective,
+                            const LengthSolver& solver, Backend backend) {
+  const Timer total;
+  PreparedCurveEdit prepared = prepare_editing_loop(reference, levels, edit, objective, backend);
+  EditStages& out = prepared.stages;
   const Timer solve_timer;
-  out.solve = solver.solve(problem, out.attracting);
+  out.solve = solver.solve(*prepared.problem, out.attracting);
   out.solve_s = solve_timer.seconds();
   out.final = out.solve.points;
   out.total_s = total.seconds();
-  return out;
+  return std::move(out);
 }
 
 }  // namespace fairshape

@@ -5,12 +5,14 @@
 // finally smooth C_A into C_F by the length-constrained optimization (§3).
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "core/backend.h"
 #include "curve_design/curve_components.h"
 #include "curve_design/explicit_length.h"
+#include "curve_design/length_problem.h"
 #include "curve_design/length_solver.h"
 #include "mesh/polyline.h"
 
@@ -43,6 +45,15 @@ struct EditStages {
   LengthSolveReport solve;
   double explicit_s = 0, solve_s = 0, total_s = 0;
 };
+
+//! Every stage of the loop up to the solve: C_D, the explicit step, C_A and the length problem.
+struct PreparedCurveEdit {
+  EditStages stages;  // final, solve and the times but explicit_s still empty
+  std::unique_ptr<LengthProblem> problem;
+};
+//! \throw InvalidInput as run_editing_loop.
+PreparedCurveEdit prepare_editing_loop(const Polyline& reference, int levels, const CurveEdit& edit,
+                                       const CurveObjective& objective, Backend backend);
 
 //! \throw InvalidInput for levels outside the hierarchy, moves off the level-e polygon, an
 //! infeasible edit or zero-length segments (before anything is solved).

@@ -34,6 +34,17 @@ EditProblem assemble_edit_problem(const EditTerms& terms, const MultiresSurface&
   return p;
 }
 
+void check_edit(const EditTerms& terms, const MultiresSurface& h, int coarse, int level) {
+  if (terms.energies.empty()) throw InvalidInput("edit: no energy term");
+  const LevelMeshes mesh_at = [&h](int l) -> const SurfaceMesh& { return h.mesh(l); };
+  DesignConstraints placed;
+  for (const Constraint* c : terms.constraints) c->add_to(mesh_at, h.levels(), placed);
+  for (int l = coarse; l <= level; ++l) {
+    for (const WeightedEnergy& e : terms.energies) e.energy->check_applicable(h.mesh(l));
+    check_constraints(h, l, placed);
+  }
+}
+
 EditLadder assemble_edit_ladder(const EditTerms& terms, const MultiresSurface& h, int coarse, int level,
                                 DesignConstraints& placed) {
   EditLadder ladder;

@@ -34,6 +34,13 @@ struct EditTerms {
 //! \throw InvalidInput for an empty energy list or a constraint that cannot be placed.
 EditProblem assemble_edit_problem(const EditTerms& terms, const MultiresSurface& h, int level, DesignConstraints& placed);
 
+//! Every check of assemble_edit_ladder(terms, h, coarse, level) that needs the hierarchy but
+//! not H: each energy applies to the levels (valences), each constraint can be placed (its
+//! level, vertices, selection, curve), the propagated constraints do not conflict and fix a
+//! position. Cheap next to assembly, so validation makes it for every point of a sweep.
+//! \throw InvalidInput as the assembly and solve_edit would.
+void check_edit(const EditTerms& terms, const MultiresSurface& h, int coarse, int level);
+
 //! Levels coarse..level; the last problem is assemble_edit_problem(level).
 EditLadder assemble_edit_ladder(const EditTerms& terms, const MultiresSurface& h, int coarse, int level,
                                 DesignConstraints& placed);

@@ -33,10 +33,7 @@ EditProblem stacked(const EditProblem& p) {
 }
 
 void check_sizes(const EditProblem& p) {
-  if (p.constraints.A.rows() == 0)
-    throw InvalidInput(p.constraints.coupled()
-                           ? "edit: normal constraints fix no position: add a point or fixed constraint"
-                           : "edit: no constraint: the deformation is undetermined (add a point or fixed constraint)");
+  require_fixed_position(p.constraints);
   if (p.H.rows() != p.H.cols() || p.g.rows() != p.H.rows() || p.constraints.A.cols() != p.H.rows() ||
       (p.constraints.coupled() && p.constraints.A_coupled.cols() != 3 * p.H.rows()))
     throw InvalidInput("edit: H, g and the constraints disagree in size");

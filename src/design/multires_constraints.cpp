@@ -43,15 +43,65 @@ std::array<Eigen::SparseVector<double>, 2> tangent_rows(const SurfaceMesh& mesh,
   return rows;
 }
 
+// The normal constraints after the checks (level, vertex, a nonzero finite normal), each
+// requested normal once. Two normals on one vertex must agree: the rows of N and of −N are the
+// same equations (the tangent plane ⊥ N), so opposite normals would be "satisfied" by either
+// orientation.
+std::vector<const NormalConstraint*> distinct_normals(const MultiresSurface& h, int l,
+                                                      const std::vector<NormalConstraint>& normals) {
+  std::map<std::pair<int, int>, const NormalConstraint*> seen;
+  std::vector<const NormalConstraint*> unique;
+  for (const auto& nc : normals) {
+    check_place(h, l, nc.level, nc.vertex, nc.label);
+    if (!nc.normal.allFinite() || nc.normal.norm() == 0) throw InvalidInput(nc.label + ": the normal is zero or not finite");
+    auto [first, inserted] = seen.try_emplace({nc.level, nc.vertex}, &nc);
+    if (inserted) {
+      unique.push_back(&nc);
+    } else if ((first->second->normal.normalized() - nc.normal.normalized()).norm() > 1e-12) {
+      std::ostringstream os;
+      os << "vertex " << nc.vertex << " of level " << nc.level << " has incompatible normals: " << first->second->label
+         << " asks for [" << first->second->normal.transpose() << "], " << nc.label << " for [" << nc.normal.transpose()
+         << "]";
+      throw InvalidInput(os.str());
+    }
+  }
+  return unique;
+}
+
+// The point constraints after the checks (level, vertex, a finite target), each target once:
+// incompatible targets on one vertex are an error, a repeated identical one is harmless.
+std::vector<const PointConstraint*> distinct_points(const MultiresSurface& h, int l, const std::vector<PointConstraint>& cs) {
+  std::map<std::tuple<int, int, bool>, const PointConstraint*> seen;
+  std::vector<const PointConstraint*> unique;
+  for (const auto& c : cs) {
+    check_place(h, l, c.level, c.vertex, c.label);
+    if (!c.offset.allFinite()) throw InvalidInput(c.label + ": target is not finite");
+    auto [it, inserted] = seen.try_emplace({c.level, c.vertex, c.on_limit}, &c);
+    if (inserted) unique.push_back(&c);
+    else if ((it->second->offset - c.offset).norm() > 1e-12 * (1.0 + c.offset.norm())) {
+      std::ostringstream os;
+      os << "vertex " << c.vertex << " of level " << c.level << " has incompatible targets: " << it->second->label
+         << " asks for [" << it->second->offset.transpose() << "], " << c.label << " for [" << c.offset.transpose() << "]";
+      throw InvalidInput(os.str());
+    }
+  }
+  return unique;
+}
+
+void require_fixed_position(bool any_point_row, bool any_normal) {
+  if (!any_point_row)
+    throw InvalidInput(any_normal ? "edit: normal constraints fix no position: add a point or fixed constraint"
+                                  : "edit: no constraint: the deformation is undetermined (add a point or fixed constraint)");
+}
+
 void add_normal_rows(const MultiresSurface& h, int l, const std::vector<NormalConstraint>& normals,
                      LinearConstraints& out) {
   const int n = h.mesh(l).n_vertices();
   std::map<int, RowSparseMatrix> prolongation_to;  // level k → P_{l→k}, rows = level-k vertices
   Triplets t;
   std::vector<double> c;
-  for (const auto& nc : normals) {
-    check_place(h, l, nc.level, nc.vertex, nc.label);
-    if (!nc.normal.allFinite() || nc.normal.norm() == 0) throw InvalidInput(nc.label + ": the normal is zero or not finite");
+  for (const NormalConstraint* requested : distinct_normals(h, l, normals)) {
+    const NormalConstraint& nc = *requested;
     const Vec3 N = nc.normal.normalized();
     auto it = prolongation_to.find(nc.level);
     if (it == prolongation_to.end()) it = prolongation_to.emplace(nc.level, RowSparseMatrix(h.prolongation(l, nc.level))).first;
@@ -83,6 +133,15 @@ LinearConstraints propagate_constraints(const MultiresSurface& h, int l, const D
   return out;
 }
 
+void require_fixed_position(const LinearConstraints& lc) { require_fixed_position(lc.A.rows() > 0, lc.coupled()); }
+
+void check_constraints(const MultiresSurface& h, int l, const DesignConstraints& dc) {
+  check_edit_level(h, l);
+  const bool any_point = !distinct_points(h, l, dc.points).empty();
+  const bool any_normal = !distinct_normals(h, l, dc.normals).empty();
+  require_fixed_position(any_point, any_normal);
+}
+
 Vec3 estimated_normal(const SurfaceMesh& D_mesh, const MatrixX3& positions, int vertex) {
   const auto rows = tangent_rows(D_mesh, vertex);
   Vec3 q[2] = {Vec3::Zero(), Vec3::Zero()};
@@ -94,21 +153,7 @@ Vec3 estimated_normal(const SurfaceMesh& D_mesh, const MatrixX3& positions, int 
 
 LinearConstraints propagate_constraints(const MultiresSurface& h, int l, const std::vector<PointConstraint>& cs) {
   check_edit_level(h, l);
-  // Incompatible targets on one vertex are an error, a repeated identical one is harmless.
-  std::map<std::tuple<int, int, bool>, const PointConstraint*> seen;
-  std::vector<const PointConstraint*> unique;
-  for (const auto& c : cs) {
-    check_place(h, l, c.level, c.vertex, c.label);
-    if (!c.offset.allFinite()) throw InvalidInput(c.label + ": target is not finite");
-    auto [it, inserted] = seen.try_emplace({c.level, c.vertex, c.on_limit}, &c);
-    if (inserted) unique.push_back(&c);
-    else if ((it->second->offset - c.offset).norm() > 1e-12 * (1.0 + c.offset.norm())) {
-      std::ostringstream os;
-      os << "vertex " << c.vertex << " of level " << c.level << " has incompatible targets: " << it->second->label
-         << " asks for [" << it->second->offset.transpose() << "], " << c.label << " for [" << c.offset.transpose() << "]";
-      throw InvalidInput(os.str());
-    }
-  }
+  const std::vector<const PointConstraint*> unique = distinct_points(h, l, cs);
   // One composed operator per level that has constraints.
   std::map<std::pair<int, bool>, RowSparseMatrix> rows_of;
   for (const auto* c : unique) {

@@ -27,10 +27,19 @@ struct LinearConstraints {
 };
 
 //! \throw InvalidInput for a missing level or vertex, a constraint coarser than the edit level,
-//! or two incompatible targets on one vertex (naming both constraints).
+//! or two incompatible targets or normals on one vertex (naming both constraints).
 LinearConstraints propagate_constraints(const MultiresSurface& h, int edit_level, const DesignConstraints& constraints);
 LinearConstraints propagate_constraints(const MultiresSurface& h, int edit_level,
                                         const std::vector<PointConstraint>& points);
+
+//! The checks of propagate_constraints that build no row (the levels and vertices exist, the
+//! targets and normals are finite, no two on one vertex conflict) and require_fixed_position:
+//! cheap, for validating a sweep. \throw InvalidInput as they would.
+void check_constraints(const MultiresSurface& h, int edit_level, const DesignConstraints& constraints);
+
+//! \throw InvalidInput when no row fixes a position: the energies are translation invariant,
+//! so the deformation would be undetermined.
+void require_fixed_position(const LinearConstraints& constraints);
 
 //! The normal estimated at `vertex` by the divided differences of `D_mesh` (its rest shape)
 //! applied to `positions`: Q_u × Q_v normalized — what a normal constraint prescribes.

@@ -27,6 +27,9 @@ class Energy {
   //! True when the energy is of the deformed positions P_rest + u rather than of the
   //! displacement u: the problem then gains the linear term −H P_rest.
   virtual bool measures_positions() const { return false; }
+  //! \throw InvalidInput when the energy cannot be assembled on `rest` (too high a valence,
+  //! say): the check alone, cheap, so a sweep can make it for every run before the first.
+  virtual void check_applicable(const SurfaceMesh& rest) const { (void)rest; }
 };
 
 using EnergyRegistry = Registry<Energy>;

@@ -6,6 +6,7 @@
 // measures_positions().
 #include "energy/energy.h"
 #include "energy/local_quadratic.h"
+#include "energy/ring_coupling.h"
 
 namespace fairshape {
 namespace {
@@ -21,6 +22,7 @@ class StretchBend : public Energy {
     return stretch_bend_hessian(rest, w_, weight, backend_);
   }
   bool measures_positions() const override { return positions_; }
+  void check_applicable(const SurfaceMesh& rest) const override { check_ring_coupling(rest, "stretch + bend energy"); }
 
  private:
   StretchBendWeights w_;

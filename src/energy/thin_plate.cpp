@@ -9,8 +9,11 @@ namespace {
 
 class ThinPlate : public Energy {
  public:
-  void add_hessian(const SurfaceMesh& rest, double weight, Triplets& out) const override {
+  void check_applicable(const SurfaceMesh& rest) const override {
     check_ring_coupling(rest, "umbrella thin-plate energy");
+  }
+  void add_hessian(const SurfaceMesh& rest, double weight, Triplets& out) const override {
+    check_applicable(rest);
     const SparseMatrix U = umbrella_operator(rest);
     const SparseMatrix H = SparseMatrix(U.transpose()) * U;
     for (int k = 0; k < H.outerSize(); ++k)

@@ -31,7 +31,11 @@ class RunKind {
   virtual bool owns(const YAML::Node& run_config) const = 0;
   //! Parses and checks everything that needs only the config and its input files.
   //! \throw InvalidConfig naming the key.
-  virtual ValidatedRun validate(const YAML::Node& run_config, const std::vector<std::string>& search_dirs) const = 0;
+  //! Checks needing the input's geometry (a constraint's vertex, a curve on the surface) are
+  //! made here too, on meshes a kind may keep until validation_done().
+  virtual ValidatedRun validate(const YAML::Node& run_config, const std::vector<std::string>& search_dirs) = 0;
+  //! Every point is validated: what validation kept (hierarchies) can go.
+  virtual void validation_done() {}
   //! runs.csv's columns after run_id and the swept parameters, termination and message included.
   virtual const std::vector<std::string>& metric_columns() const = 0;
   //! The metric columns that vary from one execution to the next (timings, memory): over a

@@ -94,6 +94,19 @@ TableLayout layout_of(const RunKind& kind, const std::vector<std::string>& swept
   return l;
 }
 
+// "(points 0, 3, 5)": where in a sweep a problem is; the first few of many.
+std::string point_list(const std::vector<std::size_t>& points, std::size_t sweep_size) {
+  if (points.size() == sweep_size) return "(all " + std::to_string(sweep_size) + " points)";
+  constexpr std::size_t kShown = 8;
+  std::string s = points.size() == 1 ? "(point " : "(points ";
+  for (std::size_t k = 0; k < std::min(points.size(), kShown); ++k) {
+    if (k) s += ", ";
+    s += std::to_string(points[k]);
+  }
+  if (points.size() > kShown) s += " and " + std::to_string(points.size() - kShown) + " more";
+  return s + ")";
+}
+
 // Loads the config, picks this process's points and, in the supervisor, validates each of
 // them (all problems reported together, before anything runs).
 Plan make_plan(const SweepOptions& opt, bool validate) {
@@ -104,7 +117,8 @@ Plan make_plan(const SweepOptions& opt, bool validate) {
   plan.kinds = make_run_kinds();
   plan.space = std::make_unique<SweepSpace>(plan.root);
   plan.filters = parse_filters(opt.filters, plan.space->keys());
-  std::set<std::string> problems, inputs;
+  std::map<std::string, std::vector<std::size_t>> problems;  // message -> the points that have it
+  std::set<std::string> inputs;
   std::size_t position = 0;
   for (std::size_t i = opt.shard.index; i < plan.space->size(); i += opt.shard.count) {
     const RunPoint p = plan.space->point(i);
@@ -124,14 +138,16 @@ Plan make_plan(const SweepOptions& opt, bool validate) {
       if (plan.name.empty()) plan.name = v.name;
       inputs.insert(v.input_files.begin(), v.input_files.end());
     } catch (const InvalidConfig& e) {
-      problems.insert(e.what());
+      problems[e.what()].push_back(i);
     } catch (const YAML::Exception& e) {
-      problems.insert(std::string("YAML: ") + e.what());
+      problems[std::string("YAML: ") + e.what()].push_back(i);
     }
   }
+  for (auto& kind : plan.kinds) kind->validation_done();
   if (!problems.empty()) {
     std::string msg = opt.config_path + ": " + std::to_string(problems.size()) + " problem(s), nothing was run:";
-    for (const auto& p : problems) msg += "\n  - " + p;
+    for (const auto& [problem, points] : problems)
+      msg += "\n  - " + problem + (plan.space->size() > 1 ? " " + point_list(points, plan.space->size()) : "");
     throw InvalidConfig(msg);
   }
   if (plan.selected.empty() && !opt.is_worker)

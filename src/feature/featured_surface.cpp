@@ -44,14 +44,32 @@ const std::map<int, BaseCurve>& FeaturedSurface::base_curves() {
   return base_curves_;
 }
 
+std::vector<int> FeaturedSurface::features_on(int level) const {
+  std::vector<int> ids;
+  for (const auto& [id, curve] : features_)
+    if (curve.level == level) ids.push_back(id);
+  return ids;
+}
+
+void FeaturedSurface::check_coarsest_features() const {
+  for (int level = 0; level <= original_.levels(); ++level) {
+    const std::vector<int> ids = features_on(level);
+    if (ids.empty()) continue;
+    const SurfaceMesh& mesh = original_.mesh(level);
+    const TriangleSurface surface(mesh, loop_limit_normals(mesh));
+    std::vector<BaseCurve> curves;
+    for (int id : ids) curves.push_back(build_base_curve(surface, features_.at(id)));
+    (void)compute_perturbation(surface, curves, backend_);
+    return;
+  }
+}
+
 void FeaturedSurface::evaluate() {
   result_ = original_;
   base_curves_.clear();
   perturbations_.assign(static_cast<std::size_t>(original_.levels() + 1), {});
   for (int level = 0; level <= original_.levels(); ++level) {
-    std::vector<int> ids;
-    for (const auto& [id, curve] : features_)
-      if (curve.level == level) ids.push_back(id);
+    const std::vector<int> ids = features_on(level);
     if (ids.empty()) continue;
     const SurfaceMesh& mesh = result_.mesh(level);
     const TriangleSurface surface(mesh, loop_limit_normals(mesh));

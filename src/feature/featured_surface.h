@@ -33,6 +33,12 @@ class FeaturedSurface {
   //! The surface with every feature applied. \throw InvalidInput / FlatnessError for a feature
   //! that cannot be applied (the message names it).
   const MultiresSurface& result();
+  //! The features of the coarsest level that has any, applied to the unperturbed surface
+  //! (their base curves followed on it, their perturbation and its flatness checked) without
+  //! evaluating: what can be checked before a run. Finer features are drawn on the perturbed
+  //! surface, so only result() checks them.
+  //! \throw InvalidInput / FlatnessError as result() would for those features.
+  void check_coarsest_features() const;
   //! The perturbation applied on a level by the last evaluation (empty when none).
   const LevelPerturbation& perturbation(int level);
   //! The base curves of the last evaluation (for output), per feature id.
@@ -40,6 +46,7 @@ class FeaturedSurface {
 
  private:
   void evaluate();
+  std::vector<int> features_on(int level) const;
   MultiresSurface original_, result_;
   Backend backend_;
   std::map<int, FeatureCurve> features_;

@@ -23,19 +23,21 @@ expect_error 2 "expected i/n" -- "$FS" run configs/smoke/cow_nose_pull.yaml --sh
 expect_error 2 "2 problem(s), nothing was run" -- "$FS" run configs/smoke/cow_nose_pull.yaml \
   --set 'sweep.solver.type=[cholesky, nope]' --set 'sweep.input.mesh=[data/cow.off, data/none.off]' --out "$SCRATCH/y"
 [ ! -e "$SCRATCH/y/runs.csv" ] || fail "an invalid sweep wrote results"
-# Incompatible targets on one vertex: the run fails with a message, the sweep records it.
-rc=0; "$FS" run configs/smoke/cow_nose_pull.yaml --out "$SCRATCH/conflict" \
-  --set 'constraints=[{type: fixed, vertices: [5]}, {type: position, vertices: [5], offset: [1, 0, 0]}]' 2>/dev/null || rc=$?
-[ "$rc" -eq 3 ] || fail "conflicting targets: exit $rc, expected 3"
-grep -q "invalid_input" "$SCRATCH/conflict/runs.csv" || fail "no invalid_input row"
-grep -q "incompatible targets" "$SCRATCH/conflict/runs.csv" || fail "no message"
-# Nothing pinned under a translation-invariant energy: singular, reported, never NaN.
-rc=0; "$FS" run configs/smoke/cow_nose_pull.yaml --out "$SCRATCH/singular" --set 'constraints=[]' --set solver.type=gauss_seidel \
+# Incompatible targets on one vertex, or nothing pinned under a translation-invariant energy:
+# refused by validation, naming both constraints, before anything runs.
+expect_error 2 "incompatible targets" -- "$FS" run configs/smoke/cow_nose_pull.yaml --out "$SCRATCH/conflict" \
+  --set 'constraints=[{type: fixed, vertices: [5]}, {type: position, vertices: [5], offset: [1, 0, 0]}]'
+[ ! -e "$SCRATCH/conflict/runs.csv" ] || fail "a conflicting run was started"
+expect_error 2 "no constraint: the deformation is undetermined" -- "$FS" run configs/smoke/cow_nose_pull.yaml \
+  --out "$SCRATCH/singular" --set 'constraints=[]' --set solver.type=gauss_seidel
+# What validation cannot see without the assembled problem is the run's row, saying so.
+rc=0; "$FS" run configs/smoke/cow_nose_pull.yaml --out "$SCRATCH/rows" --set problem.constraint_mode=range_space \
+  --set 'constraints.0.region.to=0.8' --set 'constraints.1={type: normal, nearest: [0.5, 0.0, 0.0], normal: [1, 0, 0]}' \
   2>/dev/null || rc=$?
-[ "$rc" -eq 3 ] || fail "singular system: exit $rc, expected 3"
-grep -q "invalid_input" "$SCRATCH/singular/runs.csv" || fail "singular system not reported"
-grep -q "no constraint: the deformation is undetermined" "$SCRATCH/singular/runs.csv" || fail "singular system: no message"
-! grep -qi "nan" "$SCRATCH/singular/runs.csv" || fail "NaN written"
+[ "$rc" -eq 3 ] || fail "too many rows for range_space: exit $rc, expected 3"
+grep -q "invalid_input,in the assembled problem: range_space: [0-9]* constraint rows are too many" "$SCRATCH/rows/runs.csv" ||
+  fail "the row does not say the assembled problem was refused"
 # An existing result folder is not overwritten by accident.
-expect_error 2 "already holds results" -- "$FS" run configs/smoke/cow_nose_pull.yaml --out "$SCRATCH/conflict"
+"$FS" run configs/smoke/cow_nose_pull.yaml --out "$SCRATCH/done" > /dev/null 2>&1 || fail "the smoke run failed"
+expect_error 2 "already holds results" -- "$FS" run configs/smoke/cow_nose_pull.yaml --out "$SCRATCH/done"
 echo "bad_input: ok"

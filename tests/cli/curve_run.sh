@@ -29,16 +29,22 @@ expect_error 2 "include {type: segment_lengths}" -- "$FS" run $C --set 'optimiza
 head -129 $W | grep -v '^l' > "$SCRATCH/open128.obj"
 echo "l $(seq -s ' ' 1 128)" >> "$SCRATCH/open128.obj"
 expect_error 2 "2\^L·k + 1 points" -- "$FS" run $C --set input.curve="$SCRATCH/open128.obj" --out "$SCRATCH/x"
-# A repeated point: zero-length segment, reported as the run's failure with its index.
+# A repeated point: zero-length segment, refused with its index before anything runs.
 awk 'NR==6{print; print; next} NR<=129{print}' $W | grep '^v' | head -129 > "$SCRATCH/repeat.obj"
 echo "l $(seq -s ' ' 1 129)" >> "$SCRATCH/repeat.obj"
-rc=0; "$FS" run $C --set input.curve="$SCRATCH/repeat.obj" --set 'sweep={}' --out "$SCRATCH/repeat" 2>/dev/null || rc=$?
-[ "$rc" -eq 3 ] || fail "zero-length segment: exit $rc, expected 3"
-grep -q "zero length" "$SCRATCH/repeat/runs.csv" || fail "zero-length segment not named"
+expect_error 2 "edits.0 on .*zero length" -- "$FS" run $C --set input.curve="$SCRATCH/repeat.obj" --set 'sweep={}' \
+  --out "$SCRATCH/repeat"
+[ ! -e "$SCRATCH/repeat/runs.csv" ] || fail "a run on a curve with a zero-length segment was started"
 # Endpoints pinned and pulled apart beyond the curve's length: infeasible, no NaN, no loop.
-rc=0; "$FS" run configs/sauvage/fig1.yaml --set 'sweep={}' --set 'edits.0.moves=[{index: -1, chord_scale: 1.5}]' \
-  --set 'optimization.constraints=[{type: segment_lengths}, {type: pin, points: endpoints}]' --out "$SCRATCH/far" 2>/dev/null || rc=$?
-[ "$rc" -eq 3 ] || fail "infeasible edit: exit $rc, expected 3"
-grep -q "infeasible edit: points 0 and 128" "$SCRATCH/far/runs.csv" || fail "infeasible edit not reported"
-! grep -qi "nan" "$SCRATCH/far/runs.csv" || fail "NaN written"
+# As the first edit, validation refuses it; as a later one (it starts from the curve the
+# earlier edits make), the run does.
+PINS='optimization.constraints=[{type: segment_lengths}, {type: pin, points: endpoints}]'
+expect_error 2 "infeasible edit: points 0 and 128" -- "$FS" run configs/sauvage/fig1.yaml --set 'sweep={}' \
+  --set 'edits.0.moves=[{index: -1, chord_scale: 1.5}]' --set "$PINS" --out "$SCRATCH/far"
+rc=0; "$FS" run configs/sauvage/fig1.yaml --set 'sweep={}' --set "$PINS" --out "$SCRATCH/far_later" \
+  --set 'edits=[{level: 0, moves: [{index: -1, chord_scale: 1.0}]}, {level: 0, moves: [{index: -1, chord_scale: 1.5}]}]' \
+  2>/dev/null || rc=$?
+[ "$rc" -eq 3 ] || fail "infeasible second edit: exit $rc, expected 3"
+grep -q "edit 1: infeasible edit: points 0 and 128" "$SCRATCH/far_later/runs.csv" || fail "infeasible edit not reported"
+! grep -qi "nan" "$SCRATCH/far_later/runs.csv" || fail "NaN written"
 echo "curve_run: ok"

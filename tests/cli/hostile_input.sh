@@ -47,14 +47,16 @@ hostile 2 "has valence 2049" -- "$FS" energy "$H/cone2049.obj" --out "$H/cone.mt
 (ulimit -v 4000000; timeout 60 "$FS" energy "$H/cone2048.obj" --out "$H/cone.mtx") > /dev/null 2>&1 ||
   fail "a cone of valence 2048, at the limit, was not assembled"
 CASES=$((CASES + 1))
-# The umbrella thin plate couples the ring too; in a run the problem is assembled while the
-# run executes, so the refusal is the run's row (exit 3), not a crash.
-rc=0
-"$FS" run $SMOKE --out "$H/fan_run" --set "input.mesh=$H/fan.obj" --set 'energy=[{type: umbrella_thin_plate}]' \
-  --set 'constraints=[{type: fixed, vertices: [1, 2, 3]}, {type: position, vertices: [0], offset: [0, 0, 1]}]' 2>/dev/null || rc=$?
-CASES=$((CASES + 1))
-[ "$rc" -eq 3 ] || fail "the umbrella energy on the fan: exit $rc, expected 3"
-grep -q "accepts valence up to 2048" "$H/fan_run/runs.csv" || fail "the fan's row does not name the valence limit"
+# The umbrella thin plate couples the ring too: a run on the fan is refused by validation,
+# before anything runs, as is the sweep point that uses the fan (and only that point is named).
+hostile 2 "accepts valence up to 2048" -- "$FS" run $SMOKE --out "$H/fan_run" --set "input.mesh=$H/fan.obj" \
+  --set 'energy=[{type: umbrella_thin_plate}]' \
+  --set 'constraints=[{type: fixed, vertices: [1, 2, 3]}, {type: position, vertices: [0], offset: [0, 0, 1]}]'
+[ ! -e "$H/fan_run/runs.csv" ] || fail "the fan's run was started"
+hostile 2 "accepts valence up to 2048.* (point 1)" -- "$FS" run $SMOKE --out "$H/fan_sweep" \
+  --set "sweep.input.mesh=[data/cow.off, $H/fan.obj]" --set 'energy=[{type: umbrella_thin_plate}]' \
+  --set 'constraints=[{type: fixed, vertices: [1, 2, 3]}, {type: position, vertices: [0], offset: [0, 0, 1]}]'
+[ ! -e "$H/fan_sweep/runs.csv" ] || fail "a sweep with an invalid point started its valid one"
 # Binary PLY whose face-list count is a float NaN, or a non-integral float.
 $PY - "$H" <<'PYEOF'
 import struct, sys
@@ -205,6 +207,28 @@ r = list(csv.DictReader(open(sys.argv[1])))[0]
 assert r["termination"] == "numerical_failure", r["termination"]
 assert "non-finite" in r["message"], r["message"]
 PYEOF
+
+# --- constraints and curves placed on the input's geometry, before anything runs ----------
+FIX='{type: fixed, region: {axis: x, from: 0.0, to: 0.3}}'
+hostile 2 "vertex 5 of level 0 has incompatible targets" -- "$FS" run $SMOKE --out "$H/c1" \
+  --set 'constraints=[{type: fixed, vertices: [5]}, {type: position, vertices: [5], offset: [1, 0, 0]}]'
+hostile 2 "has incompatible normals" -- "$FS" run $SMOKE --dry-run --set "constraints=[$FIX, \
+  {type: normal, vertices: [1500], normal: [0, 0, 1]}, {type: normal, vertices: [1500], normal: [0, 0, -1]}]"
+hostile 2 "vertex 999999 does not exist" -- "$FS" run $SMOKE --dry-run \
+  --set "constraints=[$FIX, {type: position, vertices: [999999], offset: [0, 0, 1]}]"
+hostile 2 "level 3 is not in the hierarchy (levels 0..1)" -- "$FS" run $SMOKE --dry-run \
+  --set input.representation=catmull-clark --set input.levels=1 \
+  --set "constraints=[$FIX, {type: position, level: 3, vertices: [2], offset: [0, 0, 1]}]"
+hostile 2 "the curve leaves the surface" -- "$FS" run $SMOKE --dry-run --set "constraints=[$FIX, \
+  {type: curve, points: [[0.4, 0.0, 0.0], [3.0, 3.0, 3.0]], translation: [0, 0.1, 0]}]"
+hostile 2 "no constraint: the deformation is undetermined" -- "$FS" run $SMOKE --dry-run --set 'constraints=[]'
+hostile 2 "normal constraints fix no position" -- "$FS" run $SMOKE --dry-run \
+  --set 'constraints=[{type: normal, vertices: [1500], normal: [0, 0, 1]}]'
+# A feature curve drawn off the surface, and a curve edit pinning a point the curve lacks.
+hostile 2 "features on .*ridge_a" -- "$FS" run configs/khodakovsky-schroder/fig11.yaml --dry-run \
+  --set 'features.0.points=[[-0.8, -0.55, 3.0], [0.8, 0.7, 3.0]]'
+hostile 2 "edits.0 on .*pin: point 100000 is not on the curve" -- "$FS" run configs/sauvage/fig1.yaml --dry-run \
+  --set 'optimization.constraints=[{type: segment_lengths}, {type: pin, points: [100000]}]'
 
 # --- command lines ------------------------------------------------------------------------
 hostile 2 "expected i/n" -- "$FS" run $SMOKE --shard 0/2x --out "$H/s"

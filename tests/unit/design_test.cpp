@@ -177,6 +177,47 @@ TEST_CASE("bad constraints are refused with what is wrong", "[design][bm]") {
                     Contains("no constraint"));
 }
 
+TEST_CASE("validation's check of the constraints refuses what propagation and the solve refuse, alike", "[design][bm]") {
+  const MultiresSurface h = quad_hierarchy(1);
+  const auto point = [](int level, int v, Vec3 offset, std::string label) {
+    return PointConstraint{level, v, false, offset, std::move(label)};
+  };
+  const auto normal = [](int level, int v, Vec3 n, std::string label) { return NormalConstraint{level, v, n, std::move(label)}; };
+  const std::vector<std::pair<std::string, DesignConstraints>> cases{
+      {"valid", {{point(1, 5, Vec3(1, 0, 0), "a"), point(1, 6, Vec3::Zero(), "b")}, {normal(1, 7, Vec3(0, 0, 1), "n")}}},
+      {"the same target twice", {{point(1, 5, Vec3(1, 0, 0), "a"), point(1, 5, Vec3(1, 0, 0), "b")}, {}}},
+      {"the same normal twice", {{point(1, 5, Vec3::Zero(), "a")}, {normal(1, 7, Vec3(0, 0, 1), "n"), normal(1, 7, Vec3(0, 0, 2), "m")}}},
+      {"incompatible targets", {{point(1, 5, Vec3(1, 0, 0), "a"), point(1, 5, Vec3(0, 1, 0), "b")}, {}}},
+      {"opposite normals", {{point(1, 5, Vec3::Zero(), "a")}, {normal(1, 7, Vec3(0, 0, 1), "n"), normal(1, 7, Vec3(0, 0, -1), "m")}}},
+      {"a missing vertex", {{point(1, 99999, Vec3::Zero(), "a")}, {}}},
+      {"a missing level", {{point(3, 1, Vec3::Zero(), "a")}, {}}},
+      {"a zero normal", {{point(1, 5, Vec3::Zero(), "a")}, {normal(1, 7, Vec3::Zero(), "n")}}},
+      {"no constraint", {}},
+      {"normals alone", {{}, {normal(1, 7, Vec3(0, 0, 1), "n")}}},
+  };
+  for (const auto& [what, dc] : cases) {
+    INFO(what);
+    std::string by_check, by_propagation;
+    try {
+      check_constraints(h, 1, dc);
+    } catch (const InvalidInput& e) {
+      by_check = e.what();
+    }
+    try {
+      require_fixed_position(propagate_constraints(h, 1, dc));
+    } catch (const InvalidInput& e) {
+      by_propagation = e.what();
+    }
+    CHECK(by_check == by_propagation);
+    CHECK(by_check.empty() == (what == "valid" || what.rfind("the same", 0) == 0));
+  }
+  // A normal requested twice is one pair of rows, not a dependent second pair.
+  CHECK(propagate_constraints(h, 1, cases[2].second).A_coupled.rows() == 2);
+  using Catch::Matchers::Contains;
+  CHECK_THROWS_WITH(check_constraints(h, 1, cases[4].second),
+                    Contains("vertex 7 of level 1 has incompatible normals: n") && Contains("m for [ 0  0 -1]"));
+}
+
 namespace {
 
 std::unique_ptr<Solver> gauss_seidel(Backend b) {

@@ -38,7 +38,7 @@ TEST_CASE("every config under configs/ is one kind's, and each of its points val
     const YAML::Node root = load_experiment_config(e.path().string(), {});
     const SweepSpace space(root);
     const auto dirs = input_search_dirs(e.path().string());
-    const RunKind& first = kind_of(space.point(0).config, kinds);
+    RunKind& first = kind_of(space.point(0).config, kinds);
     for (std::size_t i = 0; i < space.size(); ++i) {
       const RunPoint p = space.point(i);
       CHECK(&kind_of(p.config, kinds) == &first);

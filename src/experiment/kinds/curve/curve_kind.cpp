@@ -1,4 +1,6 @@
 // Sauvage et al.'s length-preserving curve edits as a run kind.
+#include "core/error.h"
+#include "curve_design/editing_loop.h"
 #include "experiment/kinds/curve/curve_run.h"
 #include "experiment/kinds/kinds.h"
 #include "experiment/kinds/thread_limit.h"
@@ -11,8 +13,16 @@ class CurveKind final : public RunKind {
   std::string name() const override { return "curve"; }
   std::string marker() const override { return "input.curve"; }
   bool owns(const YAML::Node& c) const override { return is_curve_config(c); }
-  ValidatedRun validate(const YAML::Node& c, const std::vector<std::string>& dirs) const override {
+  ValidatedRun validate(const YAML::Node& c, const std::vector<std::string>& dirs) override {
     const CurveRunSpec spec = CurveRunSpec::from_config(c, dirs);
+    // The first edit up to its solve (pins, closed-curve endpoints, an edit no curve of these
+    // lengths can meet, zero-length segments); later edits start from the curve the earlier
+    // ones make, so the run checks them.
+    try {
+      (void)prepare_editing_loop(spec.curve, spec.levels, spec.edits.front(), spec.objective(), spec.implementation);
+    } catch (const InvalidInput& e) {
+      throw InvalidConfig("edits.0 on " + spec.curve_path + ": " + e.what());
+    }
     return {spec.name, {spec.curve_path}};
   }
   const std::vector<std::string>& metric_columns() const override { return curve_metric_columns(); }

@@ -1,4 +1,7 @@
 // Khodakovsky & Schröder's feature curves on Loop hierarchies as a run kind.
+#include <map>
+
+#include "core/error.h"
 #include "experiment/kinds/feature/feature_run.h"
 #include "experiment/kinds/kinds.h"
 #include "experiment/kinds/thread_limit.h"
@@ -11,11 +14,13 @@ class FeatureKind final : public RunKind {
   std::string name() const override { return "feature"; }
   std::string marker() const override { return "features"; }
   bool owns(const YAML::Node& c) const override { return is_feature_config(c); }
-  ValidatedRun validate(const YAML::Node& c, const std::vector<std::string>& dirs) const override {
-    const FeatureRunSpec spec = FeatureRunSpec::from_config(c, dirs);
+  ValidatedRun validate(const YAML::Node& c, const std::vector<std::string>& dirs) override {
+    FeatureRunSpec spec = FeatureRunSpec::from_config(c, dirs);
     require_readable_mesh(spec.mesh_path, "input.mesh");
+    check_on_hierarchy(spec);
     return {spec.name, {spec.mesh_path}};
   }
+  void validation_done() override { hierarchies_.clear(); }
   const std::vector<std::string>& metric_columns() const override { return feature_metric_columns(); }
   std::vector<TableSchema> tables() const override { return {}; }
   std::vector<std::string> identity_columns() const override { return {"implementation"}; }  // no solver
@@ -24,6 +29,28 @@ class FeatureKind final : public RunKind {
     const auto threads = limit_threads(spec.threads);
     return execute_feature_run(spec, out);
   }
+
+ private:
+  // The features placed on the run's hierarchy and those of the coarsest feature level applied
+  // (a point off the surface, a curve that leaves it, too curved a surface): the sweep is
+  // refused before its first run. Finer features need the perturbed surface: the run checks them.
+  void check_on_hierarchy(FeatureRunSpec& spec) {
+    const std::string key = spec.mesh_path + "|" + std::to_string(spec.levels) + "|" +
+                            std::string(to_string(spec.loop_weights)) + "|" + std::string(to_string(spec.implementation));
+    auto it = hierarchies_.find(key);
+    try {
+      if (it == hierarchies_.end()) it = hierarchies_.emplace(key, feature_hierarchy(spec)).first;
+    } catch (const Error& e) {
+      throw InvalidConfig("input.mesh: " + spec.mesh_path + ": " + e.what());
+    }
+    try {
+      placed_features(spec, it->second).check_coarsest_features();
+    } catch (const Error& e) {
+      throw InvalidConfig(std::string("features on ") + spec.mesh_path + ": " + e.what());
+    }
+  }
+
+  std::map<std::string, MultiresSurface> hierarchies_;  // validation's, per mesh and depth
 };
 
 }  // namespace

@@ -123,6 +123,50 @@ const std::vector<std::string>& feature_metric_columns() {
   return cols;
 }
 
+namespace {
+
+double bounding_diagonal(const SurfaceMesh& m) {
+  return (m.positions().colwise().maxCoeff() - m.positions().colwise().minCoeff()).norm();
+}
+
+}  // namespace
+
+MultiresSurface feature_hierarchy(const FeatureRunSpec& spec) {
+  SubdivisionOptions opt;
+  opt.scheme = SchemeType::Loop;
+  opt.weights = spec.loop_weights;
+  return MultiresSurface(read_mesh(spec.mesh_path), opt, spec.levels, spec.implementation);
+}
+
+feature::FeaturedSurface placed_features(FeatureRunSpec& spec, MultiresSurface original) {
+  feature::FeaturedSurface surface(std::move(original), spec.implementation);
+  const double diag = bounding_diagonal(surface.original().mesh(spec.levels));
+  std::map<int, feature::TriangleSurface> drawn_on;  // one per level: its normals and AABB tree
+  for (FeatureSpec& f : spec.features) {
+    if (!f.world_points.empty()) {
+      const SurfaceMesh& level = surface.original().mesh(f.curve.level);
+      const feature::TriangleSurface& s =
+          drawn_on.try_emplace(f.curve.level, level, feature::loop_limit_normals(level)).first->second;
+      MatrixX3 P(static_cast<Eigen::Index>(f.world_points.size()), 3);
+      for (std::size_t i = 0; i < f.world_points.size(); ++i) P.row(static_cast<Eigen::Index>(i)) = f.world_points[i].transpose();
+      f.curve.points = feature::project_to_surface(s, P, f.max_distance * diag, "feature '" + f.curve.name + "'");
+    }
+    for (const auto& p : f.curve.points)
+      if (p.face < 0 || p.face >= surface.original().mesh(f.curve.level).n_faces())
+        throw InvalidInput("feature '" + f.curve.name + "': face " + std::to_string(p.face) + " is not a face of level " +
+                           std::to_string(f.curve.level));
+    surface.add(f.curve);
+  }
+  // The curves are attached to the unedited levels (face, barycentric coordinates), so a base
+  // edit carries them.
+  if (spec.base_edit.enabled) {
+    MultiresSurface& edited = surface.original();
+    edited.set_base_positions(feature::bumped_positions(edited.mesh(0), spec.base_edit.edit, diag));
+    edited.synthesize(DetailSpace::Local);
+  }
+  return surface;
+}
+
 MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
   MetricRow row;
   for (const auto& c : feature_metric_columns()) row[c] = "";
@@ -133,37 +177,9 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
   row["termination"] = std::string(to_string(Termination::Converged));
   const Timer wall;
   try {
-    SubdivisionOptions opt;
-    opt.scheme = SchemeType::Loop;
-    opt.weights = spec.loop_weights;
-    const SurfaceMesh base = read_mesh(spec.mesh_path);
-    feature::FeaturedSurface surface(MultiresSurface(base, opt, spec.levels, spec.implementation), spec.implementation);
-    const SurfaceMesh& fine0 = surface.original().mesh(spec.levels);
-    const double diag = (fine0.positions().colwise().maxCoeff() - fine0.positions().colwise().minCoeff()).norm();
-    std::map<int, feature::TriangleSurface> drawn_on;  // one per level: its normals and AABB tree
-    for (FeatureSpec& f : spec.features) {
-      if (!f.world_points.empty()) {
-        const SurfaceMesh& level = surface.original().mesh(f.curve.level);
-        const feature::TriangleSurface& s =
-            drawn_on.try_emplace(f.curve.level, level, feature::loop_limit_normals(level)).first->second;
-        MatrixX3 P(static_cast<Eigen::Index>(f.world_points.size()), 3);
-        for (std::size_t i = 0; i < f.world_points.size(); ++i) P.row(static_cast<Eigen::Index>(i)) = f.world_points[i].transpose();
-        f.curve.points = feature::project_to_surface(s, P, f.max_distance * diag, "feature '" + f.curve.name + "'");
-      }
-      for (const auto& p : f.curve.points)
-        if (p.face < 0 || p.face >= surface.original().mesh(f.curve.level).n_faces())
-          throw InvalidInput("feature '" + f.curve.name + "': face " + std::to_string(p.face) + " is not a face of level " +
-                             std::to_string(f.curve.level));
-      surface.add(f.curve);
-    }
-    // The curves are attached to the unedited levels (face, barycentric coordinates), so a base
-    // edit carries them.
-    if (spec.base_edit.enabled) {
-      MultiresSurface& original = surface.original();
-      original.set_base_positions(feature::bumped_positions(original.mesh(0), spec.base_edit.edit, diag));
-      original.synthesize(DetailSpace::Local);
-    }
-    surface.original();  // marks the features for re-evaluation
+    MultiresSurface original = feature_hierarchy(spec);
+    const double diag = bounding_diagonal(original.mesh(spec.levels));
+    feature::FeaturedSurface surface = placed_features(spec, std::move(original));
     const Timer apply;
     (void)surface.result();
     row["apply_s"] = num(apply.seconds());
@@ -205,9 +221,9 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
   } catch (const OutputError& e) {  // results incomplete: not a finished run
     row["termination"] = std::string(to_string(Termination::OutputFailed));
     row["message"] = e.what();
-  } catch (const Error& e) {
+  } catch (const Error& e) {  // validation applied the coarsest features only
     row["termination"] = std::string(to_string(Termination::InvalidInput));
-    row["message"] = e.what();
+    row["message"] = std::string("applying the features to the perturbed surface: ") + e.what();
   }
   row["time_s"] = num(wall.seconds());
   return row;

@@ -12,6 +12,7 @@
 #include "experiment/run_basics.h"
 #include "feature/base_edit.h"
 #include "feature/feature_curve.h"
+#include "feature/featured_surface.h"
 #include "subdivision/scheme.h"
 
 namespace fairshape {
@@ -41,6 +42,12 @@ struct FeatureRunSpec : RunBasics {
 
 bool is_feature_config(const YAML::Node& run_config);
 const std::vector<std::string>& feature_metric_columns();
+
+//! The run's Loop hierarchy of input.mesh, without features. \throw Error for the input.
+MultiresSurface feature_hierarchy(const FeatureRunSpec& spec);
+//! `original` with the run's features placed on it (world points projected, faces checked) and
+//! the base edit applied: what the run evaluates. \throw InvalidInput naming the feature.
+feature::FeaturedSurface placed_features(FeatureRunSpec& spec, MultiresSurface original);
 
 //! Writes final.obj (finest level), vtk/<run>.vtp (point arrays displacement, displacement_norm),
 //! adaptive/<run>.obj and curves/<run>_<feature>.obj; never throws for problems of the input.

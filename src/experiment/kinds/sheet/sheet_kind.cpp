@@ -11,7 +11,7 @@ class SheetKind final : public RunKind {
   std::string name() const override { return "sheet"; }
   std::string marker() const override { return "sheets"; }
   bool owns(const YAML::Node& c) const override { return is_sheet_config(c); }
-  ValidatedRun validate(const YAML::Node& c, const std::vector<std::string>&) const override {
+  ValidatedRun validate(const YAML::Node& c, const std::vector<std::string>&) override {
     return {SheetRunSpec::from_config(c).name, {}};  // sheets are built from the config alone
   }
   const std::vector<std::string>& metric_columns() const override { return sheet_metric_columns(); }

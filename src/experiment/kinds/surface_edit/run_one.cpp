@@ -272,9 +272,9 @@ MetricRow execute_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
   } catch (const OutputError& e) {  // results incomplete: not a finished run
     row["termination"] = std::string(to_string(Termination::OutputFailed));
     row["message"] = e.what();
-  } catch (const Error& e) {  // the input: files, topology, constraints
+  } catch (const Error& e) {  // a problem of the input validation could not see without H
     row["termination"] = std::string(to_string(Termination::InvalidInput));
-    row["message"] = e.what();
+    row["message"] = std::string("in the assembled problem: ") + e.what();
   }
   row["time_s"] = num(total.seconds());
   if (row["peak_rss_mb"].empty()) row["peak_rss_mb"] = num(peak_rss_mb());  // a run that failed before or in its solve

@@ -1,4 +1,7 @@
 // Boier-Martin et al.'s constrained edits of a (multiresolution) surface as a run kind.
+#include <set>
+
+#include "core/error.h"
 #include "experiment/components.h"
 #include "experiment/kinds/kinds.h"
 #include "experiment/kinds/surface_edit/run_one.h"
@@ -14,10 +17,15 @@ class SurfaceEditKind final : public RunKind {
   bool owns(const YAML::Node& c) const override {
     return c.IsMap() && c["input"] && c["input"].IsMap() && c["input"]["mesh"] && !c["features"] && !c["sheets"];
   }
-  ValidatedRun validate(const YAML::Node& c, const std::vector<std::string>& dirs) const override {
+  ValidatedRun validate(const YAML::Node& c, const std::vector<std::string>& dirs) override {
     const SurfaceEditSpec spec = SurfaceEditSpec::from_config(c, components(), dirs);
     require_readable_mesh(spec.mesh_path, "input.mesh");
+    check_on_hierarchy(spec);
     return {spec.name, {spec.mesh_path}};
+  }
+  void validation_done() override {
+    validation_cache_ = RunCache();
+    checked_systems_.clear();
   }
   const std::vector<std::string>& metric_columns() const override { return fairshape::metric_columns(); }
   std::vector<TableSchema> tables() const override {
@@ -35,7 +43,29 @@ class SurfaceEditKind final : public RunKind {
   }
 
  private:
-  RunCache cache_;  // hierarchies and reference solutions shared by the runs of this process
+  // The constraints placed and the energies checked on the run's hierarchy, H not assembled
+  // (a conflict, a missing vertex, an empty selection, a curve off the surface, a valence
+  // beyond the energy's limit): the sweep is refused before its first run.
+  void check_on_hierarchy(const SurfaceEditSpec& spec) {
+    if (!checked_systems_.insert(spec.system_key).second) return;  // points differing in the solver alone
+    double build_s = 0;
+    const MultiresSurface* rest = nullptr;
+    try {
+      rest = &validation_cache_.hierarchy(spec, &build_s);
+    } catch (const Error& e) {
+      throw InvalidConfig("input.mesh: " + spec.mesh_path + ": " + e.what());
+    }
+    const int level = spec.edit_level < 0 ? rest->levels() : spec.edit_level;
+    try {
+      check_edit(spec.edit_terms(), *rest, spec.accuracy.multilevel() ? spec.accuracy.coarse_level : level, level);
+    } catch (const InvalidInput& e) {
+      throw InvalidConfig(std::string("on ") + spec.mesh_path + ": " + e.what());
+    }
+  }
+
+  RunCache cache_;             // hierarchies and reference solutions shared by the runs of this process
+  RunCache validation_cache_;  // the hierarchies validation placed the constraints on
+  std::set<std::string> checked_systems_;  // SurfaceEditSpec::system_key of the points checked
 };
 
 }  // namespace

@@ -219,6 +219,10 @@ hostile 2 "vertex 999999 does not exist" -- "$FS" run $SMOKE --dry-run \
 hostile 2 "level 3 is not in the hierarchy (levels 0..1)" -- "$FS" run $SMOKE --dry-run \
   --set input.representation=catmull-clark --set input.levels=1 \
   --set "constraints=[$FIX, {type: position, level: 3, vertices: [2], offset: [0, 0, 1]}]"
+hostile 2 "constraints\[0\]: selects no vertex" -- "$FS" run $SMOKE --dry-run \
+  --set 'constraints.0.region={axis: x, from: 0.5001, to: 0.5002}'
+hostile 2 "boundary_loop_near: the mesh has no boundary" -- "$FS" run $SMOKE --dry-run \
+  --set 'constraints.0={type: fixed, boundary_loop_near: [0, 0, 0]}'
 hostile 2 "the curve leaves the surface" -- "$FS" run $SMOKE --dry-run --set "constraints=[$FIX, \
   {type: curve, points: [[0.4, 0.0, 0.0], [3.0, 3.0, 3.0]], translation: [0, 0.1, 0]}]"
 hostile 2 "no constraint: the deformation is undetermined" -- "$FS" run $SMOKE --dry-run --set 'constraints=[]'

@@ -19,7 +19,6 @@
 #include <vtkXMLPolyDataWriter.h>
 
 #include <algorithm>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -170,9 +169,7 @@ void check_appended_headers(const std::string& bytes, const std::string& path) {
   if (marker == std::string::npos) throw IOError(path + ": AppendedData without its '_' marker");
   const std::size_t base = marker + 1;
   const std::string xml = bytes.substr(0, tag);
-  // The header words are read little endian (what fairshape and VTK on x86 write); a
-  // big-endian file's headers are left to VTK.
-  if (xml.find("byte_order=\"BigEndian\"") != std::string::npos) return;
+  const bool big_endian = xml.find("byte_order=\"BigEndian\"") != std::string::npos;
   const std::size_t word = xml.find("header_type=\"UInt64\"") != std::string::npos ? 8 : 4;
   const bool compressed = xml.find("compressor=\"") != std::string::npos;
   const auto fail = [&](const std::string& what) { throw IOError(path + ": an appended array's header " + what + " (corrupt file?)"); };
@@ -189,7 +186,11 @@ void check_appended_headers(const std::string& bytes, const std::string& path) {
     }
     if (raw.size() < count * word) fail("is cut short");
     std::vector<unsigned long long> out(count, 0);
-    for (std::size_t k = 0; k < count; ++k) std::memcpy(&out[k], raw.data() + k * word, word);  // little endian
+    for (std::size_t k = 0; k < count; ++k)
+      for (std::size_t b = 0; b < word; ++b) {  // most significant byte first, in the file's byte order
+        const auto byte = static_cast<unsigned char>(raw[k * word + (big_endian ? b : word - 1 - b)]);
+        out[k] = (out[k] << 8) | byte;
+      }
     return out;
   };
   for (std::size_t pos = xml.find(" offset=\""); pos != std::string::npos; pos = xml.find(" offset=\"", pos + 1)) {

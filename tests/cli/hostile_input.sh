@@ -1,20 +1,33 @@
 # Hostile input (issue: every file, parameter and mesh either works or is refused up front).
 # One line per input: the exit status expected and a fragment of the message. Every command
 # runs under a time limit and a 4 GB address-space limit, so a hang or a blow-up fails here
-# rather than the machine; exit statuses above 128 (a signal) always fail.
+# rather than the machine; exit statuses above 128 (a signal) always fail, and so does a
+# process whose resident set exceeded 2 GiB.
 source "$(dirname "$0")/lib.sh"
 H="$SCRATCH/in"
 mkdir -p "$H"
 CASES=0
 SMOKE=configs/smoke/cow_nose_pull.yaml
 
+# The largest resident set of any process a command ran (workers included), in KiB, and its
+# exit status; the command runs under the time and address-space limits.
+peak_rss_run() {
+  $PY - "$@" <<'PYEOF'
+import resource, subprocess, sys
+rc = subprocess.call(["bash", "-c", 'ulimit -v 4000000; exec timeout 60 "$@"', "limited"] + sys.argv[1:],
+                     stdout=subprocess.DEVNULL)
+print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss, rc)
+PYEOF
+}
+
 # hostile CODE PATTERN -- command...
 hostile() {
   local code="$1" pattern="$2"; shift 3
-  local err="$SCRATCH/stderr.txt" rc=0
-  (ulimit -v 4000000; timeout 60 "$@") 2>"$err" >/dev/null || rc=$?
+  local err="$SCRATCH/stderr.txt" rc=0 rss=0
+  read -r rss rc < <(peak_rss_run "$@" 2>"$err")
   CASES=$((CASES + 1))
-  [ "$rc" -lt 124 ] || { cat "$err" >&2; fail "case $CASES: exit $rc (signal, timeout or blow-up): $*"; }
+  [ "$rc" -ge 0 ] && [ "$rc" -lt 124 ] || { cat "$err" >&2; fail "case $CASES: exit $rc (signal, timeout or blow-up): $*"; }
+  [ "$rss" -le 2097152 ] || fail "case $CASES: a process held $((rss / 1024)) MiB, above 2 GiB: $*"
   [ "$rc" -eq "$code" ] || { cat "$err" >&2; fail "case $CASES: exit $rc, expected $code: $*"; }
   grep -q -- "$pattern" "$err" || { cat "$err" >&2; fail "case $CASES: stderr lacks '$pattern': $*"; }
   ! grep -qi "internal error" "$err" || { cat "$err" >&2; fail "case $CASES: an internal error: $*"; }
@@ -131,6 +144,35 @@ hostile 2 "cut.vtp" -- "$FS" info "$H/cut.vtp"
 ! grep -q "vtkXML\|ERROR: In" "$SCRATCH/stderr.txt" || fail "VTK's own log lines leaked onto stderr"
 # A compressed base64 header claiming a 2.7 GB block in a 3 KB file (found by fuzz_read_vtp).
 hostile 2 "appended array's header" -- "$FS" info tests/fuzz/vtp/regression_oom_block_header.vtp
+# Big-endian appended data: read, and its headers checked in the file's byte order.
+$PY - "$H" <<'PYEOF'
+import struct, sys
+def vtp(order, claim=None):
+    fmt = ">" if order == "BigEndian" else "<"
+    arrays = [struct.pack(fmt + "9d", 0, 0, 0, 1, 0, 0, 0, 1, 0), struct.pack(fmt + "3q", 0, 1, 2), struct.pack(fmt + "q", 3)]
+    blob, offsets = b"", []
+    for i, a in enumerate(arrays):
+        offsets.append(len(blob))
+        blob += struct.pack(fmt + "Q", claim if claim and i == 0 else len(a)) + a
+    head = (f'<?xml version="1.0"?>\n<VTKFile type="PolyData" version="0.1" byte_order="{order}" header_type="UInt64">\n'
+            f'<PolyData><Piece NumberOfPoints="3" NumberOfPolys="1">\n'
+            f'<Points><DataArray type="Float64" NumberOfComponents="3" format="appended" offset="{offsets[0]}"/></Points>\n'
+            f'<Polys><DataArray type="Int64" Name="connectivity" format="appended" offset="{offsets[1]}"/>\n'
+            f'<DataArray type="Int64" Name="offsets" format="appended" offset="{offsets[2]}"/></Polys>\n'
+            f'</Piece></PolyData>\n<AppendedData encoding="raw">\n_')
+    return head.encode() + blob + b"\n</AppendedData>\n</VTKFile>\n"
+open(f"{sys.argv[1]}/big_endian.vtp", "wb").write(vtp("BigEndian"))
+open(f"{sys.argv[1]}/big_endian_claim.vtp", "wb").write(vtp("BigEndian", 1 << 40))
+PYEOF
+"$FS" info "$H/big_endian.vtp" 2>/dev/null | grep -q "faces *1" || fail "a valid big-endian .vtp was not read"
+hostile 2 "claims more bytes than the file holds" -- "$FS" info "$H/big_endian_claim.vtp"
+# Just over the size limits, as sparse files (nothing is read).
+truncate -s 2147483649 "$H/over_limit.off"
+hostile 2 "above the input limit of 2048 MiB" -- "$FS" info "$H/over_limit.off"
+rm -f "$H/over_limit.off"
+truncate -s 16777217 "$H/over_limit.yaml"
+hostile 2 "above the input limit of 16 MiB" -- "$FS" run "$H/over_limit.yaml" --dry-run
+rm -f "$H/over_limit.yaml"
 ln -sf /dev/zero "$H/zero.vtp"
 hostile 2 "not a regular file" -- "$FS" info "$H/zero.vtp"
 # A full disk (a 10 KB file-size limit, SIGXFSZ ignored so writes fail with EFBIG): VTK's

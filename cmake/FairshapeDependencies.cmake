@@ -14,7 +14,8 @@ fairshape_require(nlohmann_json nlohmann-json3-dev CONFIG)
 fairshape_require(CLI11 libcli11-dev CONFIG)
 fairshape_require(Ceres libceres-dev 2.1 CONFIG)
 fairshape_require(VTK libvtk9-dev 9.1 COMPONENTS CommonCore CommonDataModel IOXML IOImage
-                  RenderingCore RenderingOpenGL2 FiltersCore FiltersGeometry)
+                  RenderingCore RenderingOpenGL2 RenderingAnnotation RenderingFreeType FiltersCore
+                  FiltersGeometry FiltersSources)
 fairshape_require(TBB libtbb-dev CONFIG)
 fairshape_require(OpenSSL libssl-dev)  # SHA-256 of input files and configs (provenance)
 if(FAIRSHAPE_BUILD_TESTS)

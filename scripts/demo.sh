@@ -9,6 +9,6 @@ build/bin/fairshape run configs/demo.yaml --out "$out" --force
 /usr/bin/python3 scripts/panels.py "$out" "$out/fig2.png" \
   --title "Nose pulled on the finest level of a Catmull-Clark hierarchy (colour: displacement)" \
   --label "{kind}: detail change {detail_change:.2f}, constraint residual {constraint_violation:.0e}" \
-  --render --azimuth 0 --elevation 0 --zoom 1.5 --width 800 --height 560
+  --render --view front --zoom 1.5 --width 800 --height 560
 echo "demo: results in $out (runs.csv, run.json, final/*.obj, vtk/*.vtp and *_levels.vtm, fig2.png)"
 echo "      detail_change in runs.csv: thin-plate fairs the details away, detail-preserving keeps them"

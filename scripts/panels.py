@@ -10,7 +10,8 @@ level's deformed control mesh, coloured by the vertices the propagated constrain
 FORMAT is a Python format string over the runs.csv row, with dots in column names replaced
 by underscores and numbers parsed, e.g. "edit level {input_edit_level}: {detail_change:.2f}".
 A `{kind}` field holds the last `type:` in the swept values (the energy, or the last constraint).
-Panels are rendered by `fairshape render` (VTK offscreen) from vtk/<run_id>.vtp.
+The panels are one `fairshape render` (VTK offscreen) of the runs' geometry: one camera and
+one colour range for all of them, a colour bar, the labels and the title.
 """
 import argparse
 import csv
@@ -19,11 +20,6 @@ import re
 import subprocess
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.image as mpimg  # noqa: E402
-import matplotlib.pyplot as plt  # noqa: E402
 
 BIN = os.path.join(os.path.dirname(__file__), "..", "build", "bin", "fairshape")
 
@@ -42,8 +38,10 @@ def fields(row):
     return out
 
 
-def render(source, png, args):
-    subprocess.run([BIN, "render", source, png] + args, check=True)
+def render(inputs, labels, out_png, args):
+    """One `fairshape render` for the whole figure: one camera and one colour range."""
+    cmd = [BIN, "render"] + inputs + [out_png] + [x for label in labels for x in ("--label", label)] + args
+    subprocess.run(cmd, check=True)
 
 
 def main():
@@ -57,19 +55,10 @@ def main():
     p.add_argument("--columns", type=int, default=0, help="panels per row (default: all in one row)")
     p.add_argument("--render", nargs=argparse.REMAINDER, default=[], help="arguments for fairshape render")
     a = p.parse_args()
-    panels = ladder_panels(a) if a.ladder else run_panels(a)
-    cols = a.columns or len(panels)
-    rows = (len(panels) + cols - 1) // cols
-    fig, axes = plt.subplots(rows, cols, figsize=(6.4 * cols, 5.0 * rows), dpi=100, squeeze=False)
-    for ax in axes.flat:
-        ax.axis("off")
-    for ax, (png, label) in zip(axes.flat, panels):
-        ax.imshow(mpimg.imread(png))
-        ax.set_title(label, fontsize=11)
-    fig.suptitle(a.title, fontsize=13)
-    fig.tight_layout()
+    inputs, labels, args = ladder_panels(a) if a.ladder else run_panels(a)
+    args += ["--title", a.title] + (["--columns", str(a.columns)] if a.columns else [])
     tmp = a.out_png + ".tmp.png"
-    fig.savefig(tmp)
+    render(inputs, labels, tmp, args + a.render)
     os.replace(tmp, a.out_png)  # never a truncated figure
     print(f"panels: wrote {a.out_png}")
 
@@ -79,13 +68,9 @@ def ladder_panels(a):
     files = sorted(f for f in os.listdir(vtk) if f.startswith(a.ladder + "_ladder_level") and f.endswith(".vtp"))
     if not files:
         sys.exit(f"panels: no ladder levels of run {a.ladder} in {vtk}")
-    panels = []
-    for f in files:
-        level = f[len(a.ladder + "_ladder_level"):-len(".vtp")]
-        png = os.path.join(a.run_dir, f[:-len(".vtp")] + ".png")
-        render(os.path.join(vtk, f), png, ["--array", "constrained", "--edges"] + a.render)
-        panels.append((png, f"level {level}: control mesh, constrained vertices in red"))
-    return panels
+    labels = [f"level {f[len(a.ladder + '_ladder_level'):-len('.vtp')]}: control mesh" for f in files]
+    args = ["--array", "constrained", "--colour-label", "reached by the constraints", "--edges", "--flat"]
+    return [os.path.join(vtk, f) for f in files], labels, args
 
 
 def run_panels(a):
@@ -95,16 +80,12 @@ def run_panels(a):
     failed = [r["run_id"] for r in rows if r["termination"] not in ("converged", "energy_stalled", "schedule_completed")]
     if failed:
         sys.exit(f"panels: runs {failed} did not finish; see {a.run_dir}/runs.csv")
-    panels = []
+    inputs = [f"{a.run_dir}@{r['run_id']}" for r in rows]
+    labels = [a.label.format(**fields(r)) for r in rows]
+    args = ["--array", "displacement", "--colour-label", "|displacement| (model units)"]
     if a.rest:
-        png = os.path.join(a.run_dir, "rest.png")
-        render(a.rest, png, [x for x in a.render])
-        panels.append((png, "before"))
-    for r in rows:
-        png = os.path.join(a.run_dir, f"{r['run_id']}.png")
-        render(os.path.join(a.run_dir, "vtk", f"{r['run_id']}.vtp"), png, ["--array", "displacement_norm"] + a.render)
-        panels.append((png, a.label.format(**fields(r))))
-    return panels
+        args += ["--rest", a.rest, "--rest-label", "before"]
+    return inputs, labels, args
 
 
 if __name__ == "__main__":

@@ -30,7 +30,7 @@ from matplotlib.collections import PatchCollection  # noqa: E402
 from matplotlib.patches import Rectangle  # noqa: E402
 
 BIN = os.path.join(os.path.dirname(__file__), "..", "build", "bin", "fairshape")
-VIEW = ["--azimuth", "25", "--elevation", "40", "--width", "640", "--height", "480", "--array", "displacement_norm"]
+VIEW = ["--view", "front", "--azimuth", "25", "--elevation", "40", "--width", "640", "--height", "480", "--array", "displacement_norm"]
 
 
 def render(vtp, png):

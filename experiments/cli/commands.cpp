@@ -47,18 +47,6 @@ SurfaceMesh load_any(const std::string& path, std::vector<std::string>* warnings
   }
 }
 
-// A result folder renders its final geometry with the VTK arrays when there are some.
-std::string pick_render_input(const std::string& input) {
-  if (!fs::is_directory(input)) return input;
-  const fs::path dir(input), vtk = dir / "vtk";
-  if (fs::is_directory(vtk))
-    for (const auto& e : fs::directory_iterator(vtk))
-      if (e.path().extension() == ".vtp" && e.path().stem().string().find("_it") == std::string::npos)
-        return e.path().string();
-  if (fs::exists(dir / "final.obj")) return (dir / "final.obj").string();
-  throw IOError(input + ": a result folder with neither vtk/*.vtp nor final.obj");
-}
-
 }  // namespace
 
 int cmd_info(const InfoArgs& a) {
@@ -106,9 +94,35 @@ int cmd_render(const RenderArgs& a, int argc, char** argv) {
     execvp("xvfb-run", cargs.data());
     throw IOError("render: no DISPLAY and xvfb-run is not installed (Debian package 'xvfb')");
   }
-  const std::string input = pick_render_input(a.input);
-  render_png(load_any(input, nullptr), a.opt, a.output);
-  std::cerr << "rendered " << input << " -> " << a.output << "\n";
+  render::FigureSpec spec = a.spec;
+  spec.panels.assign(a.files.begin(), a.files.end() - 1);
+  const std::string& png = a.files.back();
+  if (fs::path(png).extension() != ".png")
+    throw InvalidConfig("render: the last file, " + png + ", is the output and must end in .png");
+  spec.view.view = render::named_view_names().value(a.view, "--view");
+  spec.view.up = render::up_axis_names().value(a.up, "--up");
+  spec.background = render::background_names().value(a.background, "--background");
+  if (!a.component.empty()) {
+    spec.colouring.component = render::component_names().value(a.component, "--component");
+    spec.colouring.component_given = true;
+  }
+  if (!a.map.empty()) {
+    spec.colouring.map = render::colour_map_names().value(a.map, "--map");
+    spec.colouring.map_given = true;
+  }
+  if ((spec.colouring.component_given || spec.colouring.map_given || !a.range.empty()) && spec.colouring.array.empty())
+    throw InvalidConfig("render: --component, --map and --range colour by an array: give --array");
+  if (!a.range.empty()) {
+    if (!(a.range[1] > a.range[0])) throw InvalidConfig("render: --range LO HI needs LO < HI");
+    spec.range = std::make_pair(a.range[0], a.range[1]);
+  }
+  if (!a.focus.empty()) {
+    spec.view.focused = true;
+    spec.view.focus = Vec3(a.focus[0], a.focus[1], a.focus[2]);
+  }
+  if (spec.view.radius > 0 && !spec.view.focused) throw InvalidConfig("render: --radius frames the --focus point: give --focus");
+  render::render_figure(spec, png);
+  std::cerr << "rendered " << spec.panels.size() << " panel(s) -> " << png << "\n";
   return 0;
 }
 

@@ -2,15 +2,23 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "experiment/sweep_runner.h"
-#include "io/render.h"
+#include "render/figure.h"
 
 namespace fairshape::cli {
 
 struct InfoArgs { std::string mesh; };
 struct ConvertArgs { std::string input, output; bool binary = false; };
-struct RenderArgs { std::string input, output; RenderOptions opt; };
+// The inputs and the PNG are the positional files (the PNG last); the names are the
+// NameTables' spellings, checked by cmd_render.
+struct RenderArgs {
+  std::vector<std::string> files;
+  render::FigureSpec spec;
+  std::string view = "iso", up = "y", component, map, background = "white";
+  std::vector<double> range, focus;
+};
 struct SubdivideArgs {
   std::string input, output, scheme, boundary = "edge-only", weights = "loop", implementation = "optimized";
   int levels = 1;

@@ -49,16 +49,58 @@ int main(int argc, char** argv) {
   c_conv->add_flag("--binary", conv.binary, "binary PLY output");
 
   RenderArgs ren;
-  auto* c_ren = app.add_subcommand("render", "render a mesh or a result folder to PNG (VTK, offscreen)");
-  c_ren->add_option("result", ren.input, "result folder (renders final.obj or its VTK) or a mesh/.vtp file")->required();
-  c_ren->add_option("output", ren.output, "PNG file")->required();
-  c_ren->add_option("--array", ren.opt.color_by, "colour by this point array (e.g. displacement_norm)");
-  c_ren->add_option("--azimuth", ren.opt.azimuth, "camera azimuth, degrees")->capture_default_str();
-  c_ren->add_option("--elevation", ren.opt.elevation, "camera elevation, degrees")->capture_default_str();
-  c_ren->add_option("--zoom", ren.opt.zoom, "camera zoom factor")->capture_default_str()->check(finite_at_least(0, true));
-  c_ren->add_option("--width", ren.opt.width, "image width")->capture_default_str()->check(CLI::Range(16, 8192));
-  c_ren->add_option("--height", ren.opt.height, "image height")->capture_default_str()->check(CLI::Range(16, 8192));
-  c_ren->add_flag("--edges", ren.opt.edges, "draw mesh edges");
+  fairshape::render::FigureSpec& fig = ren.spec;
+  auto* c_ren = app.add_subcommand(
+      "render",
+      "render meshes, curves or runs to one PNG (VTK offscreen): several inputs are panels side by side with one\n"
+      "camera and one colour range; shaded with a key and a fill light, coloured by a point array with a colour bar");
+  c_ren->add_option("files", ren.files,
+                    "INPUT... OUT.png. An input is a .vtp/.obj/.off/.ply file, a .vtm (a level: FILE.vtm@L, default the\n"
+                    "finest), a .pvd (a step: FILE.pvd@K, default the last) or a result folder (a run: DIR@RUN_ID;\n"
+                    "a folder with several runs needs one)")
+      ->required()->expected(2, -1);
+  c_ren->add_option("--run", fig.choice.run, "the run of a result folder input (same as DIR@RUN_ID)");
+  c_ren->add_option("--block", fig.choice.block, "the level of a .vtm input (same as FILE.vtm@L)")->check(CLI::Range(0, 1 << 20));
+  c_ren->add_option("--step", fig.choice.step, "the step of a .pvd input (same as FILE.pvd@K)")->check(CLI::Range(0, 1 << 30));
+  c_ren->add_option("--label", fig.labels, "a panel's label, once per input in order");
+  c_ren->add_option("--title", fig.title, "the figure's title");
+  c_ren->add_option("--rest", fig.rest, "an input panel shown first, uncoloured (e.g. the mesh before the edit)");
+  c_ren->add_option("--rest-label", fig.rest_label, "its label (with --label)")->capture_default_str();
+  c_ren->add_option("--columns", fig.columns, "panels per row (default: one row)")->check(CLI::Range(1, 64));
+  c_ren->add_option("--array", fig.colouring.array, "colour by this point array (e.g. displacement); default: plain");
+  c_ren->add_option("--component", ren.component,
+                    "of a vector array: magnitude (default), x, y, z, or normal (signed, along the surface normal:\n"
+                    "a ridge and a groove get opposite colours)")
+      ->check(CLI::IsMember(fairshape::render::component_names().names()));
+  c_ren->add_option("--map", ren.map, "colour map: viridis (default), diverging (default for signed components), grey")
+      ->check(CLI::IsMember(fairshape::render::colour_map_names().names()));
+  c_ren->add_option("--range", ren.range, "colour range LO HI (default: over every panel; symmetric for diverging)")
+      ->expected(2)->check(finite_at_least(-1e300, false));
+  c_ren->add_option("--colour-label", fig.colour_label, "the colour bar's label, with units");
+  c_ren->add_option("--view", ren.view, "named view in the model's frame: front, side, top, iso")
+      ->capture_default_str()->check(CLI::IsMember(fairshape::render::named_view_names().names()));
+  c_ren->add_option("--up", ren.up, "the model's up axis: x, y, z")->capture_default_str()
+      ->check(CLI::IsMember(fairshape::render::up_axis_names().names()));
+  c_ren->add_option("--azimuth", fig.view.azimuth, "turn about the up axis after the view, degrees")
+      ->capture_default_str()->check(finite_at_least(-1e6, false));
+  c_ren->add_option("--elevation", fig.view.elevation, "raise after the view, degrees")
+      ->capture_default_str()->check(finite_at_least(-1e6, false));
+  c_ren->add_option("--zoom", fig.view.zoom, "camera zoom factor")->capture_default_str()->check(finite_at_least(0, true));
+  c_ren->add_option("--focus", ren.focus, "look at the point X Y Z (with --radius: the part of the model shown)")
+      ->expected(3)->check(finite_at_least(-1e300, false));
+  c_ren->add_option("--radius", fig.view.radius, "with --focus: the radius shown around it (default: a quarter of the model)")
+      ->check(finite_at_least(0, true));
+  c_ren->add_option("--width", fig.panel_width, "panel width, pixels")->capture_default_str()->check(CLI::Range(16, 8192));
+  c_ren->add_option("--height", fig.panel_height, "panel height, pixels")->capture_default_str()->check(CLI::Range(16, 8192));
+  c_ren->add_option("--background", ren.background, "white or transparent")->capture_default_str()
+      ->check(CLI::IsMember(fairshape::render::background_names().names()));
+  c_ren->add_flag("--edges", fig.style.edges, "draw the rendered mesh's edges");
+  c_ren->add_flag("--flat", fig.style.flat, "facet shading instead of smooth normals");
+  c_ren->add_option("--control-level", fig.style.control_level,
+                    "draw this level of the input's hierarchy (a .vtm, or a run's _levels.vtm) as a wireframe")
+      ->check(CLI::Range(0, 64));
+  c_ren->add_option("--tube-radius", fig.style.tube_radius, "curves' tube radius, as a fraction of the model's diagonal")
+      ->capture_default_str()->check(finite_at_least(0, true));
 
   fairshape::SweepOptions run;
   std::string shard = "0/1", worker;

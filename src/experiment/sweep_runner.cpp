@@ -96,14 +96,15 @@ TableLayout layout_of(const RunKind& kind, const std::vector<std::string>& swept
 
 // "(points 0, 3, 5)": where in a sweep a problem is; the first few of many.
 std::string point_list(const std::vector<std::size_t>& points, std::size_t sweep_size) {
-  if (points.size() == sweep_size) return "(all " + std::to_string(sweep_size) + " points)";
+  std::string s = "(";
+  if (points.size() == sweep_size) return s.append("all ").append(std::to_string(sweep_size)).append(" points)");
   constexpr std::size_t kShown = 8;
-  std::string s = points.size() == 1 ? "(point " : "(points ";
+  s += points.size() == 1 ? "point " : "points ";
   for (std::size_t k = 0; k < std::min(points.size(), kShown); ++k) {
     if (k) s += ", ";
     s += std::to_string(points[k]);
   }
-  if (points.size() > kShown) s += " and " + std::to_string(points.size() - kShown) + " more";
+  if (points.size() > kShown) s.append(" and ").append(std::to_string(points.size() - kShown)).append(" more");
   return s + ")";
 }
 
@@ -146,8 +147,10 @@ Plan make_plan(const SweepOptions& opt, bool validate) {
   for (auto& kind : plan.kinds) kind->validation_done();
   if (!problems.empty()) {
     std::string msg = opt.config_path + ": " + std::to_string(problems.size()) + " problem(s), nothing was run:";
-    for (const auto& [problem, points] : problems)
-      msg += "\n  - " + problem + (plan.space->size() > 1 ? " " + point_list(points, plan.space->size()) : "");
+    for (const auto& [problem, points] : problems) {
+      msg.append("\n  - ").append(problem);
+      if (plan.space->size() > 1) msg.append(" ").append(point_list(points, plan.space->size()));
+    }
     throw InvalidConfig(msg);
   }
   if (plan.selected.empty() && !opt.is_worker)

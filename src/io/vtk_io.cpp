@@ -278,6 +278,36 @@ SurfaceMesh from_polydata(vtkPolyData* pd, const std::string& path) {
 
 }  // namespace
 
+namespace io::internal {
+
+vtkSmartPointer<vtkPolyData> read_checked_polydata(const std::string& path) {
+  const std::string text = checked_vtk_text(path);
+  vtkNew<vtkXMLPolyDataReader> r;
+  if (!r->CanReadFile(path.c_str())) throw IOError(path + ": not a VTK XML PolyData file");
+  // The bytes already read and checked, not the file again.
+  r->ReadFromInputStringOn();
+  r->SetInputString(text);
+  r->Update();
+  vtkSmartPointer<vtkPolyData> pd = r->GetOutput();
+  if (!pd || pd->GetNumberOfPoints() == 0) throw IOError(path + ": no points in the VTK file");
+  // Every cell's ids checked as 64-bit ids: 4294967298 must not wrap to point 2.
+  const char* kinds[] = {"vertex cell", "line", "polygon", "strip"};
+  vtkCellArray* cells[] = {pd->GetVerts(), pd->GetLines(), pd->GetPolys(), pd->GetStrips()};
+  vtkNew<vtkIdList> ids;
+  for (int k = 0; k < 4; ++k) {
+    vtkIdType cell = 0;
+    for (cells[k]->InitTraversal(); cells[k]->GetNextCell(ids); ++cell)
+      for (vtkIdType j = 0; j < ids->GetNumberOfIds(); ++j)
+        if (ids->GetId(j) < 0 || ids->GetId(j) >= pd->GetNumberOfPoints())
+          throw InvalidInput(path + ": " + kinds[k] + " " + std::to_string(cell) + " references point " +
+                             std::to_string(ids->GetId(j)) + ", out of range [0, " + std::to_string(pd->GetNumberOfPoints()) +
+                             ")");
+  }
+  return pd;
+}
+
+}  // namespace io::internal
+
 void write_vtp(const SurfaceMesh& mesh, const std::string& path) {
   write_polydata_atomically(to_polydata(mesh, path), path);
 }
@@ -298,16 +328,7 @@ void write_vtp(const Polyline& curve, const DataArrays& point_data, const std::s
   write_polydata_atomically(pd, path);
 }
 
-SurfaceMesh read_vtp(const std::string& path) {
-  const std::string text = checked_vtk_text(path);
-  vtkNew<vtkXMLPolyDataReader> r;
-  if (!r->CanReadFile(path.c_str())) throw IOError(path + ": not a VTK XML PolyData file");
-  // The bytes already read and checked, not the file again.
-  r->ReadFromInputStringOn();
-  r->SetInputString(text);
-  r->Update();
-  return from_polydata(r->GetOutput(), path);
-}
+SurfaceMesh read_vtp(const std::string& path) { return from_polydata(io::internal::read_checked_polydata(path), path); }
 
 void write_vtm(const std::vector<NamedMesh>& blocks, const std::string& path) {
   quiet_vtk();

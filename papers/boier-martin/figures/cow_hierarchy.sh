@@ -10,7 +10,7 @@ build/bin/fairshape remesh data/cow.off --scheme catmull-clark --base-faces 600 
 for l in 0 1 2 3 4; do
   edges=$([ "$l" -le 2 ] && echo --edges || true)
   build/bin/fairshape render "$out/cow/cow_$l.vtp" "papers/boier-martin/figures/cow_hierarchy_L$l.png" \
-    --azimuth 0 --elevation 0 --zoom 1.6 --width 600 --height 380 $edges
+    --view front --zoom 1.6 --width 600 --height 380 $edges
 done
 /usr/bin/python3 - <<'PYEOF'
 import matplotlib

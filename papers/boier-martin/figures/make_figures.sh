@@ -7,7 +7,7 @@ set -euo pipefail
 cd "$(dirname "$0")/../../.."
 figures=("$@")
 [ ${#figures[@]} -gt 0 ] || figures=(fig1 fig2 fig7 fig8 fig9)
-cow_view=(--azimuth 0 --elevation 0 --zoom 1.5 --width 800 --height 560)
+cow_view=(--view front --zoom 1.5 --width 800 --height 560)
 
 figure() {  # name config panels-arguments...
   local name=$1 config=$2
@@ -46,7 +46,7 @@ for f in "${figures[@]}"; do
     fig9) figure fig9 fig9_annulus_twist --rest data/annulus.obj \
             --title "Inner rim of an annulus turned 45 and 90 degrees about z and lifted by 0.4, outer rim fixed" \
             --label "{kind}, energy {energy:.3g}, constraint residual {constraint_violation:.0e}" \
-            --render --azimuth 20 --elevation 35 --width 700 --height 600 --edges ;;
+            --render --view front --azimuth 20 --elevation 35 --width 700 --height 600 --edges ;;
     *) echo "unknown figure '$f' (choose from fig1 fig2 fig7 fig8 fig9)" >&2; exit 2 ;;
   esac
 done

@@ -9,14 +9,14 @@ cd "$(dirname "$0")/../../.."
 figs=papers/khodakovsky-schroder/figures
 data=papers/khodakovsky-schroder/data
 out=results/figures/ks
-patch_view=(--elevation 55 --azimuth 10 --zoom 1.35 --width 900 --height 700)
+patch_view=(--view front --elevation 55 --azimuth 10 --zoom 1.35 --width 900 --height 700)
 run() { build/bin/fairshape run "configs/khodakovsky-schroder/$1.yaml" --out "$out-$1" --force; cp "$out-$1/runs.csv" "$data/$1_runs.csv"; cp "$out-$1/run.json" "$data/$1_run.json"; }
 run fig11
 /usr/bin/python3 scripts/panels.py $out-fig11 $figs/fig11.png --rest data/ks_patch.off \
   --title "Figure 11/16: three overlapping feature lines drawn on level 2 (two ridges, one groove), level 4 shown" \
   --label "{vertices_moved:.0f} vertices moved, max {max_displacement:.3f}" --render "${patch_view[@]}"
 build/bin/fairshape render "$out-fig11/adaptive/$(tail -1 $out-fig11/runs.csv | cut -d, -f1).obj" $figs/fig11_adaptive.png \
-  --edges --elevation 80 --azimuth 0 --zoom 1.3 --width 900 --height 700
+  --edges --view front --elevation 80 --azimuth 0 --zoom 1.3 --width 900 --height 700
 run fig16
 /usr/bin/python3 scripts/panels.py $out-fig16 $figs/fig16.png --columns 3 \
   --title "Figure 16: one parameter at a time (radius, crease, groove, left/right ratio, end height ratio)" \
@@ -34,4 +34,4 @@ run fig17
 /usr/bin/python3 scripts/panels.py $out-fig17 $figs/fig17.png --rest data/knot.off \
   --title "Figure 17: ten feature curves (ridges and grooves) drawn on level 1 of the knot, level 3 shown" \
   --label "{features:.0f} features, {segments:.0f} segments, {vertices_moved:.0f} vertices moved" \
-  --render --elevation 10 --azimuth 0 --zoom 1.6 --width 900 --height 700
+  --render --view front --elevation 10 --azimuth 0 --zoom 1.6 --width 900 --height 700

@@ -1,0 +1,212 @@
+#include "render/figure.h"
+
+#include <vtkLight.h>
+#include <vtkNew.h>
+#include <vtkPNGWriter.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkScalarBarActor.h>
+#include <vtkTextActor.h>
+#include <vtkTextProperty.h>
+#include <vtkWindowToImageFilter.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "render/display.h"
+
+namespace fairshape::render {
+
+const NameTable<Background>& background_names() {
+  static const NameTable<Background> t{{Background::White, "white"}, {Background::Transparent, "transparent"}};
+  return t;
+}
+
+namespace {
+
+constexpr int kTitleHeight = 56, kLabelHeight = 40, kColourBarWidth = 190;
+
+// A key light above right of the camera and a dimmer fill from the left: shape reads from
+// shading, and no side of the model is black.
+void add_lights(vtkRenderer* r) {
+  r->AutomaticLightCreationOff();
+  vtkNew<vtkLight> key;
+  key->SetLightTypeToCameraLight();
+  key->SetPosition(0.6, 0.8, 1.0);
+  key->SetFocalPoint(0, 0, 0);
+  key->SetIntensity(0.85);
+  r->AddLight(key);
+  vtkNew<vtkLight> fill;
+  fill->SetLightTypeToCameraLight();
+  fill->SetPosition(-0.8, -0.2, 0.6);
+  fill->SetFocalPoint(0, 0, 0);
+  fill->SetIntensity(0.35);
+  r->AddLight(fill);
+}
+
+// Text in window pixels, centred on x, shrunk to fit `width` (and cut with an ellipsis only
+// below a legible size).
+vtkSmartPointer<vtkTextActor> text(const std::string& s, double x, double y, int width, int size) {
+  auto t = vtkSmartPointer<vtkTextActor>::New();
+  // A glyph is about 0.55 of the font size wide: the size that fits the panel.
+  const int fitting = static_cast<int>(width / (0.55 * std::max<std::size_t>(s.size(), 1)));
+  const int font = std::clamp(fitting, 10, size);
+  std::string shown = s;
+  const std::size_t most = static_cast<std::size_t>(width / (0.55 * font));
+  if (shown.size() > most && most > 3) shown = shown.substr(0, most - 3) + "...";
+  t->SetInput(shown.c_str());
+  vtkTextProperty* p = t->GetTextProperty();
+  p->SetFontSize(font);
+  p->SetColor(0.1, 0.1, 0.1);
+  p->SetJustificationToCentered();
+  p->SetVerticalJustificationToCentered();
+  t->SetDisplayPosition(static_cast<int>(x), static_cast<int>(y));
+  return t;
+}
+
+std::string default_colour_label(const Colouring& c) {
+  if (!c.component_given || c.component == Component::Magnitude) return c.array == "displacement" ? "|displacement|" : c.array;
+  if (c.component == Component::Normal) return "normal " + c.array;
+  return c.array + " " + std::string(component_names().name(c.component));
+}
+
+}  // namespace
+
+void render_figure(const FigureSpec& spec, const std::string& png_path) {
+  if (spec.panels.empty()) throw InvalidInput("render: no input");
+  if (!spec.labels.empty() && spec.labels.size() != spec.panels.size())
+    throw InvalidInput("render: " + std::to_string(spec.labels.size()) + " --label for " + std::to_string(spec.panels.size()) +
+                       " inputs (give one per input, or none)");
+  if (std::filesystem::path(png_path).extension() != ".png") throw InvalidInput("render: " + png_path + ": the output is a .png");
+  if (!display_available()) throw IOError("render: no X display (run under xvfb-run, or set DISPLAY)");
+
+  std::vector<std::string> inputs = spec.panels, labels = spec.labels;
+  if (!spec.rest.empty()) {
+    inputs.insert(inputs.begin(), spec.rest);
+    if (!labels.empty()) labels.insert(labels.begin(), spec.rest_label);
+  }
+  const std::size_t first_coloured = spec.rest.empty() ? 0 : 1;
+  std::vector<RenderSource> sources;
+  std::vector<vtkSmartPointer<vtkDoubleArray>> scalars;  // null for the uncoloured input panel
+  double bounds[6] = {1e300, -1e300, 1e300, -1e300, 1e300, -1e300};
+  double lo = 1e300, hi = -1e300;
+  for (const std::string& p : inputs) {
+    sources.push_back(load_render_source(p, spec.choice));
+    double b[6];
+    sources.back().data->GetBounds(b);
+    for (int k = 0; k < 3; ++k) {
+      bounds[2 * k] = std::min(bounds[2 * k], b[2 * k]);
+      bounds[2 * k + 1] = std::max(bounds[2 * k + 1], b[2 * k + 1]);
+    }
+    if (spec.colouring.array.empty() || sources.size() <= first_coloured) {
+      scalars.emplace_back();
+      continue;
+    }
+    scalars.push_back(panel_scalars(sources.back().data, spec.colouring, sources.back().path));
+    double r[2];
+    scalars.back()->GetRange(r);
+    lo = std::min(lo, r[0]);
+    hi = std::max(hi, r[1]);
+  }
+  const bool coloured = !spec.colouring.array.empty();
+  const ColourMap map = spec.colouring.effective_map();
+  if (spec.range) {
+    std::tie(lo, hi) = *spec.range;
+  } else if (coloured && map == ColourMap::Diverging) {  // centred on zero: the sign reads as the colour's hue
+    const double m = std::max(std::abs(lo), std::abs(hi));
+    lo = -m;
+    hi = m;
+  }
+  if (coloured && !(hi > lo)) hi = lo + (lo == 0 ? 1 : std::abs(lo) * 1e-6);  // a constant field
+  const auto colours = coloured ? colour_transfer(map, lo, hi) : nullptr;
+  const double diagonal =
+      std::sqrt(std::pow(bounds[1] - bounds[0], 2) + std::pow(bounds[3] - bounds[2], 2) + std::pow(bounds[5] - bounds[4], 2));
+
+  const int n = static_cast<int>(sources.size());
+  const int cols = spec.columns > 0 ? std::min(spec.columns, n) : n, rows = (n + cols - 1) / cols;
+  const int w = spec.panel_width, h = spec.panel_height;
+  const int label_h = labels.empty() ? 0 : kLabelHeight, title_h = spec.title.empty() ? 0 : kTitleHeight;
+  const int bar_w = coloured ? kColourBarWidth : 0;
+  const int W = cols * w + bar_w, H = title_h + rows * (h + label_h);
+  const bool transparent = spec.background == Background::Transparent;
+
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->SetSize(W, H);
+  window->SetNumberOfLayers(2);
+  if (transparent) window->SetAlphaBitPlanes(1);
+  vtkNew<vtkCamera> camera;  // shared: every panel seen alike
+  vtkNew<vtkRenderer> background, annotations;
+  background->SetViewport(0, 0, 1, 1);
+  background->SetBackground(1, 1, 1);
+  background->SetBackgroundAlpha(transparent ? 0.0 : 1.0);
+  window->AddRenderer(background);
+  annotations->SetLayer(1);
+  annotations->SetViewport(0, 0, 1, 1);
+  annotations->PreserveColorBufferOn();  // text over the panels, not over a cleared window
+  window->AddRenderer(annotations);
+  for (int i = 0; i < n; ++i) {
+    const int col = i % cols, row = i / cols;
+    const double x0 = static_cast<double>(col * w) / W, x1 = static_cast<double>((col + 1) * w) / W;
+    const double top = H - title_h - row * (h + label_h) - label_h;  // the panel's top edge, in pixels
+    vtkNew<vtkRenderer> r;
+    r->SetViewport(x0, (top - h) / H, x1, top / H);
+    r->SetBackground(1, 1, 1);
+    r->SetBackgroundAlpha(transparent ? 0.0 : 1.0);
+    r->SetActiveCamera(camera);
+    add_lights(r);
+    const auto k = static_cast<std::size_t>(i);
+    for (const auto& prop : panel_props(sources[k], scalars[k], scalars[k] ? colours.Get() : nullptr, lo, hi, spec.style, diagonal))
+      r->AddViewProp(prop);
+    window->AddRenderer(r);
+    if (i == 0) {
+      ViewSpec view = spec.view;
+      if (view.focused && !(view.radius > 0)) view.radius = diagonal / 4;
+      place_camera(r, view, bounds);
+    }
+    if (!labels.empty()) annotations->AddActor2D(text(labels[k], (col + 0.5) * w, top + label_h / 2.0, w - 16, 22));
+  }
+  if (title_h) annotations->AddActor2D(text(spec.title, W / 2.0, H - title_h / 2.0, W - 24, 26));
+  if (coloured) {
+    vtkNew<vtkScalarBarActor> bar;
+    bar->SetLookupTable(colours);
+    bar->SetTitle((spec.colour_label.empty() ? default_colour_label(spec.colouring) : spec.colour_label).c_str());
+    bar->SetNumberOfLabels(5);
+    bar->SetLabelFormat("%-#7.3g");
+    bar->SetMaximumWidthInPixels(bar_w - 30);
+    bar->SetPosition(static_cast<double>(cols * w + 10) / W, 0.1);
+    bar->SetWidth(static_cast<double>(bar_w - 20) / W);
+    bar->SetHeight(0.8);
+    bar->UnconstrainedFontSizeOn();
+    for (vtkTextProperty* p : {bar->GetTitleTextProperty(), bar->GetLabelTextProperty()}) {
+      p->SetColor(0.1, 0.1, 0.1);
+      p->SetFontSize(15);
+      p->ItalicOff();
+      p->ShadowOff();
+      p->BoldOff();
+    }
+    annotations->AddActor2D(bar);
+  }
+  window->Render();
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  if (transparent) grab->SetInputBufferTypeToRGBA();
+  grab->ReadFrontBufferOff();
+  grab->Update();
+  const auto tmp = temporary_sibling(png_path);
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetFileName(tmp.c_str());
+  writer->SetInputConnection(grab->GetOutputPort());
+  writer->Write();
+  if (writer->GetErrorCode() != 0 || !std::filesystem::exists(tmp)) {
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    throw OutputError(png_path + ": could not write the PNG");
+  }
+  commit_path(tmp, png_path);
+}
+
+}  // namespace fairshape::render

@@ -1,0 +1,38 @@
+// A figure: one or more panels side by side (an input panel, result panels), one camera and
+// one colour range shared by all of them, a title, a label per panel and a colour bar, written
+// as one PNG. Two lights (a key and a fill) shade every panel alike.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "render/camera.h"
+#include "render/scene.h"
+
+namespace fairshape::render {
+
+enum class Background { White, Transparent };
+const NameTable<Background>& background_names();  // white | transparent
+
+struct FigureSpec {
+  std::vector<std::string> panels;  // load_render_source specs, in reading order
+  std::vector<std::string> labels;  // one per panel, or none
+  std::string rest;                 // an input panel before them, uncoloured (e.g. the rest shape)
+  std::string rest_label = "input";
+  std::string title;
+  SourceChoice choice;
+  Colouring colouring;
+  std::string colour_label;  // the colour bar's label (default: the array and component)
+  std::optional<std::pair<double, double>> range;  // default: over every panel
+  SurfaceStyle style;
+  ViewSpec view;
+  int panel_width = 1200, panel_height = 900, columns = 0;  // 0: one row
+  Background background = Background::White;
+};
+
+//! \throw InvalidInput / IOError naming the input or the option; nothing is written then.
+void render_figure(const FigureSpec& spec, const std::string& png_path);
+
+}  // namespace fairshape::render

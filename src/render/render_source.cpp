@@ -1,0 +1,165 @@
+#include "render/render_source.h"
+
+#include <vtkCellArray.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <vector>
+
+#include "core/error.h"
+#include "core/input_file.h"
+#include "io/csv.h"
+#include "io/mesh_io.h"
+#include "io/vtk_convert.h"
+#include "io/vtk_io.h"
+
+namespace fairshape::render {
+namespace fs = std::filesystem;
+namespace {
+
+int parse_index(const std::string& text, const std::string& what) {
+  if (text.empty() || text.size() > 9 || text.find_first_not_of("0123456789") != std::string::npos)
+    throw InvalidInput(what + ": '" + text + "' is not a number (0, 1, ...)");
+  return std::stoi(text);
+}
+
+// `wanted` of `count` items (-1: the last).
+int pick(int wanted, int count, const std::string& path, const std::string& what) {
+  if (count == 0) throw InvalidInput(path + ": holds no " + what);
+  if (wanted < 0) return count - 1;
+  if (wanted >= count)
+    throw InvalidInput(path + ": no " + what + " " + std::to_string(wanted) + " (it has " + what + "s 0.." +
+                       std::to_string(count - 1) + ")");
+  return wanted;
+}
+
+vtkSmartPointer<vtkPolyData> curve_polydata(const Polyline& c) {
+  auto pd = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> pts;
+  for (int i = 0; i < c.n_points(); ++i) pts->InsertNextPoint(c.points(i, 0), c.points(i, 1), c.points(i, 2));
+  pd->SetPoints(pts);
+  vtkNew<vtkCellArray> lines;
+  lines->InsertNextCell(c.closed ? c.n_points() + 1 : c.n_points());
+  for (int i = 0; i < c.n_points(); ++i) lines->InsertCellPoint(i);
+  if (c.closed) lines->InsertCellPoint(0);
+  pd->SetLines(lines);
+  return pd;
+}
+
+// A mesh file, or an OBJ holding only polylines (a curve run's output).
+vtkSmartPointer<vtkPolyData> load_geometry_file(const std::string& path) {
+  const std::string ext = fs::path(path).extension().string();
+  if (ext == ".vtp") return io::internal::read_checked_polydata(path);
+  if (ext == ".obj") {
+    const MeshFile f = read_mesh_file(path);
+    if (f.faces.empty() && !f.lines.empty()) return curve_polydata(read_polyline(path));
+  }
+  if (ext != ".obj" && ext != ".off" && ext != ".ply")
+    throw IOError(path + ": cannot render '" + ext + "' (valid: .vtp, .vtm, .pvd, .obj, .off, .ply, or a result folder)");
+  return io::internal::to_polydata(read_mesh(path), path);
+}
+
+// The (time, file) entries of a ParaView collection, files relative to it.
+std::vector<std::string> pvd_files(const std::string& path) {
+  const std::string text = read_regular_file(path, 16u << 20);  // a collection is a short list
+  std::vector<std::string> files;
+  for (std::size_t pos = text.find("<DataSet"); pos != std::string::npos; pos = text.find("<DataSet", pos + 1)) {
+    const std::size_t end = text.find('>', pos);
+    const std::size_t f = text.find("file=\"", pos);
+    if (end == std::string::npos || f == std::string::npos || f > end) throw InvalidInput(path + ": a DataSet without file=");
+    const std::size_t close = text.find('"', f + 6);
+    files.push_back((fs::path(path).parent_path() / text.substr(f + 6, close - f - 6)).string());
+  }
+  return files;
+}
+
+// run_id column of a result folder's runs.csv.
+std::vector<std::string> run_ids(const fs::path& dir) {
+  std::vector<std::string> ids;
+  if (!fs::exists(dir / "runs.csv")) return ids;
+  const CsvTable t = read_csv((dir / "runs.csv").string(), true);
+  const int col = t.column("run_id");
+  if (col < 0) return ids;
+  for (const auto& row : t.rows) ids.push_back(row[static_cast<std::size_t>(col)]);
+  return ids;
+}
+
+// The geometry a run left: its result .vtp, a curve run's last final stage, or final.obj.
+RenderSource run_source(const fs::path& dir, std::string run) {
+  const std::vector<std::string> ids = run_ids(dir);
+  if (run.empty()) {
+    if (ids.size() > 1) {
+      std::string list;
+      for (std::size_t k = 0; k < std::min<std::size_t>(ids.size(), 8); ++k) list.append(k ? ", " : "").append(ids[k]);
+      throw InvalidInput(dir.string() + ": holds " + std::to_string(ids.size()) + " runs; name one with --run ID or " +
+                         dir.string() + "@ID (" + list + (ids.size() > 8 ? ", ..." : "") + ")");
+    }
+    if (ids.size() == 1) run = ids.front();
+  } else if (!ids.empty() && std::find(ids.begin(), ids.end(), run) == ids.end()) {
+    throw InvalidInput(dir.string() + ": no run '" + run + "' in its runs.csv");
+  }
+  const fs::path vtk = dir / "vtk";
+  std::vector<fs::path> candidates{vtk / (run + ".vtp")};
+  std::vector<fs::path> curve_finals;
+  if (fs::is_directory(vtk))
+    for (const auto& e : fs::directory_iterator(vtk)) {
+      const std::string name = e.path().filename().string();
+      if (name.rfind(run + "_edit", 0) == 0 && name.size() > 10 && name.substr(name.size() - 10) == "_final.vtp")
+        curve_finals.push_back(e.path());
+    }
+  std::sort(curve_finals.begin(), curve_finals.end());
+  if (!curve_finals.empty()) candidates.push_back(curve_finals.back());
+  candidates.push_back(dir / "final" / (run + ".obj"));
+  candidates.push_back(dir / "final.obj");
+  for (const fs::path& c : candidates)
+    if (!run.empty() || c == dir / "final.obj")
+      if (fs::is_regular_file(c)) {
+        RenderSource s{c.string(), load_geometry_file(c.string()), ""};
+        const fs::path levels = vtk / (run + "_levels.vtm");
+        if (fs::is_regular_file(levels)) s.levels_path = levels.string();
+        return s;
+      }
+  throw IOError(dir.string() + ": no geometry for run '" + run + "' (looked for vtk/<run>.vtp, a curve's final stage, "
+                "final/<run>.obj and final.obj)");
+}
+
+}  // namespace
+
+vtkSmartPointer<vtkPolyData> load_level(const std::string& levels_path, int level) {
+  const std::vector<SurfaceMesh> blocks = read_vtm(levels_path);
+  const int b = pick(level, static_cast<int>(blocks.size()), levels_path, "level");
+  return io::internal::to_polydata(blocks[static_cast<std::size_t>(b)], levels_path);
+}
+
+RenderSource load_render_source(const std::string& spec, const SourceChoice& choice) {
+  std::string path = spec, selector;
+  SourceChoice c = choice;
+  if (const std::size_t at = spec.rfind('@'); at != std::string::npos && !fs::exists(spec)) {
+    path = spec.substr(0, at);
+    selector = spec.substr(at + 1);
+  }
+  if (fs::is_directory(path)) {
+    if (!selector.empty()) c.run = selector;
+    return run_source(path, c.run);
+  }
+  if (!fs::exists(path)) throw IOError(path + ": no such file or folder");
+  const std::string ext = fs::path(path).extension().string();
+  if (ext == ".vtm") {
+    if (!selector.empty()) c.block = parse_index(selector, path + "@");
+    return {path, load_level(path, c.block), path};
+  }
+  if (ext == ".pvd") {
+    if (!selector.empty()) c.step = parse_index(selector, path + "@");
+    const std::vector<std::string> files = pvd_files(path);
+    const std::string& file = files[static_cast<std::size_t>(pick(c.step, static_cast<int>(files.size()), path, "step"))];
+    return {file, load_geometry_file(file), ""};
+  }
+  if (!selector.empty())
+    throw InvalidInput(spec + ": '@" + selector + "' chooses a block of a .vtm, a step of a .pvd or a run of a folder");
+  return {path, load_geometry_file(path), ""};
+}
+
+}  // namespace fairshape::render

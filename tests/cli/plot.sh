@@ -1,0 +1,41 @@
+# scripts/plot.py: a categorical x draws every row, a table beside runs.csv is joined with it
+# (hue by a swept parameter), runs are labelled by their parameters, and a plot with nothing
+# to draw is refused without writing a file.
+source "$(dirname "$0")/lib.sh"
+S="$SCRATCH"
+P=(/usr/bin/python3 scripts/plot.py)
+"$FS" run configs/smoke/cow_nose_pull.yaml --out "$S/sweep" --set 'sweep.solver.type=[cholesky, conjugate_gradient, sor]' \
+  --set 'sweep.solver.tolerance=[1.0e-6, 1.0e-9]' 2>/dev/null || true  # sor may stop at its cap: a row all the same
+rows=$(data_rows "$S/sweep/runs.csv")
+[ "$rows" -eq 6 ] || fail "the sweep wrote $rows rows, expected 6"
+# The README's first plot: a categorical x with --kind scatter.
+"${P[@]}" "$S/sweep/runs.csv" --x solver.type --y solve_s --hue implementation --logy --kind scatter \
+  -o "$S/cat.png" --data "$S/cat.csv" > /dev/null || fail "categorical x"
+[ "$(data_rows "$S/cat.csv")" -eq "$rows" ] || fail "a categorical plot drew $(data_rows "$S/cat.csv") of $rows rows"
+for kind in bar box; do
+  "${P[@]}" "$S/sweep/runs.csv" --x solver.type --y time_s --kind $kind -o "$S/$kind.png" > /dev/null || fail "--kind $kind"
+done
+# iterations.csv has no solver.tolerance column: it comes from runs.csv, by run_id.
+"${P[@]}" "$S/sweep/iterations.csv" --x iteration --y residual --hue solver.tolerance --logy -o "$S/it.png" \
+  --data "$S/it.csv" > /dev/null || fail "hue by a runs.csv column"
+$PY - "$S/it.csv" "$S/sweep/runs.csv" <<'PYEOF'
+import csv, sys
+series = {r["series"] for r in csv.DictReader(open(sys.argv[1]))}
+tolerances = {r["solver.tolerance"] for r in csv.DictReader(open(sys.argv[2])) if r["solver.type"] != "cholesky"}
+assert series == tolerances and len(series) == 2, (series, tolerances)
+PYEOF
+# Without --hue, one series per run, named by what varies between runs, never by the hash.
+"${P[@]}" "$S/sweep/iterations.csv" --x iteration --y residual --logy -o "$S/runs.png" --data "$S/runs.csv" > /dev/null ||
+  fail "runs labelled by parameters"
+$PY - "$S/runs.csv" <<'PYEOF'
+import csv, sys
+series = {r["series"] for r in csv.DictReader(open(sys.argv[1]))}
+assert all("solver.tolerance=" in s and "solver.type=" in s for s in series), series
+PYEOF
+expect_error 1 "nothing to plot: every one of $rows points was left out ($rows y empty or not a number)" -- \
+  "${P[@]}" "$S/sweep/runs.csv" --x solver.type --y message -o "$S/none.png"
+expect_error 1 "no row has solver.type=lu" -- "${P[@]}" "$S/sweep/runs.csv" --x n_dofs --y solve_s \
+  --filter solver.type=lu -o "$S/none.png"
+expect_error 1 "no column 'nope'" -- "${P[@]}" "$S/sweep/runs.csv" --x nope --y solve_s -o "$S/none.png"
+[ ! -e "$S/none.png" ] || fail "a refused plot wrote a file"
+echo "plot: ok"

@@ -95,6 +95,7 @@ int cmd_render(const RenderArgs& a, int argc, char** argv) {
     throw IOError("render: no DISPLAY and xvfb-run is not installed (Debian package 'xvfb')");
   }
   render::FigureSpec spec = a.spec;
+  spec.overlays = !a.no_overlays;
   spec.panels.assign(a.files.begin(), a.files.end() - 1);
   const std::string& png = a.files.back();
   if (fs::path(png).extension() != ".png")

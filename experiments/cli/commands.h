@@ -18,6 +18,7 @@ struct RenderArgs {
   render::FigureSpec spec;
   std::string view = "iso", up = "y", component, map, background = "white";
   std::vector<double> range, focus;
+  bool no_overlays = false;
 };
 struct SubdivideArgs {
   std::string input, output, scheme, boundary = "edge-only", weights = "loop", implementation = "optimized";

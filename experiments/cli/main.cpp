@@ -94,6 +94,13 @@ int main(int argc, char** argv) {
   c_ren->add_option("--height", fig.panel_height, "panel height, pixels")->capture_default_str()->check(CLI::Range(16, 8192));
   c_ren->add_option("--background", ren.background, "white or transparent")->capture_default_str()
       ->check(CLI::IsMember(fairshape::render::background_names().names()));
+  c_ren->add_option("--overlay", fig.extra_overlays,
+                    "draw this over every panel: a .vtp, or an .obj of curves (tubes) or points (spheres)");
+  c_ren->add_flag("--no-overlays", ren.no_overlays,
+                  "leave out a run's constraints (drawn by default from vtk/<run>_constraints.vtp: fixed vertices grey,\n"
+                  "handles red with an arrow from where they started, normal targets magenta arrows, curves orange)");
+  c_ren->add_option("--camera-out", fig.camera_path,
+                    "also write the camera and each panel's world-to-pixel projection (JSON)");
   c_ren->add_flag("--edges", fig.style.edges, "draw the rendered mesh's edges");
   c_ren->add_flag("--flat", fig.style.flat, "facet shading instead of smooth normals");
   c_ren->add_option("--control-level", fig.style.control_level,

@@ -34,9 +34,18 @@ struct NormalConstraint {
   std::string label;
 };
 
+// A curve constraint's chain of snapped vertices, in order along the curve (for drawing it).
+struct PlacedCurve {
+  int level = 0;
+  std::vector<int> vertices;
+  bool closed = false;
+  std::string label;
+};
+
 struct DesignConstraints {
   std::vector<PointConstraint> points;
   std::vector<NormalConstraint> normals;
+  std::vector<PlacedCurve> curves;  // their vertices are also in `points`
 };
 
 //! The meshes of a hierarchy, by level (0 = base .. finest).

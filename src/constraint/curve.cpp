@@ -61,6 +61,7 @@ class CurveConstraint : public Constraint {
         const Vec3 target = chain->on_curve[i] + displacement(chain->source[i], centroid);
         out.points.push_back({level, chain->vertices[i], false, target - m.position(chain->vertices[i]), who_});
       }
+      out.curves.push_back({level, chain->vertices, o_.closed, who_});
       return;
     }
     throw InvalidInput(who_ + ": no level from " + std::to_string(first) + " to " + std::to_string(finest) +

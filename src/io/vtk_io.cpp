@@ -312,20 +312,31 @@ void write_vtp(const SurfaceMesh& mesh, const std::string& path) {
   write_polydata_atomically(to_polydata(mesh, path), path);
 }
 
-void write_vtp(const Polyline& curve, const DataArrays& point_data, const std::string& path) {
+void write_vtp(const MatrixX3& points, const std::vector<std::vector<int>>& polylines, const DataArrays& point_data,
+               const std::string& path) {
   vtkNew<vtkPolyData> pd;
-  pd->SetPoints(to_vtk_points(curve.points));
+  pd->SetPoints(to_vtk_points(points));
   vtkNew<vtkCellArray> lines;
-  const int n = curve.n_points();
-  lines->InsertNextCell(curve.closed ? n + 1 : n);
-  for (int i = 0; i < n; ++i) lines->InsertCellPoint(i);
-  if (curve.closed && n > 0) lines->InsertCellPoint(0);
+  for (const auto& line : polylines) {
+    lines->InsertNextCell(static_cast<vtkIdType>(line.size()));
+    for (int i : line) {
+      FAIRSHAPE_ASSERT(i >= 0 && i < points.rows(), "a polyline through a point that does not exist");
+      lines->InsertCellPoint(i);
+    }
+  }
   pd->SetLines(lines);
   for (const auto& [name, m] : point_data) {
-    check_rows(path, name, m.rows(), n);
+    check_rows(path, name, m.rows(), points.rows());
     pd->GetPointData()->AddArray(to_vtk_array(name, m));
   }
   write_polydata_atomically(pd, path);
+}
+
+void write_vtp(const Polyline& curve, const DataArrays& point_data, const std::string& path) {
+  std::vector<int> line(static_cast<std::size_t>(curve.n_points()));
+  for (int i = 0; i < curve.n_points(); ++i) line[static_cast<std::size_t>(i)] = i;
+  if (curve.closed && curve.n_points() > 0) line.push_back(0);
+  write_vtp(curve.points, {line}, point_data, path);
 }
 
 SurfaceMesh read_vtp(const std::string& path) { return from_polydata(io::internal::read_checked_polydata(path), path); }

@@ -18,6 +18,11 @@ using DataArrays = std::map<std::string, Eigen::MatrixXd>;  // name -> rows x co
 void write_vtp(const SurfaceMesh& mesh, const std::string& path);
 void write_vtp(const Polyline& curve, const DataArrays& point_data, const std::string& path);
 
+//! Points, with polylines through some of them (indices into `points`) and point arrays: what
+//! overlays are made of (constraint points, curves).
+void write_vtp(const MatrixX3& points, const std::vector<std::vector<int>>& polylines, const DataArrays& point_data,
+               const std::string& path);
+
 //! Reads a .vtp written by any VTK program: polygons and their point/cell data arrays.
 SurfaceMesh read_vtp(const std::string& path);
 

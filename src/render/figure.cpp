@@ -1,6 +1,7 @@
 #include "render/figure.h"
 
 #include <vtkLight.h>
+#include <vtkMatrix4x4.h>
 #include <vtkNew.h>
 #include <vtkPNGWriter.h>
 #include <vtkRenderWindow.h>
@@ -11,12 +12,15 @@
 #include <vtkWindowToImageFilter.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 
 #include "core/atomic_file.h"
+#include "io/json_io.h"
 #include "core/error.h"
 #include "render/display.h"
+#include "render/overlay.h"
 
 namespace fairshape::render {
 
@@ -71,6 +75,28 @@ std::string default_colour_label(const Colouring& c) {
   if (!c.component_given || c.component == Component::Magnitude) return c.array == "displacement" ? "|displacement|" : c.array;
   if (c.component == Component::Normal) return "normal " + c.array;
   return c.array + " " + std::string(component_names().name(c.component));
+}
+
+// The camera, and per panel the matrix taking homogeneous world points to normalized device
+// coordinates ([-1, 1]², x right, y up) of that panel's rectangle.
+void write_camera(vtkCamera* cam, const std::vector<std::array<int, 4>>& panels, int W, int H, const std::string& path) {
+  nlohmann::json j;
+  double v[3];
+  cam->GetPosition(v);
+  j["position"] = {v[0], v[1], v[2]};
+  cam->GetFocalPoint(v);
+  j["focal_point"] = {v[0], v[1], v[2]};
+  cam->GetViewUp(v);
+  j["view_up"] = {v[0], v[1], v[2]};
+  j["view_angle_deg"] = cam->GetViewAngle();
+  j["image"] = {W, H};
+  for (const auto& p : panels) {
+    vtkMatrix4x4* m = cam->GetCompositeProjectionTransformMatrix(static_cast<double>(p[2]) / p[3], -1, 1);
+    nlohmann::json rows = nlohmann::json::array();
+    for (int r = 0; r < 4; ++r) rows.push_back({m->GetElement(r, 0), m->GetElement(r, 1), m->GetElement(r, 2), m->GetElement(r, 3)});
+    j["panels"].push_back({{"pixels_from_bottom_left", {p[0], p[1], p[2], p[3]}}, {"world_to_ndc", rows}});
+  }
+  write_json(j, path);
 }
 
 }  // namespace
@@ -148,12 +174,14 @@ void render_figure(const FigureSpec& spec, const std::string& png_path) {
   annotations->SetViewport(0, 0, 1, 1);
   annotations->PreserveColorBufferOn();  // text over the panels, not over a cleared window
   window->AddRenderer(annotations);
+  std::vector<std::array<int, 4>> panels;  // x, y (from the bottom), width, height in pixels
   for (int i = 0; i < n; ++i) {
     const int col = i % cols, row = i / cols;
     const double x0 = static_cast<double>(col * w) / W, x1 = static_cast<double>((col + 1) * w) / W;
     const double top = H - title_h - row * (h + label_h) - label_h;  // the panel's top edge, in pixels
     vtkNew<vtkRenderer> r;
     r->SetViewport(x0, (top - h) / H, x1, top / H);
+    panels.push_back({col * w, static_cast<int>(top) - h, w, h});
     r->SetBackground(1, 1, 1);
     r->SetBackgroundAlpha(transparent ? 0.0 : 1.0);
     r->SetActiveCamera(camera);
@@ -161,6 +189,11 @@ void render_figure(const FigureSpec& spec, const std::string& png_path) {
     const auto k = static_cast<std::size_t>(i);
     for (const auto& prop : panel_props(sources[k], scalars[k], scalars[k] ? colours.Get() : nullptr, lo, hi, spec.style, diagonal))
       r->AddViewProp(prop);
+    const RenderSource& src = sources[k];
+    std::vector<std::string> overlays = spec.extra_overlays;
+    if (spec.overlays && !src.overlay_path.empty()) overlays.push_back(src.overlay_path);
+    for (const std::string& o : overlays)
+      for (const auto& prop : overlay_props(load_overlay(o), diagonal)) r->AddViewProp(prop);
     window->AddRenderer(r);
     if (i == 0) {
       ViewSpec view = spec.view;
@@ -191,6 +224,7 @@ void render_figure(const FigureSpec& spec, const std::string& png_path) {
     annotations->AddActor2D(bar);
   }
   window->Render();
+  if (!spec.camera_path.empty()) write_camera(camera, panels, W, H, spec.camera_path);
   vtkNew<vtkWindowToImageFilter> grab;
   grab->SetInput(window);
   if (transparent) grab->SetInputBufferTypeToRGBA();

@@ -27,9 +27,14 @@ struct FigureSpec {
   std::string colour_label;  // the colour bar's label (default: the array and component)
   std::optional<std::pair<double, double>> range;  // default: over every panel
   SurfaceStyle style;
+  bool overlays = true;                  // a run's constraints overlay, when it has one
+  std::vector<std::string> extra_overlays;  // drawn over every panel (e.g. feature curves)
   ViewSpec view;
   int panel_width = 1200, panel_height = 900, columns = 0;  // 0: one row
   Background background = Background::White;
+  //! Non-empty: also write the camera and each panel's world-to-pixel projection there (JSON),
+  //! to reuse the view or to find a point in the image.
+  std::string camera_path;
 };
 
 //! \throw InvalidInput / IOError naming the input or the option; nothing is written then.

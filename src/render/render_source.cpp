@@ -117,9 +117,10 @@ RenderSource run_source(const fs::path& dir, std::string run) {
   for (const fs::path& c : candidates)
     if (!run.empty() || c == dir / "final.obj")
       if (fs::is_regular_file(c)) {
-        RenderSource s{c.string(), load_geometry_file(c.string()), ""};
-        const fs::path levels = vtk / (run + "_levels.vtm");
+        RenderSource s{c.string(), load_geometry_file(c.string()), "", ""};
+        const fs::path levels = vtk / (run + "_levels.vtm"), overlay = vtk / (run + "_constraints.vtp");
         if (fs::is_regular_file(levels)) s.levels_path = levels.string();
+        if (fs::is_regular_file(overlay)) s.overlay_path = overlay.string();
         return s;
       }
   throw IOError(dir.string() + ": no geometry for run '" + run + "' (looked for vtk/<run>.vtp, a curve's final stage, "
@@ -127,6 +128,20 @@ RenderSource run_source(const fs::path& dir, std::string run) {
 }
 
 }  // namespace
+
+vtkSmartPointer<vtkPolyData> load_overlay(const std::string& path) {
+  const std::string ext = fs::path(path).extension().string();
+  if (ext == ".vtp") return io::internal::read_checked_polydata(path);
+  if (ext != ".obj") throw IOError(path + ": an overlay is a .vtp or an .obj of polylines or points");
+  const MeshFile f = read_mesh_file(path);
+  if (!f.lines.empty()) return curve_polydata(read_polyline(path));
+  if (f.vertices.rows() == 0) throw InvalidInput(path + ": an overlay with no points");
+  auto pd = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> pts;
+  for (Eigen::Index i = 0; i < f.vertices.rows(); ++i) pts->InsertNextPoint(f.vertices(i, 0), f.vertices(i, 1), f.vertices(i, 2));
+  pd->SetPoints(pts);
+  return pd;
+}
 
 vtkSmartPointer<vtkPolyData> load_level(const std::string& levels_path, int level) {
   const std::vector<SurfaceMesh> blocks = read_vtm(levels_path);
@@ -149,17 +164,17 @@ RenderSource load_render_source(const std::string& spec, const SourceChoice& cho
   const std::string ext = fs::path(path).extension().string();
   if (ext == ".vtm") {
     if (!selector.empty()) c.block = parse_index(selector, path + "@");
-    return {path, load_level(path, c.block), path};
+    return {path, load_level(path, c.block), path, ""};
   }
   if (ext == ".pvd") {
     if (!selector.empty()) c.step = parse_index(selector, path + "@");
     const std::vector<std::string> files = pvd_files(path);
     const std::string& file = files[static_cast<std::size_t>(pick(c.step, static_cast<int>(files.size()), path, "step"))];
-    return {file, load_geometry_file(file), ""};
+    return {file, load_geometry_file(file), "", ""};
   }
   if (!selector.empty())
     throw InvalidInput(spec + ": '@" + selector + "' chooses a block of a .vtm, a step of a .pvd or a run of a folder");
-  return {path, load_geometry_file(path), ""};
+  return {path, load_geometry_file(path), "", ""};
 }
 
 }  // namespace fairshape::render

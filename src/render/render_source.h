@@ -21,6 +21,7 @@ struct RenderSource {
   std::string path;                    // the file the geometry came from
   vtkSmartPointer<vtkPolyData> data;   // polygons, or lines for a curve
   std::string levels_path;             // the hierarchy it belongs to (.vtm), when there is one
+  std::string overlay_path;            // a run's vtk/<run>_constraints.vtp, when there is one
   bool curve() const { return data->GetNumberOfPolys() == 0 && data->GetNumberOfLines() > 0; }
 };
 
@@ -29,6 +30,9 @@ struct RenderSource {
 //! id: it is refused, listing them, rather than one guessed.
 //! \throw IOError / InvalidInput naming the file and the valid choices.
 RenderSource load_render_source(const std::string& spec, const SourceChoice& choice);
+
+//! An overlay: a .vtp (a run's constraints) or an OBJ of polylines or points.
+vtkSmartPointer<vtkPolyData> load_overlay(const std::string& path);
 
 //! Level `level` of the hierarchy `levels_path` (.vtm), for drawing a control mesh.
 vtkSmartPointer<vtkPolyData> load_level(const std::string& levels_path, int level);

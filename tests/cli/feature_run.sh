@@ -5,7 +5,8 @@ C=configs/khodakovsky-schroder/fig11.yaml
 "$FS" run $C --out "$SCRATCH/fig11" --set input.levels=3 2>/dev/null || fail "fig11 failed"
 for f in runs.csv final.obj run.json; do [ -s "$SCRATCH/fig11/$f" ] || fail "missing $f"; done
 for c in time_s vertices_moved max_displacement triangles_adaptive; do head -1 "$SCRATCH/fig11/runs.csv" | grep -q "$c" || fail "runs.csv lacks $c"; done
-[ "$(ls "$SCRATCH/fig11/vtk/"*.vtp | wc -l)" -eq 1 ] || fail "expected one VTK"
+[ "$(ls "$SCRATCH/fig11/vtk/"*.vtp | wc -l)" -eq 2 ] || fail "expected the result's VTK and its curves overlay"
+[ -s "$SCRATCH/fig11/vtk/$(sed -n 2p "$SCRATCH/fig11/runs.csv" | cut -d, -f1)_constraints.vtp" ] || fail "no curves overlay"
 grep -q "displacement_norm" "$SCRATCH/fig11/vtk/"*.vtp || fail "VTK lacks the displacement array"
 [ "$(ls "$SCRATCH/fig11/curves/"*.obj | wc -l)" -eq 3 ] || fail "expected one base curve per feature"
 [ -s "$SCRATCH/fig11/adaptive/"*.obj ] || fail "missing the adaptive mesh"

@@ -66,6 +66,31 @@ plain = mpimg.imread(f"{d}/plain.png")
 assert plain.shape == (400, 400, 4), f"no colour bar and an alpha channel expected, got {plain.shape}"
 assert plain[0, 0, 3] == 0 and plain[200, 200, 3] == 1, "transparent background, opaque model"
 PYEOF
+# An overlay lands where its point is: project it with the camera the render wrote.
+printf 'v 0.0 0.5 0.0\n' > "$S/point.obj"
+"$FS" render "$S/ridge_groove.vtp" "$S/overlay.png" "${TOP[@]}" --overlay "$S/point.obj" --camera-out "$S/camera.json" ||
+  fail "render with an overlay"
+$PY - "$S" <<'PYEOF'
+import json, sys
+import numpy as np
+import matplotlib.image as mpimg
+d = sys.argv[1]
+cam = json.load(open(f"{d}/camera.json"))
+img = mpimg.imread(f"{d}/overlay.png")[:, :, :3]
+W, H = cam["image"]
+assert img.shape[:2] == (H, W)
+panel = cam["panels"][0]
+x0, y0, w, h = panel["pixels_from_bottom_left"]
+def pixel(p):
+    q = np.array(panel["world_to_ndc"]) @ np.array([*p, 1.0])
+    ndc = q[:2] / q[3]
+    return int(round(H - 1 - (y0 + (ndc[1] + 1) / 2 * h))), int(round(x0 + (ndc[0] + 1) / 2 * w))
+r, c = pixel((0.0, 0.5, 0.0))
+red = img[r, c]
+assert red[0] > 0.55 and red[1] < 0.35 and red[2] < 0.35, f"pixel {r, c} under the overlay point is {red}"
+r2, c2 = pixel((0.0, -0.5, 0.0))  # elsewhere on the grid: its plain colour
+assert img[r2, c2][1] > 0.45, f"plain surface expected at {r2, c2}, got {img[r2, c2]}"
+PYEOF
 # Two panels share one range: the half-height grid is paler than the full one beside it, not
 # stretched to the same colours.
 "$FS" render "$S/half.vtp" "$S/ridge_groove.vtp" "$S/pair.png" --array displacement "${TOP[@]}" --label half --label full ||
@@ -103,6 +128,17 @@ expect_error 2 "holds 2 runs; name one with --run ID" -- "$FS" render "$S/run" "
 id=$(sed -n 2p "$S/run/runs.csv" | cut -d, -f1)
 "$FS" render "$S/run" "$S/final.png" --run "$id" --array displacement --width 320 --height 240 --title "demo" \
   --label "run $id" --rest data/cow.off 2>"$S/log" || { cat "$S/log" >&2; fail "render of a run"; }
+# The run wrote where its constraints are; a render draws them (its handle red) unless told not to.
+[ -s "$S/run/vtk/${id}_constraints.vtp" ] || fail "the run wrote no constraints overlay"
+"$FS" render "$S/run@$id" "$S/with.png" --view front --width 400 --height 300 2>/dev/null || fail "render with overlays"
+"$FS" render "$S/run@$id" "$S/without.png" --view front --width 400 --height 300 --no-overlays 2>/dev/null ||
+  fail "render without overlays"
+$PY - "$S/with.png" "$S/without.png" <<'PYEOF'
+import sys
+import matplotlib.image as mpimg
+red = lambda f: (lambda i: ((i[:, :, 0] > 0.6) & (i[:, :, 1] < 0.3) & (i[:, :, 2] < 0.3)).sum())(mpimg.imread(f)[:, :, :3])
+assert red(sys.argv[1]) > 20 and red(sys.argv[2]) == 0, (red(sys.argv[1]), red(sys.argv[2]))
+PYEOF
 expect_error 2 "no run 'nope'" -- "$FS" render "$S/run@nope" "$S/x.png"
 expect_error 2 "available: constrained, displacement, displacement_norm" -- \
   "$FS" render "$S/run@$id" "$S/x.png" --array curvature

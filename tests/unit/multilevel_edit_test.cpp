@@ -40,7 +40,7 @@ EditProblem problem_at(int level) {
   EditProblem p;
   p.H = stretch_bend_hessian(hierarchy().mesh(level), {0.1, 1.0}, Backend::Optimized);
   p.g = Eigen::MatrixXd::Zero(p.H.rows(), 3);
-  p.constraints = propagate_constraints(hierarchy(), level, DesignConstraints{designer_constraints(), {}});
+  p.constraints = propagate_constraints(hierarchy(), level, DesignConstraints{designer_constraints(), {}, {}});
   return p;
 }
 

@@ -8,6 +8,7 @@
 #include "core/memory.h"
 #include "core/timer.h"
 #include "design/edit_assembly.h"
+#include "experiment/kinds/surface_edit/constraint_overlay.h"
 #include "experiment/kinds/surface_edit/drag_run.h"
 #include "experiment/metric_format.h"
 #include "io/mesh_io.h"
@@ -264,6 +265,8 @@ MetricRow execute_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
       row["detail_change"] = std::isnan(change) ? "" : num(change);
       write_geometry(spec, out, result_mesh(rest.mesh(rest.levels()), finest.positions(), rest.levels(), placed),
                      reanalysed);
+      if (spec.output.vtk != VtkPolicy::None)
+        write_constraint_overlay(placed, edited, (fs::path(out.dir) / "vtk" / (out.run_id + "_constraints.vtp")).string());
       write_ladder(spec, out, rest, ladder, coarse, level_solutions);
     }
   } catch (const SolverError& e) {

@@ -69,7 +69,7 @@ def ladder_panels(a):
     if not files:
         sys.exit(f"panels: no ladder levels of run {a.ladder} in {vtk}")
     labels = [f"level {f[len(a.ladder + '_ladder_level'):-len('.vtp')]}: control mesh" for f in files]
-    args = ["--array", "constrained", "--colour-label", "reached by the constraints", "--edges", "--flat"]
+    args = ["--array", "constrained", "--colour-label", "reached by the constraints", "--flat"]
     return [os.path.join(vtk, f) for f in files], labels, args
 
 
@@ -82,7 +82,9 @@ def run_panels(a):
         sys.exit(f"panels: runs {failed} did not finish; see {a.run_dir}/runs.csv")
     inputs = [f"{a.run_dir}@{r['run_id']}" for r in rows]
     labels = [a.label.format(**fields(r)) for r in rows]
-    args = ["--array", "displacement", "--colour-label", "|displacement| (model units)"]
+    args = ["--array", "displacement"]
+    if "--component" not in a.render:
+        args += ["--colour-label", "|displacement|"]
     if a.rest:
         args += ["--rest", a.rest, "--rest-label", "before"]
     return inputs, labels, args

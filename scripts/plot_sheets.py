@@ -30,12 +30,8 @@ from matplotlib.collections import PatchCollection  # noqa: E402
 from matplotlib.patches import Rectangle  # noqa: E402
 
 BIN = os.path.join(os.path.dirname(__file__), "..", "build", "bin", "fairshape")
-VIEW = ["--view", "front", "--azimuth", "25", "--elevation", "40", "--width", "640", "--height", "480", "--array", "displacement_norm"]
-
-
-def render(vtp, png):
-    subprocess.run([BIN, "render", vtp, png] + VIEW, check=True, stdout=subprocess.DEVNULL)
-    return mpimg.imread(png)
+VIEW = ["--view", "front", "--azimuth", "25", "--elevation", "40", "--width", "640", "--height", "480",
+        "--array", "displacement", "--colour-label", "|displacement|"]
 
 
 def read_csv(path):
@@ -43,22 +39,24 @@ def read_csv(path):
         return list(csv.DictReader(f))
 
 
+def render_panels(vtps, png, labels, title=""):
+    """One `fairshape render` of several sheets: one camera, one colour range, one colour bar."""
+    cmd = [BIN, "render"] + vtps + [png] + VIEW + [x for label in labels for x in ("--label", label)]
+    subprocess.run(cmd + (["--title", title] if title else []), check=True, stdout=subprocess.DEVNULL)
+
+
 def steps_figure(run_dir, out, title, labels):
     steps = read_csv(os.path.join(run_dir, "steps.csv"))
     files = sorted(glob.glob(os.path.join(run_dir, "vtk", "*_step*.vtp")),
                    key=lambda p: int(p.rsplit("_step", 1)[1].split(".")[0]))
-    fig, axes = plt.subplots(1, len(files), figsize=(4.2 * len(files), 3.8), squeeze=False)
-    with tempfile.TemporaryDirectory() as tmp:
-        for k, (ax, vtp) in enumerate(zip(axes[0], files)):
-            ax.imshow(render(vtp, os.path.join(tmp, f"{k}.png")))
-            ax.axis("off")
-            rows = [r for r in steps if r["step"] == str(k)]
-            err = max((float(r["max_constraint_error"]) for r in rows), default=float("nan"))
-            name = labels[k] if k < len(labels) else f"step {k}"
-            ax.set_title(f"{name}\nmax constraint error {err:.1e}", fontsize=10)
-    fig.suptitle(title)
-    fig.tight_layout()
-    fig.savefig(out, dpi=110)
+    names = []
+    for k in range(len(files)):
+        rows = [r for r in steps if r["step"] == str(k)]
+        err = max((float(r["max_constraint_error"]) for r in rows), default=float("nan"))
+        names.append(f"{labels[k] if k < len(labels) else f'step {k}'}: max constraint error {err:.1e}")
+    tmp = out + ".tmp.png"
+    render_panels(files, tmp, names, title)
+    os.replace(tmp, out)
 
 
 def cells_panel(ax, cells, when, vmin, vmax):
@@ -97,7 +95,8 @@ def cells_figure(run_dir, out, title):
     fig.colorbar(pc, ax=axes[1], label="log10 constraint error per cell")
     files = sorted(glob.glob(os.path.join(run_dir, "vtk", "*_step*.vtp")))
     with tempfile.TemporaryDirectory() as tmp:
-        axes[2].imshow(render(files[-1], os.path.join(tmp, "s.png")))
+        render_panels(files[-1:], os.path.join(tmp, "s.png"), [])
+        axes[2].imshow(mpimg.imread(os.path.join(tmp, "s.png")))
     axes[2].axis("off")
     axes[2].set_title("refined surface", fontsize=10)
     fig.suptitle(title)
@@ -112,24 +111,25 @@ def read_obj_vertices(path):
 
 def runs_figure(run_dir, out, title, label, profile_v, spans_v, per_span):
     runs = read_csv(os.path.join(run_dir, "runs.csv"))
-    fig, axes = plt.subplots(1, len(runs) + 1, figsize=(4.2 * (len(runs) + 1), 3.9), squeeze=False)
+    fig, axes = plt.subplots(1, 2, figsize=(4.2 * (len(runs) + 1), 3.9), squeeze=False,
+                             gridspec_kw={"width_ratios": [len(runs), 1]})
     column = int(round(profile_v * per_span))
+    names, vtps = [], []
+    for r in runs:
+        vtps.append(sorted(glob.glob(os.path.join(run_dir, "vtk", r["run_id"] + "_step*.vtp")))[-1])
+        names.append(label.format(**{key.replace(".", "_"): value for key, value in r.items()}))
+        V = read_obj_vertices(os.path.join(run_dir, "final", r["run_id"] + ".obj"))
+        rows = spans_v * per_span + 1
+        line = [V[i * rows + column] for i in range(len(V) // rows)]
+        axes[0][1].plot([x for x, _, _ in line], [z for _, _, z in line], label=names[-1])
     with tempfile.TemporaryDirectory() as tmp:
-        for k, (ax, r) in enumerate(zip(axes[0], runs)):
-            files = sorted(glob.glob(os.path.join(run_dir, "vtk", r["run_id"] + "_step*.vtp")))
-            ax.imshow(render(files[-1], os.path.join(tmp, f"{k}.png")))
-            ax.axis("off")
-            fields = {key.replace(".", "_"): value for key, value in r.items()}
-            name = label.format(**fields)
-            ax.set_title(name, fontsize=10)
-            V = read_obj_vertices(os.path.join(run_dir, "final", r["run_id"] + ".obj"))
-            rows = spans_v * per_span + 1
-            line = [V[i * rows + column] for i in range(len(V) // rows)]
-            axes[0][-1].plot([x for x, _, _ in line], [z for _, _, z in line], label=name)
-    axes[0][-1].set_xlabel("x")
-    axes[0][-1].set_ylabel("z")
-    axes[0][-1].set_title(f"profile along v = {profile_v}", fontsize=10)
-    axes[0][-1].legend(fontsize=7)
+        render_panels(vtps, os.path.join(tmp, "sheets.png"), names)
+        axes[0][0].imshow(mpimg.imread(os.path.join(tmp, "sheets.png")))
+    axes[0][0].axis("off")
+    axes[0][1].set_xlabel("x")
+    axes[0][1].set_ylabel("z")
+    axes[0][1].set_title(f"profile along v = {profile_v}", fontsize=10)
+    axes[0][1].legend(fontsize=7)
     fig.suptitle(title)
     fig.tight_layout()
     fig.savefig(out, dpi=110)

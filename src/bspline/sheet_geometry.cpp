@@ -38,13 +38,13 @@ SurfaceMesh tessellate(const HierarchicalSurface& s, const Eigen::MatrixXd& P, i
   const int nu = s.shape().spans_u * per_span, nv = s.shape().spans_v * per_span;
   const int cols = periodic ? nu : nu + 1;
   MatrixX3 V(cols * (nv + 1), 3);
-  Eigen::MatrixXd displacement(V.rows(), 1);
+  Eigen::MatrixXd displacement(V.rows(), 3);  // from the initial sheet at the same (u, v)
   for (int i = 0; i < cols; ++i)
     for (int j = 0; j <= nv; ++j) {
       const double u = static_cast<double>(i) / per_span, v = static_cast<double>(j) / per_span;
       const Vec3 x = s.position(P, u, v);
       V.row(i * (nv + 1) + j) = x.transpose();
-      displacement(i * (nv + 1) + j) = (x - initial_surface.position(initial_P, u, v)).norm();
+      displacement.row(i * (nv + 1) + j) = (x - initial_surface.position(initial_P, u, v)).transpose();
     }
   PolygonList faces;
   for (int i = 0; i < nu; ++i)
@@ -53,7 +53,8 @@ SurfaceMesh tessellate(const HierarchicalSurface& s, const Eigen::MatrixXd& P, i
       faces.push_back({i * (nv + 1) + j, i1 * (nv + 1) + j, i1 * (nv + 1) + j + 1, i * (nv + 1) + j + 1});
     }
   SurfaceMesh m = SurfaceMesh::from_polygons(V, faces);
-  m.vertex_data["displacement_norm"] = displacement;
+  m.vertex_data["displacement"] = displacement;
+  m.vertex_data["displacement_norm"] = displacement.rowwise().norm();
   return m;
 }
 

@@ -80,7 +80,7 @@ std::vector<vtkSmartPointer<vtkProp>> overlay_props(vtkPolyData* overlay, double
     vtkNew<vtkPolyData> lines;
     lines->SetPoints(overlay->GetPoints());
     lines->SetLines(overlay->GetLines());
-    props.push_back(tubes(lines, 0.004 * d, kCurve));
+    props.push_back(tubes(lines, 0.0018 * d, kCurve));  // thin: fine features stay visible beside it
   }
   vtkDataArray* kind = overlay->GetPointData()->GetArray("kind");
   vtkDataArray* offset = overlay->GetPointData()->GetArray("offset");

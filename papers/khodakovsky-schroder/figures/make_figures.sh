@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Figures 11, 14, 15, 16 and 17 of Khodakovsky & Schröder: runs each config under
 # configs/khodakovsky-schroder/, renders it (scripts/panels.py, VTK offscreen, coloured by the
-# feature displacement) into papers/khodakovsky-schroder/figures/ and keeps its runs.csv in
+# signed normal displacement) into papers/khodakovsky-schroder/figures/ and keeps its runs.csv in
 # papers/khodakovsky-schroder/data/.
 #   bash papers/khodakovsky-schroder/figures/make_figures.sh      (after `make build`)
 set -euo pipefail
@@ -9,14 +9,16 @@ cd "$(dirname "$0")/../../.."
 figs=papers/khodakovsky-schroder/figures
 data=papers/khodakovsky-schroder/data
 out=results/figures/ks
-patch_view=(--view front --elevation 55 --azimuth 10 --zoom 1.35 --width 900 --height 700)
+# The patch is z-up; colour: the displacement along the surface normal (ridges warm, grooves cool).
+patch_view=(--up z --view front --elevation 40 --azimuth 10 --zoom 1.35 --width 900 --height 700 --component normal
+            --colour-label "normal displacement")
 run() { build/bin/fairshape run "configs/khodakovsky-schroder/$1.yaml" --out "$out-$1" --force; cp "$out-$1/runs.csv" "$data/$1_runs.csv"; cp "$out-$1/run.json" "$data/$1_run.json"; }
 run fig11
 /usr/bin/python3 scripts/panels.py $out-fig11 $figs/fig11.png --rest data/ks_patch.off \
   --title "Figure 11/16: three overlapping feature lines drawn on level 2 (two ridges, one groove), level 4 shown" \
   --label "{vertices_moved:.0f} vertices moved, max {max_displacement:.3f}" --render "${patch_view[@]}"
 build/bin/fairshape render "$out-fig11/adaptive/$(tail -1 $out-fig11/runs.csv | cut -d, -f1).obj" $figs/fig11_adaptive.png \
-  --edges --view front --elevation 80 --azimuth 0 --zoom 1.3 --width 900 --height 700
+  --edges --flat --up z --view top --zoom 1.3 --width 900 --height 700 --title "Figure 11: the adaptive mesh"
 run fig16
 /usr/bin/python3 scripts/panels.py $out-fig16 $figs/fig16.png --columns 3 \
   --title "Figure 16: one parameter at a time (radius, crease, groove, left/right ratio, end height ratio)" \
@@ -34,4 +36,5 @@ run fig17
 /usr/bin/python3 scripts/panels.py $out-fig17 $figs/fig17.png --rest data/knot.off \
   --title "Figure 17: ten feature curves (ridges and grooves) drawn on level 1 of the knot, level 3 shown" \
   --label "{features:.0f} features, {segments:.0f} segments, {vertices_moved:.0f} vertices moved" \
-  --render --view front --elevation 10 --azimuth 0 --zoom 1.6 --width 900 --height 700
+  --render --view front --elevation 10 --azimuth 0 --zoom 1.3 --width 900 --height 700 --component normal \
+  --colour-label "normal displacement"

@@ -39,6 +39,11 @@ def read_csv(path):
         return list(csv.DictReader(f))
 
 
+def step_files(pattern):
+    """The steps' sheets, not the constraint overlays beside them (fairshape render finds those)."""
+    return [f for f in glob.glob(pattern) if not f.endswith("_constraints.vtp")]
+
+
 def render_panels(vtps, png, labels, title=""):
     """One `fairshape render` of several sheets: one camera, one colour range, one colour bar."""
     cmd = [BIN, "render"] + vtps + [png] + VIEW + [x for label in labels for x in ("--label", label)]
@@ -47,7 +52,7 @@ def render_panels(vtps, png, labels, title=""):
 
 def steps_figure(run_dir, out, title, labels):
     steps = read_csv(os.path.join(run_dir, "steps.csv"))
-    files = sorted(glob.glob(os.path.join(run_dir, "vtk", "*_step*.vtp")),
+    files = sorted(step_files(os.path.join(run_dir, "vtk", "*_step*.vtp")),
                    key=lambda p: int(p.rsplit("_step", 1)[1].split(".")[0]))
     names = []
     for k in range(len(files)):
@@ -93,7 +98,7 @@ def cells_figure(run_dir, out, title):
     cells_panel(axes[0], cells, "before", vmin, vmax)
     pc = cells_panel(axes[1], cells, "after", vmin, vmax)
     fig.colorbar(pc, ax=axes[1], label="log10 constraint error per cell")
-    files = sorted(glob.glob(os.path.join(run_dir, "vtk", "*_step*.vtp")))
+    files = sorted(step_files(os.path.join(run_dir, "vtk", "*_step*.vtp")))
     with tempfile.TemporaryDirectory() as tmp:
         render_panels(files[-1:], os.path.join(tmp, "s.png"), [])
         axes[2].imshow(mpimg.imread(os.path.join(tmp, "s.png")))
@@ -116,7 +121,7 @@ def runs_figure(run_dir, out, title, label, profile_v, spans_v, per_span):
     column = int(round(profile_v * per_span))
     names, vtps = [], []
     for r in runs:
-        vtps.append(sorted(glob.glob(os.path.join(run_dir, "vtk", r["run_id"] + "_step*.vtp")))[-1])
+        vtps.append(sorted(step_files(os.path.join(run_dir, "vtk", r["run_id"] + "_step*.vtp")))[-1])
         names.append(label.format(**{key.replace(".", "_"): value for key, value in r.items()}))
         V = read_obj_vertices(os.path.join(run_dir, "final", r["run_id"] + ".obj"))
         rows = spans_v * per_span + 1

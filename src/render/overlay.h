@@ -1,5 +1,5 @@
-// Where the constraints are, drawn over a panel from an overlay file (a run's
-// vtk/<run>_constraints.vtp, or any curve or point file): fixed vertices as small grey
+// Where the constraints are, drawn over a panel from an overlay file (the <stem>_constraints.vtp
+// a run writes beside each result .vtp, or any curve or point file): fixed vertices as small grey
 // spheres (a tint of the pinned region), handles as red spheres with an arrow from where they
 // started, normal targets as magenta arrows, curves (constraint and feature curves) as
 // orange tubes. Sizes follow the scene's diagonal.

@@ -62,6 +62,12 @@ vtkSmartPointer<vtkPolyData> load_geometry_file(const std::string& path) {
   return io::internal::to_polydata(read_mesh(path), path);
 }
 
+// A result's overlay is the file beside it named <stem>_constraints.vtp (a run's, a step's).
+std::string overlay_beside(const std::string& path) {
+  const fs::path p(path), o = p.parent_path() / (p.stem().string() + "_constraints.vtp");
+  return p.extension() == ".vtp" && fs::is_regular_file(o) ? o.string() : "";
+}
+
 // The (time, file) entries of a ParaView collection, files relative to it.
 std::vector<std::string> pvd_files(const std::string& path) {
   const std::string text = read_regular_file(path, 16u << 20);  // a collection is a short list
@@ -118,9 +124,9 @@ RenderSource run_source(const fs::path& dir, std::string run) {
     if (!run.empty() || c == dir / "final.obj")
       if (fs::is_regular_file(c)) {
         RenderSource s{c.string(), load_geometry_file(c.string()), "", ""};
-        const fs::path levels = vtk / (run + "_levels.vtm"), overlay = vtk / (run + "_constraints.vtp");
+        const fs::path levels = vtk / (run + "_levels.vtm");
         if (fs::is_regular_file(levels)) s.levels_path = levels.string();
-        if (fs::is_regular_file(overlay)) s.overlay_path = overlay.string();
+        s.overlay_path = overlay_beside(c.string());
         return s;
       }
   throw IOError(dir.string() + ": no geometry for run '" + run + "' (looked for vtk/<run>.vtp, a curve's final stage, "
@@ -170,11 +176,11 @@ RenderSource load_render_source(const std::string& spec, const SourceChoice& cho
     if (!selector.empty()) c.step = parse_index(selector, path + "@");
     const std::vector<std::string> files = pvd_files(path);
     const std::string& file = files[static_cast<std::size_t>(pick(c.step, static_cast<int>(files.size()), path, "step"))];
-    return {file, load_geometry_file(file), "", ""};
+    return {file, load_geometry_file(file), "", overlay_beside(file)};
   }
   if (!selector.empty())
     throw InvalidInput(spec + ": '@" + selector + "' chooses a block of a .vtm, a step of a .pvd or a run of a folder");
-  return {path, load_geometry_file(path), "", ""};
+  return {path, load_geometry_file(path), "", overlay_beside(path)};
 }
 
 }  // namespace fairshape::render

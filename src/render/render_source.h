@@ -21,7 +21,7 @@ struct RenderSource {
   std::string path;                    // the file the geometry came from
   vtkSmartPointer<vtkPolyData> data;   // polygons, or lines for a curve
   std::string levels_path;             // the hierarchy it belongs to (.vtm), when there is one
-  std::string overlay_path;            // a run's vtk/<run>_constraints.vtp, when there is one
+  std::string overlay_path;            // <stem>_constraints.vtp beside a .vtp (a run's, a step's), if any
   bool curve() const { return data->GetNumberOfPolys() == 0 && data->GetNumberOfLines() > 0; }
 };
 

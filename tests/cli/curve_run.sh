@@ -11,7 +11,8 @@ head -1 "$SCRATCH/ring/runs.csv" | grep -q "length_error_max,length_error_rms,to
 grep -q ",solves," <(head -1 "$SCRATCH/ring/runs.csv") || fail "no solves column"
 grep -q ",converged," "$SCRATCH/ring/runs.csv" || fail "ring128 did not converge"
 [ "$(grep -c '^v ' "$SCRATCH/ring/final.obj")" -eq 128 ] || fail "final.obj does not have 128 points"
-[ "$(ls "$SCRATCH/ring/vtk/"*.vtp | wc -l)" -eq 4 ] || fail "expected one VTK polyline per stage"
+[ "$(ls "$SCRATCH/ring/vtk/"*.vtp | grep -vc _constraints)" -eq 4 ] || fail "expected one VTK polyline per stage"
+[ "$(ls "$SCRATCH/ring/vtk/"*_constraints.vtp | wc -l)" -eq 4 ] || fail "expected a handles overlay per stage"
 [ "$(wc -l < "$SCRATCH/ring/steps.csv")" -eq 5 ] || fail "expected a header and 4 stage rows in steps.csv"
 # The linearized loop and Ceres in one sweep: both converge to the same lengths.
 "$FS" run $C --out "$SCRATCH/solvers" --set 'sweep={optimization.solver.type: [linearized, ceres]}' 2>/dev/null \

@@ -5,7 +5,8 @@ C=configs/welch-witkin/fig1.yaml
 for f in runs.csv steps.csv cells.csv final.obj run.json; do [ -s "$SCRATCH/fig1/$f" ] || fail "missing $f"; done
 for c in constraint_residual energy spans_refined time_s; do head -1 "$SCRATCH/fig1/runs.csv" | grep -q "$c" || fail "runs.csv lacks $c"; done
 grep -q ",converged," "$SCRATCH/fig1/runs.csv" || fail "fig1 did not converge"
-[ "$(ls "$SCRATCH/fig1/vtk/"*_step*.vtp | wc -l)" -eq 4 ] || fail "expected one VTK per design step"
+[ "$(ls "$SCRATCH/fig1/vtk/"*_step*.vtp | grep -vc _constraints)" -eq 4 ] || fail "expected one VTK per design step"
+[ "$(ls "$SCRATCH/fig1/vtk/"*_step*_constraints.vtp | wc -l)" -eq 4 ] || fail "expected a constraints overlay per design step"
 [ "$(wc -l < "$SCRATCH/fig1/steps.csv")" -eq 5 ] || fail "expected a header and 4 step rows"
 # Every registered constrained solver runs the figure.
 "$FS" run $C --out "$SCRATCH/solvers" --set 'sweep={solver.type: [kkt, qr_penalty, range_space]}' --set output.vtk=none 2>/dev/null \

@@ -162,15 +162,28 @@ namespace {
 
 const char* const kStages[] = {"reference", "edited", "attracting", "final"};
 
+// `moved`: the edit's handles (fine-level indices), drawn over the stage from where they were
+// on the reference curve to where the edit put them (<stem>_constraints.vtp).
 void write_stage(const CurveRunSpec& spec, const RunOutputs& out, int edit, const char* stage, const MatrixX3& X,
-                 const MatrixX3& reference) {
+                 const MatrixX3& reference, const EditStages& stages) {
   const std::string stem = out.run_id + "_edit" + std::to_string(edit) + "_" + stage;
   const Polyline c{X, spec.curve.closed};
   const fs::path curves = fs::path(out.dir) / "curves";
   fs::create_directories(curves);
   write_polyline(c, (curves / (stem + ".obj")).string());
-  if (spec.vtk == VtkPolicy::All || (spec.vtk == VtkPolicy::Final && std::string(stage) == "final"))
-    write_vtp(c, {{"displacement", Eigen::MatrixXd(X - reference)}}, (fs::path(out.dir) / "vtk" / (stem + ".vtp")).string());
+  if (spec.vtk == VtkPolicy::All || (spec.vtk == VtkPolicy::Final && std::string(stage) == "final")) {
+    const std::string vtk = (fs::path(out.dir) / "vtk" / stem).string();
+    write_vtp(c, {{"displacement", Eigen::MatrixXd(X - reference)}}, vtk + ".vtp");
+    const auto n = static_cast<Eigen::Index>(stages.moved_points.size());
+    MatrixX3 at(n, 3);
+    Eigen::MatrixXd kind = Eigen::MatrixXd::Ones(n, 1), offset(n, 3);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const int p = stages.moved_points[static_cast<std::size_t>(i)];
+      at.row(i) = stages.edited.row(p);
+      offset.row(i) = stages.edited.row(p) - stages.reference.row(p);
+    }
+    write_vtp(at, {}, {{"kind", kind}, {"offset", offset}}, vtk + "_constraints.vtp");
+  }
 }
 
 std::vector<std::string> step_row(int edit, const char* stage, const CurveMetrics& m, const std::string& solves,
@@ -212,7 +225,7 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
         const bool fin = st == 3;
         out.add_row("steps", step_row(edit, kStages[st], m, fin ? std::to_string(last.solve.solves) : "",
                               fin ? num(last.total_s) : ""));
-        if (spec.vtk != VtkPolicy::None) write_stage(spec, out, edit, kStages[st], *stage_points[st], last.reference);
+        if (spec.vtk != VtkPolicy::None) write_stage(spec, out, edit, kStages[st], *stage_points[st], last.reference, last);
       }
       current.points = last.final;
       if (!last.solve.converged()) {  // the budget ran out, or the numerics failed: the solver says which

@@ -121,7 +121,10 @@ int cmd_render(const RenderArgs& a, int argc, char** argv) {
     spec.view.focused = true;
     spec.view.focus = Vec3(a.focus[0], a.focus[1], a.focus[2]);
   }
-  if (spec.view.radius > 0 && !spec.view.focused) throw InvalidConfig("render: --radius frames the --focus point: give --focus");
+  if (spec.view.focused && spec.focus_on_constraints)
+    throw InvalidConfig("render: --focus and --focus-constraints both choose the focus: give one");
+  if (spec.view.radius > 0 && !spec.view.focused && !spec.focus_on_constraints)
+    throw InvalidConfig("render: --radius frames the --focus point: give --focus or --focus-constraints");
   render::render_figure(spec, png);
   std::cerr << "rendered " << spec.panels.size() << " panel(s) -> " << png << "\n";
   return 0;

@@ -3,6 +3,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cmath>
+#include <limits>
 #include <filesystem>
 #include <iostream>
 
@@ -27,8 +28,10 @@ CLI::Validator finite_at_least(double lo, bool strict) {
         if (strict ? !(v > lo) : !(v >= lo)) return text + " must be " + (strict ? "> " : ">= ") + std::to_string(lo);
         return "";
       },
-      strict ? "POSITIVE FINITE" : "NONNEGATIVE FINITE");
+      strict ? "POSITIVE FINITE" : lo == 0 ? "NONNEGATIVE FINITE" : "FINITE");
 }
+// Any finite number (angles, coordinates, colour ranges).
+CLI::Validator finite_number() { return finite_at_least(-std::numeric_limits<double>::max(), false); }
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -75,21 +78,23 @@ int main(int argc, char** argv) {
   c_ren->add_option("--map", ren.map, "colour map: viridis (default), diverging (default for signed components), grey")
       ->check(CLI::IsMember(fairshape::render::colour_map_names().names()));
   c_ren->add_option("--range", ren.range, "colour range LO HI (default: over every panel; symmetric for diverging)")
-      ->expected(2)->check(finite_at_least(-1e300, false));
+      ->expected(2)->check(finite_number());
   c_ren->add_option("--colour-label", fig.colour_label, "the colour bar's label, with units");
   c_ren->add_option("--view", ren.view, "named view in the model's frame: front, side, top, iso")
       ->capture_default_str()->check(CLI::IsMember(fairshape::render::named_view_names().names()));
   c_ren->add_option("--up", ren.up, "the model's up axis: x, y, z")->capture_default_str()
       ->check(CLI::IsMember(fairshape::render::up_axis_names().names()));
   c_ren->add_option("--azimuth", fig.view.azimuth, "turn about the up axis after the view, degrees")
-      ->capture_default_str()->check(finite_at_least(-1e6, false));
+      ->capture_default_str()->check(finite_number());
   c_ren->add_option("--elevation", fig.view.elevation, "raise after the view, degrees")
-      ->capture_default_str()->check(finite_at_least(-1e6, false));
+      ->capture_default_str()->check(finite_number());
   c_ren->add_option("--zoom", fig.view.zoom, "camera zoom factor")->capture_default_str()->check(finite_at_least(0, true));
   c_ren->add_option("--focus", ren.focus, "look at the point X Y Z (with --radius: the part of the model shown)")
-      ->expected(3)->check(finite_at_least(-1e300, false));
+      ->expected(3)->check(finite_number());
   c_ren->add_option("--radius", fig.view.radius, "with --focus: the radius shown around it (default: a quarter of the model)")
       ->check(finite_at_least(0, true));
+  c_ren->add_flag("--focus-constraints", fig.focus_on_constraints,
+                  "look at the first panel's handles and normal targets (from its overlay), framed with a margin");
   c_ren->add_option("--width", fig.panel_width, "panel width, pixels")->capture_default_str()->check(CLI::Range(16, 8192));
   c_ren->add_option("--height", fig.panel_height, "panel height, pixels")->capture_default_str()->check(CLI::Range(16, 8192));
   c_ren->add_option("--background", ren.background, "white or transparent")->capture_default_str()

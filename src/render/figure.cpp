@@ -1,6 +1,7 @@
 #include "render/figure.h"
 
 #include <vtkLight.h>
+#include <vtkPointData.h>
 #include <vtkMatrix4x4.h>
 #include <vtkNew.h>
 #include <vtkPNGWriter.h>
@@ -75,6 +76,31 @@ std::string default_colour_label(const Colouring& c) {
   if (!c.component_given || c.component == Component::Magnitude) return c.array == "displacement" ? "|displacement|" : c.array;
   if (c.component == Component::Normal) return "normal " + c.array;
   return c.array + " " + std::string(component_names().name(c.component));
+}
+
+// The centre and extent of a source's moved handles and normal targets (kinds 1 and 2 of
+// its overlay), as the view's focus.
+void focus_on_handles(const RenderSource& source, double diagonal, ViewSpec& view) {
+  if (source.overlay_path.empty())
+    throw InvalidInput("render: --focus-constraints needs an overlay: " + source.path + " has no " +
+                       "<stem>_constraints.vtp beside it");
+  const auto overlay = load_overlay(source.overlay_path);
+  vtkDataArray* kind = overlay->GetPointData()->GetArray("kind");
+  std::vector<Vec3> at;
+  for (vtkIdType i = 0; kind && i < overlay->GetNumberOfPoints(); ++i)
+    if (kind->GetComponent(i, 0) == 1 || kind->GetComponent(i, 0) == 2) {
+      double p[3];
+      overlay->GetPoint(i, p);
+      at.emplace_back(p[0], p[1], p[2]);
+    }
+  if (at.empty()) throw InvalidInput("render: --focus-constraints: " + source.overlay_path + " has no handle or normal target");
+  Vec3 centre = Vec3::Zero();
+  for (const Vec3& p : at) centre += p / static_cast<double>(at.size());
+  double extent = 0;
+  for (const Vec3& p : at) extent = std::max(extent, (p - centre).norm());
+  view.focused = true;
+  view.focus = centre;
+  if (!(view.radius > 0)) view.radius = 1.5 * extent + 0.08 * diagonal;
 }
 
 // The camera, and per panel the matrix taking homogeneous world points to normalized device
@@ -197,6 +223,7 @@ void render_figure(const FigureSpec& spec, const std::string& png_path) {
     window->AddRenderer(r);
     if (i == 0) {
       ViewSpec view = spec.view;
+      if (spec.focus_on_constraints) focus_on_handles(src, diagonal, view);
       if (view.focused && !(view.radius > 0)) view.radius = diagonal / 4;
       place_camera(r, view, bounds);
     }

@@ -30,6 +30,9 @@ struct FigureSpec {
   bool overlays = true;                  // a run's constraints overlay, when it has one
   std::vector<std::string> extra_overlays;  // drawn over every panel (e.g. feature curves)
   ViewSpec view;
+  //! Focus on the first panel's moved handles and normal targets (its overlay), framing them
+  //! with a margin; --radius still sets the frame when given.
+  bool focus_on_constraints = false;
   int panel_width = 1200, panel_height = 900, columns = 0;  // 0: one row
   Background background = Background::White;
   //! Non-empty: also write the camera and each panel's world-to-pixel projection there (JSON),

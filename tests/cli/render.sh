@@ -139,6 +139,20 @@ import matplotlib.image as mpimg
 red = lambda f: (lambda i: ((i[:, :, 0] > 0.6) & (i[:, :, 1] < 0.3) & (i[:, :, 2] < 0.3)).sum())(mpimg.imread(f)[:, :, :3])
 assert red(sys.argv[1]) > 20 and red(sys.argv[2]) == 0, (red(sys.argv[1]), red(sys.argv[2]))
 PYEOF
+# Focused on the constraints: the handle sits in the middle of the picture.
+"$FS" render "$S/run@$id" "$S/focus.png" --focus-constraints --view front --width 400 --height 300 2>/dev/null ||
+  fail "render focused on the constraints"
+$PY - "$S/focus.png" <<'PYEOF'
+import sys
+import numpy as np
+import matplotlib.image as mpimg
+img = mpimg.imread(sys.argv[1])[:, :, :3]
+red = np.argwhere((img[:, :, 0] > 0.6) & (img[:, :, 1] < 0.3) & (img[:, :, 2] < 0.3))
+assert len(red) > 50, len(red)
+r, c = red.mean(axis=0)
+assert abs(r / img.shape[0] - 0.5) < 0.2 and abs(c / img.shape[1] - 0.5) < 0.2, (r, c, img.shape)
+PYEOF
+expect_error 2 "give one" -- "$FS" render "$S/run@$id" "$S/x.png" --focus-constraints --focus 0 0 0
 expect_error 2 "no run 'nope'" -- "$FS" render "$S/run@nope" "$S/x.png"
 expect_error 2 "available: constrained, displacement, displacement_norm" -- \
   "$FS" render "$S/run@$id" "$S/x.png" --array curvature

@@ -157,19 +157,36 @@ void MultiresSurface::save(const std::string& vtm_path) const {
   write_vtm(named, vtm_path);
 }
 
-MultiresSurface MultiresSurface::load(const std::string& vtm_path, Backend backend) {
+MultiresSurface::Stored MultiresSurface::stored(const std::string& vtm_path) {
   const fs::path p(vtm_path);
-  const auto meta = read_json((p.parent_path() / (p.stem().string() + ".json")).string());
-  SubdivisionOptions opt;
+  const fs::path sidecar = p.parent_path() / (p.stem().string() + ".json");
+  if (!fs::exists(sidecar))
+    throw InvalidInput(vtm_path + ": not a fairshape hierarchy (no " + sidecar.filename().string() +
+                       " beside it; `fairshape remesh` and runs' _levels.vtm write one)");
+  const auto meta = read_json(sidecar.string());
+  Stored s;
   try {
-    opt = {scheme_from_string(meta.at("scheme").get<std::string>()),
-           boundary_from_string(meta.at("boundary").get<std::string>()),
-           loop_weights_from_string(meta.at("weights").get<std::string>())};
+    if (meta.at("format").get<std::string>() != "fairshape multiresolution surface")
+      throw InvalidInput(vtm_path + ": its sidecar is not a fairshape hierarchy's");
+    s.options = {scheme_from_string(meta.at("scheme").get<std::string>()),
+                 boundary_from_string(meta.at("boundary").get<std::string>()),
+                 loop_weights_from_string(meta.at("weights").get<std::string>())};
+    s.levels = meta.at("levels").get<int>();
   } catch (const nlohmann::json::exception& e) {
     throw InvalidInput(vtm_path + ": the sidecar JSON lacks scheme options: " + e.what());
   }
+  if (s.levels < 0 || s.levels > 16) throw InvalidInput(vtm_path + ": " + std::to_string(s.levels) + " levels, out of 0..16");
+  return s;
+}
+
+MultiresSurface MultiresSurface::load(const std::string& vtm_path, Backend backend) {
+  const Stored st = stored(vtm_path);
+  const SubdivisionOptions opt = st.options;
   const auto blocks = read_vtm(vtm_path);
-  if (blocks.empty()) throw InvalidInput(vtm_path + ": no levels");
+  if (blocks.size() != static_cast<std::size_t>(st.levels) + 1)
+    throw InvalidInput(vtm_path + ": holds " + std::to_string(blocks.size()) + " levels (0.." +
+                       std::to_string(static_cast<long>(blocks.size()) - 1) + "), but its sidecar declares " +
+                       std::to_string(st.levels + 1) + " (0.." + std::to_string(st.levels) + ")");
   MultiresSurface h(blocks[0], opt, static_cast<int>(blocks.size()) - 1, backend);
   for (int l = 1; l <= h.levels(); ++l) {
     const auto it = blocks[l].vertex_data.find("detail");

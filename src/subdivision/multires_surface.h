@@ -62,6 +62,13 @@ class MultiresSurface {
   //! JSON sidecar with the scheme options; load checks that the stored levels are consistent.
   void save(const std::string& vtm_path) const;
   static MultiresSurface load(const std::string& vtm_path, Backend backend);
+  //! The scheme options and depth a saved hierarchy declares (its JSON sidecar), without
+  //! reading its levels. \throw InvalidInput / IOError for a .vtm that is not a saved hierarchy.
+  struct Stored {
+    SubdivisionOptions options;
+    int levels = 0;
+  };
+  static Stored stored(const std::string& vtm_path);
 
  private:
   MultiresSurface() = default;

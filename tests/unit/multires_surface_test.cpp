@@ -102,7 +102,8 @@ TEST_CASE("hierarchies round-trip through .vtm, and inconsistent files are refus
   // levels no longer match base + details.
   const SurfaceMesh grid = test::grid(3);
   MultiresSurface(grid, opt, 2, Backend::Optimized).save((dir / "h.vtm").string());
-  write_json({{"scheme", "catmull-clark"}, {"boundary", "edge-only"}, {"weights", "loop"}, {"levels", 2}},
+  write_json({{"format", "fairshape multiresolution surface"}, {"scheme", "catmull-clark"}, {"boundary", "edge-only"},
+              {"weights", "loop"}, {"levels", 2}},
              (dir / "h.json").string());
   CHECK_THROWS_WITH(MultiresSurface::load((dir / "h.vtm").string(), Backend::Optimized),
                     Catch::Matchers::Contains("does not match base + details"));

@@ -177,6 +177,11 @@ const MultiresSurface& RunCache::hierarchy(const SurfaceEditSpec& spec, double* 
                           std::string(to_string(spec.loop_weights)) + "|" + std::to_string(spec.remesh_base_faces) +
                           "|" + std::string(to_string(spec.implementation));
   auto it = hierarchies_.find(key);
+  if (it == hierarchies_.end() && fs::path(spec.mesh_path).extension() == ".vtm") {  // saved: its details kept
+    Timer t;
+    MultiresSurface h = MultiresSurface::load(spec.mesh_path, spec.implementation);
+    it = hierarchies_.emplace(key, std::make_pair(std::move(h), t.seconds())).first;
+  }
   if (it == hierarchies_.end()) {
     const SurfaceMesh input = read_mesh(spec.mesh_path);
     Timer t;

@@ -1,4 +1,5 @@
 // Boier-Martin et al.'s constrained edits of a (multiresolution) surface as a run kind.
+#include <filesystem>
 #include <set>
 
 #include "core/error.h"
@@ -19,7 +20,8 @@ class SurfaceEditKind final : public RunKind {
   }
   ValidatedRun validate(const YAML::Node& c, const std::vector<std::string>& dirs) override {
     const SurfaceEditSpec spec = SurfaceEditSpec::from_config(c, components(), dirs);
-    require_readable_mesh(spec.mesh_path, "input.mesh");
+    // A saved hierarchy (.vtm) is read whole by check_on_hierarchy.
+    if (std::filesystem::path(spec.mesh_path).extension() != ".vtm") require_readable_mesh(spec.mesh_path, "input.mesh");
     check_on_hierarchy(spec);
     return {spec.name, {spec.mesh_path}};
   }

@@ -187,6 +187,35 @@ void read_accuracy(Config& pc, SurfaceEditSpec& s) {
                         " needs problem.constraint_mode paper");
 }
 
+// A saved hierarchy (`fairshape remesh`, a run's _levels.vtm) fixes the representation, the
+// depth and the subdivision rules: keys that say otherwise are refused, naming both values.
+void adopt_saved_hierarchy(Config& in, SurfaceEditSpec& s) {
+  MultiresSurface::Stored st;
+  try {
+    st = MultiresSurface::stored(s.mesh_path);
+  } catch (const Error& e) {
+    throw InvalidConfig(in.key_path("mesh") + ": " + e.what());
+  }
+  const Representation r = st.options.scheme == SchemeType::Loop ? Representation::Loop : Representation::CatmullClark;
+  const auto clash = [&](const char* key, std::string_view given, std::string_view saved) {
+    throw InvalidConfig(in.key_path(key) + ": '" + std::string(given) + "', but " + s.mesh_path + " is a saved hierarchy with '" +
+                        std::string(saved) + "' (leave the key out)");
+  };
+  if (in.has("representation") && s.representation != r)
+    clash("representation", representation_names().name(s.representation), representation_names().name(r));
+  if (in.has("levels") && s.levels != st.levels) clash("levels", std::to_string(s.levels), std::to_string(st.levels));
+  if (in.has("boundary") && s.boundary != st.options.boundary)
+    clash("boundary", to_string(s.boundary), to_string(st.options.boundary));
+  if (in.has("weights") && s.loop_weights != st.options.weights)
+    clash("weights", to_string(s.loop_weights), to_string(st.options.weights));
+  if (s.remesh_base_faces > 0)
+    throw InvalidConfig(in.key_path("remesh_base_faces") + ": " + s.mesh_path + " is a saved hierarchy, remeshed already");
+  s.representation = r;
+  s.levels = st.levels;
+  s.boundary = st.options.boundary;
+  s.loop_weights = st.options.weights;
+}
+
 }  // namespace
 
 SurfaceEditSpec SurfaceEditSpec::from_config(const YAML::Node& run_config, const Components& c,
@@ -195,7 +224,7 @@ SurfaceEditSpec SurfaceEditSpec::from_config(const YAML::Node& run_config, const
   SurfaceEditSpec s;
   static_cast<RunBasics&>(s) = read_run_basics(root);
   Config in = root.child("input", "input geometry");
-  s.mesh_path = resolve_input(in.require<std::string>("mesh", "mesh file (.obj, .off, .ply)"), search_dirs,
+  s.mesh_path = resolve_input(in.require<std::string>("mesh", "mesh file (.obj, .off, .ply), or a saved hierarchy (.vtm)"), search_dirs,
                               in.key_path("mesh"));
   s.representation = in.get_enum("representation", Representation::Mesh, representation_names(),
                                  "shape representation: the mesh itself or its subdivision surface");
@@ -207,6 +236,7 @@ SurfaceEditSpec SurfaceEditSpec::from_config(const YAML::Node& run_config, const
                                    "(0: the input mesh is the base, zero details)");
   s.edit_level = in.get_int("edit_level", -1, -1, 8, "level the deformation is solved on (-1: the finest)");
   in.check_no_unknown_keys();
+  if (std::filesystem::path(s.mesh_path).extension() == ".vtm") adopt_saved_hierarchy(in, s);
   s.note_unused(in, "boundary", s.representation != Representation::Mesh);
   s.note_unused(in, "weights", s.representation == Representation::Loop);
   if (s.edit_level > s.levels)

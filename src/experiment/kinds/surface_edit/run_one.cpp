@@ -148,6 +148,25 @@ void write_ladder(const SurfaceEditSpec& spec, const RunOutputs& out, const Mult
   }
 }
 
+// A vertex moving this many times the largest handle is a spike, not a fair deformation.
+constexpr double kSpikeRatio = 1.5;
+
+// spike_ratio: the largest displacement of the finest level over the largest handle offset
+// (empty without a moving handle). Near 1 for a fair edit; paper mode's minimum-norm values
+// of propagated rows can exceed it by far, and its runs then say so in their message.
+void report_spike(const SurfaceEditSpec& spec, const DesignConstraints& placed, const MatrixX3& moved, MetricRow& row) {
+  double handle = 0;
+  for (const PointConstraint& c : placed.points) handle = std::max(handle, c.offset.norm());
+  if (!(handle > 0) || moved.rows() == 0) return;
+  const double ratio = moved.rowwise().norm().maxCoeff() / handle;
+  row["spike_ratio"] = num(ratio);
+  const bool paper = spec.constraint_mode == ConstraintMode::Paper || spec.accuracy.multilevel();
+  if (paper && ratio > kSpikeRatio)
+    row["message"] += std::string(row["message"].empty() ? "" : "; ") + "spike: a vertex moved " + num(ratio) +
+                      " times the largest handle (paper mode sets constrained vertices to the minimum-norm values of "
+                      "their propagated rows; constraint_mode kkt is exact)";
+}
+
 }  // namespace
 
 const std::vector<std::string>& step_columns() {
@@ -164,7 +183,7 @@ const std::vector<std::string>& iteration_columns() {
 const std::vector<std::string>& metric_columns() {
   static const std::vector<std::string> cols{
       "n_dofs", "n_fine", "n_constrained", "repeat", "subdivide_s", "assemble_s", "analyze_s", "solve_s", "solve_min_s",
-      "time_s", "iterations", "residual", "energy", "constraint_violation", "error_vs_reference", "detail_change",
+      "time_s", "iterations", "residual", "energy", "constraint_violation", "error_vs_reference", "detail_change", "spike_ratio",
       "peak_rss_mb", "solve_extra_mb", "unused_keys", "termination", "message"};
   return cols;
 }
@@ -268,6 +287,7 @@ MetricRow execute_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
                             : edited;
       const double change = relative_detail_change(rest, reanalysed);
       row["detail_change"] = std::isnan(change) ? "" : num(change);
+      report_spike(spec, placed, finest.positions() - rest.mesh(rest.levels()).positions(), row);
       write_geometry(spec, out, result_mesh(rest.mesh(rest.levels()), finest.positions(), rest.levels(), placed),
                      reanalysed);
       if (spec.output.vtk != VtkPolicy::None)

@@ -107,6 +107,9 @@ def label_of(columns):
 
 def main(argv):
     a = parse_args(argv)
+    out_dir = os.path.dirname(os.path.abspath(a.output))
+    if not os.path.isdir(out_dir):
+        sys.exit(f"plot: the output folder {out_dir} does not exist")
     rows = joined_rows(a.csv)
     if not rows:
         sys.exit(f"plot: {a.csv} has no rows: nothing to plot")
@@ -182,7 +185,7 @@ def main(argv):
 def draw_categorical(ax, series, kind):
     """Every row as a point at its category (strip), the median with the min-max range (bar),
     or boxes; series side by side within a category."""
-    categories = sorted({x for pts in series.values() for x, _ in pts})
+    categories = list(dict.fromkeys(x for pts in series.values() for x, _ in pts))  # in the table's (config's) order
     names = sorted(series)
     width = 0.8 / len(names)
     for s, name in enumerate(names):
@@ -208,7 +211,9 @@ def draw_categorical(ax, series, kind):
                        boxprops={"facecolor": colour, "alpha": 0.6}, medianprops={"color": "k"})
             ax.scatter([], [], color=colour, label=name)
     ax.set_xticks(range(len(categories)))
-    ax.set_xticklabels(categories, rotation=20 if max(map(len, categories)) > 8 else 0, ha="right" if max(map(len, categories)) > 8 else "center")
+    shown = [c if len(c) <= 28 else c[:25] + "..." for c in categories]  # a swept list can be long
+    long = max(map(len, shown)) > 8
+    ax.set_xticklabels(shown, rotation=20 if long else 0, ha="right" if long else "center")
 
 
 if __name__ == "__main__":

@@ -1,5 +1,6 @@
 #include "render/figure.h"
 
+#include <vtkImageData.h>
 #include <vtkLight.h>
 #include <vtkPointData.h>
 #include <vtkMatrix4x4.h>
@@ -86,12 +87,17 @@ void focus_on_handles(const RenderSource& source, double diagonal, ViewSpec& vie
                        "<stem>_constraints.vtp beside it");
   const auto overlay = load_overlay(source.overlay_path);
   vtkDataArray* kind = overlay->GetPointData()->GetArray("kind");
-  std::vector<Vec3> at;
+  vtkDataArray* offset = overlay->GetPointData()->GetArray("offset");
+  std::vector<Vec3> at;  // the handles where they ended and where they started, the normal targets
   for (vtkIdType i = 0; kind && i < overlay->GetNumberOfPoints(); ++i)
     if (kind->GetComponent(i, 0) == 1 || kind->GetComponent(i, 0) == 2) {
       double p[3];
       overlay->GetPoint(i, p);
       at.emplace_back(p[0], p[1], p[2]);
+      if (kind->GetComponent(i, 0) == 1 && offset) {
+        const double* o = offset->GetTuple3(i);
+        at.emplace_back(p[0] - o[0], p[1] - o[1], p[2] - o[2]);
+      }
     }
   if (at.empty()) throw InvalidInput("render: --focus-constraints: " + source.overlay_path + " has no handle or normal target");
   Vec3 centre = Vec3::Zero();
@@ -101,6 +107,26 @@ void focus_on_handles(const RenderSource& source, double diagonal, ViewSpec& vie
   view.focused = true;
   view.focus = centre;
   if (!(view.radius > 0)) view.radius = 1.5 * extent + 0.08 * diagonal;
+}
+
+// A panel whose pixels are all background shows nothing: the camera looks away from the
+// model (a --focus off it, too much --zoom). Refused rather than written as a blank figure.
+void require_visible(vtkImageData* image, const std::vector<std::array<int, 4>>& panels, bool transparent) {
+  const int comps = image->GetNumberOfScalarComponents();
+  const auto* px = static_cast<const unsigned char*>(image->GetScalarPointer());
+  const int W = image->GetDimensions()[0];
+  for (std::size_t k = 0; k < panels.size(); ++k) {
+    const auto& [x0, y0, w, h] = panels[k];
+    bool seen = false;
+    for (int y = y0; y < y0 + h && !seen; ++y)
+      for (int x = x0; x < x0 + w && !seen; ++x) {
+        const unsigned char* p = px + (static_cast<std::size_t>(y) * W + x) * comps;
+        seen = transparent ? p[3] != 0 : (p[0] < 250 || p[1] < 250 || p[2] < 250);
+      }
+    if (!seen)
+      throw InvalidInput("render: panel " + std::to_string(k + 1) + " shows nothing: the camera looks away from the " +
+                         "model (check --focus, --radius, --zoom)");
+  }
 }
 
 // The camera, and per panel the matrix taking homogeneous world points to normalized device
@@ -133,6 +159,8 @@ void render_figure(const FigureSpec& spec, const std::string& png_path) {
     throw InvalidInput("render: " + std::to_string(spec.labels.size()) + " --label for " + std::to_string(spec.panels.size()) +
                        " inputs (give one per input, or none)");
   if (std::filesystem::path(png_path).extension() != ".png") throw InvalidInput("render: " + png_path + ": the output is a .png");
+  const std::filesystem::path folder = std::filesystem::absolute(png_path).parent_path();
+  if (!std::filesystem::is_directory(folder)) throw IOError("render: the output folder " + folder.string() + " does not exist");
   if (!display_available()) throw IOError("render: no X display (run under xvfb-run, or set DISPLAY)");
 
   std::vector<std::string> inputs = spec.panels, labels = spec.labels;
@@ -184,6 +212,11 @@ void render_figure(const FigureSpec& spec, const std::string& png_path) {
   const int bar_w = coloured ? kColourBarWidth : 0;
   const int W = cols * w + bar_w, H = title_h + rows * (h + label_h);
   const bool transparent = spec.background == Background::Transparent;
+  // VTK holds about 64 bytes per pixel while it renders and grabs: 8192² pixels in all is 4 GB.
+  constexpr long long kMaxPixels = 8192LL * 8192;
+  if (static_cast<long long>(W) * H > kMaxPixels)
+    throw InvalidInput("render: a " + std::to_string(W) + " x " + std::to_string(H) + " figure is above " +
+                       std::to_string(kMaxPixels) + " pixels (about 4 GB while rendering): fewer or smaller panels");
 
   vtkNew<vtkRenderWindow> window;
   window->SetOffScreenRendering(1);
@@ -257,6 +290,7 @@ void render_figure(const FigureSpec& spec, const std::string& png_path) {
   if (transparent) grab->SetInputBufferTypeToRGBA();
   grab->ReadFrontBufferOff();
   grab->Update();
+  require_visible(grab->GetOutput(), panels, transparent);
   const auto tmp = temporary_sibling(png_path);
   vtkNew<vtkPNGWriter> writer;
   writer->SetFileName(tmp.c_str());

@@ -104,6 +104,9 @@ RenderSource run_source(const fs::path& dir, std::string run) {
                          dir.string() + "@ID (" + list + (ids.size() > 8 ? ", ..." : "") + ")");
     }
     if (ids.size() == 1) run = ids.front();
+    if (ids.empty() && !fs::exists(dir / "final.obj"))
+      throw InvalidInput(dir.string() + ": not a result folder (no runs.csv, no final.obj); name a run with " +
+                         dir.string() + "@ID for a folder whose vtk/ holds <ID>.vtp");
   } else if (!ids.empty() && std::find(ids.begin(), ids.end(), run) == ids.end()) {
     throw InvalidInput(dir.string() + ": no run '" + run + "' in its runs.csv");
   }
@@ -162,18 +165,30 @@ RenderSource load_render_source(const std::string& spec, const SourceChoice& cho
     path = spec.substr(0, at);
     selector = spec.substr(at + 1);
   }
+  const auto conflict = [&](const std::string& option, const std::string& value) {
+    throw InvalidInput(spec + ": '@" + selector + "' and " + option + " " + value + " choose differently: give one");
+  };
   if (fs::is_directory(path)) {
+    if (!selector.empty() && !c.run.empty() && c.run != selector) conflict("--run", c.run);
     if (!selector.empty()) c.run = selector;
     return run_source(path, c.run);
   }
   if (!fs::exists(path)) throw IOError(path + ": no such file or folder");
   const std::string ext = fs::path(path).extension().string();
   if (ext == ".vtm") {
-    if (!selector.empty()) c.block = parse_index(selector, path + "@");
+    if (!selector.empty()) {
+      const int b = parse_index(selector, path + "@");
+      if (c.block >= 0 && c.block != b) conflict("--block", std::to_string(c.block));
+      c.block = b;
+    }
     return {path, load_level(path, c.block), path, ""};
   }
   if (ext == ".pvd") {
-    if (!selector.empty()) c.step = parse_index(selector, path + "@");
+    if (!selector.empty()) {
+      const int k = parse_index(selector, path + "@");
+      if (c.step >= 0 && c.step != k) conflict("--step", std::to_string(c.step));
+      c.step = k;
+    }
     const std::vector<std::string> files = pvd_files(path);
     const std::string& file = files[static_cast<std::size_t>(pick(c.step, static_cast<int>(files.size()), path, "step"))];
     return {file, load_geometry_file(file), "", overlay_beside(file)};

@@ -37,5 +37,7 @@ expect_error 1 "nothing to plot: every one of $rows points was left out ($rows y
 expect_error 1 "no row has solver.type=lu" -- "${P[@]}" "$S/sweep/runs.csv" --x n_dofs --y solve_s \
   --filter solver.type=lu -o "$S/none.png"
 expect_error 1 "no column 'nope'" -- "${P[@]}" "$S/sweep/runs.csv" --x nope --y solve_s -o "$S/none.png"
+expect_error 1 "the output folder .*/nowhere does not exist" -- "${P[@]}" "$S/sweep/runs.csv" --x n_dofs --y solve_s \
+  -o "$S/nowhere/x.png"
 [ ! -e "$S/none.png" ] || fail "a refused plot wrote a file"
 echo "plot: ok"

@@ -161,5 +161,11 @@ expect_error 2 "one component; --component x needs a vector array" -- \
 expect_error 2 "1 --label for 2 inputs" -- "$FS" render "$S/run@$id" "$S/run@$id" "$S/x.png" --label one
 expect_error 2 "must end in .png" -- "$FS" render "$S/run@$id" "$S/x.jpg"
 expect_error 2 "give --array" -- "$FS" render "$S/run@$id" "$S/x.png" --component normal
+expect_error 2 "panel 1 shows nothing" -- "$FS" render "$S/run@$id" "$S/x.png" --focus 50 50 50 --width 200 --height 150
+expect_error 2 "the output folder .*/nowhere does not exist" -- "$FS" render "$S/run@$id" "$S/nowhere/x.png"
+! grep -q "ERR\|disk space" "$SCRATCH/stderr.txt" || fail "VTK's messages leaked"
+expect_error 2 "'@0' and --block 1 choose differently" -- "$FS" render "$S/cube.vtm@0" "$S/x.png" --block 1
+expect_error 2 "not a result folder (no runs.csv" -- "$FS" render configs "$S/x.png"
+expect_error 2 "above 67108864 pixels" -- "$FS" render "$S/run@$id" "$S/run@$id" "$S/x.png" --width 8192 --height 8192
 [ ! -e "$S/x.png" ] || fail "a failed render left a file"
 echo "render: ok"

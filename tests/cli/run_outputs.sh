@@ -46,4 +46,25 @@ for r in rows:
 PYEOF
 expect_error 2 "input.levels: 2 subdivision levels need representation" -- \
   "$FS" run configs/smoke/cow_nose_pull.yaml --set input.levels=2 --out "$SCRATCH/bad"
+# A curve constraint snapped on a level coarser than the finest: runs.csv counts its points and
+# the result's `constrained` array marks them (a vertex keeps its id on finer levels).
+"$FS" run configs/smoke/cow_nose_pull.yaml --out "$SCRATCH/curve" --set input.representation=catmull-clark \
+  --set input.levels=2 --set input.edit_level=1 --set 'energy=[{type: detail_preserving}]' --set 'constraints=[{type: fixed, region: {axis: x, from: 0.0, to: 0.1}},
+    {type: curve, level: 1, max_distance: 0.05, snap_ratio: 0.5, points: [[-0.235, 0.217, 0.0], [-0.052, 0.208, 0.0], [0.15, 0.215, 0.0]],
+     translation: [0.0, 0.05, 0.0]}]' 2>/dev/null || fail "a run with a coarse-level curve constraint"
+/usr/bin/python3 - "$SCRATCH/curve" <<'PYEOF'
+import csv, sys
+from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+from vtkmodules.util.numpy_support import vtk_to_numpy
+d = sys.argv[1]
+r = list(csv.DictReader(open(f"{d}/runs.csv")))[0]
+assert int(r["curve_points"]) >= 3, r["curve_points"]
+read = lambda name: (lambda x: (x.SetFileName(f"{d}/vtk/{name}"), x.Update(), x.GetOutput())[2])(vtkXMLPolyDataReader())
+marked = vtk_to_numpy(read(f"{r['run_id']}.vtp").GetPointData().GetArray("constrained"))
+overlay = read(f"{r['run_id']}_constraints.vtp")
+import numpy as np
+distinct = len(np.unique(np.round(vtk_to_numpy(overlay.GetPoints().GetData()), 12), axis=0))
+assert int(marked.sum()) == distinct, (marked.sum(), distinct)  # every constrained vertex, the curve's included
+assert overlay.GetNumberOfLines() == 1, "the curve's chain is not in the overlay"
+PYEOF
 echo "run_outputs (subdivision): ok"

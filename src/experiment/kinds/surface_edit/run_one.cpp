@@ -41,14 +41,16 @@ SurfaceMesh result_mesh(const SurfaceMesh& before, const MatrixX3& after, int le
   const Eigen::MatrixXd displacement = after - before.positions();
   m.vertex_data["displacement"] = displacement;
   m.vertex_data["displacement_norm"] = displacement.rowwise().norm();
+  // A vertex keeps its id on every finer level (subdivider.h), so a constraint placed on a
+  // coarser level marks the same id here.
   Eigen::MatrixXd constrained = Eigen::MatrixXd::Zero(m.n_vertices(), 1);
   for (const auto& p : placed.points)
-    if (p.level == level) constrained(p.vertex, 0) = 1.0;
+    if (p.level <= level) constrained(p.vertex, 0) = 1.0;
   m.vertex_data["constrained"] = constrained;
   if (!placed.normals.empty()) {
     Eigen::MatrixXd normals = Eigen::MatrixXd::Zero(m.n_vertices(), 3);
     for (const auto& n : placed.normals)
-      if (n.level == level) normals.row(n.vertex) = n.normal.transpose();
+      if (n.level <= level) normals.row(n.vertex) = n.normal.normalized().transpose();
     m.vertex_data["target_normal"] = normals;
   }
   return m;
@@ -190,7 +192,7 @@ const std::vector<std::string>& iteration_columns() {
 const std::vector<std::string>& metric_columns() {
   static const std::vector<std::string> cols{
       "n_dofs", "n_fine", "n_constrained", "repeat", "subdivide_s", "assemble_s", "analyze_s", "solve_s", "solve_min_s",
-      "time_s", "iterations", "residual", "energy", "constraint_violation", "error_vs_reference", "detail_change", "spike_ratio",
+      "time_s", "iterations", "residual", "energy", "constraint_violation", "error_vs_reference", "detail_change", "spike_ratio", "curve_points",
       "peak_rss_mb", "solve_extra_mb", "unused_keys", "termination", "message"};
   return cols;
 }
@@ -249,6 +251,11 @@ MetricRow execute_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
     row["n_dofs"] = std::to_string(problem.H.rows());
     row["n_fine"] = std::to_string(rest.mesh(rest.levels()).n_vertices());
     row["n_constrained"] = std::to_string(problem.constraints.A.rows() + problem.constraints.A_coupled.rows());
+    if (!placed.curves.empty()) {  // the vertices the curves snapped (the VTP's `constrained` marks them)
+      std::size_t snapped = 0;
+      for (const PlacedCurve& c : placed.curves) snapped += c.vertices.size();
+      row["curve_points"] = std::to_string(snapped);
+    }
     const Eigen::MatrixXd start = spec.initial_guess == InitialGuess::Random ? random_start(spec, problem.H.rows()) : Eigen::MatrixXd();
     const auto references = reference_solutions(spec, cache, problem, drag_scales(spec.accuracy.drag_steps));
     const ReferenceSolution* reference = references.back();

@@ -20,17 +20,25 @@ figure() {  # name config panels-arguments...
   cp "$out/run.json" "papers/boier-martin/data/${name}_run.json"
 }
 
+# The edits' rest shape, as the input panel: the cow remeshed as the configs remesh it (the
+# remesher is deterministic, so this is the hierarchy the runs edit), finest level shown.
+rest_hierarchy() {
+  local vtm=results/figures/cow_remeshed_600_3.vtm
+  [ -f "$vtm" ] || build/bin/fairshape remesh data/cow.off --scheme catmull-clark --base-faces 600 --levels 3 "$vtm" >&2
+  echo "$vtm"
+}
+
 for f in "${figures[@]}"; do
   case $f in
     fig1) figure fig1 fig1_constraint_level \
             --title "One nose handle solved exactly on level 0, 1 or 3: same reach, details kept better on coarse levels (colour: displacement)" \
             --label "edit level {input_edit_level:.0f}: detail change {detail_change:.3f}" \
             --render "${cow_view[@]}" ;;
-    fig2) figure fig2 fig2_nose_pull \
+    fig2) figure fig2 fig2_nose_pull --rest "$(rest_hierarchy)" \
             --title "Nose pulled on the finest level of a Catmull-Clark hierarchy (colour: displacement)" \
             --label "{kind}: detail change {detail_change:.2f}, constraint residual {constraint_violation:.0e}" \
             --render "${cow_view[@]}" ;;
-    fig7) figure fig7 fig7_constraint_kinds --rest data/cow.off \
+    fig7) figure fig7 fig7_constraint_kinds --rest "$(rest_hierarchy)" \
             --title "Point, normal and curve constraints, detail-preserving energy, hooves fixed (colour: displacement)" \
             --label "{kind} constraints: detail change {detail_change:.3f}" \
             --render "${cow_view[@]}" ;;

@@ -191,6 +191,12 @@ void render_figure(const FigureSpec& spec, const std::string& png_path) {
     lo = std::min(lo, r[0]);
     hi = std::max(hi, r[1]);
   }
+  // Without --label, panels of runs are labelled by their swept parameters (when each has some).
+  if (labels.empty() && inputs.size() > 1 &&
+      std::all_of(sources.begin() + static_cast<long>(first_coloured), sources.end(), [](const RenderSource& r) { return !r.parameters.empty(); })) {
+    if (!spec.rest.empty()) labels.push_back(spec.rest_label);
+    for (std::size_t k = first_coloured; k < sources.size(); ++k) labels.push_back(sources[k].parameters);
+  }
   const bool coloured = !spec.colouring.array.empty();
   const ColourMap map = spec.colouring.effective_map();
   if (spec.range) {

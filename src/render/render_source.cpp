@@ -82,14 +82,26 @@ std::vector<std::string> pvd_files(const std::string& path) {
   return files;
 }
 
-// run_id column of a result folder's runs.csv.
+// A result folder's runs: id -> its swept parameters ("key=value, ..."; runs.csv's columns
+// between run_id and implementation), in the table's order.
+std::vector<std::pair<std::string, std::string>> runs_of(const fs::path& dir) {
+  std::vector<std::pair<std::string, std::string>> runs;
+  if (!fs::exists(dir / "runs.csv")) return runs;
+  const CsvTable t = read_csv((dir / "runs.csv").string(), true);
+  const int id = t.column("run_id"), end = t.column("implementation");
+  if (id < 0) return runs;
+  for (const auto& row : t.rows) {
+    std::string params;
+    for (int c = id + 1; c < end; ++c)
+      params.append(params.empty() ? "" : ", ").append(t.header[static_cast<std::size_t>(c)]).append("=").append(row[static_cast<std::size_t>(c)]);
+    runs.emplace_back(row[static_cast<std::size_t>(id)], params);
+  }
+  return runs;
+}
+
 std::vector<std::string> run_ids(const fs::path& dir) {
   std::vector<std::string> ids;
-  if (!fs::exists(dir / "runs.csv")) return ids;
-  const CsvTable t = read_csv((dir / "runs.csv").string(), true);
-  const int col = t.column("run_id");
-  if (col < 0) return ids;
-  for (const auto& row : t.rows) ids.push_back(row[static_cast<std::size_t>(col)]);
+  for (const auto& r : runs_of(dir)) ids.push_back(r.first);
   return ids;
 }
 
@@ -126,10 +138,12 @@ RenderSource run_source(const fs::path& dir, std::string run) {
   for (const fs::path& c : candidates)
     if (!run.empty() || c == dir / "final.obj")
       if (fs::is_regular_file(c)) {
-        RenderSource s{c.string(), load_geometry_file(c.string()), "", ""};
+        RenderSource s{c.string(), load_geometry_file(c.string()), "", "", ""};
         const fs::path levels = vtk / (run + "_levels.vtm");
         if (fs::is_regular_file(levels)) s.levels_path = levels.string();
         s.overlay_path = overlay_beside(c.string());
+        for (const auto& [rid, params] : runs_of(dir))
+          if (rid == run) s.parameters = params;
         return s;
       }
   throw IOError(dir.string() + ": no geometry for run '" + run + "' (looked for vtk/<run>.vtp, a curve's final stage, "
@@ -181,7 +195,7 @@ RenderSource load_render_source(const std::string& spec, const SourceChoice& cho
       if (c.block >= 0 && c.block != b) conflict("--block", std::to_string(c.block));
       c.block = b;
     }
-    return {path, load_level(path, c.block), path, ""};
+    return {path, load_level(path, c.block), path, "", ""};
   }
   if (ext == ".pvd") {
     if (!selector.empty()) {
@@ -191,11 +205,11 @@ RenderSource load_render_source(const std::string& spec, const SourceChoice& cho
     }
     const std::vector<std::string> files = pvd_files(path);
     const std::string& file = files[static_cast<std::size_t>(pick(c.step, static_cast<int>(files.size()), path, "step"))];
-    return {file, load_geometry_file(file), "", overlay_beside(file)};
+    return {file, load_geometry_file(file), "", overlay_beside(file), ""};
   }
   if (!selector.empty())
     throw InvalidInput(spec + ": '@" + selector + "' chooses a block of a .vtm, a step of a .pvd or a run of a folder");
-  return {path, load_geometry_file(path), "", overlay_beside(path)};
+  return {path, load_geometry_file(path), "", overlay_beside(path), ""};
 }
 
 }  // namespace fairshape::render

@@ -22,6 +22,7 @@ struct RenderSource {
   vtkSmartPointer<vtkPolyData> data;   // polygons, or lines for a curve
   std::string levels_path;             // the hierarchy it belongs to (.vtm), when there is one
   std::string overlay_path;            // <stem>_constraints.vtp beside a .vtp (a run's, a step's), if any
+  std::string parameters;              // a run's swept parameters, "key=value, ..." (its default label)
   bool curve() const { return data->GetNumberOfPolys() == 0 && data->GetNumberOfLines() > 0; }
 };
 

@@ -128,6 +128,16 @@ expect_error 2 "holds 2 runs; name one with --run ID" -- "$FS" render "$S/run" "
 id=$(sed -n 2p "$S/run/runs.csv" | cut -d, -f1)
 "$FS" render "$S/run" "$S/final.png" --run "$id" --array displacement --width 320 --height 240 --title "demo" \
   --label "run $id" --rest data/cow.off 2>"$S/log" || { cat "$S/log" >&2; fail "render of a run"; }
+# Two runs of a sweep without --label: labelled by their swept parameters (a label strip).
+id2=$(sed -n 3p "$S/run/runs.csv" | cut -d, -f1)
+"$FS" render "$S/run@$id" "$S/run@$id2" "$S/sweep.png" --width 300 --height 200 2>/dev/null || fail "two runs"
+$PY - "$S/sweep.png" <<'PYEOF'
+import sys
+import matplotlib.image as mpimg
+img = mpimg.imread(sys.argv[1])
+assert img.shape[:2] == (240, 600), f"no label strip above the panels: {img.shape}"
+assert (img[:40, :, :3].min(axis=2) < 0.5).mean() > 0.005, "the label strip is empty"
+PYEOF
 # The run wrote where its constraints are; a render draws them (its handle red) unless told not to.
 [ -s "$S/run/vtk/${id}_constraints.vtp" ] || fail "the run wrote no constraints overlay"
 "$FS" render "$S/run@$id" "$S/with.png" --view front --width 400 --height 300 2>/dev/null || fail "render with overlays"

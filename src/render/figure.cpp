@@ -73,6 +73,28 @@ vtkSmartPointer<vtkTextActor> text(const std::string& s, double x, double y, int
   return t;
 }
 
+// The colour bar in the strip right of the panels (from pixel x0, `width` wide, of a W-wide window).
+vtkSmartPointer<vtkScalarBarActor> colour_bar(vtkScalarsToColors* colours, const std::string& label, int x0, int width, int W) {
+  auto bar = vtkSmartPointer<vtkScalarBarActor>::New();
+  bar->SetLookupTable(colours);
+  bar->SetTitle(label.c_str());
+  bar->SetNumberOfLabels(5);
+  bar->SetLabelFormat("%-#7.3g");
+  bar->SetMaximumWidthInPixels(width - 30);
+  bar->SetPosition(static_cast<double>(x0 + 10) / W, 0.1);
+  bar->SetWidth(static_cast<double>(width - 20) / W);
+  bar->SetHeight(0.8);
+  bar->UnconstrainedFontSizeOn();
+  for (vtkTextProperty* p : {bar->GetTitleTextProperty(), bar->GetLabelTextProperty()}) {
+    p->SetColor(0.1, 0.1, 0.1);
+    p->SetFontSize(15);
+    p->ItalicOff();
+    p->ShadowOff();
+    p->BoldOff();
+  }
+  return bar;
+}
+
 std::string default_colour_label(const Colouring& c) {
   if (!c.component_given || c.component == Component::Magnitude) return c.array == "displacement" ? "|displacement|" : c.array;
   if (c.component == Component::Normal) return "normal " + c.array;
@@ -151,6 +173,38 @@ void write_camera(vtkCamera* cam, const std::vector<std::array<int, 4>>& panels,
   write_json(j, path);
 }
 
+// What the panels show, loaded: the sources, their scalars (null for an uncoloured panel),
+// the scene's bounds and the scalars' range over every panel.
+struct Panels {
+  std::vector<RenderSource> sources;
+  std::vector<vtkSmartPointer<vtkDoubleArray>> scalars;
+  double bounds[6] = {1e300, -1e300, 1e300, -1e300, 1e300, -1e300};
+  double lo = 1e300, hi = -1e300;
+};
+
+Panels load_panels(const std::vector<std::string>& inputs, std::size_t first_coloured, const FigureSpec& spec) {
+  Panels out;
+  for (const std::string& p : inputs) {
+    out.sources.push_back(load_render_source(p, spec.choice));
+    double b[6];
+    out.sources.back().data->GetBounds(b);
+    for (int k = 0; k < 3; ++k) {
+      out.bounds[2 * k] = std::min(out.bounds[2 * k], b[2 * k]);
+      out.bounds[2 * k + 1] = std::max(out.bounds[2 * k + 1], b[2 * k + 1]);
+    }
+    if (spec.colouring.array.empty() || out.sources.size() <= first_coloured) {
+      out.scalars.emplace_back();
+      continue;
+    }
+    out.scalars.push_back(panel_scalars(out.sources.back().data, spec.colouring, out.sources.back().path));
+    double r[2];
+    out.scalars.back()->GetRange(r);
+    out.lo = std::min(out.lo, r[0]);
+    out.hi = std::max(out.hi, r[1]);
+  }
+  return out;
+}
+
 }  // namespace
 
 void render_figure(const FigureSpec& spec, const std::string& png_path) {
@@ -169,28 +223,11 @@ void render_figure(const FigureSpec& spec, const std::string& png_path) {
     if (!labels.empty()) labels.insert(labels.begin(), spec.rest_label);
   }
   const std::size_t first_coloured = spec.rest.empty() ? 0 : 1;
-  std::vector<RenderSource> sources;
-  std::vector<vtkSmartPointer<vtkDoubleArray>> scalars;  // null for the uncoloured input panel
-  double bounds[6] = {1e300, -1e300, 1e300, -1e300, 1e300, -1e300};
-  double lo = 1e300, hi = -1e300;
-  for (const std::string& p : inputs) {
-    sources.push_back(load_render_source(p, spec.choice));
-    double b[6];
-    sources.back().data->GetBounds(b);
-    for (int k = 0; k < 3; ++k) {
-      bounds[2 * k] = std::min(bounds[2 * k], b[2 * k]);
-      bounds[2 * k + 1] = std::max(bounds[2 * k + 1], b[2 * k + 1]);
-    }
-    if (spec.colouring.array.empty() || sources.size() <= first_coloured) {
-      scalars.emplace_back();
-      continue;
-    }
-    scalars.push_back(panel_scalars(sources.back().data, spec.colouring, sources.back().path));
-    double r[2];
-    scalars.back()->GetRange(r);
-    lo = std::min(lo, r[0]);
-    hi = std::max(hi, r[1]);
-  }
+  const Panels loaded = load_panels(inputs, first_coloured, spec);
+  const std::vector<RenderSource>& sources = loaded.sources;
+  const std::vector<vtkSmartPointer<vtkDoubleArray>>& scalars = loaded.scalars;
+  const double* bounds = loaded.bounds;
+  double lo = loaded.lo, hi = loaded.hi;
   // Without --label, panels of runs are labelled by their swept parameters (when each has some).
   if (labels.empty() && inputs.size() > 1 &&
       std::all_of(sources.begin() + static_cast<long>(first_coloured), sources.end(), [](const RenderSource& r) { return !r.parameters.empty(); })) {
@@ -269,34 +306,17 @@ void render_figure(const FigureSpec& spec, const std::string& png_path) {
     if (!labels.empty()) annotations->AddActor2D(text(labels[k], (col + 0.5) * w, top + label_h / 2.0, w - 16, 22));
   }
   if (title_h) annotations->AddActor2D(text(spec.title, W / 2.0, H - title_h / 2.0, W - 24, 26));
-  if (coloured) {
-    vtkNew<vtkScalarBarActor> bar;
-    bar->SetLookupTable(colours);
-    bar->SetTitle((spec.colour_label.empty() ? default_colour_label(spec.colouring) : spec.colour_label).c_str());
-    bar->SetNumberOfLabels(5);
-    bar->SetLabelFormat("%-#7.3g");
-    bar->SetMaximumWidthInPixels(bar_w - 30);
-    bar->SetPosition(static_cast<double>(cols * w + 10) / W, 0.1);
-    bar->SetWidth(static_cast<double>(bar_w - 20) / W);
-    bar->SetHeight(0.8);
-    bar->UnconstrainedFontSizeOn();
-    for (vtkTextProperty* p : {bar->GetTitleTextProperty(), bar->GetLabelTextProperty()}) {
-      p->SetColor(0.1, 0.1, 0.1);
-      p->SetFontSize(15);
-      p->ItalicOff();
-      p->ShadowOff();
-      p->BoldOff();
-    }
-    annotations->AddActor2D(bar);
-  }
+  if (coloured)
+    annotations->AddActor2D(colour_bar(colours, spec.colour_label.empty() ? default_colour_label(spec.colouring) : spec.colour_label,
+                                       cols * w, bar_w, W));
   window->Render();
-  if (!spec.camera_path.empty()) write_camera(camera, panels, W, H, spec.camera_path);
   vtkNew<vtkWindowToImageFilter> grab;
   grab->SetInput(window);
   if (transparent) grab->SetInputBufferTypeToRGBA();
   grab->ReadFrontBufferOff();
   grab->Update();
   require_visible(grab->GetOutput(), panels, transparent);
+  if (!spec.camera_path.empty()) write_camera(camera, panels, W, H, spec.camera_path);
   const auto tmp = temporary_sibling(png_path);
   vtkNew<vtkPNGWriter> writer;
   writer->SetFileName(tmp.c_str());

@@ -51,17 +51,20 @@ std::vector<int> FeaturedSurface::features_on(int level) const {
   return ids;
 }
 
+FeaturedSurface::LevelFeatures FeaturedSurface::apply_on(const SurfaceMesh& mesh, const std::vector<int>& ids) const {
+  const TriangleSurface surface(mesh, loop_limit_normals(mesh));
+  LevelFeatures out;
+  for (int id : ids) out.curves.push_back(build_base_curve(surface, features_.at(id)));
+  out.perturbation = compute_perturbation(surface, out.curves, backend_);
+  return out;
+}
+
 void FeaturedSurface::check_coarsest_features() const {
-  for (int level = 0; level <= original_.levels(); ++level) {
-    const std::vector<int> ids = features_on(level);
-    if (ids.empty()) continue;
-    const SurfaceMesh& mesh = original_.mesh(level);
-    const TriangleSurface surface(mesh, loop_limit_normals(mesh));
-    std::vector<BaseCurve> curves;
-    for (int id : ids) curves.push_back(build_base_curve(surface, features_.at(id)));
-    (void)compute_perturbation(surface, curves, backend_);
-    return;
-  }
+  for (int level = 0; level <= original_.levels(); ++level)
+    if (const std::vector<int> ids = features_on(level); !ids.empty()) {
+      (void)apply_on(original_.mesh(level), ids);
+      return;
+    }
 }
 
 void FeaturedSurface::evaluate() {
@@ -72,14 +75,10 @@ void FeaturedSurface::evaluate() {
     const std::vector<int> ids = features_on(level);
     if (ids.empty()) continue;
     const SurfaceMesh& mesh = result_.mesh(level);
-    const TriangleSurface surface(mesh, loop_limit_normals(mesh));
-    std::vector<BaseCurve> curves;
-    for (int id : ids) {
-      curves.push_back(build_base_curve(surface, features_.at(id)));
-      base_curves_[id] = curves.back();
-    }
+    LevelFeatures applied = apply_on(mesh, ids);
+    for (std::size_t k = 0; k < ids.size(); ++k) base_curves_[ids[k]] = std::move(applied.curves[k]);
     LevelPerturbation& d = perturbations_[static_cast<std::size_t>(level)];
-    d = compute_perturbation(surface, curves, backend_);
+    d = std::move(applied.perturbation);
     result_.set_level_positions(level, mesh.positions() + d.dense(mesh.n_vertices()));
     if (level < result_.levels()) result_.synthesize_from(level, DetailSpace::Local);
   }

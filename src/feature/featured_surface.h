@@ -45,6 +45,12 @@ class FeaturedSurface {
   const std::map<int, BaseCurve>& base_curves();
 
  private:
+  // The base curves of features `ids` on `mesh` (one level) and the perturbation they make.
+  struct LevelFeatures {
+    std::vector<BaseCurve> curves;
+    LevelPerturbation perturbation;
+  };
+  LevelFeatures apply_on(const SurfaceMesh& mesh, const std::vector<int>& ids) const;
   void evaluate();
   std::vector<int> features_on(int level) const;
   MultiresSurface original_, result_;

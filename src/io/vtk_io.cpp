@@ -241,8 +241,26 @@ std::string checked_vtk_text(const std::string& path) {
   return text;
 }
 
-SurfaceMesh from_polydata(vtkPolyData* pd, const std::string& path) {
+// What VTK read, checked before it is used: points present, and every cell's ids in range,
+// checked as 64-bit ids (4294967298 must not wrap to point 2).
+void check_polydata(vtkPolyData* pd, const std::string& path) {
   if (!pd || pd->GetNumberOfPoints() == 0) throw IOError(path + ": no points in the VTK file");
+  const char* kinds[] = {"vertex cell", "line", "polygon", "strip"};
+  vtkCellArray* cells[] = {pd->GetVerts(), pd->GetLines(), pd->GetPolys(), pd->GetStrips()};
+  vtkNew<vtkIdList> ids;
+  for (int k = 0; k < 4; ++k) {
+    vtkIdType cell = 0;
+    for (cells[k]->InitTraversal(); cells[k]->GetNextCell(ids); ++cell)
+      for (vtkIdType j = 0; j < ids->GetNumberOfIds(); ++j)
+        if (ids->GetId(j) < 0 || ids->GetId(j) >= pd->GetNumberOfPoints())
+          throw InvalidInput(path + ": " + kinds[k] + " " + std::to_string(cell) + " references point " +
+                             std::to_string(ids->GetId(j)) + ", out of range [0, " + std::to_string(pd->GetNumberOfPoints()) +
+                             ")");
+  }
+}
+
+// `pd` passed check_polydata.
+SurfaceMesh from_polydata(vtkPolyData* pd, const std::string& path) {
   MatrixX3 V(pd->GetNumberOfPoints(), 3);
   for (vtkIdType i = 0; i < pd->GetNumberOfPoints(); ++i) {
     double p[3];
@@ -255,14 +273,7 @@ SurfaceMesh from_polydata(vtkPolyData* pd, const std::string& path) {
   polys->InitTraversal();
   while (polys->GetNextCell(ids)) {
     std::vector<int> f(ids->GetNumberOfIds());
-    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k) {
-      // Checked as 64-bit ids: 4294967298 must not wrap to vertex 2.
-      const vtkIdType id = ids->GetId(k);
-      if (id < 0 || id >= pd->GetNumberOfPoints())
-        throw InvalidInput(path + ": polygon " + std::to_string(faces.size()) + " references point " + std::to_string(id) +
-                           ", out of range [0, " + std::to_string(pd->GetNumberOfPoints()) + ")");
-      f[k] = static_cast<int>(id);
-    }
+    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k) f[k] = static_cast<int>(ids->GetId(k));
     faces.push_back(std::move(f));
   }
   SurfaceMesh m;
@@ -289,20 +300,7 @@ vtkSmartPointer<vtkPolyData> read_checked_polydata(const std::string& path) {
   r->SetInputString(text);
   r->Update();
   vtkSmartPointer<vtkPolyData> pd = r->GetOutput();
-  if (!pd || pd->GetNumberOfPoints() == 0) throw IOError(path + ": no points in the VTK file");
-  // Every cell's ids checked as 64-bit ids: 4294967298 must not wrap to point 2.
-  const char* kinds[] = {"vertex cell", "line", "polygon", "strip"};
-  vtkCellArray* cells[] = {pd->GetVerts(), pd->GetLines(), pd->GetPolys(), pd->GetStrips()};
-  vtkNew<vtkIdList> ids;
-  for (int k = 0; k < 4; ++k) {
-    vtkIdType cell = 0;
-    for (cells[k]->InitTraversal(); cells[k]->GetNextCell(ids); ++cell)
-      for (vtkIdType j = 0; j < ids->GetNumberOfIds(); ++j)
-        if (ids->GetId(j) < 0 || ids->GetId(j) >= pd->GetNumberOfPoints())
-          throw InvalidInput(path + ": " + kinds[k] + " " + std::to_string(cell) + " references point " +
-                             std::to_string(ids->GetId(j)) + ", out of range [0, " + std::to_string(pd->GetNumberOfPoints()) +
-                             ")");
-  }
+  check_polydata(pd, path);
   return pd;
 }
 
@@ -386,8 +384,11 @@ std::vector<SurfaceMesh> read_vtm(const std::string& path) {
   auto* mb = vtkMultiBlockDataSet::SafeDownCast(r->GetOutput());
   if (!mb) throw IOError(path + ": not a VTK multiblock file");
   std::vector<SurfaceMesh> out;
-  for (unsigned i = 0; i < mb->GetNumberOfBlocks(); ++i)
-    out.push_back(from_polydata(vtkPolyData::SafeDownCast(mb->GetBlock(i)), path));
+  for (unsigned i = 0; i < mb->GetNumberOfBlocks(); ++i) {
+    vtkPolyData* block = vtkPolyData::SafeDownCast(mb->GetBlock(i));
+    check_polydata(block, path);
+    out.push_back(from_polydata(block, path));
+  }
   return out;
 }
 

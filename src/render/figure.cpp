@@ -19,6 +19,7 @@
 #include <filesystem>
 
 #include "core/atomic_file.h"
+#include "io/constraint_overlay.h"
 #include "io/json_io.h"
 #include "core/error.h"
 #include "render/display.h"
@@ -108,15 +109,16 @@ void focus_on_handles(const RenderSource& source, double diagonal, ViewSpec& vie
     throw InvalidInput("render: --focus-constraints needs an overlay: " + source.path + " has no " +
                        "<stem>_constraints.vtp beside it");
   const auto overlay = load_overlay(source.overlay_path);
-  vtkDataArray* kind = overlay->GetPointData()->GetArray("kind");
-  vtkDataArray* offset = overlay->GetPointData()->GetArray("offset");
+  vtkDataArray* kind = overlay->GetPointData()->GetArray(kOverlayKind);
+  vtkDataArray* offset = overlay->GetPointData()->GetArray(kOverlayOffset);
   std::vector<Vec3> at;  // the handles where they ended and where they started, the normal targets
   for (vtkIdType i = 0; kind && i < overlay->GetNumberOfPoints(); ++i)
-    if (kind->GetComponent(i, 0) == 1 || kind->GetComponent(i, 0) == 2) {
+    if (const auto k = static_cast<OverlayKind>(static_cast<int>(kind->GetComponent(i, 0)));
+        k == OverlayKind::Handle || k == OverlayKind::Normal) {
       double p[3];
       overlay->GetPoint(i, p);
       at.emplace_back(p[0], p[1], p[2]);
-      if (kind->GetComponent(i, 0) == 1 && offset) {
+      if (k == OverlayKind::Handle && offset) {
         const double* o = offset->GetTuple3(i);
         at.emplace_back(p[0] - o[0], p[1] - o[1], p[2] - o[2]);
       }

@@ -16,6 +16,8 @@
 
 #include <array>
 
+#include "io/constraint_overlay.h"
+
 namespace fairshape::render {
 namespace {
 
@@ -82,9 +84,9 @@ std::vector<vtkSmartPointer<vtkProp>> overlay_props(vtkPolyData* overlay, double
     lines->SetLines(overlay->GetLines());
     props.push_back(tubes(lines, 0.0018 * d, kCurve));  // thin: fine features stay visible beside it
   }
-  vtkDataArray* kind = overlay->GetPointData()->GetArray("kind");
-  vtkDataArray* offset = overlay->GetPointData()->GetArray("offset");
-  vtkDataArray* normal = overlay->GetPointData()->GetArray("target_normal");
+  vtkDataArray* kind = overlay->GetPointData()->GetArray(kOverlayKind);
+  vtkDataArray* offset = overlay->GetPointData()->GetArray(kOverlayOffset);
+  vtkDataArray* normal = overlay->GetPointData()->GetArray(kOverlayNormal);
   if (!kind) {
     if (overlay->GetNumberOfLines() == 0) {  // a point file: its points
       vtkNew<vtkPoints> all;
@@ -102,9 +104,9 @@ std::vector<vtkSmartPointer<vtkProp>> overlay_props(vtkPolyData* overlay, double
   for (vtkIdType i = 0; i < overlay->GetNumberOfPoints(); ++i) {
     double p[3];
     overlay->GetPoint(i, p);
-    const int k = static_cast<int>(kind->GetComponent(i, 0));
-    if (k == 0) fixed->InsertNextPoint(p);
-    if (k == 1 && offset) {
+    const auto k = static_cast<OverlayKind>(static_cast<int>(kind->GetComponent(i, 0)));
+    if (k == OverlayKind::Fixed) fixed->InsertNextPoint(p);
+    if (k == OverlayKind::Handle && offset) {
       handles->InsertNextPoint(p);
       const double* o = offset->GetTuple3(i);
       const double s[3] = {p[0] - o[0], p[1] - o[1], p[2] - o[2]};
@@ -113,7 +115,7 @@ std::vector<vtkSmartPointer<vtkProp>> overlay_props(vtkPolyData* overlay, double
       const vtkIdType ids[2] = {a, b};
       arrow_lines->InsertNextCell(2, ids);
     }
-    if (k == 2 && normal) {
+    if (k == OverlayKind::Normal && normal) {
       normal_at->InsertNextPoint(p);
       normal_dirs->InsertNextTuple(normal->GetTuple3(i));
     }

@@ -9,6 +9,7 @@
 #include "curve_design/curve_metrics.h"
 #include "curves/multires_polyline.h"
 #include "experiment/metric_format.h"
+#include "io/constraint_overlay.h"
 #include "io/mesh_io.h"
 #include "experiment/vtk_policy.h"
 #include "io/vtk_io.h"
@@ -174,15 +175,10 @@ void write_stage(const CurveRunSpec& spec, const RunOutputs& out, int edit, cons
   if (spec.vtk == VtkPolicy::All || (spec.vtk == VtkPolicy::Final && std::string(stage) == "final")) {
     const std::string vtk = (fs::path(out.dir) / "vtk" / stem).string();
     write_vtp(c, {{"displacement", Eigen::MatrixXd(X - reference)}}, vtk + ".vtp");
-    const auto n = static_cast<Eigen::Index>(stages.moved_points.size());
-    MatrixX3 at(n, 3);
-    Eigen::MatrixXd kind = Eigen::MatrixXd::Ones(n, 1), offset(n, 3);
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const int p = stages.moved_points[static_cast<std::size_t>(i)];
-      at.row(i) = stages.edited.row(p);
-      offset.row(i) = stages.edited.row(p) - stages.reference.row(p);
-    }
-    write_vtp(at, {}, {{"kind", kind}, {"offset", offset}}, vtk + "_constraints.vtp");
+    ConstraintOverlay handles;
+    for (int p : stages.moved_points)
+      handles.add_handle(stages.edited.row(p).transpose(), (stages.edited.row(p) - stages.reference.row(p)).transpose());
+    handles.write(vtk + "_constraints.vtp");
   }
 }
 

@@ -10,6 +10,7 @@
 #include "experiment/metric_format.h"
 #include "feature/adaptive_mesh.h"
 #include "feature/featured_surface.h"
+#include "io/constraint_overlay.h"
 #include "io/mesh_io.h"
 #include "experiment/vtk_policy.h"
 #include "io/vtk_io.h"
@@ -125,24 +126,6 @@ const std::vector<std::string>& feature_metric_columns() {
 
 namespace {
 
-// vtk/<run>_constraints.vtp for a feature run: its base curves (on the unperturbed surface,
-// where the designer drew them) as polylines.
-void write_curve_overlay(const std::vector<MatrixX3>& curves, const std::string& path) {
-  Eigen::Index n = 0;
-  for (const auto& c : curves) n += c.rows();
-  MatrixX3 points(n, 3);
-  std::vector<std::vector<int>> lines;
-  Eigen::Index r = 0;
-  for (const auto& c : curves) {
-    points.middleRows(r, c.rows()) = c;
-    std::vector<int> line(static_cast<std::size_t>(c.rows()));
-    for (Eigen::Index i = 0; i < c.rows(); ++i) line[static_cast<std::size_t>(i)] = static_cast<int>(r + i);
-    lines.push_back(std::move(line));
-    r += c.rows();
-  }
-  write_vtp(points, lines, {}, path);
-}
-
 double bounding_diagonal(const SurfaceMesh& m) {
   return (m.positions().colwise().maxCoeff() - m.positions().colwise().minCoeff()).norm();
 }
@@ -213,7 +196,7 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
     row["triangles_uniform"] = std::to_string(fine.n_faces());
     int segments = 0;
     fs::create_directories(fs::path(out.dir) / "curves");
-    std::vector<MatrixX3> drawn;  // the base curves, for the overlay
+    ConstraintOverlay drawn;  // vtk/<run>_constraints.vtp: the base curves, where the designer drew them
     for (const auto& [id, bc] : surface.base_curves()) {
       segments += static_cast<int>(bc.segments.size());
       MatrixX3 X(static_cast<Eigen::Index>(bc.segments.size() + 1), 3);
@@ -221,9 +204,11 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
       X.row(X.rows() - 1) = bc.segments.back().b.transpose();
       write_polyline(Polyline{X, false}, (fs::path(out.dir) / "curves" /
                                           (out.run_id + "_" + surface.features().at(id).name + ".obj")).string());
-      drawn.push_back(std::move(X));
+      std::vector<Vec3> points;
+      for (Eigen::Index i = 0; i < X.rows(); ++i) points.push_back(X.row(i).transpose());
+      drawn.add_curve(points);
     }
-    if (spec.vtk) write_curve_overlay(drawn, (fs::path(out.dir) / "vtk" / (out.run_id + "_constraints.vtp")).string());
+    if (spec.vtk) drawn.write((fs::path(out.dir) / "vtk" / (out.run_id + "_constraints.vtp")).string());
     row["segments"] = std::to_string(segments);
     if (spec.adaptive) {
       int from = spec.levels;

@@ -11,6 +11,7 @@
 #include "core/config.h"
 #include "core/timer.h"
 #include "experiment/metric_format.h"
+#include "io/constraint_overlay.h"
 #include "io/mesh_io.h"
 #include "experiment/vtk_policy.h"
 #include "io/vtk_io.h"
@@ -333,54 +334,17 @@ std::vector<SheetConstraint> active_constraints(const SheetRunSpec& spec, std::s
 }
 
 // What a figure draws over a step (vtk/<run>_step<k>_constraints.vtp, read by fairshape
-// render beside the step's .vtp): point targets as handles (kind 1) with the offset from where
-// the initial sheet was at their (u, v), normal targets (kind 2) where the initial sheet was,
-// and the space curves of the active curve constraints as polylines.
-class ConstraintOverlay {
- public:
-  void add(const std::vector<SheetConstraint>& active, const bspline::HierarchicalSurface& initial,
-           const Eigen::MatrixXd& initial_P) {
-    for (const SheetConstraint& c : active) {
-      if (c.kind == SheetConstraint::Kind::Curve) add_curve(c.curve.space);
-      if (c.kind != SheetConstraint::Kind::Point && c.kind != SheetConstraint::Kind::Normal) continue;
-      const Vec3 was = initial.position(initial_P, c.u, c.v);
-      const bool point = c.kind == SheetConstraint::Kind::Point;
-      points_.push_back(point ? c.target : was);
-      kind_.push_back(point ? 1 : 2);
-      offset_.push_back(point ? Vec3(c.target - was) : Vec3::Zero());
-      normal_.push_back(point ? Vec3::Zero() : Vec3(c.target.normalized()));
-    }
+// render beside the step's .vtp): point targets as handles with the offset from where the
+// initial sheet was at their (u, v), normal targets where the initial sheet was, and the space
+// curves of the active curve constraints.
+void add_to_overlay(const std::vector<SheetConstraint>& active, const bspline::HierarchicalSurface& initial,
+                    const Eigen::MatrixXd& initial_P, ConstraintOverlay& overlay) {
+  for (const SheetConstraint& c : active) {
+    if (c.kind == SheetConstraint::Kind::Point) overlay.add_handle(c.target, c.target - initial.position(initial_P, c.u, c.v));
+    if (c.kind == SheetConstraint::Kind::Normal) overlay.add_normal(initial.position(initial_P, c.u, c.v), c.target);
+    if (c.kind == SheetConstraint::Kind::Curve) overlay.add_curve(c.curve.space);
   }
-  void add_curve(const std::vector<Vec3>& curve) {
-    std::vector<int> line;
-    for (const Vec3& p : curve) {
-      line.push_back(static_cast<int>(points_.size()));
-      points_.push_back(p);
-      kind_.push_back(-1);  // a curve's point, not a constraint of its own
-      offset_.push_back(Vec3::Zero());
-      normal_.push_back(Vec3::Zero());
-    }
-    lines_.push_back(std::move(line));
-  }
-  void write(const std::string& path) const {
-    const auto n = static_cast<Eigen::Index>(points_.size());
-    MatrixX3 P(n, 3);
-    Eigen::MatrixXd kind(n, 1), offset(n, 3), normal(n, 3);
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const auto k = static_cast<std::size_t>(i);
-      P.row(i) = points_[k].transpose();
-      kind(i, 0) = kind_[k];
-      offset.row(i) = offset_[k].transpose();
-      normal.row(i) = normal_[k].transpose();
-    }
-    write_vtp(P, lines_, {{"kind", kind}, {"offset", offset}, {"target_normal", normal}}, path);
-  }
-
- private:
-  std::vector<Vec3> points_, offset_, normal_;
-  std::vector<int> kind_;
-  std::vector<std::vector<int>> lines_;
-};
+}
 
 // The sheets at their current shape as one mesh (separate components) with displacement_norm.
 SurfaceMesh sheets_mesh(const std::vector<bspline::VariationalSheet>& sheets, int per_span,
@@ -441,7 +405,7 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
       for (std::size_t k = 0; k < sheets.size(); ++k) {
         const std::vector<SheetConstraint> active = active_constraints(spec, k, step, curves_now, initial_surfaces[k], initial_P[k]);
         if (active.empty()) continue;  // nothing acts on this sheet yet: it keeps its shape
-        overlay.add(active, initial_surfaces[k], initial_P[k]);
+        add_to_overlay(active, initial_surfaces[k], initial_P[k], overlay);
         const bspline::DesignReport r =
             bspline::solve_sheet(sheets[k], spec.energy, active, *spec.solver, spec.refinement, spec.implementation);
         const auto& s = sheets[k].surface();

@@ -102,13 +102,12 @@ std::string default_colour_label(const Colouring& c) {
   return c.array + " " + std::string(component_names().name(c.component));
 }
 
-// The centre and extent of a source's moved handles and normal targets (kinds 1 and 2 of
-// its overlay), as the view's focus.
-void focus_on_handles(const RenderSource& source, double diagonal, ViewSpec& view) {
-  if (source.overlay_path.empty())
+// The centre and extent of a source's moved handles (where they started too) and normal
+// targets in its overlay (null: it has none), as the view's focus.
+void focus_on_handles(const RenderSource& source, vtkPolyData* overlay, double diagonal, ViewSpec& view) {
+  if (!overlay)
     throw InvalidInput("render: --focus-constraints needs an overlay: " + source.path + " has no " +
                        "<stem>_constraints.vtp beside it");
-  const auto overlay = load_overlay(source.overlay_path);
   vtkDataArray* kind = overlay->GetPointData()->GetArray(kOverlayKind);
   vtkDataArray* offset = overlay->GetPointData()->GetArray(kOverlayOffset);
   std::vector<Vec3> at;  // the handles where they ended and where they started, the normal targets
@@ -294,14 +293,17 @@ void render_figure(const FigureSpec& spec, const std::string& png_path) {
     for (const auto& prop : panel_props(sources[k], scalars[k], scalars[k] ? colours.Get() : nullptr, lo, hi, spec.style, diagonal))
       r->AddViewProp(prop);
     const RenderSource& src = sources[k];
-    std::vector<std::string> overlays = spec.extra_overlays;
-    if (spec.overlays && !src.overlay_path.empty()) overlays.push_back(src.overlay_path);
-    for (const std::string& o : overlays)
+    // The source's own overlay (read once: it also gives --focus-constraints its handles).
+    const bool wanted = spec.overlays || (i == 0 && spec.focus_on_constraints);
+    const vtkSmartPointer<vtkPolyData> own = wanted && !src.overlay_path.empty() ? load_overlay(src.overlay_path) : nullptr;
+    if (spec.overlays && own)
+      for (const auto& prop : overlay_props(own, diagonal)) r->AddViewProp(prop);
+    for (const std::string& o : spec.extra_overlays)
       for (const auto& prop : overlay_props(load_overlay(o), diagonal)) r->AddViewProp(prop);
     window->AddRenderer(r);
     if (i == 0) {
       ViewSpec view = spec.view;
-      if (spec.focus_on_constraints) focus_on_handles(src, diagonal, view);
+      if (spec.focus_on_constraints) focus_on_handles(src, own, diagonal, view);
       if (view.focused && !(view.radius > 0)) view.radius = diagonal / 4;
       place_camera(r, view, bounds);
     }

@@ -99,15 +99,11 @@ std::vector<std::pair<std::string, std::string>> runs_of(const fs::path& dir) {
   return runs;
 }
 
-std::vector<std::string> run_ids(const fs::path& dir) {
-  std::vector<std::string> ids;
-  for (const auto& r : runs_of(dir)) ids.push_back(r.first);
-  return ids;
-}
-
 // The geometry a run left: its result .vtp, a curve run's last final stage, or final.obj.
 RenderSource run_source(const fs::path& dir, std::string run) {
-  const std::vector<std::string> ids = run_ids(dir);
+  const auto runs = runs_of(dir);  // runs.csv read once
+  std::vector<std::string> ids;
+  for (const auto& r : runs) ids.push_back(r.first);
   if (run.empty()) {
     if (ids.size() > 1) {
       std::string list;
@@ -142,7 +138,7 @@ RenderSource run_source(const fs::path& dir, std::string run) {
         const fs::path levels = vtk / (run + "_levels.vtm");
         if (fs::is_regular_file(levels)) s.levels_path = levels.string();
         s.overlay_path = overlay_beside(c.string());
-        for (const auto& [rid, params] : runs_of(dir))
+        for (const auto& [rid, params] : runs)
           if (rid == run) s.parameters = params;
         return s;
       }

@@ -9,7 +9,7 @@ PACKAGES=(
   libeigen3-dev libsuitesparse-dev libceres-dev libtbb-dev nlohmann-json3-dev libx11-dev
   libbenchmark-dev catch2 libvtk9-dev libyaml-cpp-dev libcli11-dev
   libosd-dev libcgal-dev libembree-dev libmeshoptimizer-dev
-  libssl-dev python3-matplotlib python3-pandas xvfb xauth
+  libssl-dev python3-matplotlib python3-pandas python3-vtk9 xvfb xauth  # python3-vtk9: tests read VTP arrays
   clang libclang-rt-14-dev
 )
 

@@ -1,10 +1,12 @@
 #!/usr/bin/python3
 """Side-by-side figure of a sweep's results: one rendered panel per run of runs.csv.
 
-  panels.py RUN_DIR OUT.png --title TEXT --label FORMAT [--rest MESH] [--render ARG ...]
+  panels.py RUN_DIR OUT.png --title TEXT --label FORMAT [--label FORMAT ...] [--rest MESH] [--render ARG ...]
+  panels.py RUN_DIR OUT.png --title TEXT --steps RUN_ID --label FORMAT [--render ARG ...]
   panels.py RUN_DIR OUT.png --title TEXT --ladder RUN_ID [--render ARG ...]
 
---ladder shows one run's accuracy ladder instead (vtk/<RUN_ID>_ladder_level<l>.vtp: each
+--steps shows one run's drag steps instead (vtk/<RUN_ID>_step<k>.vtp, written with
+output.vtk: all; FORMAT over steps.csv's row). --ladder shows one run's accuracy ladder instead (vtk/<RUN_ID>_ladder_level<l>.vtp: each
 level's deformed control mesh, coloured by the vertices the propagated constraints reach).
 
 FORMAT is a Python format string over the runs.csv row, with dots in column names replaced
@@ -49,13 +51,15 @@ def main():
     p.add_argument("run_dir")
     p.add_argument("out_png")
     p.add_argument("--title", required=True)
-    p.add_argument("--label", help="panel label format (required unless --ladder)")
+    p.add_argument("--label", action="append",
+                   help="panel label format (required unless --ladder); given once per run, one each, in runs.csv order")
     p.add_argument("--ladder", metavar="RUN_ID", help="show this run's ladder levels instead of every run")
+    p.add_argument("--steps", metavar="RUN_ID", help="show this run's drag steps instead of every run")
     p.add_argument("--rest", help="also show this mesh first, uncoloured")
     p.add_argument("--columns", type=int, default=0, help="panels per row (default: all in one row)")
     p.add_argument("--render", nargs=argparse.REMAINDER, default=[], help="arguments for fairshape render")
     a = p.parse_args()
-    inputs, labels, args = ladder_panels(a) if a.ladder else run_panels(a)
+    inputs, labels, args = ladder_panels(a) if a.ladder else step_panels(a) if a.steps else run_panels(a)
     args += ["--title", a.title] + (["--columns", str(a.columns)] if a.columns else [])
     tmp = a.out_png + ".tmp.png"
     render(inputs, labels, tmp, args + a.render)
@@ -73,6 +77,22 @@ def ladder_panels(a):
     return [os.path.join(vtk, f) for f in files], labels, args
 
 
+def step_panels(a):
+    if not a.label or len(a.label) != 1:
+        sys.exit("panels: --steps needs one --label format (over steps.csv's columns)")
+    rows = [r for r in csv.DictReader(open(os.path.join(a.run_dir, "steps.csv"))) if r["run_id"] == a.steps]
+    vtk = os.path.join(a.run_dir, "vtk")
+    inputs = [os.path.join(vtk, f"{a.steps}_step{r['step']}.vtp") for r in rows]
+    missing = [f for f in inputs if not os.path.exists(f)]
+    if not rows or missing:
+        sys.exit(f"panels: run {a.steps} has no drag steps in {a.run_dir} (output.vtk: all writes them): {missing[:1]}")
+    labels = [a.label[0].format(**fields(r)) for r in rows]
+    args = ["--array", "displacement"]
+    if "--component" not in a.render:
+        args += ["--colour-label", "|displacement|"]
+    return inputs, labels, args
+
+
 def run_panels(a):
     if not a.label:
         sys.exit("panels: --label is required (or --ladder RUN_ID)")
@@ -81,7 +101,10 @@ def run_panels(a):
     if failed:
         sys.exit(f"panels: runs {failed} did not finish; see {a.run_dir}/runs.csv")
     inputs = [f"{a.run_dir}@{r['run_id']}" for r in rows]
-    labels = [a.label.format(**fields(r)) for r in rows]
+    if len(a.label) not in (1, len(rows)):
+        sys.exit(f"panels: {len(a.label)} --label formats for {len(rows)} runs (give one, or one per run)")
+    formats = a.label * len(rows) if len(a.label) == 1 else a.label
+    labels = [f.format(**fields(r)) for f, r in zip(formats, rows)]
     args = ["--array", "displacement"]
     if "--component" not in a.render:
         args += ["--colour-label", "|displacement|"]

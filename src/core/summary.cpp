@@ -6,8 +6,8 @@ namespace fairshape {
 
 const std::vector<std::string>& termination_names() {
   static const std::vector<std::string> names{"converged",         "energy_stalled", "schedule_completed",
-                                              "max_iterations",    "numerical_failure", "invalid_input",
-                                              "output_failed",     "crashed"};
+                                              "max_iterations",    "constraints_unmet", "numerical_failure",
+                                              "invalid_input",     "output_failed",     "crashed"};
   return names;
 }
 

@@ -16,6 +16,8 @@ namespace fairshape {
 //                        counts, the interactive ladder) ran to its end.
 // Failure:
 //   max_iterations     — a tolerance was asked and the iteration cap came first;
+//   constraints_unmet  — the solve ended, but the result misses its constraints by more than
+//                        the tolerance asked (measured on the result, not on the linear rows);
 //   numerical_failure  — diverged, singular, non-finite, or the result fails its own checks;
 //   invalid_input      — the input (files, constraints) made the run impossible;
 //   output_failed      — the result could not be written (disk full, permissions);
@@ -25,6 +27,7 @@ enum class Termination {
   EnergyStalled,
   ScheduleCompleted,
   MaxIterations,
+  ConstraintsUnmet,
   NumericalFailure,
   InvalidInput,
   OutputFailed,

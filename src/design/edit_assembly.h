@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "constraint/constraint.h"
+#include "design/influence.h"
 #include "design/multilevel_edit.h"
 #include "energy/energy.h"
 #include "subdivision/multires_surface.h"
@@ -23,6 +24,13 @@ struct WeightedEnergy {
 struct EditTerms {
   std::vector<WeightedEnergy> energies;
   std::vector<const Constraint*> constraints;
+  //! Each constraint's region of influence (design/influence.h), index for index with
+  //! `constraints`; empty: none has one of its own.
+  std::vector<Influence> influences;
+  const Influence& influence(std::size_t i) const {
+    static const Influence none;
+    return influences.empty() ? none : influences.at(i);
+  }
   //! The energies measure positions P_rest + ΔP (the position formulation); energies whose
   //! measures_positions() is true always do.
   bool positions = false;

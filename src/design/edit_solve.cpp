@@ -24,6 +24,7 @@ EditProblem stacked(const EditProblem& p) {
   const LinearConstraints& lc = p.constraints;
   EditProblem s;
   s.levels = p.levels;
+  s.anchored = p.anchored;
   s.H = block_diagonal(p.H, 3);
   s.g = stack(p.g);
   const SparseMatrix A3 = block_diagonal(lc.A, 3);
@@ -33,7 +34,7 @@ EditProblem stacked(const EditProblem& p) {
 }
 
 void check_sizes(const EditProblem& p) {
-  require_fixed_position(p.constraints);
+  if (!p.anchored) require_fixed_position(p.constraints);
   if (p.H.rows() != p.H.cols() || p.g.rows() != p.H.rows() || p.constraints.A.cols() != p.H.rows() ||
       (p.constraints.coupled() && p.constraints.A_coupled.cols() != 3 * p.H.rows()))
     throw InvalidInput("edit: H, g and the constraints disagree in size");
@@ -99,7 +100,7 @@ EditSolution PreparedEdit::solve(const Eigen::MatrixXd& C, const IterationCallba
   options.measure_residual = false;  // measured below, when asked
   EditSolution out;
   Timer t;
-  const qp::QpReport r = qp_->solve(s.g, targets, options);
+  const qp::QpReport r = qp_->solve(g_ ? *g_ : s.g, targets, options);
   out.solve_s = t.seconds() - r.summary.observe_s;
   out.delta = r.p;
   out.summary = r.summary;
@@ -110,6 +111,13 @@ EditSolution PreparedEdit::solve(const Eigen::MatrixXd& C, const IterationCallba
                                                  : std::numeric_limits<double>::quiet_NaN();
   if (coupled) out.delta = unstack(out.delta);
   return out;
+}
+
+void PreparedEdit::set_linear_term(const Eigen::MatrixXd& g) {
+  if (g.rows() != original_->g.rows() || g.cols() != original_->g.cols())
+    throw InvalidInput("edit: a linear term of " + std::to_string(g.rows()) + " x " + std::to_string(g.cols()) +
+                       " for a problem of " + std::to_string(original_->g.rows()) + " x " + std::to_string(original_->g.cols()));
+  g_ = stacked_ ? Eigen::MatrixXd(stack(g)) : g;
 }
 
 double PreparedEdit::constraint_residual(const Eigen::MatrixXd& delta, const Eigen::MatrixXd& C) const {

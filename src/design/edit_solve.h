@@ -35,6 +35,9 @@ struct EditProblem {
   LinearConstraints constraints;
   //! The levels below this one, for multilevel solvers (empty: a single-level problem).
   std::shared_ptr<const LevelOperators> levels;
+  //! The unknowns are a region of a level whose other vertices are held (design/regional_edit.h):
+  //! the energy's coupling to them fixes translations, so no point row is needed.
+  bool anchored = false;
 };
 
 struct EditSolution {
@@ -76,6 +79,9 @@ class PreparedEdit {
   EditSolution solve(const Eigen::MatrixXd& C, const IterationCallback& cb = {}, const Eigen::MatrixXd* initial = nullptr,
                      ConstrainedStart constrained = ConstrainedStart::MinimumNorm);
   double analyze_s() const { return analyze_s_; }
+  //! Replaces the problem's linear term g (n × 3) for the next solves: a rotation-aware edit
+  //! changes only g between its iterations, so the analysis is kept.
+  void set_linear_term(const Eigen::MatrixXd& g);
   //! ‖A ΔP − C‖ for a result of solve(). solve() measures it itself unless told not to: a
   //! cascade's intermediate levels throw it away, and on a coarse level under a fine fixed
   //! region it is a product with hundreds of thousands of propagated rows (a third of an
@@ -87,6 +93,7 @@ class PreparedEdit {
   const EditProblem& solved() const { return stacked_ ? *stacked_ : *original_; }
   const EditProblem* original_ = nullptr;
   std::optional<EditProblem> stacked_;  // the coupled 3n system when there are normal constraints
+  std::optional<Eigen::MatrixXd> g_;    // set_linear_term's, in the solved system's layout
   std::unique_ptr<qp::QpSolver> qp_;    // every mode: src/qp's solver (paper: the split)
   bool paper_ = false;
   int constrained_vertices_ = 0;  // unknowns some constraint row reaches

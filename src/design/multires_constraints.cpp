@@ -43,6 +43,13 @@ std::array<Eigen::SparseVector<double>, 2> tangent_rows(const SurfaceMesh& mesh,
   return rows;
 }
 
+// a · P · N: the component along N of the tangent that row a measures on the positions P of `now`.
+double along(const Eigen::SparseVector<double>& a, const SurfaceMesh& now, const Vec3& N) {
+  double d = 0;
+  for (Eigen::SparseVector<double>::InnerIterator e(a); e; ++e) d += e.value() * now.position(static_cast<int>(e.index())).dot(N);
+  return d;
+}
+
 // The normal constraints after the checks (level, vertex, a nonzero finite normal), each
 // requested normal once. Two normals on one vertex must agree: the rows of N and of −N are the
 // same equations (the tangent plane ⊥ N), so opposite normals would be "satisfied" by either
@@ -88,6 +95,23 @@ std::vector<const PointConstraint*> distinct_points(const MultiresSurface& h, in
   return unique;
 }
 
+// How far the point a constraint names (a vertex of its level, or that vertex's limit point)
+// has moved from `h` to `current`. Catmull-Clark and Loop limit stencils depend on the
+// connectivity alone, so one limit matrix per level serves both shapes.
+Vec3 moved_so_far(const MultiresSurface& h, const MultiresSurface& current, const PointConstraint& c,
+                  std::map<int, RowSparseMatrix>& limit_rows) {
+  const MatrixX3& now = current.mesh(c.level).positions();
+  const MatrixX3& rest = h.mesh(c.level).positions();
+  if (!c.on_limit) return (now.row(c.vertex) - rest.row(c.vertex)).transpose();
+  auto it = limit_rows.find(c.level);
+  if (it == limit_rows.end())
+    it = limit_rows.emplace(c.level, RowSparseMatrix(limit_matrix(h.mesh(c.level), h.options()))).first;
+  Vec3 moved = Vec3::Zero();
+  for (RowSparseMatrix::InnerIterator e(it->second, c.vertex); e; ++e)
+    moved += e.value() * (now.row(e.col()) - rest.row(e.col())).transpose();
+  return moved;
+}
+
 void require_fixed_position(bool any_point_row, bool any_normal) {
   if (!any_point_row)
     throw InvalidInput(any_normal ? "edit: normal constraints fix no position: add a point or fixed constraint"
@@ -95,7 +119,7 @@ void require_fixed_position(bool any_point_row, bool any_normal) {
 }
 
 void add_normal_rows(const MultiresSurface& h, int l, const std::vector<NormalConstraint>& normals,
-                     LinearConstraints& out) {
+                     const MultiresSurface* current, LinearConstraints& out) {
   const int n = h.mesh(l).n_vertices();
   std::map<int, RowSparseMatrix> prolongation_to;  // level k → P_{l→k}, rows = level-k vertices
   Triplets t;
@@ -115,9 +139,7 @@ void add_normal_rows(const MultiresSurface& h, int l, const std::vector<NormalCo
       for (Eigen::SparseVector<double>::InnerIterator e(row); e; ++e)
         for (int d = 0; d < 3; ++d)
           if (N[d] != 0) t.emplace_back(r, d * n + static_cast<int>(e.index()), e.value() * N[d]);
-      double current = 0;  // a · P_rest · N, the tangent's component along N now
-      for (Eigen::SparseVector<double>::InnerIterator e(a); e; ++e) current += e.value() * mesh.position(static_cast<int>(e.index())).dot(N);
-      c.push_back(-current);
+      c.push_back(-along(a, current ? current->mesh(nc.level) : mesh, N));
     }
   }
   out.A_coupled.resize(static_cast<Eigen::Index>(c.size()), 3 * n);
@@ -127,9 +149,27 @@ void add_normal_rows(const MultiresSurface& h, int l, const std::vector<NormalCo
 
 }  // namespace
 
-LinearConstraints propagate_constraints(const MultiresSurface& h, int l, const DesignConstraints& dc) {
-  LinearConstraints out = propagate_constraints(h, l, dc.points);
-  if (!dc.normals.empty()) add_normal_rows(h, l, dc.normals, out);
+LinearConstraints propagate_constraints(const MultiresSurface& h, int l, const DesignConstraints& dc,
+                                        const MultiresSurface* current) {
+  LinearConstraints out = propagate_constraints(h, l, dc.points, current);
+  if (!dc.normals.empty()) add_normal_rows(h, l, dc.normals, current, out);
+  return out;
+}
+
+LinearConstraints missing_targets(const MultiresSurface& h, const DesignConstraints& dc, const MultiresSurface& current) {
+  const std::vector<const PointConstraint*> points = distinct_points(h, 0, dc.points);
+  std::map<int, RowSparseMatrix> limit_rows;
+  LinearConstraints out;
+  out.C.resize(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t r = 0; r < points.size(); ++r)
+    out.C.row(static_cast<Eigen::Index>(r)) = (points[r]->offset - moved_so_far(h, current, *points[r], limit_rows)).transpose();
+  std::vector<double> c;
+  for (const NormalConstraint* nc : distinct_normals(h, 0, dc.normals)) {
+    const Vec3 N = nc->normal.normalized();
+    const SurfaceMesh& now = current.mesh(nc->level);
+    for (const auto& a : tangent_rows(h.mesh(nc->level), nc->vertex)) c.push_back(-along(a, now, N));
+  }
+  out.C_coupled = Eigen::Map<const Eigen::VectorXd>(c.data(), static_cast<Eigen::Index>(c.size()));
   return out;
 }
 
@@ -151,7 +191,8 @@ Vec3 estimated_normal(const SurfaceMesh& D_mesh, const MatrixX3& positions, int 
   return q[0].cross(q[1]).normalized();
 }
 
-LinearConstraints propagate_constraints(const MultiresSurface& h, int l, const std::vector<PointConstraint>& cs) {
+LinearConstraints propagate_constraints(const MultiresSurface& h, int l, const std::vector<PointConstraint>& cs,
+                                        const MultiresSurface* current) {
   check_edit_level(h, l);
   const std::vector<const PointConstraint*> unique = distinct_points(h, l, cs);
   // One composed operator per level that has constraints.
@@ -163,6 +204,7 @@ LinearConstraints propagate_constraints(const MultiresSurface& h, int l, const s
     if (c->on_limit) P = SparseMatrix(limit_matrix(h.mesh(c->level), h.options()) * P);
     rows_of.emplace(key, RowSparseMatrix(P));
   }
+  std::map<int, RowSparseMatrix> limit_rows;  // per level, for moved_so_far
   LinearConstraints out;
   out.C.resize(static_cast<Eigen::Index>(unique.size()), 3);
   Triplets t;
@@ -171,6 +213,7 @@ LinearConstraints propagate_constraints(const MultiresSurface& h, int l, const s
     for (RowSparseMatrix::InnerIterator it(P, unique[r]->vertex); it; ++it)
       t.emplace_back(static_cast<int>(r), static_cast<int>(it.col()), it.value());
     out.C.row(static_cast<Eigen::Index>(r)) = unique[r]->offset.transpose();
+    if (current) out.C.row(static_cast<Eigen::Index>(r)) -= moved_so_far(h, *current, *unique[r], limit_rows).transpose();
   }
   out.A.resize(static_cast<Eigen::Index>(unique.size()), h.mesh(l).n_vertices());
   out.A.setFromTriplets(t.begin(), t.end());

@@ -28,9 +28,20 @@ struct LinearConstraints {
 
 //! \throw InvalidInput for a missing level or vertex, a constraint coarser than the edit level,
 //! or two incompatible targets or normals on one vertex (naming both constraints).
-LinearConstraints propagate_constraints(const MultiresSurface& h, int edit_level, const DesignConstraints& constraints);
+//! `current` (optional, a shape of the same hierarchy): the targets become what is still
+//! missing from it — the offset minus how far the constrained point has already moved, the
+//! normal rows' right-hand side measured on its tangents — so a later pass of a regional edit
+//! (design/regional_edit.h) adds what earlier passes left.
+LinearConstraints propagate_constraints(const MultiresSurface& h, int edit_level, const DesignConstraints& constraints,
+                                        const MultiresSurface* current = nullptr);
 LinearConstraints propagate_constraints(const MultiresSurface& h, int edit_level,
-                                        const std::vector<PointConstraint>& points);
+                                        const std::vector<PointConstraint>& points,
+                                        const MultiresSurface* current = nullptr);
+
+//! The targets propagate_constraints(h, l, constraints, &current) gives, in the same row order,
+//! without the rows (C and C_coupled only): what is still missing from `current`.
+LinearConstraints missing_targets(const MultiresSurface& h, const DesignConstraints& constraints,
+                                  const MultiresSurface& current);
 
 //! The checks of propagate_constraints that build no row (the levels and vertices exist, the
 //! targets and normals are finite, no two on one vertex conflict) and require_fixed_position:

@@ -11,6 +11,8 @@
 
 namespace fairshape {
 
+class LocalRotations;
+
 class Energy {
  public:
   virtual ~Energy() = default;
@@ -30,6 +32,9 @@ class Energy {
   //! \throw InvalidInput when the energy cannot be assembled on `rest` (too high a valence,
   //! say): the check alone, cheap, so a sweep can make it for every run before the first.
   virtual void check_applicable(const SurfaceMesh& rest) const { (void)rest; }
+  //! An energy of the deformation made of per-vertex derivatives (detail_preserving) offers the
+  //! local step of a rotation-aware solve (energy/local_rotations.h); nullptr where it has none.
+  virtual std::unique_ptr<LocalRotations> local_rotations(const SurfaceMesh& rest, double weight) const;
 };
 
 using EnergyRegistry = Registry<Energy>;

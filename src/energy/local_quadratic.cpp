@@ -9,8 +9,6 @@
 
 namespace fairshape {
 
-namespace {
-
 Eigen::Vector<double, 5> term_weights(const StretchBendWeights& w, double scale) {
   return 2.0 * scale * Eigen::Vector<double, 5>(w.alpha, w.alpha, w.beta, 2.0 * w.beta, w.beta);
 }
@@ -29,8 +27,6 @@ std::vector<int> stencil(int v, const LocalFit& fit) {
   ids.insert(ids.end(), fit.ring.begin(), fit.ring.end());
   return ids;
 }
-
-}  // namespace
 
 void add_vertex_block(const SurfaceMesh& mesh, int v, const StretchBendWeights& w, double scale, Triplets& out) {
   if (mesh.is_isolated(v)) return;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include "core/backend.h"
 #include "core/types.h"
@@ -17,6 +18,14 @@ struct StretchBendWeights {
   double alpha = 0.1;  // stretch (first derivatives)
   double beta = 1.0;   // bend (second derivatives)
 };
+
+struct LocalFit;
+//! 2·scale·(α, α, β, 2β, β): the weights of the five squared divided differences in H.
+Eigen::Vector<double, 5> term_weights(const StretchBendWeights& w, double scale);
+//! G: 5 × (1 + |R|), rows g_m over (v, ring...): g_m[v] = −Σ_j D_mj, g_m[ring j] = D_mj.
+Eigen::MatrixXd difference_rows(const LocalFit& fit);
+//! The vertex ids G's columns refer to: v, then its ring.
+std::vector<int> stencil(int v, const LocalFit& fit);
 
 //! Adds scale × (vertex v's block of H) to `out`. \throw InvalidInput for a degenerate ring.
 void add_vertex_block(const SurfaceMesh& mesh, int v, const StretchBendWeights& w, double scale, Triplets& out);

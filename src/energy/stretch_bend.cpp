@@ -6,6 +6,7 @@
 // measures_positions().
 #include "energy/energy.h"
 #include "energy/local_quadratic.h"
+#include "energy/local_rotations.h"
 #include "energy/ring_coupling.h"
 
 namespace fairshape {
@@ -23,6 +24,10 @@ class StretchBend : public Energy {
   }
   bool measures_positions() const override { return positions_; }
   void check_applicable(const SurfaceMesh& rest) const override { check_ring_coupling(rest, "stretch + bend energy"); }
+  std::unique_ptr<LocalRotations> local_rotations(const SurfaceMesh& rest, double weight) const override {
+    if (positions_) return nullptr;  // the thin plate of the surface has no rest derivatives to turn
+    return std::make_unique<LocalRotations>(rest, w_, weight);
+  }
 
  private:
   StretchBendWeights w_;
@@ -39,6 +44,8 @@ StretchBendWeights weights_from(Config& cfg) {
 }
 
 }  // namespace
+
+std::unique_ptr<LocalRotations> Energy::local_rotations(const SurfaceMesh&, double) const { return nullptr; }
 
 std::unique_ptr<Energy> make_stretch_bend(StretchBendWeights w, StretchBendOf of, Backend backend) {
   if (!(w.alpha >= 0) || !(w.beta >= 0) || (w.alpha == 0 && w.beta == 0))

@@ -16,7 +16,7 @@ std::vector<double> drag_scales(int steps) {
 
 DragOutcome run_drag(const SurfaceEditSpec& spec, const RunOutputs& out, const EditLadder& ladder,
                      const std::vector<const ReferenceSolution*>& references, const IterationCallback& last_step,
-                     bool write_steps) {
+                     bool write_steps, const StepCallback& on_step) {
   const AccuracyOptions& a = spec.accuracy;
   const Backend backend = spec.implementation;
   const SolverFactory direct = [backend] {
@@ -40,6 +40,7 @@ DragOutcome run_drag(const SurfaceEditSpec& spec, const RunOutputs& out, const E
   for (std::size_t s = 0; s < scales.size(); ++s) {
     const bool last = s + 1 == scales.size();
     result.last = edit.solve(scales[s], last ? last_step : IterationCallback());
+    if (on_step && result.last.delta.allFinite()) on_step(static_cast<int>(s) + 1, result.last.delta);
     const ReferenceSolution* ref = references[s];
     if (write_steps)
       out.add_row("steps", {std::to_string(s + 1), num(scales[s]), std::string(to_string(a.ladder())), num(result.last.solve_s),

@@ -4,6 +4,7 @@
 // step is a row of steps.csv beside CHOLMOD's prefactored solve of the same step.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "design/multilevel_edit.h"
@@ -19,10 +20,13 @@ struct DragOutcome {
   std::vector<Eigen::MatrixXd> level_solutions;  // its deformation on each level of the ladder
 };
 
+//! Called after each step s = 1..steps with its edit-level deformation (e.g. to write it).
+using StepCallback = std::function<void(int step, const Eigen::MatrixXd& delta)>;
+
 //! `references[s]` is CHOLMOD's solution of step s (or null); `last_step` receives the final
 //! step's iterations. steps.csv gets a row per step when `write_steps`.
 DragOutcome run_drag(const SurfaceEditSpec& spec, const RunOutputs& out, const EditLadder& ladder,
                      const std::vector<const ReferenceSolution*>& references, const IterationCallback& last_step,
-                     bool write_steps);
+                     bool write_steps, const StepCallback& on_step = {});
 
 }  // namespace fairshape

@@ -8,6 +8,7 @@
 #include "core/memory.h"
 #include "core/timer.h"
 #include "design/edit_assembly.h"
+#include "design/regional_edit.h"
 #include "experiment/kinds/surface_edit/constraint_overlay.h"
 #include "experiment/kinds/surface_edit/drag_run.h"
 #include "experiment/metric_format.h"
@@ -176,6 +177,99 @@ void report_spike(const SurfaceEditSpec& spec, const DesignConstraints& placed, 
                       "their propagated rows; constraint_mode kkt is exact)";
 }
 
+// curve_points: the vertices the curves snapped (the VTP's `constrained` marks them).
+void count_curve_points(const DesignConstraints& placed, MetricRow& row) {
+  if (placed.curves.empty()) return;
+  std::size_t snapped = 0;
+  for (const PlacedCurve& c : placed.curves) snapped += c.vertices.size();
+  row["curve_points"] = std::to_string(snapped);
+}
+
+// What every edit reports of its result and writes: the detail change (the edited finest
+// level re-analysed), the spike ratio, the geometry and the constraints' overlay. `region`
+// (regional edits): the finest level's influence_region array.
+void report_result(const SurfaceEditSpec& spec, const RunOutputs& out, const MultiresSurface& rest,
+                   const MultiresSurface& edited, const DesignConstraints& placed, const Eigen::MatrixXd& delta,
+                   const Eigen::VectorXi* region, MetricRow& row) {
+  const SurfaceMesh& finest = edited.mesh(edited.levels());
+  // The edited surface analysed anew: its details are what the edit left of the rest
+  // shape's (synthesize_from keeps the rest details, whatever the energy did to them).
+  const MultiresSurface reanalysed =
+      rest.levels() > 0 ? MultiresSurface::analyze(rest.mesh(0), finest.positions(), rest.options(), rest.levels(),
+                                                   spec.implementation)
+                        : edited;
+  const double change = relative_detail_change(rest, reanalysed);
+  row["detail_change"] = std::isnan(change) ? "" : num(change);
+  report_spike(spec, placed, delta, row);
+  SurfaceMesh result = result_mesh(rest.mesh(rest.levels()), finest.positions(), rest.levels(), placed);
+  if (region) result.vertex_data["influence_region"] = region->cast<double>();
+  write_geometry(spec, out, result, reanalysed);
+  if (spec.output.vtk != VtkPolicy::None)
+    write_constraint_overlay(placed, edited, (fs::path(out.dir) / "vtk" / (out.run_id + "_constraints.vtp")).string());
+}
+
+// Constraints with regions of influence of their own (design/regional_edit.h): solved in
+// passes, coarse to fine; the yardstick is the same passes with CHOLMOD on the free vertices.
+void execute_regional(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& out, const MultiresSurface& rest,
+                      int level, MetricRow& row) {
+  const EditTerms terms = spec.edit_terms();
+  const double before_solve_mb = trimmed_rss_mb();
+  reset_peak_rss();
+  const RegionalEditResult r =
+      solve_regional_edit(terms, rest, level, spec.constraint_mode, *spec.solver, spec.implementation, spec.qp_config(),
+                          spec.constraint_tolerance);
+  const double solve_peak_mb = peak_rss_mb();
+  row["peak_rss_mb"] = num(solve_peak_mb);
+  row["solve_extra_mb"] = num(solve_peak_mb - before_solve_mb);
+  int unknowns = 0;
+  for (const RegionalPass& p : r.passes) unknowns += p.unknowns;
+  row["n_dofs"] = std::to_string(unknowns);
+  row["n_fine"] = std::to_string(rest.mesh(rest.levels()).n_vertices());
+  row["analyze_s"] = num(r.analyze_s);
+  row["solve_s"] = num(r.solve_s);
+  row["solve_min_s"] = num(r.solve_s);
+  row["iterations"] = std::to_string(r.summary.iterations);
+  row["residual"] = num(r.summary.residual);
+  row["constraint_violation"] = num(r.constraint_violation);
+  row["termination"] = std::string(to_string(r.summary.termination));
+  row["message"] = r.summary.message;
+  if (r.passes.size() != 0 && !is_success(r.summary.termination)) return;
+  const int finest = rest.levels();
+  const Eigen::MatrixXd moved = r.edited.mesh(finest).positions() - rest.mesh(finest).positions();
+  row["region_fraction"] = num((r.region.array() > 0).count() / static_cast<double>(r.region.size()));
+  const double largest = moved.rowwise().norm().maxCoeff();
+  row["moved_fraction"] =
+      num((moved.rowwise().norm().array() > 1e-12 * largest).count() / static_cast<double>(moved.rows()));
+  row["outside_region_move"] = num(r.outside_region_move);
+  count_curve_points(r.placed, row);
+  if (r.outside_region_move > 0) {  // cannot happen by construction: a bug, never a quiet number
+    row["termination"] = std::string(to_string(Termination::NumericalFailure));
+    row["message"] += "; a vertex outside every region of influence moved by " + num(r.outside_region_move);
+  }
+  // The energy of the whole deformation on the edit level.
+  EditTerms energies_only = terms;
+  energies_only.constraints.clear();
+  energies_only.influences.clear();
+  DesignConstraints none;
+  const EditProblem at_edit = assemble_edit_problem(energies_only, rest, level, none);
+  const Eigen::MatrixXd delta = r.edited.mesh(level).positions() - rest.mesh(level).positions();
+  row["energy"] = num(quadratic_energy(at_edit.H, at_edit.g, delta));
+  if (spec.output.reference_solution) {
+    const std::string key = spec.system_key + std::string(constraint_mode_names().name(spec.constraint_mode)) + "|regional";
+    if (!cache.reference_solution(key)) {
+      Config none_cfg;
+      const auto direct = components().solvers.create("cholesky", Backend::Optimized, none_cfg);
+      const RegionalEditResult ref =
+          solve_regional_edit(terms, rest, level, spec.constraint_mode, *direct, Backend::Optimized, spec.qp_config(),
+                              spec.constraint_tolerance);
+      if (is_success(ref.summary.termination))
+        cache.store_reference_solution(key, {ref.edited.mesh(finest).positions() - rest.mesh(finest).positions(), ref.solve_s});
+    }
+    if (const ReferenceSolution* ref = cache.reference_solution(key)) row["error_vs_reference"] = num(relative_error(moved, ref->u));
+  }
+  report_result(spec, out, rest, r.edited, r.placed, moved, &r.region, row);
+}
+
 }  // namespace
 
 const std::vector<std::string>& step_columns() {
@@ -193,6 +287,7 @@ const std::vector<std::string>& metric_columns() {
   static const std::vector<std::string> cols{
       "n_dofs", "n_fine", "n_constrained", "repeat", "subdivide_s", "assemble_s", "analyze_s", "solve_s", "solve_min_s",
       "time_s", "iterations", "residual", "energy", "constraint_violation", "error_vs_reference", "detail_change", "spike_ratio", "curve_points",
+      "region_fraction", "moved_fraction", "outside_region_move", "rotation_rounds",
       "peak_rss_mb", "solve_extra_mb", "unused_keys", "termination", "message"};
   return cols;
 }
@@ -242,6 +337,11 @@ MetricRow execute_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
     const MultiresSurface& rest = cache.hierarchy(spec, &build_s);
     row["subdivide_s"] = num(build_s);
     const int level = spec.edit_level < 0 ? rest.levels() : spec.edit_level;
+    if (is_regional(spec.edit_terms())) {
+      execute_regional(spec, cache, out, rest, level, row);
+      row["time_s"] = num(total.seconds());
+      return row;
+    }
     Timer t;
     DesignConstraints placed;
     const int coarse = spec.accuracy.multilevel() ? spec.accuracy.coarse_level : level;
@@ -251,13 +351,13 @@ MetricRow execute_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
     row["n_dofs"] = std::to_string(problem.H.rows());
     row["n_fine"] = std::to_string(rest.mesh(rest.levels()).n_vertices());
     row["n_constrained"] = std::to_string(problem.constraints.A.rows() + problem.constraints.A_coupled.rows());
-    if (!placed.curves.empty()) {  // the vertices the curves snapped (the VTP's `constrained` marks them)
-      std::size_t snapped = 0;
-      for (const PlacedCurve& c : placed.curves) snapped += c.vertices.size();
-      row["curve_points"] = std::to_string(snapped);
-    }
+    count_curve_points(placed, row);
     const Eigen::MatrixXd start = spec.initial_guess == InitialGuess::Random ? random_start(spec, problem.H.rows()) : Eigen::MatrixXd();
-    const auto references = reference_solutions(spec, cache, problem, drag_scales(spec.accuracy.drag_steps));
+    // A rotation-aware edit is its own yardstick (its rounds stop at a tolerance): the linear
+    // solve would measure how far the rotations went, not an error.
+    const auto references = spec.rotations.iterations > 0
+                                ? std::vector<const ReferenceSolution*>{nullptr}
+                                : reference_solutions(spec, cache, problem, drag_scales(spec.accuracy.drag_steps));
     const ReferenceSolution* reference = references.back();
     // peak_rss_mb: the solve's peak (analysis included), not the yardstick's; solve_extra_mb:
     // that peak above what the process held before it (the hierarchy, H, the constraints), i.e.
@@ -269,9 +369,28 @@ MetricRow execute_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
     std::vector<Eigen::MatrixXd> level_solutions;
     const IterationCallback cb = std::ref(sink);
     if (spec.accuracy.multilevel()) {
-      DragOutcome drag = run_drag(spec, out, ladder, references, cb, true);
+      // output.vtk: all records the drag: each step's surface, for a strip (Figure 9, bottom).
+      std::vector<std::pair<double, std::string>> steps;
+      const StepCallback write_step = [&](int step, const Eigen::MatrixXd& delta) {
+        MultiresSurface edited = rest;
+        edited.set_level_positions(level, rest.mesh(level).positions() + MatrixX3(delta));
+        edited.synthesize_from(level, DetailSpace::Local);
+        const std::string file = out.run_id + "_step" + std::to_string(step) + ".vtp";
+        write_vtp(result_mesh(rest.mesh(rest.levels()), edited.mesh(rest.levels()).positions(), rest.levels(), placed),
+                  (fs::path(out.dir) / "vtk" / file).string());
+        steps.emplace_back(step, file);
+      };
+      DragOutcome drag = run_drag(spec, out, ladder, references, cb, true,
+                                  spec.output.vtk == VtkPolicy::All ? write_step : StepCallback());
+      if (!steps.empty()) write_pvd(steps, (fs::path(out.dir) / "vtk" / (out.run_id + "_steps.pvd")).string());
       sol = std::move(drag.last);
       level_solutions = std::move(drag.level_solutions);
+    } else if (spec.rotations.iterations > 0) {
+      const RotationAwareSolution r = solve_rotation_aware(problem, spec.edit_terms().energies, rest.mesh(level),
+                                                           spec.constraint_mode, *spec.solver, spec.implementation,
+                                                           spec.qp_config(), spec.rotations);
+      sol = r.solution;
+      row["rotation_rounds"] = std::to_string(r.rounds);
     } else {
       sol = solve_edit(problem, spec.constraint_mode, *spec.solver, spec.implementation, cb, start.size() ? &start : nullptr,
                        spec.qp_config());
@@ -292,20 +411,7 @@ MetricRow execute_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
       MultiresSurface edited = rest;
       edited.set_level_positions(level, rest.mesh(level).positions() + MatrixX3(sol.delta));
       edited.synthesize_from(level, DetailSpace::Local);
-      const SurfaceMesh& finest = edited.mesh(edited.levels());
-      // The edited surface analysed anew: its details are what the edit left of the rest
-      // shape's (synthesize_from keeps the rest details, whatever the energy did to them).
-      const MultiresSurface reanalysed =
-          rest.levels() > 0 ? MultiresSurface::analyze(rest.mesh(0), finest.positions(), rest.options(), rest.levels(),
-                                                       spec.implementation)
-                            : edited;
-      const double change = relative_detail_change(rest, reanalysed);
-      row["detail_change"] = std::isnan(change) ? "" : num(change);
-      report_spike(spec, placed, sol.delta, row);
-      write_geometry(spec, out, result_mesh(rest.mesh(rest.levels()), finest.positions(), rest.levels(), placed),
-                     reanalysed);
-      if (spec.output.vtk != VtkPolicy::None)
-        write_constraint_overlay(placed, edited, (fs::path(out.dir) / "vtk" / (out.run_id + "_constraints.vtp")).string());
+      report_result(spec, out, rest, edited, placed, sol.delta, nullptr, row);
       write_ladder(spec, out, rest, ladder, coarse, level_solutions);
     }
   } catch (const SolverError& e) {

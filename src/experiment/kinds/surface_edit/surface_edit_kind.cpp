@@ -3,6 +3,7 @@
 #include <set>
 
 #include "core/error.h"
+#include "design/regional_edit.h"
 #include "experiment/components.h"
 #include "experiment/kinds/kinds.h"
 #include "experiment/kinds/surface_edit/run_one.h"
@@ -59,7 +60,11 @@ class SurfaceEditKind final : public RunKind {
     }
     const int level = spec.edit_level < 0 ? rest->levels() : spec.edit_level;
     try {
-      check_edit(spec.edit_terms(), *rest, spec.accuracy.multilevel() ? spec.accuracy.coarse_level : level, level);
+      const EditTerms terms = spec.edit_terms();
+      if (is_regional(terms))
+        check_regional_edit(terms, *rest, level, *spec.solver, spec.constraint_mode);
+      else
+        check_edit(terms, *rest, spec.accuracy.multilevel() ? spec.accuracy.coarse_level : level, level);
     } catch (const InvalidInput& e) {
       throw InvalidConfig(std::string("on ") + spec.mesh_path + ": " + e.what());
     }

@@ -25,9 +25,14 @@ Accuracy AccuracyOptions::ladder() const {
 EditTerms SurfaceEditSpec::edit_terms() const {
   EditTerms t;
   for (const auto& e : energies) t.energies.push_back({e.energy.get(), e.weight});
-  for (const auto& c : constraints) t.constraints.push_back(c.constraint.get());
+  for (const auto& c : constraints) {
+    t.constraints.push_back(c.constraint.get());
+    t.influences.push_back(c.influence);
+  }
   t.positions = formulation == Formulation::Position;
-  t.levels = solver->uses_levels();  // the levels below: only a multilevel solver reads them
+  // The levels below: only a multilevel solver reads them (the run's, or the cascade's relaxation).
+  t.levels = solver->uses_levels() ||
+             (accuracy.mode == AccuracyMode::Improved && accuracy.relaxation.rfind("multigrid", 0) == 0);
   return t;
 }
 
@@ -85,10 +90,34 @@ void read_energies(Config& root, const Components& c, Backend backend, SurfaceEd
   if (s.energies.empty()) throw InvalidConfig("energy: at least one energy term is required");
 }
 
+// influence_level / influence_rings of one constraint (Boier-Martin et al. §4.2, region of
+// influence: design/influence.h). A fixed constraint moves nothing, so it has no region: it is
+// held in every pass, and the keys are refused on it rather than ignored.
+Influence read_influence(Config& k, const std::string& type) {
+  Influence i;
+  i.held = type == "fixed";
+  const bool given = k.has("influence_level") || k.has("influence_rings");
+  if (i.held && given)
+    throw InvalidConfig(k.key_path(k.has("influence_level") ? "influence_level" : "influence_rings") +
+                        ": a fixed constraint is held in every pass of the edit; it has no region of influence");
+  i.level = k.get_int("influence_level", Influence::kEditLevel, -1, 16,
+                      "level the constraint is propagated to and solved on: its region of influence is coarse "
+                      "(global) or fine (local) with it (-1: the edit level; must not be finer than `level`)");
+  // A level of its own bounds the region (2 rings) unless told otherwise; without either key
+  // the constraint is solved on the whole edit level, as before regions existed.
+  const int default_rings = i.level != Influence::kEditLevel ? 2 : Influence::kWholeLevel;
+  i.rings = k.get_int("influence_rings", default_rings, -1, 1000,
+                      "rings of the influence level's vertices around the constraint's rows that may move "
+                      "(-1: the whole level; default 2 when influence_level is given, else -1)");
+  if (i.held) i.level = Influence::kEditLevel, i.rings = Influence::kWholeLevel;
+  return i;
+}
+
 void read_constraints(Config& root, const Components& c, Backend backend, SurfaceEditSpec& s) {
   for (Config k : root.child_list("constraints", "constraints: [{type, options...}]")) {
     ConstraintTerm t;
     t.type = k.require<std::string>("type", "constraint name (see `fairshape list`)");
+    t.influence = read_influence(k, t.type);
     t.constraint = c.constraints.create(t.type, backend, k);
     k.check_no_unknown_keys();
     s.constraints.push_back(std::move(t));
@@ -165,8 +194,11 @@ void read_accuracy(Config& pc, SurfaceEditSpec& s) {
       "coarse_constraint_mode", a.coarse_constraint_mode, coarse_mode_names(),
       "the ladder's coarse solve: kkt (exact minimizer) or paper (minimum-norm constrained vertices, which "
       "turns a fine handle into a spike on a coarse level)");
-  a.relaxation = pc.get_choice("relaxation", a.relaxation, {"gauss_seidel", "sor"}, "improved: the cascade's smoother");
-  a.relaxation_sweeps = pc.get_int("relaxation_sweeps", a.relaxation_sweeps, 1, 1000000, "improved: sweeps per level");
+  a.relaxation = pc.get_choice("relaxation", a.relaxation, {"gauss_seidel", "sor", "multigrid", "multigrid_cg"},
+                               "improved: the cascade's relaxation on each level (multigrid, multigrid_cg: cycles "
+                               "over the levels below, which also reach the smooth error sweeps leave)");
+  a.relaxation_sweeps = pc.get_int("relaxation_sweeps", a.relaxation_sweeps, 1, 1000000,
+                                   "improved: sweeps (or cycles, or preconditioned iterations) per level");
   a.relaxation_omega = pc.get_number("relaxation_omega", a.relaxation_omega, 1e-3, 1.999, "improved with sor: ω");
   a.drag_steps = pc.get_int("drag_steps", a.drag_steps, 1, 100000,
                             "solve the edit as a drag in this many steps, each warm-started from the last");
@@ -185,6 +217,37 @@ void read_accuracy(Config& pc, SurfaceEditSpec& s) {
   if (s.constraint_mode != ConstraintMode::Paper)
     throw InvalidConfig(pc.key_path("accuracy") + ": " + std::string(accuracy_names().name(a.mode)) +
                         " needs problem.constraint_mode paper");
+}
+
+// §5's ladder solves every constraint on one level at a time; constraints with regions of their
+// own are solved in passes (design/regional_edit.h). The two are not combined.
+void refuse_regions_on_ladder(Config& pc, const SurfaceEditSpec& s) {
+  if (!s.accuracy.multilevel()) return;
+  for (std::size_t i = 0; i < s.constraints.size(); ++i)
+    if (s.constraints[i].influence.regional())
+      throw InvalidConfig(pc.key_path("accuracy") + ": " + std::string(accuracy_names().name(s.accuracy.mode)) +
+                          " cannot be combined with constraints[" + std::to_string(i) +
+                          "]'s influence_level / influence_rings: constraints with regions of influence are "
+                          "solved exactly, pass by pass (use accuracy single-level)");
+}
+
+// problem.rotation_iterations: details that turn with the surface (design/rotation_aware_edit.h),
+// on the single-level edit: the ladder and the regional passes solve the linear energy.
+void read_rotations(Config& pc, SurfaceEditSpec& s) {
+  RotationAwareOptions& r = s.rotations;
+  r.iterations = pc.get_int("rotation_iterations", r.iterations, 0, 10000,
+                            "rounds of rotation-aware detail preservation after the linear solve (0: the linear "
+                            "energy of the deformation, as in the paper)");
+  r.tolerance = pc.get_number("rotation_tolerance", r.tolerance, 1e-14, 1.0,
+                              "stop the rounds when one changes the deformation by less than this (relative)");
+  s.note_unused(pc, "rotation_tolerance", r.iterations > 0);
+  if (r.iterations == 0) return;
+  if (s.accuracy.multilevel())
+    throw InvalidConfig(pc.key_path("rotation_iterations") + ": rotation-aware rounds need accuracy single-level");
+  for (const ConstraintTerm& c : s.constraints)
+    if (c.influence.regional())
+      throw InvalidConfig(pc.key_path("rotation_iterations") + ": rotation-aware rounds cannot be combined with "
+                          "influence_level / influence_rings (regional passes solve the linear energy)");
 }
 
 // A saved hierarchy (`fairshape remesh`, a run's _levels.vtm) fixes the representation, the
@@ -259,6 +322,14 @@ SurfaceEditSpec SurfaceEditSpec::from_config(const YAML::Node& run_config, const
                                   "kkt (default): the exact Lagrange system; paper: least-squares constrained vertices "
                                   "then the solver (§4.3); qr_penalty / range_space: Welch & Witkin's solvers (src/qp)");
   read_accuracy(pc, s);
+  refuse_regions_on_ladder(pc, s);
+  s.constraint_tolerance = pc.get_number(
+      "constraint_tolerance", s.constraint_tolerance, 1e-15, 1.0,
+      "regional edits: the largest miss of the constraints, measured on the result, × the bounding-box diagonal");
+  bool regional = false;
+  for (const ConstraintTerm& c : s.constraints) regional |= c.influence.regional();
+  s.note_unused(pc, "constraint_tolerance", regional);
+  read_rotations(pc, s);
   read_qp_options(pc, s.implementation, s);
   pc.check_no_unknown_keys();
   read_solver(root, c, s.implementation, s);

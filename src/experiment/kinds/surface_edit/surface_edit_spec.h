@@ -13,6 +13,8 @@
 #include "design/edit_assembly.h"
 #include "design/edit_solve.h"
 #include "design/multilevel_edit.h"
+#include "design/regional_edit.h"
+#include "design/rotation_aware_edit.h"
 #include "experiment/components.h"
 #include "experiment/run_basics.h"
 #include "subdivision/scheme.h"
@@ -29,6 +31,7 @@ struct EnergyTerm {
 struct ConstraintTerm {
   std::string type;
   std::unique_ptr<Constraint> constraint;
+  Influence influence;  // influence_level, influence_rings (design/influence.h)
 };
 
 enum class Formulation { Displacement, Position };
@@ -73,6 +76,9 @@ struct SurfaceEditSpec : RunBasics {
   YAML::Node qp_options;
   Config qp_config() const;
   AccuracyOptions accuracy;
+  RotationAwareOptions rotations;  // problem.rotation_iterations / rotation_tolerance
+  //! Regional edits: how far the result may miss its constraints, × the bounding-box diagonal.
+  double constraint_tolerance = kDefaultConstraintTolerance;
   BoundaryMode boundary = BoundaryMode::EdgeOnly;
   LoopWeights loop_weights = LoopWeights::Loop;
   //! The subdivision of a catmull-clark or loop representation.

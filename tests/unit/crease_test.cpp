@@ -3,9 +3,12 @@
 // wrong rule. Agreement with OpenSubdiv itself is in conformance/opensubdiv_oracle_test.cpp.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <fstream>
 
 #include "core/error.h"
+#include "energy/divided_differences.h"
+#include "energy/local_quadratic.h"
 #include "io/mesh_io.h"
 #include "subdivision/crease_rules.h"
 #include "subdivision/subdivider.h"
@@ -242,4 +245,56 @@ TEST_CASE("the back ends agree on tagged meshes and untagged meshes are unchange
   subdivide_positions_matrix_free(plain, {}, plain.positions(), ya);
   subdivide_positions_matrix_free(zeros, {}, zeros.positions(), yb);
   CHECK((ya - yb).cwiseAbs().maxCoeff() == 0.0);
+}
+
+namespace {
+
+// A 4 x 4 quad grid folded along x = 0.5 by `angle` (radians), the fold line tagged
+// infinitely sharp when `tagged`: two flat halves meeting at a crease.
+SurfaceMesh folded_sheet(double angle, bool tagged) {
+  SurfaceMesh m = test::grid(4);
+  for (int v = 0; v < m.n_vertices(); ++v) {
+    const double x = m.positions()(v, 0) - 0.5;
+    if (x > 0) m.positions().row(v) << 0.5 + x * std::cos(angle), m.positions()(v, 1), x * std::sin(angle);
+  }
+  if (tagged)
+    for (int j = 0; j < 4; ++j) m.set_edge_sharpness(5 * j + 2, 5 * (j + 1) + 2, 10.0);
+  return m;
+}
+
+double quadratic_form(const SparseMatrix& H, const MatrixX3& X) {
+  double e = 0;
+  for (int c = 0; c < 3; ++c) e += 0.5 * X.col(c).dot(H * X.col(c));
+  return e;
+}
+
+}  // namespace
+
+TEST_CASE("the bending energy does not fit across a sharp crease", "[energy][crease]") {
+  // Bending only (α = 0): a sheet folded flat on both sides of a sharp crease has none (up to
+  // rounding: 1e-14 of the untagged fold's in practice), and
+  // an edit that swings one side about the crease (both sides stay planar) costs none either;
+  // the same fold without the tag is bent (the fits reach across it).
+  const StretchBendWeights bend{0.0, 1.0};
+  for (Backend backend : {Backend::Reference, Backend::Optimized}) {
+    const SurfaceMesh creased = folded_sheet(M_PI / 2, true), smooth = folded_sheet(M_PI / 2, false);
+    const SparseMatrix Hc = stretch_bend_hessian(creased, bend, backend);
+    const SparseMatrix Hs = stretch_bend_hessian(smooth, bend, backend);
+    const double e_smooth = quadratic_form(Hs, smooth.positions());
+    INFO(std::scientific << "untagged " << e_smooth << ", tagged " << quadratic_form(Hc, creased.positions()));
+    CHECK(e_smooth > 1.0);
+    CHECK(quadratic_form(Hc, creased.positions()) <= 1e-12 * e_smooth);
+    const MatrixX3 edit = folded_sheet(M_PI / 3, true).positions() - creased.positions();
+    CHECK(edit.norm() > 0.5);
+    CHECK(quadratic_form(Hc, edit) <= 1e-12 * e_smooth);
+    CHECK(quadratic_form(Hs, edit) > 1e-3 * e_smooth);
+    CHECK((Hc - stretch_bend_hessian(creased, bend, Backend::Reference)).norm() <= 1e-12 * Hc.norm());
+  }
+  // Away from the crease nothing changes: the fits of vertices not on it are the same.
+  const SurfaceMesh creased = folded_sheet(M_PI / 2, true);
+  const auto fits = sector_fits(creased, 5 * 2 + 2);  // an interior crease vertex: two sectors
+  REQUIRE(fits.size() == 2);
+  CHECK(fits[0].weight == 0.5);
+  CHECK(sector_fits(creased, 5 * 2 + 0).size() == 1);
+  CHECK(sector_fits(creased, 2).size() == 2);  // on the boundary: the crease splits the fan
 }

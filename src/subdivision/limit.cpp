@@ -142,12 +142,18 @@ void crease_tangents(const SurfaceMesh& m, int v, const std::vector<int>& hs, Sc
   t2 = normal.cross(t1);
 }
 
-// At a corner the limit surface has no tangent plane: the frame uses the mean of the
-// incident faces' normals (documented approximation), t1 towards the first edge neighbour.
+// At a corner the limit surface has no tangent plane: the frame uses the incident faces'
+// normals weighted by their angles at v (documented approximation; angle weights make it
+// independent of how a flat side is split into faces), t1 towards the first edge neighbour.
 void corner_tangents(const SurfaceMesh& m, int v, const std::vector<int>& hs, Vec3& t1, Vec3& t2) {
   Vec3 normal = Vec3::Zero();
-  for (int h : hs)
-    if (!m.is_boundary_halfedge(h)) normal += face_normal(m, m.face(h)).normalized();
+  const Vec3 x = m.position(v);
+  for (int h : hs) {
+    if (m.is_boundary_halfedge(h)) continue;
+    const Vec3 a = m.position(m.to_vertex(h)) - x, b = m.position(m.from_vertex(m.prev(h))) - x;
+    const double angle = std::atan2(a.cross(b).norm(), a.dot(b));
+    normal += angle * face_normal(m, m.face(h)).normalized();
+  }
   normal.normalize();
   const Vec3 e = m.position(m.to_vertex(hs.front())) - m.position(v);
   t1 = e - e.dot(normal) * normal;

@@ -11,6 +11,7 @@
 #include "energy/local_quadratic.h"
 #include "io/mesh_io.h"
 #include "subdivision/crease_rules.h"
+#include "subdivision/multires_surface.h"
 #include "subdivision/subdivider.h"
 #include "test_support.h"
 
@@ -297,4 +298,32 @@ TEST_CASE("the bending energy does not fit across a sharp crease", "[energy][cre
   CHECK(fits[0].weight == 0.5);
   CHECK(sector_fits(creased, 5 * 2 + 0).size() == 1);
   CHECK(sector_fits(creased, 2).size() == 2);  // on the boundary: the crease splits the fan
+}
+
+TEST_CASE("detail frames on a sharp cage use the crease normals", "[subdivision][multires][crease]") {
+  // All cube edges infinitely sharp: the surface is the cube itself. Frame normals are the
+  // face normal inside a face, the bisector of the two faces on an edge, the mean of three
+  // at a corner, pointing outwards (the faces face out).
+  for (SchemeType scheme : {SchemeType::CatmullClark, SchemeType::Loop}) {
+    INFO(to_string(scheme));
+    SurfaceMesh base = cube(all_cube_edges(10));
+    if (scheme == SchemeType::Loop) base = triangulated(base);
+    const SurfaceMesh fine = refine_uniform(base, {scheme}, 2, Backend::Optimized).back();
+    const Frames frames = local_frames(fine, {scheme});
+    int on_faces = 0, on_edges = 0, corners = 0;
+    for (int v = 0; v < fine.n_vertices(); ++v) {
+      const Vec3 p = fine.position(v), n = frames.n.row(v).transpose();
+      Vec3 expected = Vec3::Zero();
+      for (int k = 0; k < 3; ++k)
+        if (std::abs(std::abs(p[k]) - 1.0) < 1e-12) expected[k] = p[k] > 0 ? 1.0 : -1.0;
+      const int sides = static_cast<int>(expected.cwiseAbs().sum());
+      (sides == 1 ? on_faces : sides == 2 ? on_edges : corners)++;
+      INFO("vertex " << v << " at " << p.transpose() << " normal " << n.transpose());
+      CHECK((n - expected.normalized()).norm() <= 1e-12);
+      CHECK(std::abs(n.dot(frames.t1.row(v).transpose())) <= 1e-12);
+    }
+    CHECK(corners == 8);
+    CHECK(on_edges > 0);
+    CHECK(on_faces > 0);
+  }
 }

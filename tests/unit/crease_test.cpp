@@ -11,6 +11,7 @@
 #include "energy/local_quadratic.h"
 #include "io/mesh_io.h"
 #include "subdivision/crease_rules.h"
+#include "subdivision/feature_creases.h"
 #include "subdivision/multires_surface.h"
 #include "subdivision/subdivider.h"
 #include "test_support.h"
@@ -326,4 +327,27 @@ TEST_CASE("detail frames on a sharp cage use the crease normals", "[subdivision]
     CHECK(on_edges > 0);
     CHECK(on_faces > 0);
   }
+}
+
+TEST_CASE("feature-angle detection marks sharp edges and their corners", "[subdivision][crease]") {
+  // A cube: every edge at 90 degrees, every corner joins three.
+  SurfaceMesh c = cube();
+  CHECK(dihedral_angle_degrees(c, c.find_edge(0, 1)) == Approx(90.0).epsilon(1e-12));
+  DetectedCreases found = mark_feature_creases(c, 45.0);
+  CHECK(found.edges == 12);
+  CHECK(found.corners == 8);
+  for (int v = 0; v < 8; ++v) CHECK(vertex_rule(c, v, BoundaryMode::EdgeOnly) == VertexRule::Corner);
+  SurfaceMesh none = cube();
+  CHECK(mark_feature_creases(none, 91.0).edges == 0);
+  CHECK_FALSE(none.has_sharpness());
+  // The folded sheet: the four fold edges, no corners inside (each fold vertex has two);
+  // the fold's two ends lie on the boundary, where the boundary rules already pin them.
+  SurfaceMesh fold = folded_sheet(M_PI / 3, false);
+  found = mark_feature_creases(fold, 30.0);
+  CHECK(found.edges == 4);
+  CHECK(found.corners == 0);
+  for (int j = 0; j < 4; ++j) CHECK(fold.edge_sharpness(fold.find_edge(5 * j + 2, 5 * (j + 1) + 2)) == kInfiniteSharpness);
+  CHECK(mark_feature_creases(fold, 61.0).edges == 0);  // the fold's 60 degrees stay below
+  CHECK_THROWS_WITH(mark_feature_creases(fold, 0.0), Catch::Matchers::Contains("(0, 180)"));
+  CHECK_THROWS_WITH(mark_feature_creases(fold, 180.0), Catch::Matchers::Contains("(0, 180)"));
 }

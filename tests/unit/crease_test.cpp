@@ -10,6 +10,7 @@
 #include "energy/divided_differences.h"
 #include "energy/local_quadratic.h"
 #include "io/mesh_io.h"
+#include "io/vtk_io.h"
 #include "subdivision/crease_rules.h"
 #include "subdivision/feature_creases.h"
 #include "subdivision/multires_surface.h"
@@ -120,6 +121,22 @@ TEST_CASE("sharpness round-trips through OBJ files", "[io][crease]") {
   for (int e = 0; e < m.n_edges(); ++e)
     CHECK(r.edge_sharpness(r.find_edge(m.from_vertex(2 * e), m.to_vertex(2 * e))) == m.edge_sharpness(e));
   for (int v = 0; v < m.n_vertices(); ++v) CHECK(r.vertex_sharpness(v) == m.vertex_sharpness(v));
+}
+
+TEST_CASE("sharpness round-trips through .vtp files, other data arrays untouched", "[io][vtk][crease]") {
+  SurfaceMesh m = read_mesh(test::source_path("tests/data/osd-shapes/tagged/catmark_cubes_semisharp.obj"));
+  m.vertex_data["weight"] = Eigen::MatrixXd::Constant(m.n_vertices(), 1, 2.0);
+  const std::string path = (test::scratch_dir("crease_vtp") / "m.vtp").string();
+  write_vtp(m, path);
+  const SurfaceMesh r = read_vtp(path);
+  REQUIRE(r.n_edges() == m.n_edges());
+  for (int e = 0; e < m.n_edges(); ++e)
+    CHECK(r.edge_sharpness(r.find_edge(m.from_vertex(2 * e), m.to_vertex(2 * e))) == m.edge_sharpness(e));
+  for (int v = 0; v < m.n_vertices(); ++v) CHECK(r.vertex_sharpness(v) == m.vertex_sharpness(v));
+  CHECK(r.vertex_data.size() == 1);  // the sharpness array is not left behind as data
+  CHECK(r.vertex_data.count("weight") == 1);
+  const SurfaceMesh plain = read_vtp((write_vtp(test::grid(2), path), path));
+  CHECK_FALSE(plain.has_sharpness());
 }
 
 TEST_CASE("vertex rules follow the number of sharp edges and the vertex sharpness", "[subdivision][crease]") {

@@ -108,8 +108,9 @@ MeshFile read_mesh_file(const std::string& path) {
   throw IOError(path + ": unreachable format");
 }
 
-SurfaceMesh read_mesh(const std::string& path) {
-  const MeshFile data = read_mesh_file(path);
+SurfaceMesh read_mesh(const std::string& path) { return mesh_from_file(read_mesh_file(path), path); }
+
+SurfaceMesh mesh_from_file(const MeshFile& data, const std::string& path) {
   SurfaceMesh mesh;
   try {
     mesh = SurfaceMesh::from_polygons(data.vertices, data.faces);

@@ -45,6 +45,8 @@ MeshFile read_mesh_file(const std::string& path);
 //! \throw IOError, ParseError (also a tag naming a missing edge or a bad sharpness: file and
 //! line), InvalidInput, TopologyError (the latter two prefixed with the path).
 SurfaceMesh read_mesh(const std::string& path);
+//! The same from a file's content already read (`path` names it in errors).
+SurfaceMesh mesh_from_file(const MeshFile& data, const std::string& path);
 
 struct WriteOptions {
   bool binary = false;  // PLY only: binary little endian

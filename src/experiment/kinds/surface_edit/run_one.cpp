@@ -214,6 +214,9 @@ const MultiresSurface& RunCache::hierarchy(const SurfaceEditSpec& spec, double* 
   if (it == hierarchies_.end()) {
     SurfaceMesh input = read_mesh(spec.mesh_path);
     if (subdivided && spec.crease_angle > 0) mark_feature_creases(input, spec.crease_angle);
+    if (spec.remesh_base_faces > 0 && input.has_sharpness())  // the remeshed base has other edges
+      throw InvalidInput("its crease/corner tags would be lost: remeshing (input.remesh_base_faces) builds a new "
+                         "base mesh; use remesh_base_faces: 0 to keep them");
     Timer t;
     SubdivisionOptions opt;
     if (subdivided) opt = spec.subdivision();

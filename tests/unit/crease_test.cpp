@@ -365,6 +365,25 @@ TEST_CASE("feature-angle detection marks sharp edges and their corners", "[subdi
   CHECK(found.corners == 0);
   for (int j = 0; j < 4; ++j) CHECK(fold.edge_sharpness(fold.find_edge(5 * j + 2, 5 * (j + 1) + 2)) == kInfiniteSharpness);
   CHECK(mark_feature_creases(fold, 61.0).edges == 0);  // the fold's 60 degrees stay below
+  // A valley that fades out inside the sheet (deep at y = 0, flat from y = 0.5 on): the
+  // feature line along x = 0.5 ends at an interior vertex, which becomes a corner. Whatever
+  // is detected, interior vertices with one or three or more sharp edges are corners, the
+  // others not.
+  SurfaceMesh valley = test::grid(8);
+  for (int v = 0; v < valley.n_vertices(); ++v) {
+    const double x = valley.positions()(v, 0), y = valley.positions()(v, 1);
+    valley.positions()(v, 2) = 4.0 * std::abs(x - 0.5) * std::max(0.0, 0.5 - y);
+  }
+  found = mark_feature_creases(valley, 10.0);
+  CHECK(found.edges > 0);
+  CHECK(found.corners > 0);
+  for (int v = 0; v < valley.n_vertices(); ++v) {
+    if (valley.is_boundary_vertex(v)) continue;
+    int sharp = 0;
+    valley.for_each_outgoing(v, [&](int h) { sharp += valley.edge_sharpness(SurfaceMesh::edge(h)) > 0; });
+    INFO("vertex " << v << " with " << sharp << " sharp edges");
+    CHECK((valley.vertex_sharpness(v) == kInfiniteSharpness) == (sharp == 1 || sharp > 2));
+  }
   CHECK_THROWS_WITH(mark_feature_creases(fold, 0.0), Catch::Matchers::Contains("(0, 180)"));
   CHECK_THROWS_WITH(mark_feature_creases(fold, 180.0), Catch::Matchers::Contains("(0, 180)"));
 }

@@ -40,11 +40,7 @@ SurfaceMesh load_any(const std::string& path, std::vector<std::string>* warnings
   if (is_vtp(path)) return read_vtp(path);
   const MeshFile f = read_mesh_file(path);
   if (warnings) *warnings = f.warnings;
-  try {
-    return SurfaceMesh::from_polygons(f.vertices, f.faces);
-  } catch (const Error& e) {
-    throw InvalidInput(path + ": " + e.what());
-  }
+  return mesh_from_file(f, path);  // crease/corner tags applied: a bad one names its line
 }
 
 }  // namespace
@@ -73,7 +69,10 @@ int cmd_convert(const ConvertArgs& a) {
   MeshFile f = read_mesh_file(a.input);
   for (const auto& w : f.warnings) std::cerr << "warning: " << w << "\n";
   if (f.vertices.rows() == 0) throw InvalidInput(a.input + ": no vertices (an empty or unrecognized file): nothing to convert");
-  if (!f.faces.empty()) (void)SurfaceMesh::from_polygons(f.vertices, f.faces);  // refuse to pass on bad topology
+  if (!f.faces.empty()) (void)mesh_from_file(f, a.input);  // refuse to pass on bad topology or tags
+  if (!f.sharpness.empty() && format_from_path(a.output) != MeshFormat::Obj)
+    std::cerr << "warning: " << f.sharpness.size() << " crease/corner tag(s) of " << a.input
+              << " are not kept: only .obj (and .vtp) files carry them\n";
   write_mesh_file(f, a.output, {a.binary});
   return 0;
 }

@@ -1,7 +1,9 @@
 // Reference subdivision: every child vertex's mask written out from the textbook rules
 // (Catmull-Clark 1978; Loop 1987; boundary rules of Table 1 in Boier-Martin, Ronfard and
 // Bernardini, "Detail-preserving variational surface design with multiresolution
-// constraints"), visiting the half-edge mesh one vertex, edge and face at a time.
+// constraints"; creases and corners as OpenSubdiv: crease_rules.h), visiting the half-edge
+// mesh one vertex, edge and face at a time.
+#include "subdivision/crease_rules.h"
 #include "subdivision/subdivider.h"
 
 namespace fairshape::reference {
@@ -21,9 +23,12 @@ Row face_point(const SurfaceMesh& m, int f, double scale) {
   return r;
 }
 
-Row edge_point(const SurfaceMesh& m, int e, const SubdivisionOptions& opt) {
+void append(Row& r, const Row& more, double scale) {
+  for (const auto& [col, w] : more) r.emplace_back(col, scale * w);
+}
+
+Row smooth_edge_point(const SurfaceMesh& m, int e, const SubdivisionOptions& opt) {
   const int h = 2 * e, a = m.from_vertex(h), b = m.to_vertex(h);
-  if (m.is_boundary_edge(e)) return {{a, 0.5}, {b, 0.5}};  // boundary curve: midpoint
   if (opt.scheme == SchemeType::Loop) {
     const int c = m.to_vertex(m.next(h)), d = m.to_vertex(m.next(m.twin(h)));
     return {{a, 3.0 / 8.0}, {b, 3.0 / 8.0}, {c, 1.0 / 8.0}, {d, 1.0 / 8.0}};
@@ -34,15 +39,20 @@ Row edge_point(const SurfaceMesh& m, int e, const SubdivisionOptions& opt) {
   return r;
 }
 
-Row vertex_point(const SurfaceMesh& m, int v, const SubdivisionOptions& opt) {
-  if (m.is_isolated(v)) return {{v, 1.0}};
-  if (m.is_boundary_vertex(v)) {
-    const bool corner = m.vertex_faces(v).size() == 1;
-    if (corner && opt.boundary == BoundaryMode::EdgeAndCorner) return {{v, 1.0}};
-    const int h = m.halfedge(v);  // the outgoing boundary half-edge
-    const int next_on_boundary = m.to_vertex(h), prev_on_boundary = m.from_vertex(m.prev(h));
-    return {{v, 0.75}, {next_on_boundary, 0.125}, {prev_on_boundary, 0.125}};  // cubic B-spline
-  }
+// Sharp edges (boundary edges among them) take the midpoint; semi-sharp ones below 1 blend
+// midpoint and smooth mask by their sharpness (crease_rules.h).
+Row edge_point(const SurfaceMesh& m, int e, const SubdivisionOptions& opt) {
+  const int h = 2 * e, a = m.from_vertex(h), b = m.to_vertex(h);
+  const double w = edge_crease_weight(m, e);
+  if (w == 1.0) return {{a, 0.5}, {b, 0.5}};
+  if (w == 0.0) return smooth_edge_point(m, e, opt);
+  Row r{{a, 0.5 * w}, {b, 0.5 * w}};
+  append(r, smooth_edge_point(m, e, opt), 1.0 - w);
+  return r;
+}
+
+// The scheme's mask for an interior vertex.
+Row smooth_vertex_point(const SurfaceMesh& m, int v, const SubdivisionOptions& opt) {
   const auto ring = m.vertex_neighbors(v);
   const double n = static_cast<double>(ring.size());
   Row r;
@@ -57,6 +67,18 @@ Row vertex_point(const SurfaceMesh& m, int v, const SubdivisionOptions& opt) {
   for (int w : ring) r.emplace_back(w, 1.0 / (n * n));
   for (int f : m.vertex_faces(v))
     for (const auto& entry : face_point(m, f, 1.0 / (n * n))) r.push_back(entry);
+  return r;
+}
+
+// Smooth, crease (a cubic B-spline along the two sharp edges; on the boundary, the boundary
+// curve) and corner masks, blended as crease_rules.h decides.
+Row vertex_point(const SurfaceMesh& m, int v, const SubdivisionOptions& opt) {
+  const VertexMaskBlend b = vertex_mask_blend(m, v, opt.boundary);
+  if (b.smooth == 1.0) return smooth_vertex_point(m, v, opt);
+  Row r;
+  if (b.crease > 0) r = {{v, 0.75 * b.crease}, {b.crease_a, 0.125 * b.crease}, {b.crease_b, 0.125 * b.crease}};
+  if (b.corner > 0) r.emplace_back(v, b.corner);
+  if (b.smooth > 0) append(r, smooth_vertex_point(m, v, opt), b.smooth);
   return r;
 }
 

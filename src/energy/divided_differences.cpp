@@ -8,14 +8,17 @@
 
 namespace fairshape {
 
-std::vector<int> ordered_one_ring(const SurfaceMesh& m, int v) {
+std::vector<int> ordered_one_ring(const SurfaceMesh& m, int v, std::vector<int>* sharp_spokes) {
   const auto hs = m.outgoing_halfedges(v);
   const int n = static_cast<int>(hs.size());
   std::vector<int> ring;
+  if (sharp_spokes) sharp_spokes->clear();
   // On a boundary the fan starts after the gap: hs[1] .. hs[n-1], then hs[0] (see SurfaceMesh).
   const bool boundary = m.is_boundary_vertex(v);
   for (int s = 0; s < n; ++s) {
     const int h = hs[boundary ? (s + 1) % n : s];
+    if (sharp_spokes && !m.is_boundary_edge(SurfaceMesh::edge(h)) && m.edge_sharpness(SurfaceMesh::edge(h)) > 0)
+      sharp_spokes->push_back(static_cast<int>(ring.size()));
     ring.push_back(m.to_vertex(h));
     if (m.is_boundary_halfedge(h)) continue;  // the gap: no face after the last spoke
     // Face vertices strictly between this spoke and the next one, in angular order.
@@ -25,9 +28,13 @@ std::vector<int> ordered_one_ring(const SurfaceMesh& m, int v) {
   return ring;
 }
 
-Eigen::MatrixX2d polar_map(const SurfaceMesh& m, int v, const std::vector<int>& ring) {
+namespace {
+
+// `open`: the ring is a fan from one side to the other (a boundary vertex, or one sector of
+// a crease), not a closed loop.
+Eigen::MatrixX2d polar_map_fan(const SurfaceMesh& m, int v, const std::vector<int>& ring, bool open) {
   const int n = static_cast<int>(ring.size());
-  const bool boundary = m.is_boundary_vertex(v);
+  const bool boundary = open;
   const Vec3 p0 = m.position(v);
   std::vector<Vec3> dir(n);
   std::vector<double> len(n);
@@ -60,6 +67,12 @@ Eigen::MatrixX2d polar_map(const SurfaceMesh& m, int v, const std::vector<int>& 
     if (j < gaps) theta += scale * angle[j];
   }
   return uv;
+}
+
+}  // namespace
+
+Eigen::MatrixX2d polar_map(const SurfaceMesh& m, int v, const std::vector<int>& ring) {
+  return polar_map_fan(m, v, ring, m.is_boundary_vertex(v));
 }
 
 namespace {
@@ -104,11 +117,12 @@ Eigen::MatrixXd least_squares_operator(const Eigen::MatrixXd& Phi) {
   return (Eigen::MatrixXd::Identity(5, 5) - N * SN_pinv * S) * pinv;
 }
 
-LocalFit local_fit(const SurfaceMesh& m, int v) {
-  if (m.is_isolated(v)) throw InvalidInput("local parameterization: vertex " + std::to_string(v) + " is isolated");
+namespace {
+
+LocalFit fit_ring(const SurfaceMesh& m, int v, std::vector<int> ring, bool open) {
   LocalFit fit;
-  fit.ring = ordered_one_ring(m, v);
-  const Eigen::MatrixX2d uv = polar_map(m, v, fit.ring);
+  fit.ring = std::move(ring);
+  const Eigen::MatrixX2d uv = polar_map_fan(m, v, fit.ring, open);
   Eigen::MatrixXd Phi(uv.rows(), 5);
   for (Eigen::Index j = 0; j < uv.rows(); ++j) {
     const double u = uv(j, 0), w = uv(j, 1);
@@ -118,6 +132,41 @@ LocalFit local_fit(const SurfaceMesh& m, int v) {
   if (!fit.D.allFinite())
     throw InvalidInput("local parameterization: the fit at vertex " + std::to_string(v) + " is not finite");
   return fit;
+}
+
+}  // namespace
+
+LocalFit local_fit(const SurfaceMesh& m, int v) {
+  if (m.is_isolated(v)) throw InvalidInput("local parameterization: vertex " + std::to_string(v) + " is isolated");
+  return fit_ring(m, v, ordered_one_ring(m, v), m.is_boundary_vertex(v));
+}
+
+std::vector<LocalFit> sector_fits(const SurfaceMesh& m, int v) {
+  if (m.is_isolated(v)) throw InvalidInput("local parameterization: vertex " + std::to_string(v) + " is isolated");
+  std::vector<int> sharp;
+  const std::vector<int> ring = ordered_one_ring(m, v, &sharp);
+  const bool boundary = m.is_boundary_vertex(v);
+  const int n = static_cast<int>(ring.size()), k = static_cast<int>(sharp.size());
+  if (k == 0 || (!boundary && k == 1)) return {fit_ring(m, v, ring, boundary)};
+  // Sector boundaries: the sharp spokes, plus the two ends of a boundary fan.
+  std::vector<int> cuts = sharp;
+  if (boundary) {
+    if (cuts.front() != 0) cuts.insert(cuts.begin(), 0);
+    if (cuts.back() != n - 1) cuts.push_back(n - 1);
+  }
+  const int sectors = boundary ? static_cast<int>(cuts.size()) - 1 : k;
+  std::vector<LocalFit> fits;
+  for (int s = 0; s < sectors; ++s) {
+    const int from = cuts[s], to = boundary ? cuts[s + 1] : cuts[(s + 1) % k];
+    std::vector<int> part;
+    for (int j = from;; j = (j + 1) % n) {  // both sharp neighbours belong to the sector
+      part.push_back(ring[j]);
+      if (j == to) break;
+    }
+    fits.push_back(fit_ring(m, v, std::move(part), true));
+    fits.back().weight = 1.0 / sectors;
+  }
+  return fits;
 }
 
 }  // namespace fairshape

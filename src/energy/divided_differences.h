@@ -18,7 +18,10 @@
 //   smallest second-order part. It equals (ΦᵀΦ)⁻¹Φᵀ when Φ has full rank and, unlike plain
 //   least norm, reproduces affine data exactly (an affine deformation of a flat sheet has
 //   zero bending energy at every vertex);
-// - degenerate rings (a zero-length edge, or zero total angle): InvalidInput naming the vertex.
+// - degenerate rings (a zero-length edge, or zero total angle): InvalidInput naming the vertex;
+// - sharp creases (SurfaceMesh edge sharpness > 0 at the mesh's level): the fit must not
+//   reach across one, so sector_fits() splits the ring at the sharp edges and fits each
+//   sector on its own, as an open fan (papers/boier-martin/README.md, "Creases").
 #pragma once
 
 #include <vector>
@@ -30,16 +33,26 @@ namespace fairshape {
 struct LocalFit {
   std::vector<int> ring;  // R(i): neighbour vertex ids in angular order
   Eigen::MatrixXd D;      // 5 × |R|
+  double weight = 1.0;    // share of the vertex's energy (1 / number of sectors)
 };
 
 //! Ordered one-ring of vertex v: edge neighbours with the other vertices of the faces between
 //! them; interior rings are cyclic, boundary rings run from one boundary neighbour to the other.
-std::vector<int> ordered_one_ring(const SurfaceMesh& mesh, int v);
+//! `sharp_spokes` (optional) receives the ring positions of the edge neighbours joined to v
+//! by a tagged sharp edge (sharpness > 0), in ring order.
+std::vector<int> ordered_one_ring(const SurfaceMesh& mesh, int v, std::vector<int>* sharp_spokes = nullptr);
 //! Polar-map coordinates (u_j, v_j) of the ring around v. \throw InvalidInput (degenerate ring).
 Eigen::MatrixX2d polar_map(const SurfaceMesh& mesh, int v, const std::vector<int>& ring);
 //! D for a design matrix Φ (|R| × 5), with the rank-deficient rule above.
 Eigen::MatrixXd least_squares_operator(const Eigen::MatrixXd& Phi);
-//! The divided-difference operator of vertex v. \throw InvalidInput for an isolated or degenerate vertex.
+//! The divided-difference operator of vertex v over its whole ring, creases ignored (the
+//! tangents of normal constraints). \throw InvalidInput for an isolated or degenerate vertex.
 LocalFit local_fit(const SurfaceMesh& mesh, int v);
+//! The fits the energy sums at v: local_fit() where no sharp edge splits the ring; otherwise
+//! (two or more sharp edges at an interior vertex, one or more at a boundary vertex) one fit
+//! per sector between consecutive sharp edges, both crease neighbours included, laid out as an
+//! open fan, each weighted 1 / #sectors. A dart (one sharp edge inside) is smooth there, as
+//! in the subdivision rules. \throw InvalidInput as local_fit().
+std::vector<LocalFit> sector_fits(const SurfaceMesh& mesh, int v);
 
 }  // namespace fairshape

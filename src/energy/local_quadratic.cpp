@@ -4,6 +4,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <cmath>
+
 #include "energy/divided_differences.h"
 #include "energy/gram_assembly.h"
 
@@ -28,15 +30,18 @@ std::vector<int> stencil(int v, const LocalFit& fit) {
   return ids;
 }
 
+// At a vertex on a sharp crease the energy is the weighted sum over the sectors the crease
+// separates (sector_fits): no divided difference reaches across the crease.
 void add_vertex_block(const SurfaceMesh& mesh, int v, const StretchBendWeights& w, double scale, Triplets& out) {
   if (mesh.is_isolated(v)) return;
-  const LocalFit fit = local_fit(mesh, v);
-  const int n = static_cast<int>(fit.ring.size());
-  const Eigen::MatrixXd G = difference_rows(fit);
-  const Eigen::MatrixXd block = G.transpose() * term_weights(w, scale).asDiagonal() * G;
-  const std::vector<int> ids = stencil(v, fit);
-  for (int a = 0; a <= n; ++a)
-    for (int b = 0; b <= n; ++b) out.emplace_back(ids[a], ids[b], block(a, b));
+  for (const LocalFit& fit : sector_fits(mesh, v)) {
+    const int n = static_cast<int>(fit.ring.size());
+    const Eigen::MatrixXd G = difference_rows(fit);
+    const Eigen::MatrixXd block = G.transpose() * term_weights(w, scale * fit.weight).asDiagonal() * G;
+    const std::vector<int> ids = stencil(v, fit);
+    for (int a = 0; a <= n; ++a)
+      for (int b = 0; b <= n; ++b) out.emplace_back(ids[a], ids[b], block(a, b));
+  }
 }
 
 void add_stretch_bend_hessian(const SurfaceMesh& mesh, const StretchBendWeights& w, double scale, Triplets& out,
@@ -72,8 +77,11 @@ SparseMatrix stretch_bend_hessian(const SurfaceMesh& mesh, const StretchBendWeig
         parts[c].k = 5;
         for (int v = c * kChunk; v < std::min(nv, (c + 1) * kChunk); ++v) {
           if (mesh.is_isolated(v)) continue;
-          const LocalFit fit = local_fit(mesh, v);
-          parts[c].append(stencil(v, fit), difference_rows(fit));
+          for (const LocalFit& fit : sector_fits(mesh, v)) {
+            // A sector's share ω enters the Gram matrix as (√ω G)ᵀ W (√ω G).
+            if (fit.weight == 1.0) parts[c].append(stencil(v, fit), difference_rows(fit));
+            else parts[c].append(stencil(v, fit), std::sqrt(fit.weight) * difference_rows(fit));
+          }
         }
       }
     });

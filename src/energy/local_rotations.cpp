@@ -11,19 +11,26 @@ namespace fairshape {
 
 LocalRotations::LocalRotations(const SurfaceMesh& rest, const StretchBendWeights& w, double scale)
     : w_(term_weights(w, scale)), n_(rest.n_vertices()) {
-  vertices_.resize(static_cast<std::size_t>(n_));
+  // One entry per fit of the energy: a vertex, or each side of a sharp crease through it
+  // (sector_fits), which then turns on its own.
+  std::vector<std::vector<Vertex>> per_vertex(static_cast<std::size_t>(n_));
   tbb::parallel_for(tbb::blocked_range<int>(0, n_, 512), [&](const tbb::blocked_range<int>& r) {
     for (int v = r.begin(); v != r.end(); ++v) {
       if (rest.is_isolated(v)) continue;
-      const LocalFit fit = local_fit(rest, v);
-      Vertex& out = vertices_[static_cast<std::size_t>(v)];
-      out.ids = stencil(v, fit);
-      out.G = difference_rows(fit);
-      out.rest.setZero();
-      for (std::size_t j = 0; j < out.ids.size(); ++j)
-        out.rest += out.G.col(static_cast<Eigen::Index>(j)) * rest.positions().row(out.ids[j]);
+      for (const LocalFit& fit : sector_fits(rest, v)) {
+        Vertex out;
+        out.ids = stencil(v, fit);
+        out.G = difference_rows(fit);
+        out.weight = fit.weight;
+        out.rest.setZero();
+        for (std::size_t j = 0; j < out.ids.size(); ++j)
+          out.rest += out.G.col(static_cast<Eigen::Index>(j)) * rest.positions().row(out.ids[j]);
+        per_vertex[static_cast<std::size_t>(v)].push_back(std::move(out));
+      }
     }
   });
+  for (auto& fits : per_vertex)
+    for (auto& f : fits) vertices_.push_back(std::move(f));
 }
 
 std::vector<Mat3> LocalRotations::fit(const MatrixX3& deformed) const {
@@ -61,7 +68,7 @@ double LocalRotations::energy(const MatrixX3& deformed) const {
     if (x.ids.empty()) continue;
     Eigen::Matrix<double, 5, 3> now = Eigen::Matrix<double, 5, 3>::Zero();
     for (std::size_t j = 0; j < x.ids.size(); ++j) now += x.G.col(static_cast<Eigen::Index>(j)) * deformed.row(x.ids[j]);
-    e += 0.5 * (w_.asDiagonal() * (now - x.rest * R[v].transpose()).cwiseAbs2()).sum();
+    e += 0.5 * x.weight * (w_.asDiagonal() * (now - x.rest * R[v].transpose()).cwiseAbs2()).sum();
   }
   return e;
 }
@@ -72,7 +79,7 @@ Eigen::MatrixXd LocalRotations::linear_term(const std::vector<Mat3>& R) const {
     const Vertex& x = vertices_[v];
     if (x.ids.empty()) continue;
     // Gᵀ W (G P)(Rᵀ − I): the rest derivatives turned, minus the unturned ones.
-    const Eigen::Matrix<double, 5, 3> turned = w_.asDiagonal() * (x.rest * (R[v].transpose() - Mat3::Identity()));
+    const Eigen::Matrix<double, 5, 3> turned = x.weight * (w_.asDiagonal() * (x.rest * (R[v].transpose() - Mat3::Identity())));
     for (std::size_t j = 0; j < x.ids.size(); ++j)
       b.row(x.ids[j]) += x.G.col(static_cast<Eigen::Index>(j)).transpose() * turned;
   }

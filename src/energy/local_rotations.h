@@ -30,15 +30,16 @@ class LocalRotations {
  public:
   //! The divided differences of `rest` with the stretch + bend weights, scaled like the energy's H.
   LocalRotations(const SurfaceMesh& rest, const StretchBendWeights& w, double scale);
-  //! The local step: per vertex, the rotation of its tangent frame for the deformed positions X (n × 3).
+  //! The local step: per fit (a vertex, or a side of a crease), the rotation of its tangent frame for the deformed positions X (n × 3).
   std::vector<Mat3> fit(const MatrixX3& deformed) const;
-  //! The global step's linear term (n × 3) for rotations R: with it, ½ΔᵀHΔ − bᵀΔ equals E_R(P + Δ) up to a constant.
+  //! The global step's linear term (n × 3) for rotations R (one per fit, as fit() returns them): with it, ½ΔᵀHΔ − bᵀΔ equals E_R(P + Δ) up to a constant.
   Eigen::MatrixXd linear_term(const std::vector<Mat3>& R) const;
   //! E_R of the deformed positions with the rotations fit(deformed).
   double energy(const MatrixX3& deformed) const;
 
  private:
-  struct Vertex {
+  struct Vertex {              // one fit: a vertex, or one side of a sharp crease through it
+    double weight = 1.0;      // its share of the vertex's energy
     std::vector<int> ids;     // the vertex, then its ring
     Eigen::MatrixXd G;        // 5 × ids.size(): the divided differences as rows over ids
     Eigen::Matrix<double, 5, 3> rest;  // G P: the rest derivatives

@@ -37,6 +37,12 @@ void write_obj(std::ostream& os, const MeshFile& d) {
     for (int id : l) os << ' ' << id + 1;
     os << '\n';
   }
+  char buf[32];
+  for (const auto& t : d.sharpness) {  // OpenSubdiv's tag syntax, 0-based ids
+    std::snprintf(buf, sizeof buf, "%.17g", t.sharpness);
+    if (t.corner) os << "t corner 1/1/0 " << t.a << ' ' << buf << '\n';
+    else os << "t crease 2/1/0 " << t.a << ' ' << t.b << ' ' << buf << '\n';
+  }
 }
 
 void write_off(std::ostream& os, const MeshFile& d) {
@@ -102,15 +108,27 @@ MeshFile read_mesh_file(const std::string& path) {
   throw IOError(path + ": unreachable format");
 }
 
-SurfaceMesh read_mesh(const std::string& path) {
-  const MeshFile data = read_mesh_file(path);
+SurfaceMesh read_mesh(const std::string& path) { return mesh_from_file(read_mesh_file(path), path); }
+
+SurfaceMesh mesh_from_file(const MeshFile& data, const std::string& path) {
+  SurfaceMesh mesh;
   try {
-    return SurfaceMesh::from_polygons(data.vertices, data.faces);
+    mesh = SurfaceMesh::from_polygons(data.vertices, data.faces);
   } catch (const InvalidInput& e) {
     throw InvalidInput(path + ": " + e.what());
   } catch (const TopologyError& e) {
     throw TopologyError(path + ": " + e.what());
   }
+  // Tags refer to edges, which exist only now: a tag on a missing edge is reported at its line.
+  for (const SharpnessTag& t : data.sharpness) {
+    try {
+      if (t.corner) mesh.set_vertex_sharpness(t.a, t.sharpness);
+      else mesh.set_edge_sharpness(t.a, t.b, t.sharpness);
+    } catch (const InvalidInput& e) {
+      throw ParseError(path, t.line, e.what());
+    }
+  }
+  return mesh;
 }
 
 void write_mesh_file(const MeshFile& data, const std::string& path, const WriteOptions& opt) {
@@ -133,6 +151,13 @@ void write_mesh(const SurfaceMesh& mesh, const std::string& path, const WriteOpt
   MeshFile d;
   d.vertices = mesh.positions();
   d.faces = mesh.polygons();
+  if (mesh.has_sharpness() && format_from_path(path) == MeshFormat::Obj) {
+    for (int e = 0; e < mesh.n_edges(); ++e)
+      if (mesh.edge_sharpness(e) > 0)
+        d.sharpness.push_back({false, mesh.from_vertex(2 * e), mesh.to_vertex(2 * e), mesh.edge_sharpness(e), 0});
+    for (int v = 0; v < mesh.n_vertices(); ++v)
+      if (mesh.vertex_sharpness(v) > 0) d.sharpness.push_back({true, v, -1, mesh.vertex_sharpness(v), 0});
+  }
   write_mesh_file(d, path, opt);
 }
 

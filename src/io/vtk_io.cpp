@@ -19,6 +19,7 @@
 #include <vtkXMLPolyDataWriter.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -36,6 +37,10 @@ namespace {
 // VTK prints its own errors ("ERROR: In vtkXMLParser.cxx, line ...") on stderr; fairshape
 // reports every failure itself, with the file named, so VTK's output window stays silent.
 void quiet_vtk() { vtkObject::GlobalWarningDisplayOff(); }
+
+// Reserved array names for SurfaceMesh's crease and corner sharpness.
+constexpr const char* kVertexSharpnessArray = "crease_vertex_sharpness";
+constexpr const char* kCreaseEdgesArray = "crease_edges";
 
 
 vtkSmartPointer<vtkDoubleArray> to_vtk_array(const std::string& name, const Eigen::MatrixXd& m) {
@@ -81,6 +86,23 @@ vtkSmartPointer<vtkPolyData> io::internal::to_polydata(const SurfaceMesh& mesh, 
   for (const auto& [name, m] : mesh.face_data) {
     check_rows(path, name, m.rows(), mesh.n_faces());
     pd->GetCellData()->AddArray(to_vtk_array(name, m));
+  }
+  // Crease and corner sharpness: edges are not cells of the file, so the sharp ones go into
+  // field data as (a, b, sharpness) rows; vertex sharpness is a point array.
+  if (!mesh.vertex_sharpness_array().empty()) {
+    Eigen::MatrixXd vs(mesh.n_vertices(), 1);
+    for (int v = 0; v < mesh.n_vertices(); ++v) vs(v, 0) = mesh.vertex_sharpness(v);
+    pd->GetPointData()->AddArray(to_vtk_array(kVertexSharpnessArray, vs));
+  }
+  if (!mesh.edge_sharpness_array().empty()) {
+    std::vector<int> sharp;
+    for (int e = 0; e < mesh.n_edges(); ++e)
+      if (mesh.edge_sharpness(e) > 0) sharp.push_back(e);
+    Eigen::MatrixXd rows(static_cast<Eigen::Index>(sharp.size()), 3);
+    for (std::size_t i = 0; i < sharp.size(); ++i)
+      rows.row(static_cast<Eigen::Index>(i)) << mesh.from_vertex(2 * sharp[i]), mesh.to_vertex(2 * sharp[i]),
+          mesh.edge_sharpness(sharp[i]);
+    pd->GetFieldData()->AddArray(to_vtk_array(kCreaseEdgesArray, rows));
   }
   return pd;
 }
@@ -284,6 +306,27 @@ SurfaceMesh from_polydata(vtkPolyData* pd, const std::string& path) {
   }
   read_arrays(pd->GetPointData(), m.vertex_data);
   read_arrays(pd->GetCellData(), m.face_data);
+  std::map<std::string, Eigen::MatrixXd> field;
+  read_arrays(pd->GetFieldData(), field);
+  try {  // sharpness written by to_polydata, validated like an OBJ tag
+    if (auto it = m.vertex_data.find(kVertexSharpnessArray); it != m.vertex_data.end()) {
+      if (it->second.cols() != 1) throw InvalidInput(std::string(kVertexSharpnessArray) + " needs 1 component");
+      for (int v = 0; v < m.n_vertices(); ++v)
+        if (it->second(v, 0) != 0) m.set_vertex_sharpness(v, it->second(v, 0));
+      m.vertex_data.erase(it);
+    }
+    if (auto it = field.find(kCreaseEdgesArray); it != field.end()) {
+      if (it->second.cols() != 3) throw InvalidInput(std::string(kCreaseEdgesArray) + " needs 3 components (a, b, sharpness)");
+      for (Eigen::Index r = 0; r < it->second.rows(); ++r) {
+        const double a = it->second(r, 0), b = it->second(r, 1);
+        if (!(a >= 0 && b >= 0 && a < m.n_vertices() && b < m.n_vertices() && a == std::floor(a) && b == std::floor(b)))
+          throw InvalidInput(std::string(kCreaseEdgesArray) + " row " + std::to_string(r) + ": vertex ids out of range");
+        m.set_edge_sharpness(static_cast<int>(a), static_cast<int>(b), it->second(r, 2));
+      }
+    }
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(path + ": " + e.what());
+  }
   return m;
 }
 

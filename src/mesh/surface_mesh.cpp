@@ -220,3 +220,55 @@ std::vector<std::vector<int>> SurfaceMesh::boundary_loops() const {
 }
 
 }  // namespace fairshape
+
+namespace fairshape {
+
+int SurfaceMesh::find_edge(int a, int b) const {
+  if (a < 0 || b < 0 || a >= n_vertices() || b >= n_vertices() || is_isolated(a)) return -1;
+  int found = -1;
+  for_each_outgoing(a, [&](int h) {
+    if (to_vertex(h) == b) found = edge(h);
+  });
+  return found;
+}
+
+namespace {
+float checked_sharpness(double s, const std::string& what) {
+  if (!std::isfinite(s) || s < 0)
+    throw InvalidInput(what + ": sharpness must be finite and >= 0, got " + std::to_string(s));
+  return static_cast<float>(s);
+}
+}  // namespace
+
+void SurfaceMesh::set_edge_sharpness(int a, int b, double s) {
+  const std::string what = "crease " + std::to_string(a) + "-" + std::to_string(b);
+  const float value = checked_sharpness(s, what);
+  const int e = find_edge(a, b);
+  if (e < 0)
+    throw InvalidInput(what + ": the mesh has no edge between vertices " + std::to_string(a) + " and " +
+                       std::to_string(b) + " (" + std::to_string(n_vertices()) + " vertices, ids from 0)");
+  if (edge_sharpness_.empty()) edge_sharpness_.assign(n_edges(), 0.0f);
+  edge_sharpness_[e] = value;
+}
+
+void SurfaceMesh::set_vertex_sharpness(int v, double s) {
+  const std::string what = "corner " + std::to_string(v);
+  const float value = checked_sharpness(s, what);
+  if (v < 0 || v >= n_vertices())
+    throw InvalidInput(what + ": vertex id out of range (" + std::to_string(n_vertices()) + " vertices, ids from 0)");
+  if (vertex_sharpness_.empty()) vertex_sharpness_.assign(n_vertices(), 0.0f);
+  vertex_sharpness_[v] = value;
+}
+
+void SurfaceMesh::set_sharpness(std::vector<float> edges, std::vector<float> vertices) {
+  if (!edges.empty() && static_cast<int>(edges.size()) != n_edges())
+    throw InvalidInput("set_sharpness: " + std::to_string(edges.size()) + " edge values for " +
+                       std::to_string(n_edges()) + " edges");
+  if (!vertices.empty() && static_cast<int>(vertices.size()) != n_vertices())
+    throw InvalidInput("set_sharpness: " + std::to_string(vertices.size()) + " vertex values for " +
+                       std::to_string(n_vertices()) + " vertices");
+  edge_sharpness_ = std::move(edges);
+  vertex_sharpness_ = std::move(vertices);
+}
+
+}  // namespace fairshape

@@ -87,10 +87,30 @@ class SurfaceMesh {
   // Named data arrays ("v:displacement", "f:feature"): rows = #V or #F, any column count.
   std::map<std::string, Eigen::MatrixXd> vertex_data, face_data;
 
+  // Crease and corner sharpness with OpenSubdiv's meaning: 0 is smooth, a value s in (0, 10)
+  // keeps the sharp rule for about s levels, 10 or more is infinitely sharp. Kept in single
+  // precision because OpenSubdiv stores and blends sharpness as float: the same floats give
+  // the same fractional blend weights (and so agreement to 1e-12). Empty arrays: untagged.
+  float edge_sharpness(int e) const { return edge_sharpness_.empty() ? 0.0f : edge_sharpness_[e]; }
+  float vertex_sharpness(int v) const { return vertex_sharpness_.empty() ? 0.0f : vertex_sharpness_[v]; }
+  bool has_sharpness() const { return !edge_sharpness_.empty() || !vertex_sharpness_.empty(); }
+  const std::vector<float>& edge_sharpness_array() const { return edge_sharpness_; }
+  const std::vector<float>& vertex_sharpness_array() const { return vertex_sharpness_; }
+  //! The edge joining vertices a and b, or -1.
+  int find_edge(int a, int b) const;
+  //! \throw InvalidInput when a-b is not an edge of the mesh, or s is negative or not finite.
+  void set_edge_sharpness(int a, int b, double s);
+  //! \throw InvalidInput for a vertex id out of range, or s negative or not finite.
+  void set_vertex_sharpness(int v, double s);
+  //! Whole arrays (#E and #V entries, or empty), as subdivision hands them to the child mesh.
+  //! \throw InvalidInput on a size mismatch.
+  void set_sharpness(std::vector<float> edges, std::vector<float> vertices);
+
  private:
   MatrixX3 positions_;
   std::vector<int> to_vertex_, next_, prev_, face_;
   std::vector<int> vertex_halfedge_, face_halfedge_;
+  std::vector<float> edge_sharpness_, vertex_sharpness_;
 };
 
 }  // namespace fairshape

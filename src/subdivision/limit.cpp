@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "subdivision/crease_rules.h"
 #include "subdivision/subdivider.h"
 
 namespace fairshape {
@@ -21,12 +22,16 @@ void add_limit_row(const SurfaceMesh& m, int v, const SubdivisionOptions& opt, T
   if (m.is_isolated(v)) { t.emplace_back(v, v, 1.0); return; }
   const auto hs = m.outgoing_halfedges(v);
   const int n = static_cast<int>(hs.size());
-  if (m.is_boundary_vertex(v)) {
-    if (n == 2 && opt.boundary == BoundaryMode::EdgeAndCorner) { t.emplace_back(v, v, 1.0); return; }
-    // Boundary curves are cubic B-splines: limit (a + 4v + b) / 6.
+  // The rule at this level decides, as in OpenSubdiv (a semi-sharp crease that has not yet
+  // decayed counts as sharp). Boundaries are creases, pinned one-face corners corners.
+  const VertexRule rule = vertex_rule(m, v, opt.boundary);
+  if (rule == VertexRule::Corner) { t.emplace_back(v, v, 1.0); return; }
+  int a = -1, b = -1;
+  if (rule == VertexRule::Crease && crease_neighbours(m, v, a, b)) {
+    // Creases (boundary curves among them) are cubic B-splines: limit (a + 4v + b) / 6.
     t.emplace_back(v, v, 4.0 / 6.0);
-    t.emplace_back(v, m.to_vertex(hs.front()), 1.0 / 6.0);
-    t.emplace_back(v, m.from_vertex(m.prev(hs.front())), 1.0 / 6.0);
+    t.emplace_back(v, a, 1.0 / 6.0);
+    t.emplace_back(v, b, 1.0 / 6.0);
     return;
   }
   if (opt.scheme == SchemeType::Loop) {  // (ω v + Σ p_i) / (ω + n), ω = 3 / (8 β)
@@ -35,6 +40,9 @@ void add_limit_row(const SurfaceMesh& m, int v, const SubdivisionOptions& opt, T
     for (int h : hs) t.emplace_back(v, m.to_vertex(h), 1.0 / (omega + n));
     return;
   }
+  // An interior vertex of valence 2 is where two quads fold onto each other: OpenSubdiv's
+  // limit there is the vertex itself (its corner mask), and so is ours.
+  if (n == 2) { t.emplace_back(v, v, 1.0); return; }
   // Catmull-Clark, all quads: (n² v + 4 Σ e_i + Σ d_i) / (n (n + 5)).
   const double den = n * (n + 5.0);
   t.emplace_back(v, v, n * n / den);
@@ -93,6 +101,65 @@ Vec3 face_normal(const SurfaceMesh& m, int f) {
   return n;
 }
 
+// One side of an interior crease: the faces from outgoing half-edge hs[i] counter-clockwise
+// to hs[j] (indices mod n), laid out like a boundary fan (e from to(hs[i]) to to(hs[j])).
+BoundaryFan sector_fan(const SurfaceMesh& m, const std::vector<int>& hs, int i, int j) {
+  const int n = static_cast<int>(hs.size());
+  BoundaryFan fan;
+  for (int k = i;; k = (k + 1) % n) {
+    fan.e.push_back(m.position(m.to_vertex(hs[k])));
+    if (k == j) break;
+    fan.d.push_back(m.position(diagonal(m, hs[k])));
+  }
+  fan.first_face = m.face(hs[i]);
+  return fan;
+}
+
+// The unit normal of one crease side: the crease's own tangent (its cubic B-spline's) and
+// the across-tangent of the side, which is then the boundary of a surface of its own.
+Vec3 sector_normal(const SurfaceMesh& m, const BoundaryFan& fan, const Vec3& x, SchemeType scheme) {
+  const Vec3 along = 0.5 * (fan.e.back() - fan.e.front());
+  Vec3 n = along.cross(boundary_across(fan, x, scheme));
+  if (n.dot(face_normal(m, fan.first_face)) < 0) n = -n;
+  return n.normalized();
+}
+
+// Tangents at an interior vertex on a sharp crease. The limit surface has a normal on each
+// side; the frame takes their bisector (normal to the crease tangent, which both sides
+// share) so that details are measured symmetrically across the crease. t1 runs along the
+// crease, t2 = n × t1, so t1 × t2 points along the bisector.
+void crease_tangents(const SurfaceMesh& m, int v, const std::vector<int>& hs, SchemeType scheme, Vec3& t1, Vec3& t2) {
+  const int n = static_cast<int>(hs.size());
+  int i = -1, j = -1;
+  for (int k = 0; k < n; ++k)
+    if (effective_edge_sharpness(m, SurfaceMesh::edge(hs[k])) > 0.0f) (i < 0 ? i : j) = k;
+  const Vec3 x = m.position(v);
+  const Vec3 n1 = sector_normal(m, sector_fan(m, hs, i, j), x, scheme);
+  Vec3 normal = n1 + sector_normal(m, sector_fan(m, hs, j, i), x, scheme);
+  // Sides folded flat onto each other (opposite normals) have no bisector: take the first.
+  normal = normal.norm() > 1e-8 ? Vec3(normal.normalized()) : n1;
+  t1 = 0.5 * (m.position(m.to_vertex(hs[j])) - m.position(m.to_vertex(hs[i])));
+  t2 = normal.cross(t1);
+}
+
+// At a corner the limit surface has no tangent plane: the frame uses the incident faces'
+// normals weighted by their angles at v (documented approximation; angle weights make it
+// independent of how a flat side is split into faces), t1 towards the first edge neighbour.
+void corner_tangents(const SurfaceMesh& m, int v, const std::vector<int>& hs, Vec3& t1, Vec3& t2) {
+  Vec3 normal = Vec3::Zero();
+  const Vec3 x = m.position(v);
+  for (int h : hs) {
+    if (m.is_boundary_halfedge(h)) continue;
+    const Vec3 a = m.position(m.to_vertex(h)) - x, b = m.position(m.from_vertex(m.prev(h))) - x;
+    const double angle = std::atan2(a.cross(b).norm(), a.dot(b));
+    normal += angle * face_normal(m, m.face(h)).normalized();
+  }
+  normal.normalize();
+  const Vec3 e = m.position(m.to_vertex(hs.front())) - m.position(v);
+  t1 = e - e.dot(normal) * normal;
+  t2 = normal.cross(t1);
+}
+
 }  // namespace
 
 SparseMatrix limit_matrix(const SurfaceMesh& mesh, const SubdivisionOptions& opt) {
@@ -130,6 +197,19 @@ void limit_tangents(const SurfaceMesh& mesh, const SubdivisionOptions& opt, Matr
     const auto hs = mesh.outgoing_halfedges(v);
     const int n = static_cast<int>(hs.size());
     Vec3 a = Vec3::Zero(), b = Vec3::Zero();
+    if (mesh.has_sharpness()) {  // tagged creases and corners (boundaries keep their own frame below)
+      const VertexRule rule = vertex_rule(mesh, v, opt.boundary);
+      const bool pinned = mesh.is_boundary_vertex(v) && n == 2 && opt.boundary == BoundaryMode::EdgeAndCorner;
+      const bool own_frame = rule == VertexRule::Corner ? !pinned
+                                                        : rule == VertexRule::Crease && !mesh.is_boundary_vertex(v);
+      if (own_frame) {
+        if (rule == VertexRule::Corner) corner_tangents(mesh, v, hs, a, b);
+        else crease_tangents(mesh, v, hs, opt.scheme, a, b);
+        t1.row(v) = a.transpose();
+        t2.row(v) = b.transpose();
+        continue;
+      }
+    }
     if (mesh.is_boundary_vertex(v)) {
       // Along the boundary curve (the cubic B-spline's derivative), then across it, with the
       // pair ordered so that t1 × t2 points to the side the faces face.
@@ -137,6 +217,14 @@ void limit_tangents(const SurfaceMesh& mesh, const SubdivisionOptions& opt, Matr
       a = 0.5 * (fan.e.back() - fan.e.front());
       b = boundary_across(fan, mesh.position(v), opt.scheme);
       if (a.cross(b).dot(face_normal(mesh, fan.first_face)) < 0) b = -b;
+      t1.row(v) = a.transpose();
+      t2.row(v) = b.transpose();
+      continue;
+    }
+    if (n == 2 && opt.scheme == SchemeType::CatmullClark) {  // the corner frame, as the limit above
+      a = mesh.position(mesh.to_vertex(hs[0])) - mesh.position(v);
+      b = mesh.position(mesh.to_vertex(hs[1])) - mesh.position(v);
+      if (a.cross(b).dot(face_normal(mesh, mesh.face(hs[0]))) < 0) std::swap(a, b);
       t1.row(v) = a.transpose();
       t2.row(v) = b.transpose();
       continue;

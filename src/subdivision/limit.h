@@ -14,6 +14,8 @@ MatrixX3 limit_positions(const SurfaceMesh& mesh, const SubdivisionOptions& opt)
 
 //! Two tangents spanning the limit tangent plane at each vertex (not unit, not orthogonal).
 //! Interior vertices of both schemes and Loop boundary vertices (Hoppe et al. 1994 masks);
+//! vertices on a tagged crease: the bisector of the two sides' limit normals, t1 along the
+//! crease; tagged corners: the angle-weighted face normal (no tangent plane there);
 //! Catmull-Clark boundary vertices get the boundary-curve tangent and an across-tangent
 //! from the adjacent faces' limit points (a documented approximation).
 void limit_tangents(const SurfaceMesh& mesh, const SubdivisionOptions& opt, MatrixX3& t1, MatrixX3& t2);

@@ -5,6 +5,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "subdivision/crease_rules.h"
 #include "subdivision/subdivider.h"
 
 namespace fairshape {
@@ -37,24 +38,37 @@ void subdivide_positions_matrix_free(const SurfaceMesh& m, const SubdivisionOpti
       Y.row(fp + f) = sum / k;
     });
   }
+  // Creases and corners (the boundary among them) as crease_rules.h: a semi-sharp edge below 1
+  // blends midpoint and smooth rule, a vertex whose rule changes blends the two rules' points.
+  const bool tagged = m.has_sharpness();
   parallel_range(ne, [&](int e) {
     const int h = 2 * e, t = h ^ 1;
     const Row a = X.row(m.from_vertex(h)), b = X.row(m.to_vertex(h));
-    if (m.is_boundary_halfedge(h) || m.is_boundary_halfedge(t)) Y.row(nv + e) = 0.5 * (a + b);
-    else if (cc) Y.row(nv + e) = 0.25 * (a + b + Y.row(fp + m.face(h)) + Y.row(fp + m.face(t)));
-    else Y.row(nv + e) = 0.375 * (a + b) + 0.125 * (X.row(m.to_vertex(m.next(h))) + X.row(m.to_vertex(m.next(t))));
+    const double w = tagged ? edge_crease_weight(m, e) : (m.is_boundary_edge(e) ? 1.0 : 0.0);
+    Row smooth;
+    if (w == 1.0) { Y.row(nv + e) = 0.5 * (a + b); return; }
+    if (cc) smooth = 0.25 * (a + b + Y.row(fp + m.face(h)) + Y.row(fp + m.face(t)));
+    else smooth = 0.375 * (a + b) + 0.125 * (X.row(m.to_vertex(m.next(h))) + X.row(m.to_vertex(m.next(t))));
+    Y.row(nv + e) = w == 0.0 ? smooth : Row(w * 0.5 * (a + b) + (1.0 - w) * smooth);
   });
   parallel_range(nv, [&](int v) {
     const int h0 = m.halfedge(v);
     const Row x = X.row(v);
     if (h0 < 0) { Y.row(v) = x; return; }
-    if (m.is_boundary_halfedge(h0)) {
+    if (!tagged && m.is_boundary_halfedge(h0)) {
       const bool corner = m.rotate_ccw(m.rotate_ccw(h0)) == h0;  // valence 2: one face
       Y.row(v) = corner && opt.boundary == BoundaryMode::EdgeAndCorner
                      ? x
                      : Row(0.75 * x + 0.125 * (X.row(m.to_vertex(h0)) + X.row(m.from_vertex(m.prev(h0)))));
       return;
     }
+    VertexMaskBlend blend;
+    blend.smooth = 1.0;
+    if (tagged) blend = vertex_mask_blend(m, v, opt.boundary);
+    Row sharp = Row::Zero();
+    if (blend.crease > 0.0) sharp += blend.crease * (0.75 * x + 0.125 * (X.row(blend.crease_a) + X.row(blend.crease_b)));
+    if (blend.corner > 0.0) sharp += blend.corner * x;
+    if (blend.smooth == 0.0) { Y.row(v) = sharp; return; }
     Row ring = Row::Zero(), faces = Row::Zero();
     int n = 0, h = h0;
     do {
@@ -63,12 +77,14 @@ void subdivide_positions_matrix_free(const SurfaceMesh& m, const SubdivisionOpti
       ++n;
       h = m.rotate_ccw(h);
     } while (h != h0);
+    Row smooth;
     if (cc) {
-      Y.row(v) = (n - 2.0) / n * x + (ring + faces) / (double(n) * n);
+      smooth = (n - 2.0) / n * x + (ring + faces) / (double(n) * n);
     } else {
       const double beta = loop_beta(n, opt.weights);
-      Y.row(v) = (1.0 - n * beta) * x + beta * ring;
+      smooth = (1.0 - n * beta) * x + beta * ring;
     }
+    Y.row(v) = blend.smooth == 1.0 ? smooth : Row(sharp + blend.smooth * smooth);
   });
 }
 

@@ -8,6 +8,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "subdivision/crease_rules.h"
 #include "subdivision/subdivider.h"
 
 namespace fairshape {
@@ -99,7 +100,9 @@ SurfaceMesh refine_topology(const SurfaceMesh& m, SchemeType scheme) {
     a.vertex_halfedge[nv + e] = m.is_boundary_halfedge(2 * e + 1) ? second_half(2 * e + 1) : second_half(2 * e);
   });
   if (cc) parallel_range(nf, [&](int f) { a.vertex_halfedge[nv + ne + f] = 2 * (2 * ne + corner[f]) + 1; });
-  return SurfaceMesh::from_halfedge_arrays(MatrixX3::Zero(child_vertex_count(m, scheme), 3), std::move(a));
+  SurfaceMesh fine = SurfaceMesh::from_halfedge_arrays(MatrixX3::Zero(child_vertex_count(m, scheme), 3), std::move(a));
+  child_sharpness(m, fine);  // crease and corner tags decay into the child
+  return fine;
 }
 
 }  // namespace fairshape

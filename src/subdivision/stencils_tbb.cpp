@@ -8,6 +8,7 @@
 
 #include <algorithm>
 
+#include "subdivision/crease_rules.h"
 #include "subdivision/subdivider.h"
 
 namespace fairshape {
@@ -44,41 +45,55 @@ class RowBuilder {
     do { scratch_.emplace_back(m_.from_vertex(h), w); h = m_.next(h); } while (h != h0);
   }
 
+  // Sharp edges (the boundary among them) take the midpoint, smooth ones the scheme's mask,
+  // semi-sharp ones below 1 a blend by their sharpness (crease_rules.h).
   void edge_point(int e) {
     const int h = 2 * e, t = h ^ 1, a = m_.from_vertex(h), b = m_.to_vertex(h);
-    if (m_.is_boundary_halfedge(h) || m_.is_boundary_halfedge(t)) {
+    const double w = edge_crease_weight(m_, e);
+    if (w == 1.0) {
       scratch_.insert(scratch_.end(), {{a, 0.5}, {b, 0.5}});
-    } else if (opt_.scheme == SchemeType::Loop) {
-      scratch_.insert(scratch_.end(), {{a, 0.375}, {b, 0.375}, {m_.to_vertex(m_.next(h)), 0.125},
-                                       {m_.to_vertex(m_.next(t)), 0.125}});
+      return;
+    }
+    if (w > 0.0) scratch_.insert(scratch_.end(), {{a, 0.5 * w}, {b, 0.5 * w}});
+    const double s = 1.0 - w;
+    if (opt_.scheme == SchemeType::Loop) {
+      scratch_.insert(scratch_.end(), {{a, s * 0.375}, {b, s * 0.375}, {m_.to_vertex(m_.next(h)), s * 0.125},
+                                       {m_.to_vertex(m_.next(t)), s * 0.125}});
     } else {
-      scratch_.insert(scratch_.end(), {{a, 0.25}, {b, 0.25}});
-      face_point(m_.face(h), 0.25);
-      face_point(m_.face(t), 0.25);
+      scratch_.insert(scratch_.end(), {{a, s * 0.25}, {b, s * 0.25}});
+      face_point(m_.face(h), s * 0.25);
+      face_point(m_.face(t), s * 0.25);
     }
   }
 
+  // Smooth, crease and corner masks blended as crease_rules.h decides; an untagged interior
+  // vertex is smooth, a boundary vertex a crease along the boundary (or a pinned corner).
   void vertex_point(int v) {
     const int h0 = m_.halfedge(v);
     if (h0 < 0) { scratch_.emplace_back(v, 1.0); return; }
+    const VertexMaskBlend blend = vertex_mask_blend(m_, v, opt_.boundary);
+    if (blend.crease > 0.0)
+      scratch_.insert(scratch_.end(), {{v, 0.75 * blend.crease}, {blend.crease_a, 0.125 * blend.crease},
+                                       {blend.crease_b, 0.125 * blend.crease}});
+    if (blend.corner > 0.0) scratch_.emplace_back(v, blend.corner);
+    if (blend.smooth > 0.0) smooth_vertex_point(v, blend.smooth);
+  }
+
+  void smooth_vertex_point(int v, double scale) {
+    const int h0 = m_.halfedge(v);
     int n = 0, h = h0;
     do { ++n; h = m_.rotate_ccw(h); } while (h != h0);
-    if (m_.is_boundary_halfedge(h0)) {
-      if (n == 2 && opt_.boundary == BoundaryMode::EdgeAndCorner) { scratch_.emplace_back(v, 1.0); return; }
-      scratch_.insert(scratch_.end(), {{v, 0.75}, {m_.to_vertex(h0), 0.125}, {m_.from_vertex(m_.prev(h0)), 0.125}});
-      return;
-    }
     const double dn = n;
     if (opt_.scheme == SchemeType::Loop) {
       const double beta = loop_beta(n, opt_.weights);
-      scratch_.emplace_back(v, 1.0 - dn * beta);
-      do { scratch_.emplace_back(m_.to_vertex(h), beta); h = m_.rotate_ccw(h); } while (h != h0);
+      scratch_.emplace_back(v, scale * (1.0 - dn * beta));
+      do { scratch_.emplace_back(m_.to_vertex(h), scale * beta); h = m_.rotate_ccw(h); } while (h != h0);
       return;
     }
-    scratch_.emplace_back(v, (dn - 2.0) / dn);
+    scratch_.emplace_back(v, scale * ((dn - 2.0) / dn));
     do {
-      scratch_.emplace_back(m_.to_vertex(h), 1.0 / (dn * dn));
-      face_point(m_.face(h), 1.0 / (dn * dn));
+      scratch_.emplace_back(m_.to_vertex(h), scale * (1.0 / (dn * dn)));
+      face_point(m_.face(h), scale * (1.0 / (dn * dn)));
       h = m_.rotate_ccw(h);
     } while (h != h0);
   }

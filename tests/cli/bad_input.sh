@@ -4,6 +4,9 @@ expect_error 2 "nonmanifold_edge.off" -- "$FS" info $M/nonmanifold_edge.off
 expect_error 2 "non-manifold edge" -- "$FS" info $M/nonmanifold_edge.off
 expect_error 2 "truncated_vertices.off:2: the vertex count is 4" -- "$FS" info $M/truncated_vertices.off
 expect_error 2 "truncated_faces.off:.*file ends after 1 of 2 faces" -- "$FS" info $M/truncated_faces.off
+expect_error 2 "crease_missing_edge.obj:6: crease 0-2: the mesh has no edge between vertices 0 and 2" -- "$FS" info $M/crease_missing_edge.obj
+expect_error 2 "crease/corner tags would be lost" -- "$FS" run configs/smoke/cow_nose_pull.yaml --out "$SCRATCH/x" \
+  --set input.mesh=tests/data/osd-shapes/tagged/catmark_cube_creases1.obj --set input.representation=catmull-clark --set input.remesh_base_faces=6
 expect_error 2 "only .* bytes follow" -- "$FS" info $M/absurd_count.off
 expect_error 2 "valid: .obj, .off, .ply, .vtp" -- "$FS" convert data/cow.off "$SCRATCH/cow.stl"
 [ ! -e "$SCRATCH/cow.stl" ] || fail "a refused conversion left a file"

@@ -8,9 +8,11 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <filesystem>
+#include <iostream>
 #include <unordered_map>
 
 #include "io/mesh_io.h"
+#include "subdivision/crease_rules.h"
 #include "subdivision/limit.h"
 #include "subdivision/subdivider.h"
 #include "test_support.h"
@@ -48,6 +50,29 @@ std::unique_ptr<Osd::Far::TopologyRefiner> osd_refiner(const SurfaceMesh& m, con
   d.numFaces = m.n_faces();
   d.numVertsPerFace = sizes.data();
   d.vertIndicesPerFace = indices.data();
+  // Crease and corner sharpness, as the same tags (our ids are the file's).
+  static thread_local std::vector<int> crease_pairs, corners;
+  static thread_local std::vector<float> crease_weights, corner_weights;
+  crease_pairs.clear();
+  corners.clear();
+  crease_weights.clear();
+  corner_weights.clear();
+  for (int e = 0; e < m.n_edges(); ++e)
+    if (m.edge_sharpness(e) > 0) {
+      crease_pairs.insert(crease_pairs.end(), {m.from_vertex(2 * e), m.to_vertex(2 * e)});
+      crease_weights.push_back(m.edge_sharpness(e));
+    }
+  for (int v = 0; v < m.n_vertices(); ++v)
+    if (m.vertex_sharpness(v) > 0) {
+      corners.push_back(v);
+      corner_weights.push_back(m.vertex_sharpness(v));
+    }
+  d.numCreases = static_cast<int>(crease_weights.size());
+  d.creaseVertexIndexPairs = crease_pairs.data();
+  d.creaseWeights = crease_weights.data();
+  d.numCorners = static_cast<int>(corners.size());
+  d.cornerVertexIndices = corners.data();
+  d.cornerWeights = corner_weights.data();
   Osd::Sdc::Options o;
   o.SetVtxBoundaryInterpolation(opt.boundary == BoundaryMode::EdgeOnly ? Osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
                                                                        : Osd::Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
@@ -63,7 +88,8 @@ std::unique_ptr<Osd::Far::TopologyRefiner> osd_refiner(const SurfaceMesh& m, con
 // Levels 0..levels of OpenSubdiv's uniform refinement, in double precision; with `limit`,
 // the last level's limit positions and normals too.
 std::vector<OsdLevel> osd_refine(const SurfaceMesh& m, const SubdivisionOptions& opt, int levels,
-                                 MatrixX3* limit = nullptr, MatrixX3* normals = nullptr) {
+                                 MatrixX3* limit = nullptr, MatrixX3* normals = nullptr,
+                                 MatrixX3* tangents1 = nullptr) {
   auto refiner = osd_refiner(m, opt, levels);
   std::vector<OsdVertex> buf(refiner->GetNumVerticesTotal());
   for (int v = 0; v < m.n_vertices(); ++v)
@@ -93,10 +119,12 @@ std::vector<OsdLevel> osd_refine(const SurfaceMesh& m, const SubdivisionOptions&
     primvar.Limit(src, pos, t1, t2);
     limit->resize(n, 3);
     normals->resize(n, 3);
+    if (tangents1) tangents1->resize(n, 3);
     for (int v = 0; v < n; ++v) {
       const Vec3 a(t1[v].p[0], t1[v].p[1], t1[v].p[2]), b(t2[v].p[0], t2[v].p[1], t2[v].p[2]);
       limit->row(v) << pos[v].p[0], pos[v].p[1], pos[v].p[2];
       normals->row(v) = a.cross(b).normalized().transpose();
+      if (tangents1) tangents1->row(v) = a.transpose();
     }
   }
   return out;
@@ -136,10 +164,13 @@ std::vector<int> rotate_to_min(const std::vector<int>& f) {
 
 double model_size(const MatrixX3& V) { return std::max(1.0, (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm()); }
 
-void compare_with_osd(const SurfaceMesh& base, const SubdivisionOptions& opt, int levels) {
+// Returns the largest distance between matched vertices, relative to the model size.
+double compare_with_osd(const SurfaceMesh& base, const SubdivisionOptions& opt, int levels,
+                        Backend backend = Backend::Optimized) {
   const auto osd = osd_refine(base, opt, levels);
-  const double tol = 1e-12 * model_size(base.positions());
-  auto ours = refine_uniform(base, opt, levels, Backend::Optimized);
+  const double size = model_size(base.positions()), tol = 1e-12 * size;
+  auto ours = refine_uniform(base, opt, levels, backend);
+  double worst = 0;
   for (int l = 1; l <= levels; ++l) {
     INFO("level " << l);
     const SurfaceMesh& m = ours[l];
@@ -148,6 +179,8 @@ void compare_with_osd(const SurfaceMesh& base, const SubdivisionOptions& opt, in
     const auto map = match_vertices(m.positions(), osd[l].V, tol);
     const auto unmatched = std::count(map.begin(), map.end(), -1);
     REQUIRE(unmatched == 0);
+    for (int v = 0; v < m.n_vertices(); ++v)
+      worst = std::max(worst, (m.positions().row(v) - osd[l].V.row(map[v])).norm() / size);
     // Faces as rotated id lists, ids taken from the first OpenSubdiv vertex at each place, so
     // that coincident vertices (back-to-back faces share centroids) compare equal.
     const auto canonical = match_vertices(osd[l].V, osd[l].V, tol);
@@ -164,6 +197,7 @@ void compare_with_osd(const SurfaceMesh& base, const SubdivisionOptions& opt, in
     std::sort(b.begin(), b.end());
     REQUIRE(a == b);
   }
+  return worst;
 }
 
 // Stress shapes: n-gons, valences 3 to 10, holes, strips, one-face corners, several loops.
@@ -261,6 +295,38 @@ TEST_CASE("OpenSubdiv regression shapes refine exactly like OpenSubdiv", "[subdi
   CHECK(rejected == 13);
 }
 
+TEST_CASE("crease- and corner-tagged regression shapes refine exactly like OpenSubdiv", "[subdivision][opensubdiv][crease]") {
+  // The tags go to both sides (ours through the OBJ reader, OpenSubdiv's through the
+  // descriptor); every other tag is applied on neither side, as above. Both back ends and
+  // both boundary modes, levels 1 to 3, every level to 1e-12 of the model size. fairshape
+  // has OpenSubdiv's default crease method (uniform) only: the three shapes tagged
+  // `creasemethod chaikin` (catmark_chaikin1/2, loop_chaikin1) are compared with uniform
+  // decay on both sides, as their `hole` and `interpolateboundary` tags are not applied.
+  int catmark = 0, loop = 0;
+  double worst = 0;
+  for (const auto& entry : fs::directory_iterator(test::source_path("tests/data/osd-shapes/tagged"))) {
+    if (entry.path().extension() != ".obj") continue;
+    const std::string name = entry.path().stem().string();
+    INFO(name);
+    const SurfaceMesh base = read_mesh(entry.path().string());
+    REQUIRE(base.has_sharpness());
+    SubdivisionOptions opt;
+    opt.scheme = name.rfind("loop", 0) == 0 ? SchemeType::Loop : SchemeType::CatmullClark;
+    for (BoundaryMode b : {BoundaryMode::EdgeOnly, BoundaryMode::EdgeAndCorner})
+      for (Backend backend : {Backend::Optimized, Backend::Reference}) {
+        INFO(to_string(b) << (backend == Backend::Reference ? " reference" : " optimized"));
+        opt.boundary = b;
+        worst = std::max(worst, compare_with_osd(base, opt, 3, backend));
+      }
+    ++(opt.scheme == SchemeType::Loop ? loop : catmark);
+  }
+  std::cout << "crease/corner-tagged OpenSubdiv shapes matched: " << catmark << " Catmull-Clark, " << loop
+            << " Loop; largest vertex distance " << worst << " of the model size\n";
+  CHECK(catmark == 38);
+  CHECK(loop == 11);
+  CHECK(worst <= 1e-12);
+}
+
 TEST_CASE("stress shapes and bundled meshes refine exactly like OpenSubdiv", "[subdivision][opensubdiv]") {
   for (SchemeType scheme : {SchemeType::CatmullClark, SchemeType::Loop}) {
     auto shapes = stress_shapes(scheme == SchemeType::Loop);
@@ -302,6 +368,61 @@ TEST_CASE("limit positions and normals match OpenSubdiv's limit evaluation", "[s
         }
       }
   }
+}
+
+TEST_CASE("limit positions and normals on tagged shapes match OpenSubdiv's", "[subdivision][opensubdiv][limit][crease]") {
+  // Positions everywhere (smooth, dart, crease and corner rules). Normals where the limit
+  // surface has one tangent plane (smooth and dart vertices, boundary creases); at an
+  // interior crease vertex OpenSubdiv gives one side's normal and fairshape the bisector of
+  // both sides, so the check there is that ours is normal to OpenSubdiv's crease tangent
+  // and on the same side of the surface; corners have no tangent plane and no check.
+  int shapes = 0, crease_vertices = 0, corner_vertices = 0;
+  for (const auto& entry : fs::directory_iterator(test::source_path("tests/data/osd-shapes/tagged"))) {
+    if (entry.path().extension() != ".obj") continue;
+    const std::string name = entry.path().stem().string();
+    const SurfaceMesh mesh = read_mesh(entry.path().string());
+    const SchemeType scheme = name.rfind("loop", 0) == 0 ? SchemeType::Loop : SchemeType::CatmullClark;
+    for (BoundaryMode b : {BoundaryMode::EdgeOnly, BoundaryMode::EdgeAndCorner}) {
+      INFO(name << " " << to_string(b));
+      const SubdivisionOptions opt{scheme, b, LoopWeights::Loop};
+      MatrixX3 osd_limit, osd_normals, osd_t1;
+      const auto osd = osd_refine(mesh, opt, 1, &osd_limit, &osd_normals, &osd_t1);
+      const SurfaceMesh fine = subdivide_once(mesh, opt, Backend::Optimized);
+      const double tol = 1e-12 * model_size(mesh.positions());
+      const auto map = match_vertices(fine.positions(), osd.back().V, tol);
+      const MatrixX3 ours = limit_positions(fine, opt), normals = limit_normals(fine, opt);
+      for (int v = 0; v < fine.n_vertices(); ++v) {
+        REQUIRE(map[v] >= 0);
+        const VertexRule rule = vertex_rule(fine, v, b);
+        INFO("vertex " << v << " rule " << static_cast<int>(rule) << " ours " << ours.row(v) << " osd "
+                       << osd_limit.row(map[v]));
+        REQUIRE((ours.row(v) - osd_limit.row(map[v])).norm() <= tol);
+        if (fine.is_isolated(v)) continue;
+        // A Catmull-Clark vertex of valence 2 has OpenSubdiv's corner limit: no tangent plane.
+        const bool valence2 = scheme == SchemeType::CatmullClark && fine.valence(v) == 2 && !fine.is_boundary_vertex(v);
+        if (rule == VertexRule::Corner || valence2) {
+          ++corner_vertices;
+          continue;
+        }
+        const Vec3 n = normals.row(v).transpose(), theirs = osd_normals.row(map[v]).transpose();
+        INFO("normal ours " << n.transpose() << " osd " << theirs.transpose());
+        if (rule == VertexRule::Crease && !fine.is_boundary_vertex(v)) {
+          ++crease_vertices;
+          const Vec3 along = osd_t1.row(map[v]).normalized().transpose();
+          CHECK(std::abs(n.dot(along)) <= 1e-10);
+          CHECK(n.dot(theirs) > 0);
+        } else {
+          CHECK(n.dot(theirs) >= 1.0 - 1e-10);
+        }
+      }
+    }
+    ++shapes;
+  }
+  std::cout << "limit on tagged shapes: " << shapes << " shapes, " << crease_vertices << " interior crease and "
+            << corner_vertices << " corner vertices checked\n";
+  CHECK(shapes == 49);
+  CHECK(crease_vertices > 0);
+  CHECK(corner_vertices > 0);
 }
 
 TEST_CASE("reference and optimized subdivision operators agree to 1e-12", "[subdivision][conformance]") {

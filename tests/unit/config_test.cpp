@@ -114,6 +114,13 @@ TEST_CASE("run validation catches bad components, keys and values before running
   CHECK_THROWS_WITH(spec_with("energy", "[{type: membrane, wieght: 2}]"), Contains("energy[0].wieght: unknown key"));
   CHECK_THROWS_WITH(spec_with("constraints", "[{type: fixed, region: {axis: w}}]"), Contains("valid: x, y, z"));
   CHECK_THROWS_WITH(spec_with("colour", "red"), Contains("colour: unknown key"));
+  // input.crease_angle: degrees in [0, 179], only where there is a subdivision surface.
+  CHECK_THROWS_WITH(spec_with("input.crease_angle", "200"), Contains("input.crease_angle: 200 is out of range [0, 179]"));
+  CHECK_THROWS_WITH(spec_with("input.crease_angle", "-5"), Contains("input.crease_angle") && Contains("[0, 179]"));
+  CHECK_THROWS_WITH(spec_with("input.crease_angle", "steep"), Contains("input.crease_angle"));
+  const SurfaceEditSpec on_mesh = spec_with("input.crease_angle", "40");  // representation: mesh
+  CHECK(on_mesh.crease_angle == 40);
+  CHECK(std::find(on_mesh.unused_keys.begin(), on_mesh.unused_keys.end(), "input.crease_angle") != on_mesh.unused_keys.end());
 }
 
 TEST_CASE("each QP constraint mode's options are its solver's, valid whichever mode is chosen, unused ones recorded",

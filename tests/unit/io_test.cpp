@@ -44,7 +44,7 @@ TEST_CASE("mesh formats round-trip bit-exactly", "[io]") {
 TEST_CASE("OBJ reader: v/vt/vn forms, negative indices, polylines, skipped statements", "[io]") {
   const MeshFile f = parse_obj(
       "# test\nmtllib x.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0 1.0\nvt 0 0\nvn 0 0 1\n"
-      "g part\ns off\nf 1/1/1 2/1/1 3/1/1\nf 2//1 4//1 3//1\nf -3 -1 -2\nl 1 2 4\nt crease 2/1/0 1 2 3\n",
+      "g part\ns off\nf 1/1/1 2/1/1 3/1/1\nf 2//1 4//1 3//1\nf -3 -1 -2\nl 1 2 4\nt crease 2/1/0 1 2 3\nt hole 1/0/0 0\n",
       "mem.obj");
   REQUIRE(f.vertices.rows() == 4);
   REQUIRE(f.faces.size() == 3);
@@ -53,8 +53,10 @@ TEST_CASE("OBJ reader: v/vt/vn forms, negative indices, polylines, skipped state
   CHECK(f.faces[2] == std::vector<int>{1, 3, 2});
   REQUIRE(f.lines.size() == 1);
   CHECK(f.lines[0] == std::vector<int>{0, 1, 3});
-  REQUIRE(f.warnings.size() == 1);  // the crease tag is reported, not silently dropped
-  CHECK_THAT(f.warnings[0], Catch::Matchers::Contains("'t'"));
+  REQUIRE(f.sharpness.size() == 1);  // OpenSubdiv's crease tag is read (tests/unit/crease_test.cpp)
+  CHECK((f.sharpness[0].a == 1 && f.sharpness[0].b == 2 && f.sharpness[0].sharpness == 3.0));
+  REQUIRE(f.warnings.size() == 1);  // other tags are reported, not silently dropped
+  CHECK_THAT(f.warnings[0], Catch::Matchers::Contains("'t hole'"));
 }
 
 TEST_CASE("PLY reader: big-endian binary and extra elements/properties", "[io]") {

@@ -49,6 +49,12 @@ CORPUS = {
     "face_before_vertices.obj": b"f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n",
     "huge_index.obj": b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999\n",
     "only_vertices.obj": b"v 0 0 0\nv 1 0 0\nv 0 1 0\n",
+    # OpenSubdiv's sharpness tags: an edge the mesh does not have, a negative sharpness,
+    # a corner on a vertex that does not exist, counts that do not match the values.
+    "crease_missing_edge.obj": b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nt crease 2/1/0 0 2 3.0\n",
+    "crease_negative_sharpness.obj": b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nt crease 2/1/0 0 1 -1\n",
+    "corner_missing_vertex.obj": b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nt corner 1/1/0 7 2.0\n",
+    "crease_bad_counts.obj": b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nt crease 2/1/0 0 1\n",
     "binary_garbage.obj": b"v " + garbage,
     "nonmanifold_vertex_double_cone.obj": (
         b"v 0 0 0\nv 1 0 1\nv -1 1 1\nv -1 -1 1\nv 1 0 -1\nv -1 1 -1\nv -1 -1 -1\n"

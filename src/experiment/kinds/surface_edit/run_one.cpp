@@ -18,6 +18,7 @@
 #include "problem/constrained_system.h"
 #include "problem/least_squares.h"
 #include "remesh/remesh.h"
+#include "subdivision/feature_creases.h"
 #include "subdivision/subdivider.h"
 
 namespace fairshape {
@@ -298,7 +299,7 @@ const MultiresSurface& RunCache::hierarchy(const SurfaceEditSpec& spec, double* 
                           (subdivided ? std::string(to_string(spec.subdivision().scheme)) : std::string("mesh")) + "|" +
                           std::to_string(spec.levels) + "|" + std::string(to_string(spec.boundary)) + "|" +
                           std::string(to_string(spec.loop_weights)) + "|" + std::to_string(spec.remesh_base_faces) +
-                          "|" + std::string(to_string(spec.implementation));
+                          "|" + std::string(to_string(spec.implementation)) + "|" + std::to_string(spec.crease_angle);
   auto it = hierarchies_.find(key);
   if (it == hierarchies_.end() && fs::path(spec.mesh_path).extension() == ".vtm") {  // saved: its details kept
     Timer t;
@@ -306,7 +307,11 @@ const MultiresSurface& RunCache::hierarchy(const SurfaceEditSpec& spec, double* 
     it = hierarchies_.emplace(key, std::make_pair(std::move(h), t.seconds())).first;
   }
   if (it == hierarchies_.end()) {
-    const SurfaceMesh input = read_mesh(spec.mesh_path);
+    SurfaceMesh input = read_mesh(spec.mesh_path);
+    if (subdivided && spec.crease_angle > 0) mark_feature_creases(input, spec.crease_angle);
+    if (spec.remesh_base_faces > 0 && input.has_sharpness())  // the remeshed base has other edges
+      throw InvalidInput("its crease/corner tags would be lost: remeshing (input.remesh_base_faces) builds a new "
+                         "base mesh; use remesh_base_faces: 0 to keep them");
     Timer t;
     SubdivisionOptions opt;
     if (subdivided) opt = spec.subdivision();

@@ -298,6 +298,9 @@ SurfaceEditSpec SurfaceEditSpec::from_config(const YAML::Node& run_config, const
                                    "remesh the input into a hierarchy with details from about this many base faces "
                                    "(0: the input mesh is the base, zero details)");
   s.edit_level = in.get_int("edit_level", -1, -1, 8, "level the deformation is solved on (-1: the finest)");
+  s.crease_angle = in.get_number("crease_angle", 0.0, 0.0, 179.0,
+                                 "degrees: input edges whose dihedral angle exceeds it become infinitely sharp creases, "
+                                 "their end and junction vertices corners (0: off; tags in an .obj apply anyway)");
   in.check_no_unknown_keys();
   if (std::filesystem::path(s.mesh_path).extension() == ".vtm") adopt_saved_hierarchy(in, s);
   s.note_unused(in, "boundary", s.representation != Representation::Mesh);
@@ -305,6 +308,10 @@ SurfaceEditSpec SurfaceEditSpec::from_config(const YAML::Node& run_config, const
   if (s.edit_level > s.levels)
     throw InvalidConfig(in.key_path("edit_level") + ": " + std::to_string(s.edit_level) + " is above the finest level " +
                         std::to_string(s.levels));
+  s.note_unused(in, "crease_angle", s.representation != Representation::Mesh);
+  if (s.crease_angle > 0 && (s.remesh_base_faces > 0 || std::filesystem::path(s.mesh_path).extension() == ".vtm"))
+    throw InvalidConfig(in.key_path("crease_angle") + ": creases are marked on the input mesh, which a remeshed or "
+                        "saved hierarchy does not keep as its base (leave the key out, or remesh_base_faces: 0)");
   if (s.remesh_base_faces > 0 && s.representation == Representation::Mesh)
     throw InvalidConfig(in.key_path("remesh_base_faces") + ": remeshing needs representation catmull-clark or loop");
   if (s.representation == Representation::Mesh && s.levels > 0)

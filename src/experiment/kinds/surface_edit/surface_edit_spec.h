@@ -69,6 +69,7 @@ struct SurfaceEditSpec : RunBasics {
   int levels = 0;                          // uniform subdivision steps of the input mesh
   int remesh_base_faces = 0;               // > 0: remesh the input into a hierarchy with details
   int edit_level = -1;                     // where the problem is solved (-1: the finest)
+  double crease_angle = 0;                 // > 0: edges with a sharper dihedral angle (degrees) become creases
   ConstraintMode constraint_mode = ConstraintMode::Kkt;
   //! The energies and constraints as the design module takes them (pointers into this spec).
   EditTerms edit_terms() const;

@@ -45,7 +45,8 @@ SurfaceMesh result_mesh(const SurfaceMesh& before, const MatrixX3& after, int le
   // coarser level marks the same id here.
   Eigen::MatrixXd constrained = Eigen::MatrixXd::Zero(m.n_vertices(), 1);
   for (const auto& p : placed.points)
-    if (p.level <= level) constrained(p.vertex, 0) = 1.0;
+    if (p.level <= level)
+      for (int v : marked_vertices(p)) constrained(v, 0) = 1.0;  // a surface point: its face's corners
   m.vertex_data["constrained"] = constrained;
   if (!placed.normals.empty()) {
     Eigen::MatrixXd normals = Eigen::MatrixXd::Zero(m.n_vertices(), 3);
@@ -253,7 +254,7 @@ MetricRow execute_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
     row["n_constrained"] = std::to_string(problem.constraints.A.rows() + problem.constraints.A_coupled.rows());
     if (!placed.curves.empty()) {  // the vertices the curves snapped (the VTP's `constrained` marks them)
       std::size_t snapped = 0;
-      for (const PlacedCurve& c : placed.curves) snapped += c.vertices.size();
+      for (const PlacedCurve& c : placed.curves) snapped += c.vertices.size() + c.samples.size();  // snapped or on the limit
       row["curve_points"] = std::to_string(snapped);
     }
     const Eigen::MatrixXd start = spec.initial_guess == InitialGuess::Random ? random_start(spec, problem.H.rows()) : Eigen::MatrixXd();

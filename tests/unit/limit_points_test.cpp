@@ -243,6 +243,7 @@ TEST_CASE("point and normal constraints at (face, u, v) of the finest level are 
   for (int edit : {0, 1, 2}) {
     INFO("edit level " << edit);
     const EditSolution s = solve_edit(detail_preserving(h, edit, dc), ConstraintMode::Kkt, *solver, Backend::Optimized);
+    INFO(s.summary.message);
     REQUIRE(s.summary.termination == Termination::Converged);
     // Evaluate the edited finest level's limit surface at the same (face, u, v).
     SurfaceMesh edited = fine;
@@ -304,6 +305,7 @@ TEST_CASE("a curve on the finest level of a remeshed cow is met on the limit sur
   for (int edit : {2, 1, 0}) {
     INFO("edit level " << edit);
     const EditSolution s = solve_edit(detail_preserving(h, edit, dc), ConstraintMode::Kkt, *solver, Backend::Optimized);
+    INFO(s.summary.message);
     REQUIRE(s.summary.termination == Termination::Converged);
     const MatrixX3 X = edited_finest(h, edit, s);
     double worst = 0;

@@ -5,16 +5,15 @@
 #include <opensubdiv/far/topologyDescriptor.h>
 
 #include <Eigen/Dense>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 #include <map>
-#include <set>
 #include <sstream>
 
 #include "core/error.h"
-#include "subdivision/limit.h"
 
 namespace fairshape {
 
@@ -63,7 +62,9 @@ std::string number(double x) {
 struct LimitEvaluator::Impl {
   std::unique_ptr<Osd::Far::TopologyRefiner> refiner;
   std::unique_ptr<Osd::Bfr::RefinerSurfaceFactory<>> factory;
-  MatrixX3 limit;  // limit positions of the vertices: seeds for closest_point
+  // Per face, the bounding box of the control points its limit patch depends on (the corners
+  // of the faces sharing a vertex with it), padded: closest_point's lower bounds.
+  std::vector<Eigen::AlignedBox3d> boxes;
 
   // One face's surface, kept while consecutive evaluations stay on it (Gauss-Newton).
   mutable int cached_face = -1;
@@ -104,7 +105,19 @@ LimitEvaluator::LimitEvaluator(const SurfaceMesh& mesh, const SubdivisionOptions
   Osd::Bfr::SurfaceFactory::Options fo;
   fo.SetApproxLevelSmooth(kApproxLevel);
   impl_->factory = std::make_unique<Osd::Bfr::RefinerSurfaceFactory<>>(*impl_->refiner, fo);
-  impl_->limit = limit_positions(mesh, opt);
+  // The limit patch of a face is a combination of its one-ring's control points with
+  // nonnegative weights (B-spline and box-spline bases; the Gregory patches near extraordinary
+  // vertices nearly so), so it lies in their box; the padding covers the "nearly".
+  impl_->boxes.resize(static_cast<std::size_t>(mesh.n_faces()));
+  for (int f = 0; f < mesh.n_faces(); ++f) {
+    Eigen::AlignedBox3d& box = impl_->boxes[static_cast<std::size_t>(f)];
+    for (int c : mesh.face_vertices(f))
+      for (int g : mesh.vertex_faces(c))
+        for (int w : mesh.face_vertices(g)) box.extend(Vec3(mesh.position(w)));
+    const Vec3 pad = Vec3::Constant(0.05 * box.diagonal().norm());
+    box.extend(Vec3(box.min() - pad));
+    box.extend(Vec3(box.max() + pad));
+  }
 }
 
 LimitEvaluator::~LimitEvaluator() = default;
@@ -175,36 +188,31 @@ void project_to_domain(SchemeType scheme, double& u, double& v) {
 
 FaceParameter LimitEvaluator::closest_point(const Vec3& p, int hint) const {
   const Impl& I = *impl_;
-  int nearest = 0;
-  (I.limit.rowwise() - p.transpose()).rowwise().squaredNorm().minCoeff(&nearest);
-  // Candidates: faces touching the vertices within one ring of the nearest limit vertex (and
-  // of the hint face's corners), i.e. two rings of faces around it.
-  std::set<int> seeds{nearest}, faces;
-  for (int v : mesh_.vertex_neighbors(nearest)) seeds.insert(v);
-  if (hint >= 0 && hint < mesh_.n_faces())
-    for (int c : mesh_.face_vertices(hint)) {
-      seeds.insert(c);
-      for (int v : mesh_.vertex_neighbors(c)) seeds.insert(v);
-    }
+  // Branch and bound over the faces: in order of the distance from p to their boxes (a lower
+  // bound of the distance to their patch), until that bound exceeds the best distance found.
+  // The hint face (a curve's previous sample) goes first, to find a good bound early.
   const int corners = opt_.scheme == SchemeType::Loop ? 3 : 4;
-  for (int s : seeds)
-    for (int f : mesh_.vertex_faces(s))
-      if (mesh_.face_size(f) == corners) faces.insert(f);
-  if (faces.empty())
-    throw InvalidInput("closest point on the limit surface: no " + std::string(corners == 4 ? "quad" : "triangle") +
-                       " face near vertex " + std::to_string(nearest) + " (use a finer level)");
-
+  std::vector<std::pair<double, int>> order;
+  order.reserve(I.boxes.size());
+  for (int f = 0; f < mesh_.n_faces(); ++f)
+    if (mesh_.face_size(f) == corners)
+      order.emplace_back(f == hint ? -1.0 : I.boxes[static_cast<std::size_t>(f)].exteriorDistance(p), f);
+  if (order.empty())
+    throw InvalidInput(std::string("closest point on the limit surface: the mesh has no ") +
+                       (corners == 4 ? "quad" : "triangle") + " face (use a finer level)");
+  std::sort(order.begin(), order.end());
   FaceParameter best;
   double best_d2 = std::numeric_limits<double>::infinity();
   Vec3 P, Du, Dv;
   const MatrixX3& X = mesh_.positions();
-  for (int f : faces) {
-    // Start from the best of a 5 x 5 grid of parameters, then projected Gauss-Newton with
+  for (const auto& [bound, f] : order) {
+    if (bound * bound > best_d2) break;
+    // Start from the best of a 3 x 3 grid of parameters, then projected Gauss-Newton with
     // step halving (the distance never grows).
     double u = 0, v = 0, d2 = std::numeric_limits<double>::infinity();
-    for (int i = 0; i <= 4; ++i)
-      for (int j = 0; j <= 4; ++j) {
-        double a = i / 4.0, b = j / 4.0;
+    for (int i = 0; i <= 2; ++i)
+      for (int j = 0; j <= 2; ++j) {
+        double a = i / 2.0, b = j / 2.0;
         if (corners == 3 && a + b > 1) continue;
         I.evaluate(f, a, b);
         I.point(X, P, Du, Dv);

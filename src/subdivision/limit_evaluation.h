@@ -41,6 +41,7 @@ struct LimitStencils {
   Stencil position, du, dv;  // position weights sum to 1, derivative weights to 0
 };
 
+// Keeps a reference to the mesh: it must outlive the evaluator.
 class LimitEvaluator {
  public:
   //! \throw InvalidInput when OpenSubdiv rejects the mesh's topology.
@@ -59,11 +60,12 @@ class LimitEvaluator {
   Vec3 position(const FaceParameter& at) const;
   static Vec3 apply(const Stencil& s, const MatrixX3& positions);
 
-  //! The point of the limit surface closest to `p`: the closest point of the control mesh
-  //! picks candidate faces (its face and those within two vertex rings), then a projected
-  //! Gauss-Newton iteration on (u, v) against the exact limit in each candidate.
-  //! `hint` (a face, or -1) adds a face and its rings to the candidates (a curve's previous
-  //! sample). \throw InvalidInput when no quad (Catmull-Clark) face is near.
+  //! The point of the limit surface closest to `p`: projected Gauss-Newton on (u, v) against
+  //! the exact limit in each face, faces taken in order of the distance to the (padded) box of
+  //! the control points their patch depends on, until that lower bound exceeds the best
+  //! distance found. `hint` (a face, or -1: a curve's previous sample) is tried first.
+  //! Not thread-safe (one face's surface is cached). \throw InvalidInput when the mesh has no
+  //! quad (Catmull-Clark) or triangle (Loop) face.
   FaceParameter closest_point(const Vec3& p, int hint = -1) const;
 
  private:

@@ -265,6 +265,16 @@ TEST_CASE("a curve on the finest level of a remeshed cow is met on the limit sur
   const LevelMeshes mesh_at = [&h](int l) -> const SurfaceMesh& { return h.mesh(l); };
   const SurfaceMesh& fine = h.mesh(2);
   const double diagonal = (fine.positions().colwise().maxCoeff() - fine.positions().colwise().minCoeff()).norm();
+  {  // Closest points on a real model's limit surface (thin parts: ears, legs) are recovered.
+    const LimitEvaluator e(fine, h.options());
+    std::mt19937 gen(5);
+    std::uniform_int_distribution<int> face(0, fine.n_faces() - 1);
+    for (int k = 0; k < 100; ++k) {
+      const FaceParameter p{face(gen), std::generate_canonical<double, 53>(gen), std::generate_canonical<double, 53>(gen)};
+      const Vec3 x = e.position(p);
+      CHECK((e.position(e.closest_point(x)) - x).norm() <= 1e-9 * diagonal);
+    }
+  }
   // A curve along a path of finest-level edges: control points at the limit positions of its
   // vertices (on the limit surface; the chords between them are close to it).
   const MatrixX3 L = limit_positions(fine, h.options());

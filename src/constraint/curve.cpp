@@ -43,7 +43,7 @@ class CurveConstraint : public Constraint {
     double snap_ratio = 0.4, max_distance = 0.01;
     bool limit_points = false;  // placement limit_points
     bool level_given = false;
-    double sample_ratio = 1.0;  // limit_points: sample spacing × the level's mean edge length (see README)
+    double sample_ratio = 2.0;  // limit_points: polygon sampling step × the level's mean edge length (see README)
   };
   CurveConstraint(Options o, std::string who) : o_(std::move(o)), who_(std::move(who)) {}
 
@@ -136,8 +136,8 @@ std::unique_ptr<Constraint> make_curve(Config& cfg) {
   o.limit_points = cfg.get_enum("placement", false, placements,
                                 "snap: vertices snapped onto the curve (Appendix); limit_points: exact points of the "
                                 "limit surface along it");
-  o.sample_ratio = cfg.get_number("sample_ratio", o.sample_ratio, 0.05, 2.0,
-                                  "limit_points: sample spacing, × the level's mean edge length");
+  o.sample_ratio = cfg.get_number("sample_ratio", o.sample_ratio, 0.05, 4.0,
+                                  "limit_points: polygon sampling step, × the level's mean edge length (points are added where (AP) needs them)");
   o.snap_ratio = cfg.get_number("snap_ratio", o.snap_ratio, 0.05, 0.5,
                                 "a vertex snaps when closer to the curve than this × its shortest edge");
   o.max_distance = cfg.get_number("max_distance", o.max_distance, 0.0, 1.0,

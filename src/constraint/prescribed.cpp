@@ -66,10 +66,13 @@ void register_constraints(ConstraintRegistry& r) {
   for (Backend b : {Backend::Reference, Backend::Optimized}) {
     r.add("fixed", b, "selected vertices (or a point of the limit surface: at, nearest_on_limit) keep their rest position (ΔP = 0)", make_fixed);
     r.add("position", b, "selected vertices (or a point of the limit surface: at, nearest_on_limit) move by a given offset (ΔP = offset)", make_position);
-    r.add("normal", b, "the surface normal at selected vertices becomes a given direction (§4.2)", make_normal);
+    r.add("normal", b, "the surface normal at selected vertices (or at a point of the limit surface) becomes a given direction (§4.2)",
+          make_normal);
     r.add("rigid", b, "selected vertices (e.g. a boundary loop) follow a rotation and translation (Figure 9)",
           make_rigid);
-    r.add("curve", b, "a curve on the surface follows a rigid motion; vertices snapped onto it (Appendix)",
+    r.add("curve", b,
+          "a curve on the surface follows a rigid motion; vertices snapped onto it (Appendix) or, with placement "
+          "limit_points, points of the limit surface along it",
           make_curve);
   }
 }

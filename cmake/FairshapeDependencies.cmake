@@ -49,11 +49,15 @@ foreach(part cholmod spqr umfpack)
   target_link_libraries(SuiteSparse::${PART}_fs INTERFACE ${SUITESPARSE_${PART}_LIBRARY})
 endforeach()
 
-# OpenSubdiv's Debian CMake config is broken (it names static libraries that are not shipped).
+# OpenSubdiv's Debian CMake config is broken (it names static libraries that are not shipped):
+# an imported target from its headers and the shared libosdCPU. subdivision uses it for exact
+# limit evaluation at surface points (Bfr); the conformance tests use it as an oracle.
 find_path(OPENSUBDIV_INCLUDE_DIR opensubdiv/far/topologyRefiner.h)
 find_library(OPENSUBDIV_CPU_LIBRARY osdCPU)
-if(OPENSUBDIV_INCLUDE_DIR AND OPENSUBDIV_CPU_LIBRARY)
-  add_library(OpenSubdiv::cpu INTERFACE IMPORTED)
-  target_include_directories(OpenSubdiv::cpu SYSTEM INTERFACE ${OPENSUBDIV_INCLUDE_DIR})
-  target_link_libraries(OpenSubdiv::cpu INTERFACE ${OPENSUBDIV_CPU_LIBRARY})
+if(NOT OPENSUBDIV_INCLUDE_DIR OR NOT OPENSUBDIV_CPU_LIBRARY)
+  message(FATAL_ERROR "fairshape: OpenSubdiv (opensubdiv/far/topologyRefiner.h, libosdCPU) not found: "
+                      "install the Debian package 'libosd-dev' (or run scripts/install-deps.sh)")
 endif()
+add_library(OpenSubdiv::cpu INTERFACE IMPORTED)
+target_include_directories(OpenSubdiv::cpu SYSTEM INTERFACE ${OPENSUBDIV_INCLUDE_DIR})
+target_link_libraries(OpenSubdiv::cpu INTERFACE ${OPENSUBDIV_CPU_LIBRARY})

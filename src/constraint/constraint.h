@@ -13,8 +13,18 @@
 #include "core/registry.h"
 #include "core/types.h"
 #include "mesh/surface_mesh.h"
+#include "subdivision/limit_evaluation.h"
 
 namespace fairshape {
+
+// A point of a level's limit surface (face and parameters there) as stencils over that
+// level's vertices (subdivision/limit_evaluation.h); `position` empty: not a surface point.
+struct SurfacePoint {
+  FaceParameter at;
+  std::vector<int> corners;  // the face's vertices (ids persist on finer levels: for marking)
+  Stencil position, du, dv;
+  bool empty() const { return position.empty(); }
+};
 
 struct PointConstraint {
   int level = 0;          // where the constrained vertex lives
@@ -22,6 +32,7 @@ struct PointConstraint {
   bool on_limit = false;  // constrain the vertex's limit position instead
   Vec3 offset = Vec3::Zero();
   std::string label;      // names the constraint in error messages
+  SurfacePoint surface = {};  // non-empty: the limit point there moves by `offset` (vertex, on_limit unused)
 };
 
 // The normal at `vertex` should be `normal` (unit): the quadratic fit's tangents Q_u, Q_v
@@ -32,6 +43,7 @@ struct NormalConstraint {
   int vertex = 0;
   Vec3 normal = Vec3::UnitZ();
   std::string label;
+  SurfacePoint surface = {};  // non-empty: the rows are N·∂S/∂u = N·∂S/∂v = 0 there instead
 };
 
 // A curve constraint's chain of snapped vertices, in order along the curve (for drawing it).
@@ -40,6 +52,7 @@ struct PlacedCurve {
   std::vector<int> vertices;
   bool closed = false;
   std::string label;
+  std::vector<SurfacePoint> samples = {};  // placement limit_points: the curve's points on the limit surface
 };
 
 struct DesignConstraints {
@@ -57,7 +70,19 @@ class Constraint {
   //! Appends this constraint's point and normal constraints. \throw InvalidInput (missing
   //! level or vertex, empty selection, a curve off the surface).
   virtual void add_to(const LevelMeshes& mesh_at, int finest_level, DesignConstraints& out) const = 0;
+  //! As add_to, knowing the subdivision rules: constraints at points of the limit surface
+  //! need them; the others ignore them.
+  virtual void add_on_surface(const LevelMeshes& mesh_at, int finest_level, const SubdivisionOptions& /*rules*/,
+                              DesignConstraints& out) const {
+    add_to(mesh_at, finest_level, out);
+  }
 };
+
+//! The vertices a placed point constraint marks in result meshes: its vertex, or the corners
+//! of the face its surface point lies on.
+inline std::vector<int> marked_vertices(const PointConstraint& c) {
+  return c.surface.empty() ? std::vector<int>{c.vertex} : c.surface.corners;
+}
 
 //! The level a config's `level` key names (-1: the finest). \throw InvalidInput when absent.
 int resolve_level(int level, int finest, const std::string& who);

@@ -1,10 +1,13 @@
 // The `curve` constraint (Boier-Martin et al. §4.2 and Appendix): a curve drawn on the surface
 // moves — rigidly, or to given target points — and the surface follows. The curve is turned
 // into point constraints at the vertices snapped onto it, on the first level (from `level`
-// up to the finest) where the snapped chain satisfies the approximation property.
+// up to the finest) where the snapped chain satisfies the approximation property. With
+// `placement: limit_points` it becomes point constraints at exact points of one level's limit
+// surface instead (curve_limit_points.h), on any level, without the re-parameterization.
 #include <sstream>
 
 #include "constraint/constraint_factories.h"
+#include "constraint/curve_limit_points.h"
 #include "constraint/curve_snapping.h"
 #include "constraint/rigid_motion.h"
 #include <limits>
@@ -38,10 +41,34 @@ class CurveConstraint : public Constraint {
     RigidMotion motion;
     int first_level = 0;
     double snap_ratio = 0.4, max_distance = 0.01;
+    bool limit_points = false;  // placement limit_points
+    bool level_given = false;
+    double sample_ratio = 2.0;  // limit_points: polygon sampling step × the level's mean edge length (see README)
   };
   CurveConstraint(Options o, std::string who) : o_(std::move(o)), who_(std::move(who)) {}
 
+  void add_on_surface(const LevelMeshes& mesh_at, int finest, const SubdivisionOptions& rules,
+                      DesignConstraints& out) const override {
+    if (!o_.limit_points) return add_to(mesh_at, finest, out);
+    // The surface the designer sees is the finest level's limit: the points go there unless
+    // `level` names another level (whose limit surface they then lie on).
+    const int level = resolve_level(o_.level_given ? o_.first_level : -1, finest, who_);
+    const SurfaceMesh& m = mesh_at(level);
+    const LimitEvaluator evaluator(m, rules);
+    const SurfaceMesh& fine = mesh_at(finest);
+    const double diagonal = (fine.positions().colwise().maxCoeff() - fine.positions().colwise().minCoeff()).norm();
+    const LimitCurve c = place_on_limit(evaluator, o_.points, o_.closed, o_.sample_ratio * mean_edge_length(m),
+                                        o_.max_distance * diagonal, who_);
+    const Vec3 centroid = o_.points.colwise().mean().transpose();
+    // The point on the limit moves with the curve: by the polygon's motion at its parameter.
+    for (std::size_t i = 0; i < c.points.size(); ++i)
+      out.points.push_back({level, c.points[i].corners.front(), false, displacement(c.source[i], centroid), who_, c.points[i]});
+    out.curves.push_back({level, {}, o_.closed, who_, c.points});
+  }
+
   void add_to(const LevelMeshes& mesh_at, int finest, DesignConstraints& out) const override {
+    if (o_.limit_points)
+      throw InvalidInput(who_ + ": placement limit_points needs the subdivision rules (add_on_surface)");
     const int first = resolve_level(o_.first_level, finest, who_);
     // "Leaves the surface" is judged on the finest level, the surface the designer sees.
     const SurfaceMesh& fine = mesh_at(finest);
@@ -101,7 +128,16 @@ std::unique_ptr<Constraint> make_curve(Config& cfg) {
   o.motion = RigidMotion::from_config(cfg);
   if (o.targets.rows() && (cfg.has("rotation") || cfg.has("translation")))
     throw InvalidConfig(cfg.path() + ": give either 'target_points' or a rigid motion ('rotation', 'translation')");
-  o.first_level = cfg.get_int("level", 0, -1, 16, "first level tried; finer levels follow until the chain has no gap");
+  o.level_given = cfg.has("level");
+  o.first_level = cfg.get_int("level", 0, -1, 16,
+                              "snap: first level tried, finer levels follow until the chain has no gap; limit_points: the "
+                              "level whose limit surface carries the points (default: the finest)");
+  static const NameTable<bool> placements{{false, "snap"}, {true, "limit_points"}};
+  o.limit_points = cfg.get_enum("placement", false, placements,
+                                "snap: vertices snapped onto the curve (Appendix); limit_points: exact points of the "
+                                "limit surface along it");
+  o.sample_ratio = cfg.get_number("sample_ratio", o.sample_ratio, 0.05, 4.0,
+                                  "limit_points: polygon sampling step, × the level's mean edge length (points are added where (AP) needs them)");
   o.snap_ratio = cfg.get_number("snap_ratio", o.snap_ratio, 0.05, 0.5,
                                 "a vertex snaps when closer to the curve than this × its shortest edge");
   o.max_distance = cfg.get_number("max_distance", o.max_distance, 0.0, 1.0,

@@ -2,6 +2,7 @@
 // normal becomes the given direction.
 #include "constraint/constraint_factories.h"
 #include "constraint/rigid_motion.h"
+#include "constraint/surface_points.h"
 #include "constraint/vertex_selection.h"
 
 namespace fairshape {
@@ -31,8 +32,10 @@ std::unique_ptr<Constraint> make_normal(Config& cfg) {
   const Vec3 n = cfg.documenting() ? Vec3::UnitZ() : get_vec3(cfg, "normal", Vec3::UnitZ(), "");
   if (n.norm() == 0) throw InvalidConfig(cfg.key_path("normal") + ": must not be zero");
   const int level = level_from_config(cfg);
-  return std::make_unique<NormalDirection>(VertexSelection::from_config(cfg), n.normalized(), level,
-                                           constraint_label(cfg));
+  auto surface_point = SurfacePointSelection::from_config(cfg, level);
+  VertexSelection selection = VertexSelection::from_config(cfg);
+  if (surface_point) return surface_point_normal(std::move(*surface_point), n, constraint_label(cfg));
+  return std::make_unique<NormalDirection>(std::move(selection), n.normalized(), level, constraint_label(cfg));
 }
 
 }  // namespace fairshape

@@ -2,6 +2,7 @@
 // `level` says otherwise) keep their place or move by an offset.
 #include "constraint/constraint_factories.h"
 #include "constraint/rigid_motion.h"
+#include "constraint/surface_points.h"
 #include "constraint/vertex_selection.h"
 
 namespace fairshape {
@@ -30,8 +31,10 @@ std::unique_ptr<Constraint> make(Config& cfg, bool with_offset) {
       with_offset ? get_vec3(cfg, "offset", Vec3::Zero(), "displacement [dx, dy, dz] of the handle") : Vec3::Zero();
   const int level = level_from_config(cfg);
   const bool on_limit = cfg.get<bool>("on_limit", false, "constrain the limit positions of the selected vertices");
-  return std::make_unique<PositionConstraint>(VertexSelection::from_config(cfg), offset, level, on_limit,
-                                              constraint_label(cfg));
+  auto surface_point = SurfacePointSelection::from_config(cfg, level);
+  VertexSelection selection = VertexSelection::from_config(cfg);
+  if (surface_point) return surface_point_offset(std::move(*surface_point), offset, constraint_label(cfg));
+  return std::make_unique<PositionConstraint>(std::move(selection), offset, level, on_limit, constraint_label(cfg));
 }
 
 }  // namespace
@@ -61,12 +64,15 @@ std::unique_ptr<Constraint> make_position(Config& cfg) { return make(cfg, true);
 
 void register_constraints(ConstraintRegistry& r) {
   for (Backend b : {Backend::Reference, Backend::Optimized}) {
-    r.add("fixed", b, "selected vertices keep their rest position (ΔP = 0)", make_fixed);
-    r.add("position", b, "selected vertices move by a given offset (ΔP = offset)", make_position);
-    r.add("normal", b, "the surface normal at selected vertices becomes a given direction (§4.2)", make_normal);
+    r.add("fixed", b, "selected vertices (or a point of the limit surface: at, nearest_on_limit) keep their rest position (ΔP = 0)", make_fixed);
+    r.add("position", b, "selected vertices (or a point of the limit surface: at, nearest_on_limit) move by a given offset (ΔP = offset)", make_position);
+    r.add("normal", b, "the surface normal at selected vertices (or at a point of the limit surface) becomes a given direction (§4.2)",
+          make_normal);
     r.add("rigid", b, "selected vertices (e.g. a boundary loop) follow a rotation and translation (Figure 9)",
           make_rigid);
-    r.add("curve", b, "a curve on the surface follows a rigid motion; vertices snapped onto it (Appendix)",
+    r.add("curve", b,
+          "a curve on the surface follows a rigid motion; vertices snapped onto it (Appendix) or, with placement "
+          "limit_points, points of the limit surface along it",
           make_curve);
   }
 }

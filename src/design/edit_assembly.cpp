@@ -29,7 +29,7 @@ EditProblem assemble_edit_problem(const EditTerms& terms, const MultiresSurface&
     p.levels = ops;
   }
   const LevelMeshes mesh_at = [&h](int l) -> const SurfaceMesh& { return h.mesh(l); };
-  for (const Constraint* c : terms.constraints) c->add_to(mesh_at, h.levels(), placed);
+  for (const Constraint* c : terms.constraints) c->add_on_surface(mesh_at, h.levels(), h.options(), placed);
   p.constraints = propagate_constraints(h, level, placed);
   return p;
 }
@@ -38,7 +38,7 @@ void check_edit(const EditTerms& terms, const MultiresSurface& h, int coarse, in
   if (terms.energies.empty()) throw InvalidInput("edit: no energy term");
   const LevelMeshes mesh_at = [&h](int l) -> const SurfaceMesh& { return h.mesh(l); };
   DesignConstraints placed;
-  for (const Constraint* c : terms.constraints) c->add_to(mesh_at, h.levels(), placed);
+  for (const Constraint* c : terms.constraints) c->add_on_surface(mesh_at, h.levels(), h.options(), placed);
   for (int l = coarse; l <= level; ++l) {
     for (const WeightedEnergy& e : terms.energies) e.energy->check_applicable(h.mesh(l));
     check_constraints(h, l, placed);

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include <array>
+#include <cmath>
 
 #include <Eigen/Geometry>
 
@@ -27,6 +28,37 @@ void check_place(const MultiresSurface& h, int l, int level, int vertex, const s
   if (vertex < 0 || vertex >= h.mesh(level).n_vertices())
     throw InvalidInput(label + ": vertex " + std::to_string(vertex) + " does not exist on level " +
                        std::to_string(level) + " (" + std::to_string(h.mesh(level).n_vertices()) + " vertices)");
+}
+
+// A constraint at a point of level k's limit surface (constraint.h SurfacePoint): its stencils
+// must be weights over level k's vertices.
+void check_surface_point(const MultiresSurface& h, int level, const SurfacePoint& sp, const std::string& label) {
+  const int n = h.mesh(level).n_vertices();
+  for (const Stencil* s : {&sp.position, &sp.du, &sp.dv})
+    for (const auto& [vertex, w] : *s)
+      if (vertex < 0 || vertex >= n || !std::isfinite(w))
+        throw InvalidInput(label + ": the surface point's stencil names vertex " + std::to_string(vertex) +
+                           " (level " + std::to_string(level) + " has " + std::to_string(n) +
+                           " vertices) or a non-finite weight");
+}
+
+// The row of a surface point on the edit level: its stencil w over level k times P_{l→k}
+// (rows = level-k vertices), Σ_j w_j e_jᵀ P_{l→k} — Table 1's propagation applied to a
+// combination of vertices instead of one.
+void add_stencil_row(const RowSparseMatrix& P, const Stencil& stencil, int row, Triplets& t) {
+  for (const auto& [vertex, w] : stencil)
+    for (RowSparseMatrix::InnerIterator it(P, vertex); it; ++it) t.emplace_back(row, static_cast<int>(it.col()), w * it.value());
+}
+
+// The derivative stencils ∂S/∂u, ∂S/∂v of a surface point as the two sparse rows a normal
+// constraint makes perpendicular to N (in place of the divided differences at a vertex).
+std::array<Eigen::SparseVector<double>, 2> derivative_rows(const SurfaceMesh& mesh, const SurfacePoint& sp) {
+  std::array<Eigen::SparseVector<double>, 2> rows;
+  for (int r = 0; r < 2; ++r) {
+    rows[r].resize(mesh.n_vertices());
+    for (const auto& [vertex, w] : r == 0 ? sp.du : sp.dv) rows[r].coeffRef(vertex) += w;
+  }
+  return rows;
 }
 
 // Rows u and v of one normal constraint, over level k's vertices: the tangents Q_u, Q_v of
@@ -61,6 +93,11 @@ std::vector<const NormalConstraint*> distinct_normals(const MultiresSurface& h, 
   for (const auto& nc : normals) {
     check_place(h, l, nc.level, nc.vertex, nc.label);
     if (!nc.normal.allFinite() || nc.normal.norm() == 0) throw InvalidInput(nc.label + ": the normal is zero or not finite");
+    if (!nc.surface.empty()) {  // a surface point: its own rows, never merged with a vertex's
+      check_surface_point(h, nc.level, nc.surface, nc.label);
+      unique.push_back(&nc);
+      continue;
+    }
     auto [first, inserted] = seen.try_emplace({nc.level, nc.vertex}, &nc);
     if (inserted) {
       unique.push_back(&nc);
@@ -83,6 +120,11 @@ std::vector<const PointConstraint*> distinct_points(const MultiresSurface& h, in
   for (const auto& c : cs) {
     check_place(h, l, c.level, c.vertex, c.label);
     if (!c.offset.allFinite()) throw InvalidInput(c.label + ": target is not finite");
+    if (!c.surface.empty()) {  // a surface point: its own row, never merged with a vertex's
+      check_surface_point(h, c.level, c.surface, c.label);
+      unique.push_back(&c);
+      continue;
+    }
     auto [it, inserted] = seen.try_emplace({c.level, c.vertex, c.on_limit}, &c);
     if (inserted) unique.push_back(&c);
     else if ((it->second->offset - c.offset).norm() > 1e-12 * (1.0 + c.offset.norm())) {
@@ -95,13 +137,19 @@ std::vector<const PointConstraint*> distinct_points(const MultiresSurface& h, in
   return unique;
 }
 
-// How far the point a constraint names (a vertex of its level, or that vertex's limit point)
+// How far the point a constraint names (a vertex of its level, that vertex's limit point, or a
+// point of the limit surface)
 // has moved from `h` to `current`. Catmull-Clark and Loop limit stencils depend on the
 // connectivity alone, so one limit matrix per level serves both shapes.
 Vec3 moved_so_far(const MultiresSurface& h, const MultiresSurface& current, const PointConstraint& c,
                   std::map<int, RowSparseMatrix>& limit_rows) {
   const MatrixX3& now = current.mesh(c.level).positions();
   const MatrixX3& rest = h.mesh(c.level).positions();
+  if (!c.surface.empty()) {  // a point of the limit surface: its stencil over the level's vertices
+    Vec3 moved = Vec3::Zero();
+    for (const auto& [v, w] : c.surface.position) moved += w * (now.row(v) - rest.row(v)).transpose();
+    return moved;
+  }
   if (!c.on_limit) return (now.row(c.vertex) - rest.row(c.vertex)).transpose();
   auto it = limit_rows.find(c.level);
   if (it == limit_rows.end())
@@ -130,7 +178,7 @@ void add_normal_rows(const MultiresSurface& h, int l, const std::vector<NormalCo
     auto it = prolongation_to.find(nc.level);
     if (it == prolongation_to.end()) it = prolongation_to.emplace(nc.level, RowSparseMatrix(h.prolongation(l, nc.level))).first;
     const SurfaceMesh& mesh = h.mesh(nc.level);
-    for (const auto& a : tangent_rows(mesh, nc.vertex)) {
+    for (const auto& a : nc.surface.empty() ? tangent_rows(mesh, nc.vertex) : derivative_rows(mesh, nc.surface)) {
       // a · ΔP^k = (a P_{l→k}) · ΔP^l: the row on the edit level, times N on each coordinate block.
       Eigen::SparseVector<double> row(n);
       for (Eigen::SparseVector<double>::InnerIterator e(a); e; ++e)
@@ -167,7 +215,9 @@ LinearConstraints missing_targets(const MultiresSurface& h, const DesignConstrai
   for (const NormalConstraint* nc : distinct_normals(h, 0, dc.normals)) {
     const Vec3 N = nc->normal.normalized();
     const SurfaceMesh& now = current.mesh(nc->level);
-    for (const auto& a : tangent_rows(h.mesh(nc->level), nc->vertex)) c.push_back(-along(a, now, N));
+    const SurfaceMesh& mesh = h.mesh(nc->level);
+    for (const auto& a : nc->surface.empty() ? tangent_rows(mesh, nc->vertex) : derivative_rows(mesh, nc->surface))
+      c.push_back(-along(a, now, N));
   }
   out.C_coupled = Eigen::Map<const Eigen::VectorXd>(c.data(), static_cast<Eigen::Index>(c.size()));
   return out;
@@ -210,8 +260,10 @@ LinearConstraints propagate_constraints(const MultiresSurface& h, int l, const s
   Triplets t;
   for (std::size_t r = 0; r < unique.size(); ++r) {
     const RowSparseMatrix& P = rows_of.at({unique[r]->level, unique[r]->on_limit});
-    for (RowSparseMatrix::InnerIterator it(P, unique[r]->vertex); it; ++it)
-      t.emplace_back(static_cast<int>(r), static_cast<int>(it.col()), it.value());
+    if (!unique[r]->surface.empty()) add_stencil_row(P, unique[r]->surface.position, static_cast<int>(r), t);
+    else
+      for (RowSparseMatrix::InnerIterator it(P, unique[r]->vertex); it; ++it)
+        t.emplace_back(static_cast<int>(r), static_cast<int>(it.col()), it.value());
     out.C.row(static_cast<Eigen::Index>(r)) = unique[r]->offset.transpose();
     if (current) out.C.row(static_cast<Eigen::Index>(r)) -= moved_so_far(h, *current, *unique[r], limit_rows).transpose();
   }

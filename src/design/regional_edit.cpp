@@ -47,7 +47,7 @@ std::vector<PlacedTerm> place_terms(const EditTerms& terms, const MultiresSurfac
   for (std::size_t i = 0; i < terms.constraints.size(); ++i) {
     PlacedTerm t;
     t.influence = terms.influence(i);
-    terms.constraints[i]->add_to(mesh_at, h.levels(), t.placed);
+    terms.constraints[i]->add_on_surface(mesh_at, h.levels(), h.options(), t.placed);
     t.label = !t.placed.points.empty()    ? t.placed.points.front().label
               : !t.placed.normals.empty() ? t.placed.normals.front().label
                                           : "constraint " + std::to_string(i);

@@ -47,7 +47,8 @@ SurfaceMesh result_mesh(const SurfaceMesh& before, const MatrixX3& after, int le
   // coarser level marks the same id here.
   Eigen::MatrixXd constrained = Eigen::MatrixXd::Zero(m.n_vertices(), 1);
   for (const auto& p : placed.points)
-    if (p.level <= level) constrained(p.vertex, 0) = 1.0;
+    if (p.level <= level)
+      for (int v : marked_vertices(p)) constrained(v, 0) = 1.0;  // a surface point: its face's corners
   m.vertex_data["constrained"] = constrained;
   if (!placed.normals.empty()) {
     Eigen::MatrixXd normals = Eigen::MatrixXd::Zero(m.n_vertices(), 3);
@@ -178,11 +179,12 @@ void report_spike(const SurfaceEditSpec& spec, const DesignConstraints& placed, 
                       "their propagated rows; constraint_mode kkt is exact)";
 }
 
-// curve_points: the vertices the curves snapped (the VTP's `constrained` marks them).
+// curve_points: the vertices the curves snapped, or their points on the limit surface (the
+// VTP's `constrained` marks the vertices they use).
 void count_curve_points(const DesignConstraints& placed, MetricRow& row) {
   if (placed.curves.empty()) return;
   std::size_t snapped = 0;
-  for (const PlacedCurve& c : placed.curves) snapped += c.vertices.size();
+  for (const PlacedCurve& c : placed.curves) snapped += c.vertices.size() + c.samples.size();  // snapped or on the limit
   row["curve_points"] = std::to_string(snapped);
 }
 

@@ -124,7 +124,7 @@ img = mpimg.imread(sys.argv[1])[:, :, :3]
 assert (img.min(axis=2) < 0.8).mean() > 0.01, "the curve's tube is not drawn"
 PYEOF
 "$FS" run configs/demo.yaml --out "$S/run" 2>"$S/run.log" || { cat "$S/run.log" >&2; fail "run"; }
-expect_error 2 "holds 2 runs; name one with --run ID" -- "$FS" render "$S/run" "$S/x.png"
+expect_error 2 "holds 3 runs; name one with --run ID" -- "$FS" render "$S/run" "$S/x.png"
 id=$(sed -n 2p "$S/run/runs.csv" | cut -d, -f1)
 "$FS" render "$S/run" "$S/final.png" --run "$id" --array displacement --width 320 --height 240 --title "demo" \
   --label "run $id" --rest data/cow.off 2>"$S/log" || { cat "$S/log" >&2; fail "render of a run"; }

@@ -61,11 +61,11 @@ TEST_CASE("_levels.vtm holds the details of the edited surface, analysed anew", 
   const std::string cfg = test::source_path("configs/boier-martin/fig2_nose_pull.yaml");
   YAML::Node root = load_experiment_config(cfg, {"input.remesh_base_faces=200", "input.levels=2"});
   const SweepSpace space(root);
-  REQUIRE(space.size() == 2);  // thin-plate, detail-preserving
+  REQUIRE(space.size() == 3);  // thin-plate (back fixed), thin-plate (all but the head fixed), detail-preserving
   const fs::path dir = test::scratch_dir("levels_vtm");
   fs::create_directories(dir / "vtk");
   std::vector<MultiresSurface> edited;
-  for (std::size_t i = 0; i < 2; ++i) {
+  for (std::size_t i : {0u, 2u}) {
     const RunPoint p = space.point(i);
     RunKind& kind = kind_of(p.config, kinds);
     RunTables tables;

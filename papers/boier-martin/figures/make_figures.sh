@@ -2,11 +2,11 @@
 # Figures 1 b/c, 2, 7, 8 and 9 (top) of Boier-Martin et al.: runs each config under
 # configs/boier-martin/, renders every run (VTK offscreen) side by side into
 # papers/boier-martin/figures/figN.png and keeps its runs.csv in papers/boier-martin/data/.
-#   bash papers/boier-martin/figures/make_figures.sh [fig1 fig2 fig7 fig8 fig9]   (after `make build`)
+#   bash papers/boier-martin/figures/make_figures.sh [fig1 fig2 fig7 fig7_vase fig8 fig9 fig9_vase]   (after `make build`)
 set -euo pipefail
 cd "$(dirname "$0")/../../.."
 figures=("$@")
-[ ${#figures[@]} -gt 0 ] || figures=(fig1 fig2 fig7 fig8 fig9)
+[ ${#figures[@]} -gt 0 ] || figures=(fig1 fig2 fig7 fig7_vase fig8 fig9 fig9_vase)
 cow_view=(--view front --zoom 1.5 --width 800 --height 560)
 
 figure() {  # name config panels-arguments...
@@ -30,14 +30,19 @@ rest_hierarchy() {
 
 for f in "${figures[@]}"; do
   case $f in
-    fig1) figure fig1 fig1_constraint_level \
-            --title "One nose handle solved exactly on level 0, 1 or 3: same reach, details kept better on coarse levels (colour: displacement)" \
-            --label "edit level {input_edit_level:.0f}: detail change {detail_change:.3f}" \
-            --render "${cow_view[@]}" ;;
+    fig1) figure fig1 fig1_region_of_influence --rest "$(rest_hierarchy)" \
+            --title "One nose handle propagated to level 0, 1, 2 or 3 and solved on its region (2 rings): global on the base, a bump on the finest (colour: displacement; wireframe: the base patches)" \
+            --label "influence level 0: {region_fraction:.0%} of the surface in its region, detail change {detail_change:.3f}" \
+            --label "influence level 1: {region_fraction:.0%}, detail change {detail_change:.3f}" \
+            --label "influence level 2: {region_fraction:.1%}, detail change {detail_change:.3f}" \
+            --label "influence level 3: {region_fraction:.2%}, detail change {detail_change:.3f}" \
+            --columns 3 --render "${cow_view[@]}" --control-level 0 ;;
     fig2) figure fig2 fig2_nose_pull --rest "$(rest_hierarchy)" \
             --title "Nose pulled on the finest level of a Catmull-Clark hierarchy (colour: displacement)" \
-            --label "{kind}: detail change {detail_change:.2f}, constraint residual {constraint_violation:.0e}" \
-            --render "${cow_view[@]}" ;;
+            --label "thin plate, back third fixed: detail change {detail_change:.2f}" \
+            --label "thin plate, all but the head fixed (the paper's boundary constraints): {detail_change:.2f}" \
+            --label "detail-preserving, back third fixed: detail change {detail_change:.2f}" \
+            --columns 2 --render "${cow_view[@]}" ;;
     fig7) figure fig7 fig7_constraint_kinds --rest "$(rest_hierarchy)" \
             --title "Point, normal and curve constraints, detail-preserving energy, hooves fixed (colour: displacement)" \
             --label "{kind} constraints: detail change {detail_change:.3f}" \
@@ -55,6 +60,20 @@ for f in "${figures[@]}"; do
             --title "Inner rim of an annulus turned 45 and 90 degrees about z and lifted by 0.4, outer rim fixed" \
             --label "{kind}, energy {energy:.3g}, constraint residual {constraint_violation:.0e}" \
             --render --view front --azimuth 20 --elevation 35 --width 700 --height 600 --edges ;;
-    *) echo "unknown figure '$f' (choose from fig1 fig2 fig7 fig8 fig9)" >&2; exit 2 ;;
+    fig7_vase) figure fig7_vase fig7_vase --rest data/vase.obj \
+            --title "Point, normal and curve constraints on a fluted vase of revolution, detail-preserving energy, foot fixed (colour: displacement)" \
+            --label "{kind} constraints: energy {energy:.3g}, constraint residual {constraint_violation:.0e}" \
+            --render --view front --up z --width 600 --height 700 ;;
+    fig9_vase) out=results/figures/fig9_vase
+          build/bin/fairshape run configs/boier-martin/fig9_vase_drag.yaml --out "$out" --force
+          run=$(awk -F, 'NR == 2 {print $1}' "$out/runs.csv")
+          /usr/bin/python3 scripts/panels.py "$out" papers/boier-martin/figures/fig9_vase.png --steps "$run" \
+            --title "Interactive editing (Figure 9, bottom): the vase's lip dragged in 4 steps, each the level-1 solve subdivided with the details (colour: displacement)" \
+            --label "step {step:.0f}: {solve_s:.3f} s, error vs CHOLMOD {error_vs_reference}" \
+            --render --view front --up z --width 600 --height 700
+          mkdir -p papers/boier-martin/data
+          cp "$out/runs.csv" papers/boier-martin/data/fig9_vase_runs.csv
+          cp "$out/steps.csv" papers/boier-martin/data/fig9_vase_steps.csv ;;
+    *) echo "unknown figure '$f' (choose from fig1 fig2 fig7 fig7_vase fig8 fig9 fig9_vase)" >&2; exit 2 ;;
   esac
 done

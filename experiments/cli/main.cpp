@@ -159,8 +159,8 @@ int main(int argc, char** argv) {
   c_rem->add_option("--base", rem.base, "base faces (catmull-clark: triangles paired into quads, or not; loop: "
                                         "always triangles)")->capture_default_str()
       ->check(CLI::IsMember({"quad-dominant", "triangles"}));
-  c_rem->add_option("--base-method", rem.base_method, "how the base triangles are made: isotropic remeshing or edge "
-                                                      "collapse (the earlier remesher)")->capture_default_str()
+  c_rem->add_option("--base-method", rem.base_method, "how the base triangles are made: edge collapse (keeps "
+                                                      "horn and tail tips) or isotropic remeshing (even edges)")->capture_default_str()
       ->check(CLI::IsMember({"isotropic", "edge-collapse"}));
   c_rem->add_option("--fit", rem.fit, "project and relax every level coarse to fine, or only the finest (the earlier "
                                       "remesher)")->capture_default_str()

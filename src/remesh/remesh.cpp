@@ -233,8 +233,7 @@ MultiresSurface remesh(const SurfaceMesh& dense, const RemeshOptions& opt, Remes
 
   const SurfaceMesh& fine = h.mesh(opt.levels);
   r.bbox_diagonal = bounding_box_diagonal(dense);
-  // Samples 1/1000 of the diagonal apart: the sampled distance is within 0.1% of the true one.
-  r.sample_spacing = 1e-3 * r.bbox_diagonal;
+  r.sample_spacing = opt.sample_spacing * r.bbox_diagonal;
   const ClosestPointQuery on_fine(fine);
   const SurfaceDistance d = hausdorff_distance(dense, on_dense, fine, on_fine, r.sample_spacing);
   r.dense_to_fine = d.a_to_b;

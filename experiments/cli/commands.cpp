@@ -163,13 +163,17 @@ int cmd_remesh(const RemeshArgs& a) {
   opt.levels = a.levels;
   opt.relax_rounds = a.relax_rounds;
   opt.base = a.base == "triangles" ? RemeshBase::Triangles : RemeshBase::QuadDominant;
-  opt.base_method = a.base_method == "edge-collapse" ? BaseMethod::EdgeCollapse : BaseMethod::Isotropic;
+  opt.base_method = a.base_method == "edge-collapse" ? BaseMethod::EdgeCollapse
+                    : a.base_method == "isotropic"   ? BaseMethod::Isotropic
+                                                     : BaseMethod::Auto;
   opt.fit = a.fit == "finest" ? FitMethod::Finest : FitMethod::LevelByLevel;
   RemeshReport r;
   const MultiresSurface h = remesh(load_any(a.input, nullptr), opt, &r);
   h.save(a.output);
   const auto pct = [&r](double d) { return 100.0 * d / r.bbox_diagonal; };
-  std::cout << "base faces          " << r.base_faces << " (asked " << r.base_faces_requested << ")"
+  const char* made_by = r.base_method == BaseMethod::Isotropic ? "isotropic" : "edge-collapse";
+  std::cout << "base faces          " << r.base_faces << " (asked " << r.base_faces_requested << "; base by " << made_by
+            << ")"
             << "\nfinest level        " << r.fine_vertices << " vertices, " << r.fine_faces << " faces"
             << "\nHausdorff distance  " << r.hausdorff << " (" << pct(r.hausdorff)
             << "% of the bounding-box diagonal; dense->remesh " << pct(r.dense_to_fine) << "%, remesh->dense "
@@ -185,6 +189,7 @@ int cmd_remesh(const RemeshArgs& a) {
   j["asked"] = {{"scheme", a.scheme}, {"base_faces", a.base_faces}, {"levels", a.levels}, {"base", a.base},
                 {"base_method", a.base_method}, {"fit", a.fit}, {"relax_rounds", a.relax_rounds}};
   j["base_faces"] = r.base_faces;
+  j["base_method"] = made_by;
   j["fine_vertices"] = r.fine_vertices;
   j["fine_faces"] = r.fine_faces;
   j["bbox_diagonal"] = r.bbox_diagonal;

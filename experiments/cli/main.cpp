@@ -160,8 +160,9 @@ int main(int argc, char** argv) {
                                         "always triangles)")->capture_default_str()
       ->check(CLI::IsMember({"quad-dominant", "triangles"}));
   c_rem->add_option("--base-method", rem.base_method, "how the base triangles are made: edge collapse (keeps "
-                                                      "horn and tail tips) or isotropic remeshing (even edges)")->capture_default_str()
-      ->check(CLI::IsMember({"isotropic", "edge-collapse"}));
+                                                      "horn and tail tips), isotropic remeshing (even edges), or "
+                                                      "auto: both, keeping the better result")->capture_default_str()
+      ->check(CLI::IsMember({"auto", "isotropic", "edge-collapse"}));
   c_rem->add_option("--fit", rem.fit, "project and relax every level coarse to fine, or only the finest (the earlier "
                                       "remesher)")->capture_default_str()
       ->check(CLI::IsMember({"level-by-level", "finest"}));

@@ -1,9 +1,11 @@
 // Semi-regular remeshing of a dense triangle mesh into a multiresolution subdivision surface.
-//  1. Base: CGAL edge collapse of the dense mesh to about K triangles (for Catmull-Clark with a
-//     quad-dominant base: about 2K, then pairs of them merged into quads, quad_pairing.h).
-//     Measured on the cow, the collapse base keeps the tips of horns, ears and tail that an
-//     isotropic base of the same size rounds off (0.5% against 1.8% Hausdorff at 600 faces, 4
-//     levels), which no finer level recovers; the isotropic base stays selectable.
+//  1. Base: about K triangles by CGAL edge collapse or CGAL isotropic remeshing (for Catmull-
+//     Clark with a quad-dominant base: about 2K, then pairs of them merged into quads,
+//     quad_pairing.h). Neither wins everywhere: measured at 600 faces and 4 levels, the
+//     collapse base keeps the tips of the cow's horns and tail that an isotropic base rounds
+//     off (Hausdorff 0.4 % against 1.9 %), which no finer level recovers; the isotropic base has
+//     even edges and follows fandisk's flat faces (edge ratio 13 against 14,000). By default
+//     both are made and the result nearer the targets is kept.
 //  2. Coarse to fine, level by level: subdivide, move each new vertex along its normal onto the
 //     dense surface (closest_point.h, facing_points), then even out the spacing by tangential
 //     relaxation and re-projection, and pin the vertex nearest to any dense vertex the level
@@ -29,6 +31,7 @@ enum class RemeshBase {
 // The earlier pipeline's steps stay selectable, so what each step buys can be measured
 // (papers/boier-martin/README.md, "Remesher quality").
 enum class BaseMethod {
+  Auto,          // both below, keeping the result nearer the quality targets (remesh.cpp)
   Isotropic,     // isotropic_base: near-equilateral triangles
   EdgeCollapse,  // simplify_to_faces: quadric-like collapse, anisotropic triangles
 };
@@ -48,7 +51,7 @@ struct RemeshOptions {
   // levels: edge ratio 100 at 3-4 rounds, 230-255 at 2, 8 and 12).
   int relax_rounds = 4;
   RemeshBase base = RemeshBase::QuadDominant;
-  BaseMethod base_method = BaseMethod::EdgeCollapse;
+  BaseMethod base_method = BaseMethod::Auto;
   FitMethod fit = FitMethod::LevelByLevel;
   // Spacing of the report's Hausdorff samples, relative to the bounding-box diagonal: the
   // sampled distance is within this of the true one (cost grows with its inverse square).
@@ -64,7 +67,8 @@ struct RemeshReport {
   double shortest_edge = 0, longest_edge = 0;  // of the finest level
   int unprojected = 0;  // finest vertices with no facing dense surface point within reach (left off it)
   std::map<int, int> base_valence, fine_valence;  // valence -> vertex count
-  double seconds = 0;                              // remeshing, without measuring the report
+  BaseMethod base_method = BaseMethod::EdgeCollapse;  // the base the result was made from
+  double seconds = 0;  // remeshing (both bases for Auto, and then their measuring too)
   double edge_ratio() const { return longest_edge / shortest_edge; }
   double hausdorff_relative() const { return hausdorff / bbox_diagonal; }
 };

@@ -15,8 +15,9 @@ namespace fairshape {
 
 class ClosestPointQuery;
 
-//! Points on every face of `mesh` (polygons as triangle fans): a barycentric grid per triangle,
-//! fine enough that no two neighbouring samples are more than `spacing` apart.
+//! Points on every face of `mesh` (polygons as triangle fans): the vertices, points along the
+//! edges and a barycentric grid inside each triangle (at least its centroid), neighbouring
+//! samples at most `spacing` apart; a point shared by faces is sampled once.
 MatrixX3 sample_surface(const SurfaceMesh& mesh, double spacing);
 
 struct SurfaceDistance {

@@ -10,10 +10,12 @@
 #include "qp/qp_solver.h"
 #include "experiment/components.h"
 #include "energy/local_quadratic.h"
+#include "io/json_io.h"
 #include "io/matrix_market.h"
 #include "io/mesh_io.h"
 #include "io/vtk_io.h"
 #include "mesh/mesh_stats.h"
+#include "remesh/quality.h"
 #include "remesh/remesh.h"
 #include "subdivision/limit.h"
 #include "subdivision/subdivider.h"
@@ -158,13 +160,57 @@ int cmd_remesh(const RemeshArgs& a) {
   opt.subdivision = {scheme_from_string(a.scheme), boundary_from_string(a.boundary), loop_weights_from_string(a.weights)};
   opt.base_faces = a.base_faces;
   opt.levels = a.levels;
+  opt.relax_rounds = a.relax_rounds;
+  opt.base = a.base == "triangles" ? RemeshBase::Triangles : RemeshBase::QuadDominant;
+  opt.base_method = a.base_method == "edge-collapse" ? BaseMethod::EdgeCollapse
+                    : a.base_method == "isotropic"   ? BaseMethod::Isotropic
+                                                     : BaseMethod::Auto;
+  opt.fit = a.fit == "finest" ? FitMethod::Finest : FitMethod::LevelByLevel;
   RemeshReport r;
   const MultiresSurface h = remesh(load_any(a.input, nullptr), opt, &r);
   h.save(a.output);
-  std::cout << "base faces          " << r.base_faces << "\nfinest vertices     " << r.fine_vertices
-            << "\nHausdorff distance  " << r.hausdorff << " (" << 100.0 * r.hausdorff / r.bbox_diagonal
-            << "% of the bounding-box diagonal)\nRMS fine->dense     " << r.rms_fine_to_dense
-            << "\nshortest edge       " << r.shortest_edge << "\n";
+  const auto pct = [&r](double d) { return 100.0 * d / r.bbox_diagonal; };
+  const char* made_by = r.base_method == BaseMethod::Isotropic ? "isotropic" : "edge-collapse";
+  std::cout << "base faces          " << r.base_faces << " (asked " << r.base_faces_requested << "; base by " << made_by
+            << ")"
+            << "\nfinest level        " << r.fine_vertices << " vertices, " << r.fine_faces << " faces"
+            << "\nHausdorff distance  " << r.hausdorff << " (" << pct(r.hausdorff)
+            << "% of the bounding-box diagonal; dense->remesh " << pct(r.dense_to_fine) << "%, remesh->dense "
+            << pct(r.fine_to_dense) << "%; samples " << pct(r.sample_spacing) << "% apart)"
+            << "\nedge ratio          " << r.edge_ratio() << " (finest level: longest " << r.longest_edge
+            << ", shortest " << r.shortest_edge << ")"
+            << "\nvalence, base       " << to_string(r.base_valence) << "\nvalence, finest     "
+            << to_string(r.fine_valence) << "\nclosest-point fallback " << r.unprojected
+            << " finest vertices (no facing surface along the normal within reach)\nremesh time         " << r.seconds
+            << " s\n";
+  nlohmann::json j;
+  j["input"] = a.input;
+  j["asked"] = {{"scheme", a.scheme}, {"base_faces", a.base_faces}, {"levels", a.levels}, {"base", a.base},
+                {"base_method", a.base_method}, {"fit", a.fit}, {"relax_rounds", a.relax_rounds}};
+  j["base_faces"] = r.base_faces;
+  j["base_method"] = made_by;
+  j["fine_vertices"] = r.fine_vertices;
+  j["fine_faces"] = r.fine_faces;
+  j["bbox_diagonal"] = r.bbox_diagonal;
+  j["hausdorff"] = r.hausdorff;
+  j["hausdorff_relative"] = r.hausdorff_relative();
+  j["dense_to_remesh"] = r.dense_to_fine;
+  j["remesh_to_dense"] = r.fine_to_dense;
+  j["sample_spacing"] = r.sample_spacing;
+  j["shortest_edge"] = r.shortest_edge;
+  j["longest_edge"] = r.longest_edge;
+  j["edge_ratio"] = r.edge_ratio();
+  j["unprojected_vertices"] = r.unprojected;
+  auto histogram = [](const std::map<int, int>& m) {
+    nlohmann::json o = nlohmann::json::object();
+    for (const auto& [valence, count] : m) o[std::to_string(valence)] = count;
+    return o;
+  };
+  j["valence_base"] = histogram(r.base_valence);
+  j["valence_finest"] = histogram(r.fine_valence);
+  j["seconds"] = r.seconds;
+  const fs::path out(a.output);
+  write_json(j, (out.parent_path() / (out.stem().string() + "_remesh.json")).string());
   return 0;
 }
 

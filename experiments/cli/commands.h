@@ -34,7 +34,8 @@ int cmd_list();
 int cmd_subdivide(const SubdivideArgs& a);
 struct RemeshArgs {
   std::string input, output, scheme, boundary = "edge-only", weights = "loop";
-  int base_faces = 500, levels = 3;
+  std::string base = "quad-dominant", base_method = "auto", fit = "level-by-level";  // RemeshOptions{}
+  int base_faces = 500, levels = 3, relax_rounds = 4;
 };
 int cmd_remesh(const RemeshArgs& a);
 struct EnergyArgs {

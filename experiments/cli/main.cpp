@@ -156,7 +156,20 @@ int main(int argc, char** argv) {
   c_rem->add_option("--boundary", rem.boundary, "boundary rule")->capture_default_str()
       ->check(CLI::IsMember({"edge-only", "edge-and-corner"}));
   c_rem->add_option("--weights", rem.weights, "Loop weights")->capture_default_str()->check(CLI::IsMember({"loop", "warren"}));
-  c_rem->add_option("output", rem.output, "hierarchy (.vtm, plus a .json sidecar)")->required();
+  c_rem->add_option("--base", rem.base, "base faces (catmull-clark: triangles paired into quads, or not; loop: "
+                                        "always triangles)")->capture_default_str()
+      ->check(CLI::IsMember({"quad-dominant", "triangles"}));
+  c_rem->add_option("--base-method", rem.base_method, "how the base triangles are made: edge collapse (keeps "
+                                                      "horn and tail tips), isotropic remeshing (even edges), or "
+                                                      "auto: both, keeping the better result")->capture_default_str()
+      ->check(CLI::IsMember({"auto", "isotropic", "edge-collapse"}));
+  c_rem->add_option("--fit", rem.fit, "project and relax every level coarse to fine, or only the finest (the earlier "
+                                      "remesher)")->capture_default_str()
+      ->check(CLI::IsMember({"level-by-level", "finest"}));
+  c_rem->add_option("--relax-rounds", rem.relax_rounds, "tangential relaxation rounds per fitted level")
+      ->capture_default_str()->check(CLI::Range(0, 1000));
+  c_rem->add_option("output", rem.output, "hierarchy (.vtm, plus a .json sidecar and a _remesh.json quality report)")
+      ->required();
 
   EnergyArgs en;
   auto* c_en = app.add_subcommand("energy", "export the stretch+bend matrix H (E = ½ Pᵀ H P, Boier-Martin et al. §3.4) "

@@ -7,6 +7,9 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <atomic>
+#include <limits>
+
 #include "core/error.h"
 
 namespace fairshape {
@@ -19,6 +22,7 @@ using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 struct ClosestPointQuery::Impl {
   std::vector<Triangle> triangles;
   std::vector<int> face_of;  // the polygon each fan triangle comes from
+  std::vector<Kernel::Vector_3> normal;  // of each fan triangle, unnormalised, as the polygon is oriented
   Tree tree;
 };
 
@@ -32,6 +36,7 @@ ClosestPointQuery::ClosestPointQuery(const SurfaceMesh& s) : impl_(std::make_uni
     }
   }
   if (impl_->triangles.empty()) throw InvalidInput("closest point query: the surface has no faces");
+  for (const auto& t : impl_->triangles) impl_->normal.push_back(CGAL::cross_product(t[1] - t[0], t[2] - t[0]));
   impl_->tree.insert(impl_->triangles.begin(), impl_->triangles.end());
   impl_->tree.build();
   impl_->tree.accelerate_distance_queries();
@@ -50,6 +55,44 @@ MatrixX3 ClosestPointQuery::closest_points(const MatrixX3& points, std::vector<i
       if (faces) (*faces)[static_cast<std::size_t>(i)] = impl_->face_of[static_cast<std::size_t>(hit.second - impl_->triangles.begin())];
     }
   });
+  return out;
+}
+
+MatrixX3 ClosestPointQuery::facing_points(const MatrixX3& points, const MatrixX3& normals, double reach,
+                                         int* unmoved) const {
+  using Segment = Kernel::Segment_3;
+  using Hit = Tree::Intersection_and_primitive_id<Segment>::Type;
+  if (reach <= 0) return closest_points(points);
+  MatrixX3 out(points.rows(), 3);
+  std::atomic<int> stuck{0};
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, points.rows(), 256), [&](const auto& r) {
+    std::vector<Hit> hits;
+    for (Eigen::Index i = r.begin(); i != r.end(); ++i) {
+      const Kernel::Point_3 p(points(i, 0), points(i, 1), points(i, 2));
+      const Kernel::Vector_3 n(normals(i, 0), normals(i, 1), normals(i, 2));
+      auto facing = [&](Tree::Primitive_id id) { return n * impl_->normal[static_cast<std::size_t>(id - impl_->triangles.begin())] > 0; };
+      const double len = std::sqrt(n.squared_length());
+      double best = std::numeric_limits<double>::infinity();
+      Kernel::Point_3 q = p;
+      if (len > 0) {
+        const Kernel::Vector_3 step = n * (reach / len);
+        hits.clear();
+        impl_->tree.all_intersections(Segment(p - step, p + step), std::back_inserter(hits));
+        for (const Hit& h : hits) {
+          const auto* x = boost::get<Kernel::Point_3>(&h.first);
+          if (!x || !facing(h.second)) continue;
+          const double d = CGAL::squared_distance(p, *x);
+          if (d < best) best = d, q = *x;
+        }
+      }
+      if (best == std::numeric_limits<double>::infinity()) {
+        ++stuck;
+        q = impl_->tree.closest_point(p);
+      }
+      out.row(i) << q.x(), q.y(), q.z();
+    }
+  });
+  if (unmoved) *unmoved = stuck.load();
   return out;
 }
 

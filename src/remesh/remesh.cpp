@@ -1,47 +1,254 @@
 #include "remesh/remesh.h"
 
 #include <Eigen/Geometry>
-#include <limits>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
 
+#include "core/error.h"
+#include "core/timer.h"
 #include "remesh/closest_point.h"
+#include "remesh/quad_pairing.h"
+#include "remesh/quality.h"
 #include "remesh/simplify.h"
 #include "subdivision/subdivider.h"
 
 namespace fairshape {
 namespace {
 
-// Closest-point projection bunches vertices up where the dense surface is thin or curved;
-// divided differences scale like 1/h², so that wrecks the conditioning of fairness energies.
-// A few rounds of tangential umbrella relaxation, each followed by re-projection, even the
-// spacing out while keeping every vertex on the dense surface.
-MatrixX3 relax_on_surface(const SurfaceMesh& topology, MatrixX3 X, const ClosestPointQuery& surface, int rounds) {
-  SurfaceMesh m = topology;
+// Area-weighted vertex normals (each polygon's vector area, summed over its corners).
+MatrixX3 vertex_normals(const SurfaceMesh& m, const MatrixX3& X) {
+  MatrixX3 N = MatrixX3::Zero(X.rows(), 3);
+  for (int f = 0; f < m.n_faces(); ++f) {
+    const auto vs = m.face_vertices(f);
+    Vec3 area = Vec3::Zero();
+    for (std::size_t i = 0; i < vs.size(); ++i)
+      area += X.row(vs[i]).transpose().cross(X.row(vs[(i + 1) % vs.size()]).transpose());
+    for (int v : vs) N.row(v) += area.transpose();
+  }
+  return N;
+}
+
+// Edge neighbours of every vertex, flattened (CSR).
+struct Neighbours {
+  std::vector<int> start, ids;
+  std::vector<char> boundary;
+};
+Neighbours neighbours(const SurfaceMesh& m) {
+  Neighbours n;
+  n.start.push_back(0);
+  for (int v = 0; v < m.n_vertices(); ++v) {
+    for (int w : m.vertex_neighbors(v)) n.ids.push_back(w);
+    n.start.push_back(static_cast<int>(n.ids.size()));
+    n.boundary.push_back(m.is_boundary_vertex(v) ? 1 : 0);
+  }
+  return n;
+}
+
+// Tangential umbrella relaxation: each vertex moves half way towards the centroid of its
+// neighbours within its tangent plane, then back onto the dense surface. On a semi-regular
+// mesh this evens out edge lengths; the normal part is left out because it would shrink the
+// surface off the dense one. Boundary vertices are only re-projected.
+MatrixX3 relax(const SurfaceMesh& topology, MatrixX3 X, const ClosestPointQuery& dense, double reach, int rounds,
+               int* unmoved, const std::vector<int>* pins = nullptr) {
+  const Neighbours nb = neighbours(topology);
+  auto pinned = [pins](int v) { return pins && (*pins)[v] >= 0; };
   for (int r = 0; r < rounds; ++r) {
-    m.positions() = X;
-    MatrixX3 step(X.rows(), 3);
-    for (int v = 0; v < m.n_vertices(); ++v) {
-      Vec3 centroid = Vec3::Zero(), normal = Vec3::Zero();
-      const auto hs = m.outgoing_halfedges(v);
-      for (int h : hs) {
-        centroid += m.position(m.to_vertex(h));
-        if (!m.is_boundary_halfedge(h))
-          normal += (m.position(m.to_vertex(h)) - m.position(v)).cross(m.position(m.to_vertex(m.next(h))) - m.position(v));
+    const MatrixX3 N = vertex_normals(topology, X);
+    MatrixX3 Y = X;
+    for (int v = 0; v < X.rows(); ++v) {
+      const int k = nb.start[v + 1] - nb.start[v];
+      if (k == 0 || nb.boundary[v] || pinned(v)) continue;
+      Vec3 c = Vec3::Zero();
+      for (int i = nb.start[v]; i < nb.start[v + 1]; ++i) c += X.row(nb.ids[i]).transpose();
+      Vec3 d = c / k - X.row(v).transpose();
+      const double len = N.row(v).norm();
+      if (len > 0) {
+        const Vec3 n = N.row(v).transpose() / len;
+        d -= d.dot(n) * n;
       }
-      Vec3 d = hs.empty() ? Vec3::Zero() : Vec3(centroid / double(hs.size()) - m.position(v));
-      if (m.is_boundary_vertex(v)) d.setZero();  // keep boundary curves where they are
-      if (normal.norm() > 0) d -= d.dot(normal.normalized()) * normal.normalized();
-      step.row(v) = 0.5 * d.transpose();
+      Y.row(v) += 0.5 * d.transpose();
     }
-    X = surface.closest_points(X + step);
+    X = dense.facing_points(Y, N, reach, unmoved);
+    if (pins)
+      for (int v = 0; v < X.rows(); ++v)
+        if (pinned(v)) X.row(v) = Y.row(v);  // on a dense vertex already
   }
   return X;
 }
 
-// Largest (and RMS) distance between corresponding rows.
-double max_distance(const MatrixX3& from, const MatrixX3& to, double* rms) {
-  const Eigen::VectorXd d = (from - to).rowwise().norm();
-  if (rms) *rms = std::sqrt(d.squaredNorm() / static_cast<double>(std::max<Eigen::Index>(1, d.size())));
-  return d.size() ? d.maxCoeff() : 0.0;
+double mean_edge(const SurfaceMesh& topology, const MatrixX3& X) {
+  double sum = 0;
+  for (int e = 0; e < topology.n_edges(); ++e)
+    sum += (X.row(topology.from_vertex(2 * e)) - X.row(topology.to_vertex(2 * e))).norm();
+  return topology.n_edges() ? sum / topology.n_edges() : 0.0;
+}
+
+// Closest-point projection and relaxation only slide vertices over the part of the dense
+// surface they are near, and subdivision rounds off whatever the coarser level had: the tip of
+// a horn, an ear or a tail that no vertex reached stays cut off on every finer level. So every
+// dense vertex farther than `tolerance` from the level pulls the nearest vertex of the level
+// (one facing its way, not yet pinned) onto itself, and pins it there; the pins are kept on the
+// finer levels (vertex ids nest), as MAPS keeps the base vertices on the dense ones.
+int attract(const SurfaceMesh& topology, MatrixX3& X, const SurfaceMesh& dense, const ClosestPointQuery& on_dense,
+            const MatrixX3& dense_normals, double tolerance, std::vector<int>& pins) {
+  SurfaceMesh level = topology;
+  level.positions() = X;
+  const ClosestPointQuery on_level(level);
+  std::vector<int> faces;
+  const MatrixX3 near = on_level.closest_points(dense.positions(), &faces);
+  const MatrixX3 N = vertex_normals(topology, X);
+  std::vector<double> pull(static_cast<std::size_t>(X.rows()), 0.0);
+  std::vector<int> chosen(static_cast<std::size_t>(X.rows()), -1);
+  std::vector<char> taken(static_cast<std::size_t>(dense.n_vertices()), 0);  // one vertex per dense vertex
+  for (int p : pins)
+    if (p >= 0) taken[p] = 1;
+  for (int i = 0; i < dense.n_vertices(); ++i) {
+    const double d = (near.row(i) - dense.positions().row(i)).norm();
+    if (d <= tolerance || dense.is_isolated(i) || taken[i]) continue;
+    int best = -1;
+    double best_d = 0;
+    for (int v : topology.face_vertices(faces[i])) {
+      if (pins[v] >= 0 || N.row(v).dot(dense_normals.row(i)) <= 0) continue;
+      const double dv = (X.row(v) - dense.positions().row(i)).norm();
+      if (best < 0 || dv < best_d) best = v, best_d = dv;
+    }
+    if (best >= 0 && d > pull[best]) pull[best] = d, chosen[best] = i;
+  }
+  // The pinned vertex drags its neighbourhood along, fading over as many rings as its move is
+  // long in edges: a lone vertex pulled up a horn leaves a spike of long edges that relaxation
+  // (one ring per round) would take many rounds to fill in.
+  const Neighbours nb = neighbours(topology);
+  const double edge = mean_edge(topology, X);
+  MatrixX3 drag = MatrixX3::Zero(X.rows(), 3);
+  std::vector<double> weight(static_cast<std::size_t>(X.rows()), 0.0);
+  int n = 0;
+  for (int v = 0; v < X.rows(); ++v) {
+    if (chosen[v] < 0) continue;
+    ++n;
+    const Eigen::RowVector3d move = dense.positions().row(chosen[v]) - X.row(v);
+    const int rings = std::min(8, static_cast<int>(std::ceil(move.norm() / edge)));
+    std::vector<int> front{v};
+    std::map<int, int> seen{{v, 0}};
+    for (int k = 1; k <= rings; ++k) {
+      std::vector<int> next;
+      for (int u : front)
+        for (int i = nb.start[u]; i < nb.start[u + 1]; ++i)
+          if (seen.emplace(nb.ids[i], k).second) next.push_back(nb.ids[i]);
+      front = next;
+    }
+    for (const auto& [u, k] : seen) {
+      const double w = 1.0 - double(k) / (rings + 1);
+      if (pins[u] < 0 && w > weight[u]) weight[u] = w, drag.row(u) = w * move;
+    }
+  }
+  for (int v = 0; v < X.rows(); ++v)
+    if (chosen[v] >= 0) pins[v] = chosen[v];
+  if (n == 0) return 0;
+  std::vector<int> moved;
+  for (int v = 0; v < X.rows(); ++v)
+    if (weight[v] > 0 && pins[v] < 0) moved.push_back(v);
+  X += drag;
+  for (int v = 0; v < X.rows(); ++v)
+    if (pins[v] >= 0) X.row(v) = dense.positions().row(pins[v]);
+  const MatrixX3 Nm = vertex_normals(topology, X);
+  MatrixX3 P(static_cast<Eigen::Index>(moved.size()), 3), Q(static_cast<Eigen::Index>(moved.size()), 3);
+  for (std::size_t i = 0; i < moved.size(); ++i) P.row(i) = X.row(moved[i]), Q.row(i) = Nm.row(moved[i]);
+  const MatrixX3 on = on_dense.facing_points(P, Q, 2.0 * edge);
+  for (std::size_t i = 0; i < moved.size(); ++i) X.row(moved[i]) = on.row(i);
+  return n;
+}
+
+
+SurfaceMesh make_base(const SurfaceMesh& dense, const RemeshOptions& opt, BaseMethod method) {
+  auto triangle_base = [&](int faces) {
+    return method == BaseMethod::Isotropic ? isotropic_base(dense, faces) : simplify_to_faces(dense, faces);
+  };
+  const bool quads = opt.subdivision.scheme == SchemeType::CatmullClark && opt.base == RemeshBase::QuadDominant;
+  if (!quads) return triangle_base(opt.base_faces);
+  // Pairing merges most triangles two by two: start from about twice as many, then correct
+  // the count once by the fraction actually paired.
+  int triangles = 2 * opt.base_faces;
+  SurfaceMesh base;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    base = pair_triangles(triangle_base(triangles));
+    if (std::abs(base.n_faces() - opt.base_faces) <= 0.05 * opt.base_faces) break;
+    triangles = static_cast<int>(std::lround(triangles * double(opt.base_faces) / base.n_faces()));
+  }
+  return base;
+}
+
+
+MultiresSurface remesh_once(const SurfaceMesh& dense, const RemeshOptions& opt, BaseMethod method, RemeshReport& r) {
+
+  r.base_faces_requested = opt.base_faces;
+  Timer timer;
+  r.base_method = method;
+  const SurfaceMesh base = make_base(dense, opt, method);
+  // The remesher cannot go below a few faces per handle, nor follow every request exactly;
+  // a base far from the request is refused rather than passed off as what was asked.
+  if (std::abs(base.n_faces() - opt.base_faces) > 0.25 * opt.base_faces)
+    throw InvalidInput("remesh: --base-faces " + std::to_string(opt.base_faces) + ": the base made has " +
+                       std::to_string(base.n_faces()) + " faces, more than 25% off the request; for this model ask for " +
+                       (base.n_faces() > opt.base_faces ? "at least " : "at most ") + std::to_string(base.n_faces()) +
+                       " (the dense mesh has " + std::to_string(dense.n_faces()) + " faces)");
+  if (opt.subdivision.scheme == SchemeType::Loop) require_triangles(base, "remesh");
+  const MultiresSurface smooth(base, opt.subdivision, opt.levels, opt.backend);
+  const ClosestPointQuery on_dense(dense);
+  MatrixX3 X = base.positions();
+  if (opt.fit == FitMethod::Finest && opt.levels > 0) {
+    const SurfaceMesh& topology = smooth.mesh(opt.levels);
+    X = on_dense.closest_points(topology.positions());
+    for (int round = 0; round < opt.relax_rounds; ++round)
+      X = relax(topology, X, on_dense, 0.0, 1, &r.unprojected);
+  }
+  const MatrixX3 dense_normals = vertex_normals(dense, dense.positions());
+  std::vector<int> pins;  // per vertex of the current level: the dense vertex it is pinned to, or -1
+  for (int l = 0; l < opt.levels && opt.fit == FitMethod::LevelByLevel; ++l) {
+    const SurfaceMesh& topology = smooth.mesh(l + 1);
+    const MatrixX3 predicted = smooth.subdivision_operator(l) * X;
+    // A vertex may be an edge or so off the dense surface; its facing point is searched up to
+    // two of this level's average edges away (a longer ray only costs time: the nearest hit wins).
+    const double reach = 2.0 * mean_edge(topology, predicted);
+    X = on_dense.facing_points(predicted, vertex_normals(topology, predicted), reach);
+    pins.resize(static_cast<std::size_t>(X.rows()), -1);
+    for (int v = 0; v < X.rows(); ++v)
+      if (pins[v] >= 0) X.row(v) = dense.positions().row(pins[v]);
+    const double tolerance = mean_edge(topology, X);
+    for (int half = 0; half < 2; ++half) {
+      X = relax(topology, X, on_dense, reach, (opt.relax_rounds + 1 - half) / 2, &r.unprojected, &pins);
+      attract(topology, X, dense, on_dense, dense_normals, tolerance, pins);
+    }
+    X = relax(topology, X, on_dense, reach, opt.relax_rounds / 2, &r.unprojected, &pins);
+  }
+  if (!X.allFinite()) throw InvalidInput("remesh: projection onto the dense surface failed (non-finite points)");
+  MultiresSurface h = MultiresSurface::analyze(base, X, opt.subdivision, opt.levels, opt.backend);
+  r.seconds = timer.seconds();
+
+  const SurfaceMesh& fine = h.mesh(opt.levels);
+  r.bbox_diagonal = bounding_box_diagonal(dense);
+  r.sample_spacing = opt.sample_spacing * r.bbox_diagonal;
+  const ClosestPointQuery on_fine(fine);
+  const SurfaceDistance d = hausdorff_distance(dense, on_dense, fine, on_fine, r.sample_spacing);
+  r.dense_to_fine = d.a_to_b;
+  r.fine_to_dense = d.b_to_a;
+  r.hausdorff = d.hausdorff();
+  r.base_faces = base.n_faces();
+  r.fine_vertices = fine.n_vertices();
+  r.fine_faces = fine.n_faces();
+  const EdgeLengthRange edges = edge_length_range(fine);
+  r.shortest_edge = edges.shortest;
+  r.longest_edge = edges.longest;
+  r.base_valence = valence_histogram(h.mesh(0));
+  r.fine_valence = valence_histogram(fine);
+  return h;
+}
+
+// How far a result is from the targets (Hausdorff 1.5 % of the diagonal, edge ratio
+// 100): the worse of the two, 1 = on the target.
+double shortfall(const RemeshReport& r) {
+  return std::max(r.hausdorff_relative() / 0.015, r.edge_ratio() / 100.0);
 }
 
 }  // namespace
@@ -51,31 +258,39 @@ MultiresSurface remesh(const SurfaceMesh& dense, const RemeshOptions& opt, Remes
     throw InvalidInput("remesh: --base-faces " + std::to_string(opt.base_faces) + " outside [4, " +
                        std::to_string(dense.n_faces()) + "] (the dense mesh has " + std::to_string(dense.n_faces()) +
                        " faces)");
+  if (opt.levels < 0) throw InvalidInput("remesh: --levels " + std::to_string(opt.levels) + " is negative");
+  require_triangles(dense, "remesh");
   RemeshReport r;
-  const SurfaceMesh base = simplify_to_faces(dense, opt.base_faces);
-  if (opt.subdivision.scheme == SchemeType::Loop) require_triangles(base, "remesh");
-  const MultiresSurface smooth(base, opt.subdivision, opt.levels, opt.backend);
-  const ClosestPointQuery on_dense(dense);
-  const MatrixX3 projected = relax_on_surface(smooth.mesh(opt.levels),
-                                             on_dense.closest_points(smooth.mesh(opt.levels).positions()), on_dense,
-                                             opt.relax_rounds);
-  if (!projected.allFinite()) throw InvalidInput("remesh: projection onto the dense surface failed (non-finite points)");
-  MultiresSurface h = MultiresSurface::analyze(base, projected, opt.subdivision, opt.levels, opt.backend);
-
-  SurfaceMesh fine = h.mesh(opt.levels);
-  const ClosestPointQuery on_fine(fine);
-  double rms_back = 0;
-  const double fine_to_dense = max_distance(projected, on_dense.closest_points(projected), &r.rms_fine_to_dense);
-  const double dense_to_fine = max_distance(dense.positions(), on_fine.closest_points(dense.positions()), &rms_back);
-  r.hausdorff = std::max(fine_to_dense, dense_to_fine);
-  r.base_faces = base.n_faces();
-  r.fine_vertices = fine.n_vertices();
-  r.shortest_edge = std::numeric_limits<double>::infinity();
-  for (int e = 0; e < fine.n_edges(); ++e)
-    r.shortest_edge = std::min(r.shortest_edge, (fine.position(fine.from_vertex(2 * e)) - fine.position(fine.to_vertex(2 * e))).norm());
-  r.bbox_diagonal = (dense.positions().colwise().maxCoeff() - dense.positions().colwise().minCoeff()).norm();
+  if (opt.base_method != BaseMethod::Auto) {
+    MultiresSurface h = remesh_once(dense, opt, opt.base_method, r);
+    if (report) *report = r;
+    return h;
+  }
+  // Neither base wins everywhere (papers/boier-martin/README.md, "Remesher quality"): edge
+  // collapse keeps thin tips (the cow's horns and tail), the isotropic base gives even edges
+  // and follows flat CAD faces (fandisk). Both are made and measured; the closer to the
+  // targets is kept, and the report says which, with the time of both.
+  // A base that cannot be made at this size (InvalidInput) leaves the other; with neither,
+  // the edge-collapse base's error is the one reported.
+  Timer both;
+  std::optional<MultiresSurface> hc, hi;
+  RemeshReport ri;
+  std::optional<InvalidInput> failed;
+  try {
+    hc.emplace(remesh_once(dense, opt, BaseMethod::EdgeCollapse, r));
+  } catch (const InvalidInput& e) {
+    failed.emplace(e);
+  }
+  try {
+    hi.emplace(remesh_once(dense, opt, BaseMethod::Isotropic, ri));
+  } catch (const InvalidInput&) {
+    if (!hc) throw *failed;
+  }
+  const bool isotropic = hi && (!hc || shortfall(ri) < shortfall(r));
+  if (isotropic) r = ri;
+  r.seconds = both.seconds();
   if (report) *report = r;
-  return h;
+  return isotropic ? std::move(*hi) : std::move(*hc);
 }
 
 }  // namespace fairshape

@@ -1,9 +1,12 @@
 #include "remesh/simplify.h"
 
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Polygon_mesh_processing/remesh.h>
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Count_stop_predicate.h>
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
+#include <cmath>
 
 #include "core/error.h"
 #include "subdivision/subdivider.h"
@@ -13,8 +16,11 @@ namespace fairshape {
 using Kernel = CGAL::Simple_cartesian<double>;
 using CgalMesh = CGAL::Surface_mesh<Kernel::Point_3>;
 namespace SMS = CGAL::Surface_mesh_simplification;
+namespace PMP = CGAL::Polygon_mesh_processing;
 
-SurfaceMesh simplify_to_faces(const SurfaceMesh& dense, int target_faces) {
+namespace {
+
+CgalMesh to_cgal(const SurfaceMesh& dense) {
   require_triangles(dense, "remesh");
   CgalMesh cm;
   std::vector<CgalMesh::Vertex_index> vs;
@@ -23,9 +29,10 @@ SurfaceMesh simplify_to_faces(const SurfaceMesh& dense, int target_faces) {
   for (const auto& f : dense.polygons())
     if (cm.add_face(vs[f[0]], vs[f[1]], vs[f[2]]) == CgalMesh::null_face())
       throw InvalidInput("remesh: CGAL refused a face of the dense mesh");
-  // A closed triangle mesh has E = 3F/2 edges; stop at the edge count of the target.
-  SMS::Count_stop_predicate<CgalMesh> stop(static_cast<std::size_t>(1.5 * target_faces));
-  SMS::edge_collapse(cm, stop);
+  return cm;
+}
+
+SurfaceMesh from_cgal(CgalMesh& cm) {
   cm.collect_garbage();
   MatrixX3 V(static_cast<Eigen::Index>(cm.number_of_vertices()), 3);
   for (auto v : cm.vertices()) {
@@ -43,6 +50,33 @@ SurfaceMesh simplify_to_faces(const SurfaceMesh& dense, int target_faces) {
   } catch (const Error& e) {
     throw InvalidInput(std::string("remesh: the simplified base mesh is not usable: ") + e.what());
   }
+}
+
+}  // namespace
+
+SurfaceMesh simplify_to_faces(const SurfaceMesh& dense, int target_faces) {
+  CgalMesh cm = to_cgal(dense);
+  // A closed triangle mesh has E = 3F/2 edges; stop at the edge count of the target.
+  SMS::Count_stop_predicate<CgalMesh> stop(static_cast<std::size_t>(1.5 * target_faces));
+  SMS::edge_collapse(cm, stop);
+  return from_cgal(cm);
+}
+
+SurfaceMesh isotropic_base(const SurfaceMesh& dense, int target_faces) {
+  const CgalMesh input = to_cgal(dense);
+  // An equilateral triangle of side L has area √3/4 L²; the remesher keeps edges within
+  // [4/5 L, 4/3 L], so the count from the area is only a first guess, corrected once.
+  const double area = PMP::area(input);
+  double length = std::sqrt(4.0 * area / (std::sqrt(3.0) * target_faces));
+  CgalMesh cm;
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    cm = input;
+    PMP::isotropic_remeshing(faces(cm), length, cm, PMP::parameters::number_of_iterations(6));
+    const double got = static_cast<double>(cm.number_of_faces());
+    if (std::abs(got - target_faces) <= 0.05 * target_faces) break;
+    length *= std::sqrt(got / target_faces);
+  }
+  return from_cgal(cm);
 }
 
 }  // namespace fairshape

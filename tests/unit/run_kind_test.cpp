@@ -71,6 +71,10 @@ TEST_CASE("_levels.vtm holds the details of the edited surface, analysed anew", 
     RunTables tables;
     const MetricRow row = kind.execute(p.config, input_search_dirs(cfg), {dir.string(), p.run_id, false, &tables});
     REQUIRE(row.at("termination") == "converged");
+    // The remesh made for the run is measured in its row.
+    CHECK(std::stod(row.at("remesh_hausdorff")) > 0);
+    CHECK(std::stod(row.at("remesh_hausdorff")) < 0.1);
+    CHECK(std::stod(row.at("remesh_edge_ratio")) >= 1);
     edited.push_back(MultiresSurface::load((dir / "vtk" / (p.run_id + "_levels.vtm")).string(), Backend::Optimized));
   }
   const int L = edited[0].levels();

@@ -291,11 +291,11 @@ const std::vector<std::string>& metric_columns() {
       "n_dofs", "n_fine", "n_constrained", "repeat", "subdivide_s", "assemble_s", "analyze_s", "solve_s", "solve_min_s",
       "time_s", "iterations", "residual", "energy", "constraint_violation", "error_vs_reference", "detail_change", "spike_ratio", "curve_points",
       "region_fraction", "moved_fraction", "outside_region_move", "rotation_rounds",
-      "peak_rss_mb", "solve_extra_mb", "unused_keys", "termination", "message"};
+      "remesh_hausdorff", "remesh_edge_ratio", "peak_rss_mb", "solve_extra_mb", "unused_keys", "termination", "message"};
   return cols;
 }
 
-const MultiresSurface& RunCache::hierarchy(const SurfaceEditSpec& spec, double* build_s) {
+const MultiresSurface& RunCache::hierarchy(const SurfaceEditSpec& spec, double* build_s, const RemeshReport** made) {
   const bool subdivided = spec.representation != Representation::Mesh;
   const std::string key = spec.mesh_path + "|" +
                           (subdivided ? std::string(to_string(spec.subdivision().scheme)) : std::string("mesh")) + "|" +
@@ -317,12 +317,22 @@ const MultiresSurface& RunCache::hierarchy(const SurfaceEditSpec& spec, double* 
     Timer t;
     SubdivisionOptions opt;
     if (subdivided) opt = spec.subdivision();
-    MultiresSurface h = spec.remesh_base_faces > 0
-                            ? remesh(input, {opt, spec.remesh_base_faces, spec.levels, spec.implementation}, nullptr)
-                            : MultiresSurface(input, opt, spec.levels, spec.implementation);
+    RemeshOptions ropt;
+    ropt.subdivision = opt;
+    ropt.base_faces = spec.remesh_base_faces;
+    ropt.levels = spec.levels;
+    ropt.backend = spec.implementation;
+    RemeshReport report;
+    MultiresSurface h = spec.remesh_base_faces > 0 ? remesh(input, ropt, &report)
+                                                   : MultiresSurface(input, opt, spec.levels, spec.implementation);
+    if (spec.remesh_base_faces > 0) remesh_reports_[key] = report;
     it = hierarchies_.emplace(key, std::make_pair(std::move(h), t.seconds())).first;
   }
   *build_s = it->second.second;
+  if (made) {
+    const auto r = remesh_reports_.find(key);
+    *made = r == remesh_reports_.end() ? nullptr : &r->second;
+  }
   return it->second.first;
 }
 
@@ -341,8 +351,13 @@ MetricRow execute_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
   Timer total;
   try {
     double build_s = 0;
-    const MultiresSurface& rest = cache.hierarchy(spec, &build_s);
+    const RemeshReport* remeshed = nullptr;
+    const MultiresSurface& rest = cache.hierarchy(spec, &build_s, &remeshed);
     row["subdivide_s"] = num(build_s);
+    if (remeshed) {  // the remesh made for this run (a saved hierarchy's is in its _remesh.json)
+      row["remesh_hausdorff"] = num(remeshed->hausdorff_relative());
+      row["remesh_edge_ratio"] = num(remeshed->edge_ratio());
+    }
     const int level = spec.edit_level < 0 ? rest.levels() : spec.edit_level;
     if (is_regional(spec.edit_terms())) {
       execute_regional(spec, cache, out, rest, level, row);

@@ -7,6 +7,7 @@
 
 #include "experiment/run_outputs.h"
 #include "experiment/kinds/surface_edit/surface_edit_spec.h"
+#include "remesh/remesh.h"
 #include "subdivision/multires_surface.h"
 
 namespace fairshape {
@@ -30,13 +31,16 @@ struct ReferenceSolution {
 class RunCache {
  public:
   //! The hierarchy a run works on: the input mesh (0 levels), its subdivision (zero details)
-  //! or its remesh (details); *build_s is the time it took to make.
-  const MultiresSurface& hierarchy(const SurfaceEditSpec& spec, double* build_s);
+  //! or its remesh (details); *build_s is the time it took to make, *made (if given) the
+  //! remesh's quality report, or null when the hierarchy was not remeshed here.
+  const MultiresSurface& hierarchy(const SurfaceEditSpec& spec, double* build_s,
+                                   const RemeshReport** made = nullptr);
   const ReferenceSolution* reference_solution(const std::string& key) const;
   void store_reference_solution(const std::string& key, ReferenceSolution r);
 
  private:
   std::map<std::string, std::pair<MultiresSurface, double>> hierarchies_;
+  std::map<std::string, RemeshReport> remesh_reports_;
   std::map<std::string, ReferenceSolution> references_;
 };
 

@@ -65,6 +65,7 @@ struct SurfaceEditSpec : RunBasics {
   Representation representation = Representation::Mesh;
   int levels = 0;                          // uniform subdivision steps of the input mesh
   int remesh_base_faces = 0;               // > 0: remesh the input into a hierarchy with details
+  bool remesh_triangle_base = false;       // remesh_base: triangles (a Catmull-Clark base not paired into quads)
   int edit_level = -1;                     // where the problem is solved (-1: the finest)
   ConstraintMode constraint_mode = ConstraintMode::Kkt;
   //! The energies and constraints as the design module takes them (pointers into this spec).

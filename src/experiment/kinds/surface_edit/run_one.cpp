@@ -300,7 +300,7 @@ const MultiresSurface& RunCache::hierarchy(const SurfaceEditSpec& spec, double* 
   const std::string key = spec.mesh_path + "|" +
                           (subdivided ? std::string(to_string(spec.subdivision().scheme)) : std::string("mesh")) + "|" +
                           std::to_string(spec.levels) + "|" + std::string(to_string(spec.boundary)) + "|" +
-                          std::string(to_string(spec.loop_weights)) + "|" + std::to_string(spec.remesh_base_faces) +
+                          std::string(to_string(spec.loop_weights)) + "|" + std::to_string(spec.remesh_base_faces) + (spec.remesh_triangle_base ? "t" : "") +
                           "|" + std::string(to_string(spec.implementation)) + "|" + std::to_string(spec.crease_angle);
   auto it = hierarchies_.find(key);
   if (it == hierarchies_.end() && fs::path(spec.mesh_path).extension() == ".vtm") {  // saved: its details kept
@@ -322,6 +322,7 @@ const MultiresSurface& RunCache::hierarchy(const SurfaceEditSpec& spec, double* 
     ropt.base_faces = spec.remesh_base_faces;
     ropt.levels = spec.levels;
     ropt.backend = spec.implementation;
+    if (spec.remesh_triangle_base) ropt.base = RemeshBase::Triangles;
     RemeshReport report;
     MultiresSurface h = spec.remesh_base_faces > 0 ? remesh(input, ropt, &report)
                                                    : MultiresSurface(input, opt, spec.levels, spec.implementation);

@@ -297,6 +297,9 @@ SurfaceEditSpec SurfaceEditSpec::from_config(const YAML::Node& run_config, const
   s.remesh_base_faces = in.get_int("remesh_base_faces", 0, 0, 10000000,
                                    "remesh the input into a hierarchy with details from about this many base faces "
                                    "(0: the input mesh is the base, zero details)");
+  s.remesh_triangle_base = in.get_choice("remesh_base", "quad-dominant", {"quad-dominant", "triangles"},
+                                         "Catmull-Clark remesh base: triangles paired into quads, or not (`fairshape "
+                                         "remesh --base`)") == "triangles";
   s.edit_level = in.get_int("edit_level", -1, -1, 8, "level the deformation is solved on (-1: the finest)");
   s.crease_angle = in.get_number("crease_angle", 0.0, 0.0, 179.0,
                                  "degrees: input edges whose dihedral angle exceeds it become infinitely sharp creases, "

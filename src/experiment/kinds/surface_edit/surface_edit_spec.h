@@ -68,6 +68,7 @@ struct SurfaceEditSpec : RunBasics {
   Representation representation = Representation::Mesh;
   int levels = 0;                          // uniform subdivision steps of the input mesh
   int remesh_base_faces = 0;               // > 0: remesh the input into a hierarchy with details
+  bool remesh_triangle_base = false;       // remesh_base: triangles (a Catmull-Clark base not paired into quads)
   int edit_level = -1;                     // where the problem is solved (-1: the finest)
   double crease_angle = 0;                 // > 0: edges with a sharper dihedral angle (degrees) become creases
   ConstraintMode constraint_mode = ConstraintMode::Kkt;

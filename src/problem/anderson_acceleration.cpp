@@ -6,14 +6,6 @@ namespace fairshape {
 
 Eigen::VectorXd AndersonAcceleration::next(const Eigen::VectorXd& x, const Eigen::VectorXd& g) {
   const Eigen::VectorXd f = g - x;
-  if (f_prev_.size() == f.size() && f.norm() > f_prev_norm_) {  // overshot: start again from here
-    dF_.clear();
-    dG_.clear();
-    f_prev_ = f;
-    g_prev_ = g;
-    f_prev_norm_ = f.norm();
-    return g;
-  }
   if (f_prev_.size() == f.size()) {
     dF_.push_back(f - f_prev_);
     dG_.push_back(g - g_prev_);
@@ -21,7 +13,6 @@ Eigen::VectorXd AndersonAcceleration::next(const Eigen::VectorXd& x, const Eigen
   }
   f_prev_ = f;
   g_prev_ = g;
-  f_prev_norm_ = f.norm();
   if (dF_.empty()) return g;
   const auto m = static_cast<Eigen::Index>(dF_.size());
   Eigen::MatrixXd F(f.size(), m), G(f.size(), m);

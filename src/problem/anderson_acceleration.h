@@ -1,8 +1,7 @@
 // Anderson acceleration of a fixed-point iteration x ← G(x) (Walker & Ni, "Anderson acceleration
 // for fixed-point iterations"; Peng et al., "Anderson acceleration for geometry optimization and
 // physics simulation"): the next iterate combines the last few G values with the weights that
-// best cancel their residuals f = G(x) − x in least squares. Safeguard: when a residual grows,
-// the history is dropped and the plain step G(x) taken (an extrapolation that overshot). The weights sum to one, so the
+// best cancel their residuals f = G(x) − x in least squares. The weights sum to one, so the
 // next iterate is an affine combination of G values: it keeps any linear equations every G
 // value meets (a constrained solve's constraints).
 #pragma once
@@ -23,7 +22,6 @@ class AndersonAcceleration {
   int history_;
   std::deque<Eigen::VectorXd> dF_, dG_;  // differences of consecutive residuals and G values
   Eigen::VectorXd f_prev_, g_prev_;
-  double f_prev_norm_ = 0;
 };
 
 }  // namespace fairshape

@@ -206,8 +206,9 @@ RegionalPass solve_pass(const std::vector<PlacedTerm>& placed, const EditTerms& 
   // Rounds: x, the pass's change of level k so far, is a fixed point of x ← x + δ(x) (δ: the
   // solve for what the surface built on x still misses); accelerated, since near a tip with
   // large details each round removes only about half of the rest (measured on the cow's nose).
+  // Each round sets level k to before + x and re-synthesizes the finer levels from it: the
+  // local details are kept, so the result depends on x alone (no copy of the hierarchy needed).
   const MatrixX3 before = edited.mesh(k).positions();
-  const MultiresSurface edited_before = edited;
   AndersonAcceleration accelerate(5);
   Eigen::MatrixXd x = Eigen::MatrixXd::Zero(program.H.rows(), 3);
   double missing = 0, best = std::numeric_limits<double>::infinity();
@@ -238,7 +239,6 @@ RegionalPass solve_pass(const std::vector<PlacedTerm>& placed, const EditTerms& 
     const Eigen::MatrixXd gx = x + sol.delta;
     const Eigen::VectorXd next = accelerate.next(xs, Eigen::Map<const Eigen::VectorXd>(gx.data(), gx.size()));
     x = Eigen::Map<const Eigen::MatrixXd>(next.data(), x.rows(), x.cols());
-    edited = edited_before;
     edited.set_level_positions(k, before + MatrixX3(region ? Eigen::MatrixXd(r.pick * x) : x));
     edited.synthesize_from(k, DetailSpace::Local);
   }

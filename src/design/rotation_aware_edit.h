@@ -20,6 +20,8 @@ struct RotationAwareSolution {
   EditSolution solution;  // termination max_iterations when the rounds ran out before the tolerance
   int rounds = 0;
   double last_change = 0;  // ‖Δ_k − Δ_{k−1}‖ / ‖Δ_k‖ of the last round
+  double energy = 0;       // the objective (E_R + the other energies) at the solution
+  std::vector<double> energy_history;  // the objective before each round, then at the solution
 };
 
 //! `rest`: the level `p` lives on. \throw InvalidInput when no energy turns its details

@@ -33,7 +33,8 @@ LocalRotations::LocalRotations(const SurfaceMesh& rest, const StretchBendWeights
     for (auto& f : fits) vertices_.push_back(std::move(f));
 }
 
-std::vector<Mat3> LocalRotations::fit(const MatrixX3& deformed) const {
+std::vector<Mat3> LocalRotations::fit(const MatrixX3& deformed, RotationFit how) const {
+  const Eigen::Vector<double, 5> w = how == RotationFit::Exact ? w_ : Eigen::Vector<double, 5>(1, 1, 0, 0, 0);
   std::vector<Mat3> R(vertices_.size(), Mat3::Identity());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, vertices_.size(), 512), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t v = r.begin(); v != r.end(); ++v) {
@@ -42,15 +43,12 @@ std::vector<Mat3> LocalRotations::fit(const MatrixX3& deformed) const {
       Eigen::Matrix<double, 5, 3> now = Eigen::Matrix<double, 5, 3>::Zero();
       for (std::size_t j = 0; j < x.ids.size(); ++j)
         now += x.G.col(static_cast<Eigen::Index>(j)) * deformed.row(x.ids[j]);
-      // The rotation of the tangent frame: the first divided differences (Q_u, Q_v) of the
-      // rest shape onto the deformed ones, max tr(R M) with M = A₂ᵀB₂, R = V Uᵀ for M = U Σ Vᵀ
-      // (rank 2: the normal follows; a reflection is turned into the nearest rotation by
-      // flipping the direction of the smallest singular value). The second differences are
-      // left out: they weigh ~20× more in E_R but point nearly along the normal, so a fit
-      // that includes them hardly sees a turn about the normal and the rounds crawl
-      // (measured, tests/unit/regional_edit_test.cpp's rigid turn: 17 % of the model's size
-      // off the rigid answer after 50 rounds, against 3e-4 with the tangent frame).
-      const Mat3 M = x.rest.topRows<2>().transpose() * now.topRows<2>();
+      // The rotation that minimizes vertex i's share of E_R for these positions: max tr(R M)
+      // with M = Σ_m w_m (g_m P)ᵀ(g_m X) (a weighted Procrustes problem), R = V Uᵀ for
+      // M = U Σ Vᵀ, a reflection turned into the nearest rotation by flipping the direction of
+      // the smallest singular value. Being the exact minimizer makes every local/global round
+      // lower E_R, which the accelerated rounds of rotation_aware_edit.cpp rely on.
+      const Mat3 M = x.rest.transpose() * w.asDiagonal() * now;
       const Eigen::JacobiSVD<Mat3> svd(M, Eigen::ComputeFullU | Eigen::ComputeFullV);
       Mat3 V = svd.matrixV();
       if ((V * svd.matrixU().transpose()).determinant() < 0) V.col(2) *= -1.0;
@@ -71,6 +69,16 @@ double LocalRotations::energy(const MatrixX3& deformed) const {
     e += 0.5 * x.weight * (w_.asDiagonal() * (now - x.rest * R[v].transpose()).cwiseAbs2()).sum();
   }
   return e;
+}
+
+double LocalRotations::constant_term(const std::vector<Mat3>& R) const {
+  double c = 0;
+  for (std::size_t v = 0; v < vertices_.size(); ++v) {
+    const Vertex& x = vertices_[v];
+    if (x.ids.empty()) continue;
+    c += 0.5 * x.weight * (w_.asDiagonal() * (x.rest * (R[v].transpose() - Mat3::Identity())).cwiseAbs2()).sum();
+  }
+  return c;
 }
 
 Eigen::MatrixXd LocalRotations::linear_term(const std::vector<Mat3>& R) const {

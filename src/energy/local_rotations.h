@@ -7,15 +7,14 @@
 // With every R_i = I it is the energy of the deformation ΔP = X − P: the details in rotated
 // local frames, solved by alternation in the manner of Sorkine and Alexa's "As-rigid-as-possible
 // surface modeling":
-//   local   R_i = the rotation of vertex i's tangent frame: its rest first differences
-//           (Q_u, Q_v) onto the deformed ones (a Procrustes problem: the SVD of a 3 × 3 matrix);
+//   local   R_i = the rotation that best turns vertex i's five weighted rest differences onto
+//           the deformed ones (a Procrustes problem: the SVD of a 3 × 3 matrix);
 //   global  the constrained quadratic problem with the same H and the linear term
 //           b = 2 Σ_i Σ_m w_m g_mᵀ (g_m P)(R_iᵀ − I) — H does not change, so one factorization
 //           serves every round.
-// A rigid motion of the whole model is a fixed point with E_R = 0. The local step fits the
-// frame, not all five differences (local_rotations.cpp says why), so it is not an exact block
-// descent of E_R: the rounds stop on the size of their change, and a run that does not get
-// there says so.
+// A rigid motion of the whole model is a fixed point with E_R = 0. Both steps are exact
+// minimizers, so every round lowers E_R (a block descent); the rounds are accelerated with an
+// energy safeguard (design/rotation_aware_edit.cpp) and stop on the size of their change.
 #pragma once
 
 #include <vector>
@@ -26,14 +25,21 @@ namespace fairshape {
 
 using Mat3 = Eigen::Matrix3d;
 
+//! Exact: the rotation minimizing the vertex's share of E_R (a block-descent step).
+//! TangentFrame: the rotation of its first differences (Q_u, Q_v) alone — no descent, but it
+//! sees a turn about the normal that the heavier, nearly normal second differences mask.
+enum class RotationFit { Exact, TangentFrame };
+
 class LocalRotations {
  public:
   //! The divided differences of `rest` with the stretch + bend weights, scaled like the energy's H.
   LocalRotations(const SurfaceMesh& rest, const StretchBendWeights& w, double scale);
-  //! The local step: per fit (a vertex, or a side of a crease), the rotation of its tangent frame for the deformed positions X (n × 3).
-  std::vector<Mat3> fit(const MatrixX3& deformed) const;
+  //! The local step: per fit (a vertex, or a side of a crease), its rotation for the deformed positions X (n × 3).
+  std::vector<Mat3> fit(const MatrixX3& deformed, RotationFit how = RotationFit::Exact) const;
   //! The global step's linear term (n × 3) for rotations R (one per fit, as fit() returns them): with it, ½ΔᵀHΔ − bᵀΔ equals E_R(P + Δ) up to a constant.
   Eigen::MatrixXd linear_term(const std::vector<Mat3>& R) const;
+  //! The constant c(R) that completes the global step's quadratic: ½ΔᵀHΔ − bᵀΔ + c = E_R(P + Δ).
+  double constant_term(const std::vector<Mat3>& R) const;
   //! E_R of the deformed positions with the rotations fit(deformed).
   double energy(const MatrixX3& deformed) const;
 

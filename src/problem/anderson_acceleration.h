@@ -17,6 +17,8 @@ class AndersonAcceleration {
   explicit AndersonAcceleration(int history) : history_(history) {}
   //! The iterate after x, given g = G(x) (same size every call).
   Eigen::VectorXd next(const Eigen::VectorXd& x, const Eigen::VectorXd& g);
+  //! Forgets the history (after a safeguard rejected an accelerated iterate).
+  void reset() { dF_.clear(), dG_.clear(), f_prev_.resize(0), g_prev_.resize(0); }
 
  private:
   int history_;

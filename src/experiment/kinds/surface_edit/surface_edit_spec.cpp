@@ -197,8 +197,10 @@ void read_accuracy(Config& pc, SurfaceEditSpec& s) {
   a.relaxation = pc.get_choice("relaxation", a.relaxation, {"gauss_seidel", "sor", "multigrid", "multigrid_cg"},
                                "improved: the cascade's relaxation on each level (multigrid, multigrid_cg: cycles "
                                "over the levels below, which also reach the smooth error sweeps leave)");
-  a.relaxation_sweeps = pc.get_int("relaxation_sweeps", a.relaxation_sweeps, 1, 1000000,
-                                   "improved: sweeps (or cycles, or preconditioned iterations) per level");
+  const bool cycles = a.relaxation.rfind("multigrid", 0) == 0;
+  a.relaxation_sweeps = pc.get_int("relaxation_sweeps", cycles ? 2 : 10, 1, 1000000,
+                                   "improved: per level, sweeps (default 10, the paper's) or multigrid cycles / "
+                                   "preconditioned iterations (default 2)");
   a.relaxation_omega = pc.get_number("relaxation_omega", a.relaxation_omega, 1e-3, 1.999, "improved with sor: ω");
   a.drag_steps = pc.get_int("drag_steps", a.drag_steps, 1, 100000,
                             "solve the edit as a drag in this many steps, each warm-started from the last");

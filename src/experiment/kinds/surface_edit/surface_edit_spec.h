@@ -54,8 +54,11 @@ struct AccuracyOptions {
   AccuracyMode mode = AccuracyMode::SingleLevel;
   int coarse_level = 0;                                      // where interactive solves directly
   ConstraintMode coarse_constraint_mode = ConstraintMode::Kkt;  // kkt | paper, on the coarse level
-  std::string relaxation = "gauss_seidel";  // improved: gauss_seidel | sor
-  int relaxation_sweeps = 10;               // improved: sweeps per level
+  // improved: gauss_seidel | sor (the paper's sweeps) | multigrid | multigrid_cg (cycles over
+  // the levels below: the default, because sweeps leave the smooth error where the coarse
+  // solve's prolongation put it — Figure 8's table in papers/boier-martin/README.md)
+  std::string relaxation = "multigrid_cg";
+  int relaxation_sweeps = 2;                // improved: per level; 10 when the relaxation is a sweep
   double relaxation_omega = 1.5;            // improved with sor
   int drag_steps = 1;                       // > 1: the handles dragged in this many steps
   bool multilevel() const { return mode != AccuracyMode::SingleLevel; }

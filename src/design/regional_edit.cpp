@@ -185,7 +185,7 @@ RegionalPass solve_pass(const std::vector<PlacedTerm>& placed, const EditTerms& 
   DesignConstraints none;
   EditProblem full = assemble_edit_problem(energies_only, rest, k, none);
   const Eigen::MatrixXd g_rest = full.g;
-  full.constraints = propagate_constraints(rest, k, imposed, &edited);
+  full.constraints = propagate_constraints(rest, k, imposed);  // the rows; each round measures its targets
   const std::optional<std::vector<int>> region = pass_unknowns(placed, rest, k, edit_level);
   Eigen::VectorXi on_level = Eigen::VectorXi::Ones(pass.level_vertices);
   Restriction r;

@@ -9,6 +9,8 @@
 #include "experiment/components.h"
 #include "io/mesh_io.h"
 #include "problem/constrained_system.h"
+#include "solver/level_operators.h"
+#include "subdivision/subdivider.h"
 #include "test_support.h"
 
 using namespace fairshape;
@@ -125,6 +127,38 @@ TEST_CASE("improved: the paper's cascade lowers the energy as sweeps grow", "[de
   CHECK(energies[1] < energies[0]);
   CHECK(energies[2] < energies[1]);
   CHECK(energies[2] > minimum);
+}
+
+// Beyond the paper's sweeps: multigrid-CG iterations per level (the default relaxation) reach
+// the smooth error the coarse solve leaves, which sweeps do not (Figure 8's table).
+TEST_CASE("improved: a few multigrid-CG iterations per level cut the interactive error", "[design][bm][multilevel]") {
+  EditLadder ladder = ladder_from(0);
+  for (std::size_t k = 1; k < ladder.problems.size(); ++k) {  // the levels below each rung
+    auto ops = std::make_shared<LevelOperators>();
+    const int level = static_cast<int>(k);
+    for (int l = 0; l < level; ++l) ops->prolongation.push_back(hierarchy().subdivision_operator(l));
+    for (int l = 0; l <= level; ++l)
+      ops->singular.push_back(extraordinary_vertices(hierarchy().mesh(l), hierarchy().options().scheme));
+    ops->reassemble = [](int l) { return stretch_bend_hessian(hierarchy().mesh(l), {0.1, 1.0}, Backend::Optimized); };
+    ladder.problems[k].levels = ops;
+  }
+  const Eigen::MatrixXd exact = exact_solution(ladder.problems.back());
+  auto finest = solver("cholesky", Backend::Optimized)();
+  const auto error = [&](Accuracy accuracy, const std::string& relaxation, int iterations) {
+    const std::string fixed = "{max_iterations: " + std::to_string(iterations) + ", tolerance: 0, check_every: 1000000}";
+    MultilevelEdit edit(ladder, accuracy, solver("cholesky", Backend::Optimized),
+                        solver(relaxation, Backend::Optimized, fixed), *finest, Backend::Optimized);
+    const EditSolution s = edit.solve(1.0);
+    CHECK(s.constraint_residual <= 1e-9 * ladder.problems.back().constraints.C.norm());
+    return relative_error(s.delta, exact);
+  };
+  const double interactive = error(Accuracy::Interactive, "gauss_seidel", 1);
+  const double sweeps = error(Accuracy::Improved, "gauss_seidel", 10);
+  const double two = error(Accuracy::Improved, "multigrid_cg", 2), five = error(Accuracy::Improved, "multigrid_cg", 5);
+  INFO("interactive " << interactive << ", 10 sweeps " << sweeps << ", 2 / 5 multigrid-CG " << two << " / " << five);
+  CHECK(sweeps > 0.5 * interactive);  // the paper's sweeps leave most of it
+  CHECK(two < 0.5 * interactive);
+  CHECK(five < two);
 }
 
 TEST_CASE("improved: reference and optimized cascades agree", "[design][bm][multilevel][conformance]") {

@@ -2,6 +2,7 @@
 
 #include <limits>
 
+#include "constraint/crease_normals.h"
 #include "constraint/rigid_motion.h"
 
 namespace fairshape {
@@ -100,6 +101,9 @@ class AtSurfacePoint : public Constraint {
   void add_on_surface(const LevelMeshes& mesh_at, int finest, const SubdivisionOptions& rules,
                       DesignConstraints& out) const override {
     auto [level, sp] = where_.resolve(mesh_at, finest, rules, who_);
+    // A normal needs a side of a crease; a point given by its face has one, a found one not.
+    if (asks_ == Asks::Normal && !where_.face_given())
+      refuse_normal_on_crease_point(mesh_at(level), rules, level, sp.at, level < finest, who_);
     const int v = anchor(sp);
     if (asks_ == Asks::Offset) out.points.push_back({level, v, false, value_, who_, std::move(sp)});
     else out.normals.push_back({level, v, value_, who_, std::move(sp)});

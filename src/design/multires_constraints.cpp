@@ -8,7 +8,7 @@
 
 #include <Eigen/Geometry>
 
-#include "design/crease_normals.h"
+#include "constraint/crease_normals.h"
 #include "energy/divided_differences.h"
 #include "subdivision/limit.h"
 

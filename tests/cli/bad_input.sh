@@ -8,7 +8,7 @@ expect_error 2 "crease_missing_edge.obj:6: crease 0-2: the mesh has no edge betw
 expect_error 2 "crease/corner tags would be lost" -- "$FS" run configs/smoke/cow_nose_pull.yaml --out "$SCRATCH/x" \
   --set input.mesh=tests/data/osd-shapes/tagged/catmark_cube_creases1.obj --set input.representation=catmull-clark --set input.remesh_base_faces=6
 # The crease method names its choices; a normal at a vertex on a sharp crease names each
-# side's surface point instead (design/crease_normals.h).
+# side's surface point instead (constraint/crease_normals.h).
 CREASED=(--set input.mesh=tests/data/osd-shapes/tagged/catmark_inf_crease1.obj --set input.representation=catmull-clark --set input.levels=1)
 expect_error 2 "input.crease_method: unknown value 'sharp' (valid: uniform, chaikin)" -- "$FS" run configs/smoke/cow_nose_pull.yaml \
   --out "$SCRATCH/x" "${CREASED[@]}" --set input.crease_method=sharp

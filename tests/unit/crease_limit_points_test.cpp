@@ -3,7 +3,7 @@
 // back ends refine. Checked against fairshape's own crease-aware limit positions (at face
 // corners, and at dyadic parameters through uniform refinement) on OpenSubdiv's tagged
 // regression shapes. Normal constraints at a vertex on a sharp crease are refused in favour
-// of one side's surface point (design/crease_normals.h).
+// of one side's surface point (constraint/crease_normals.h).
 #include <catch2/catch.hpp>
 
 #include <Eigen/Geometry>
@@ -15,6 +15,7 @@
 #include "constraint/surface_points.h"
 #include "core/error.h"
 #include "design/multires_constraints.h"
+#include "experiment/components.h"
 #include "io/mesh_io.h"
 #include "subdivision/crease_rules.h"
 #include "subdivision/limit.h"
@@ -280,6 +281,18 @@ TEST_CASE("a normal at a vertex on a sharp crease is refused, naming each side's
   dc.normals.push_back({level, 12, left, "constraints[1]", sp});
   dc.normals.push_back({0, 6, left, "constraints[2]"});
   CHECK_NOTHROW(check_constraints(h, 0, dc));
+  // A normal at a point a closest-point search finds on the crease has no side: refused too.
+  const LevelMeshes mesh_at = [&h](int l) -> const SurfaceMesh& { return h.mesh(l); };
+  auto normal_nearest = [&](const std::string& point) {
+    Config cfg(YAML::Load("{nearest_on_limit: " + point + ", level: 0, normal: [0, 0, 1]}"), "constraints[1]");
+    DesignConstraints placed;
+    components().constraints.create("normal", Backend::Optimized, cfg)->add_on_surface(mesh_at, 1, h.options(), placed);
+    return placed.normals.size();
+  };
+  CHECK_THROWS_WITH(normal_nearest("[0, 0.3, 0]"), Catch::Matchers::Contains("lies on the sharp crease edge") &&
+                                                      Catch::Matchers::Contains("constraints[1]"));
+  CHECK_THROWS_WITH(normal_nearest("[0, 0, 0]"), Catch::Matchers::Contains("vertex 12 of level 0 is on a sharp crease"));
+  CHECK(normal_nearest("[-1.2, 0.3, 0.96]") == 1);  // off the crease
   // A dart (one sharp edge into a smooth vertex) keeps the whole-ring fit.
   SurfaceMesh dart = folded_sheet();
   dart.set_sharpness({}, {});

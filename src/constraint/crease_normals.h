@@ -17,6 +17,7 @@
 #include <string>
 
 #include "mesh/surface_mesh.h"
+#include "subdivision/limit_evaluation.h"
 #include "subdivision/scheme.h"
 
 namespace fairshape {
@@ -26,5 +27,12 @@ namespace fairshape {
 //! hierarchy has level + 1, where a non-quad Catmull-Clark face's corner can be addressed.
 void refuse_normal_on_crease(const SurfaceMesh& mesh, const SubdivisionOptions& rules, int level, int vertex,
                              bool has_finer_level, const std::string& label);
+
+//! \throw InvalidInput for a normal at the surface point `at` that a closest-point search
+//! (`nearest_on_limit`) found on a sharp crease: on a side of its face that is a tagged sharp
+//! edge, or at a face corner refuse_normal_on_crease refuses. Which side's normal the point
+//! carries would then be the search's accident; the message names the sides' faces.
+void refuse_normal_on_crease_point(const SurfaceMesh& mesh, const SubdivisionOptions& rules, int level,
+                                   const FaceParameter& at, bool has_finer_level, const std::string& label);
 
 }  // namespace fairshape

@@ -1,4 +1,4 @@
-#include "design/crease_normals.h"
+#include "constraint/crease_normals.h"
 
 #include <sstream>
 #include <vector>
@@ -78,6 +78,42 @@ void refuse_normal_on_crease(const SurfaceMesh& m, const SubdivisionOptions& rul
     os << ")" << (at.empty() ? " has no quad to address the vertex on (add a level)" : ": " + at);
   }
   throw InvalidInput(os.str());
+}
+
+void refuse_normal_on_crease_point(const SurfaceMesh& m, const SubdivisionOptions& rules, int level,
+                                   const FaceParameter& at, bool has_finer_level, const std::string& label) {
+  if (!m.has_sharpness()) return;
+  constexpr double kOn = 1e-9;  // a parameter this close to a side is on it
+  const auto corners = m.face_vertices(at.face);
+  const int n = static_cast<int>(corners.size());
+  // The sides (corner i to i + 1) the point lies on, in the evaluator's parameterization.
+  std::vector<bool> on(static_cast<std::size_t>(n), false);
+  if (n == 4) {
+    on[0] = at.v <= kOn;
+    on[1] = at.u >= 1 - kOn;
+    on[2] = at.v >= 1 - kOn;
+    on[3] = at.u <= kOn;
+  } else {
+    on[0] = at.v <= kOn;
+    on[1] = at.u + at.v >= 1 - kOn;
+    on[2] = at.u <= kOn;
+  }
+  for (int i = 0; i < n; ++i)  // at corner i: the vertex's own test (its message lists the sides)
+    if (on[static_cast<std::size_t>(i)] && on[static_cast<std::size_t>((i + n - 1) % n)])
+      refuse_normal_on_crease(m, rules, level, corners[i], has_finer_level,
+                              label + " (the closest limit point is vertex " + std::to_string(corners[i]) + ")");
+  for (int i = 0; i < n; ++i) {
+    const int j = (i + 1) % n;
+    const int e = m.find_edge(corners[i], corners[j]);
+    if (!on[i] || m.is_boundary_edge(e) || m.edge_sharpness(e) <= 0.0f) continue;
+    const int other = m.face(2 * e) == at.face ? m.face(2 * e + 1) : m.face(2 * e);
+    std::ostringstream os;
+    os << label << ": the closest limit point lies on the sharp crease edge " << corners[i] << "-" << corners[j]
+       << " of level " << level << ", where the surface has a different normal on each side; give the normal with "
+       << "at: {face: F, uv: [u, v], level: " << level << "} on the side meant (face " << at.face << " at (u, v) = ("
+       << at.u << ", " << at.v << "), or face " << other << "), or at a point off the crease";
+    throw InvalidInput(os.str());
+  }
 }
 
 }  // namespace fairshape

@@ -18,10 +18,12 @@ bool sharp_spoke(const SurfaceMesh& m, int h) {
 // of an outgoing half-edge h lies between spokes h and rotate_ccw(h).
 std::vector<std::vector<int>> sides(const SurfaceMesh& m, int v) {
   std::vector<int> spokes = m.outgoing_halfedges(v);
-  // Start right after a sharp spoke (or at the boundary) so that no side wraps around.
+  // Start at a side's first spoke so that no side wraps around: on the boundary, the boundary
+  // half-edge (halfedge(v), with the hole after it), inside, a sharp spoke.
   std::size_t start = 0;
-  for (std::size_t i = 0; i < spokes.size(); ++i)
-    if (sharp_spoke(m, spokes[i])) { start = i; break; }
+  if (!m.is_boundary_vertex(v))
+    for (std::size_t i = 0; i < spokes.size(); ++i)
+      if (sharp_spoke(m, spokes[i])) { start = i; break; }
   std::vector<std::vector<int>> out(1);
   for (std::size_t k = 0; k < spokes.size(); ++k) {
     const int h = spokes[(start + k) % spokes.size()];

@@ -274,6 +274,12 @@ TEST_CASE("a normal at a vertex on a sharp crease is refused, naming each side's
   const Vec3 left = Vec3(0.8, 0, 1).normalized(), right = Vec3(-0.8, 0, 1).normalized();
   for (const Vec3& n : side_normals) CHECK(std::max(std::abs(n.dot(left)), std::abs(n.dot(right))) >= 1 - 1e-12);
   CHECK(std::abs(side_normals[0].dot(side_normals[1])) < 0.5);  // the two sides, not one twice
+  // On the boundary (vertex 2, where the fold meets the sheet's edge) the hole separates the
+  // sides as the crease does: one face each.
+  dc.normals = {{0, 2, Vec3::UnitZ(), "constraints[1]"}};
+  CHECK_THROWS_WITH(check_constraints(h, 0, dc), Catch::Matchers::Contains("(faces 1)") &&
+                                                     Catch::Matchers::Contains("(faces 2)") &&
+                                                     !Catch::Matchers::Contains("side 3"));
   // A normal constraint given that way is accepted; so is one off the crease.
   dc.normals.clear();
   auto [level, sp] = SurfacePointSelection::at(0, {5, 1, 1}).resolve([&h](int l) -> const SurfaceMesh& { return h.mesh(l); },

@@ -164,6 +164,19 @@ std::string LimitEvaluator::why_not(const FaceParameter& at) const {
   return {};
 }
 
+FaceParameter LimitEvaluator::at_vertex(int v) const {
+  static const double quad[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}}, tri[3][2] = {{0, 0}, {1, 0}, {0, 1}};
+  const int corners = opt_.scheme == SchemeType::Loop ? 3 : 4;
+  for (int f : mesh_.vertex_faces(v)) {
+    const auto vs = mesh_.face_vertices(f);
+    if (static_cast<int>(vs.size()) != corners) continue;
+    const auto c = static_cast<std::size_t>(std::find(vs.begin(), vs.end(), v) - vs.begin());
+    const double* uv = corners == 4 ? quad[c] : tri[c];
+    return {f, uv[0], uv[1]};
+  }
+  return {};
+}
+
 LimitStencils LimitEvaluator::stencils(const FaceParameter& at) const {
   if (std::string why = why_not(at); !why.empty()) throw InvalidInput("limit evaluation: " + why);
   impl_->evaluate(at.face, at.u, at.v);

@@ -57,6 +57,9 @@ class LimitEvaluator {
   //! Empty when (face, u, v) can be evaluated; otherwise why not, with the valid range
   //! ("face 12 does not exist (0..99)", "u = 1.2 is outside [0, 1]", ...).
   std::string why_not(const FaceParameter& at) const;
+  //! Vertex v as a corner (u, v at the domain's corner) of an incident face the evaluator
+  //! takes (a quad under Catmull-Clark, a triangle under Loop); face -1 when there is none.
+  FaceParameter at_vertex(int v) const;
   //! \throw InvalidInput (the text of why_not) for a point that cannot be evaluated.
   LimitStencils stencils(const FaceParameter& at) const;
   //! Applies stencils to the mesh's positions (or to `positions`, same vertex count).

@@ -67,25 +67,6 @@ FaceParameter on_side(int face, int side, int corners, double t) {
   }
 }
 
-// Whether the vertex limit masks (fairshape's limit_matrix, OpenSubdiv's Far Limit()) give the
-// exact limit at v: a vertex whose incident edges are all smooth (its one-ring subdivides by
-// the smooth rules forever), a vertex on two or more infinitely sharp edges (a crease is a
-// cubic B-spline; three make a corner) or an infinitely sharp corner. A dart (one sharp edge)
-// or a semi-sharp edge or vertex tag that has not decayed yet makes the mask an approximation:
-// the rules around v change in later steps, which a mask of this level cannot know.
-bool limit_mask_exact(const SurfaceMesh& m, int v) {
-  const float vertex = m.vertex_sharpness(v);
-  if (vertex >= kInfiniteSharpness) return true;
-  if (vertex > 0.0f) return false;
-  int infinite = 0, semi = 0;
-  m.for_each_outgoing(v, [&](int h) {
-    const float s = effective_edge_sharpness(m, SurfaceMesh::edge(h));
-    infinite += s >= kInfiniteSharpness;
-    semi += s > 0.0f && s < kInfiniteSharpness;
-  });
-  return semi == 0 && infinite != 1;
-}
-
 double nearest_distance(const MatrixX3& X, const Vec3& p, int* row = nullptr) {
   int i = 0;
   const double d = std::sqrt((X.rowwise() - p.transpose()).rowwise().squaredNorm().minCoeff(&i));
@@ -98,7 +79,7 @@ double nearest_distance(const MatrixX3& X, const Vec3& p, int* row = nullptr) {
 TEST_CASE("on tagged shapes, limit points at face corners are the crease-aware vertex limits",
           "[limit_points][crease]") {
   // Infinitely sharp and semi-sharp creases, corners, both schemes, both crease methods.
-  // Where the vertex limit masks are exact (limit_mask_exact) Bfr's corner point equals
+  // Where the vertex limit masks are exact (vertex_limit_mask_exact) Bfr's corner point equals
   // limit_positions to 1e-12. Elsewhere (darts, semi-sharp features not yet decayed) the masks
   // — fairshape's and OpenSubdiv's Far Limit(), which agree — approximate; Bfr refines the
   // sharp features away and is the limit of uniform refinement: the same vertex's limit three
@@ -136,7 +117,7 @@ TEST_CASE("on tagged shapes, limit points at face corners are the crease-aware v
         const int v = corners[c];
         const Vec3 p = e.position(on_side(f, c, n, 0.0));
         const double d = (p - L.row(v).transpose()).norm();
-        if (limit_mask_exact(mesh, v)) {
+        if (vertex_limit_mask_exact(mesh, v)) {
           exact = std::max(exact, d);
           ++exact_vertices;
         } else {
@@ -202,7 +183,7 @@ TEST_CASE("points along an infinitely sharp crease lie on the limit crease curve
           int row = 0;
           const double d = nearest_distance(fine_limit, p, &row);
           // Interior dyadic points are crease vertices of the fine level (exact masks); the
-          // ends are the edge's own vertices, which may be darts (limit_mask_exact).
+          // ends are the edge's own vertices, which may be darts (vertex_limit_mask_exact).
           if (k > 0 && k < (1 << kDepth)) worst_dyadic = std::max(worst_dyadic, d);
           polyline.push_back(k > 0 && k < (1 << kDepth) ? Vec3(fine_limit.row(row).transpose()) : p);
         }
@@ -308,3 +289,33 @@ TEST_CASE("a normal at a vertex on a sharp crease is refused, naming each side's
   CHECK_NOTHROW(check_constraints(hd, 0, dc));
 }
 
+
+TEST_CASE("on_limit at a semi-sharp corner is the limit the hierarchy converges to", "[limit_points][crease]") {
+  // catmark_cube_corner2: vertex 0 carries corner sharpness 2.8. Its level-0 mask (the corner
+  // rule) is not its limit; three levels finer the tag has decayed and the mask is exact. The
+  // on_limit constraint there becomes a surface point (Bfr) with that limit; a vertex without
+  // sharp features keeps its mask row.
+  const SurfaceMesh shape = tagged_shape("catmark_cube_corner2");
+  REQUIRE(shape.vertex_sharpness(0) == 2.8f);
+  const MultiresSurface h(shape, {}, 3, Backend::Optimized);
+  const LevelMeshes mesh_at = [&h](int l) -> const SurfaceMesh& { return h.mesh(l); };
+  Config cfg(YAML::Load("{vertices: [0, 6], level: 0, on_limit: true, offset: [0, 0, 0.1]}"), "constraints[1]");
+  DesignConstraints placed;
+  components().constraints.create("position", Backend::Optimized, cfg)->add_on_surface(mesh_at, 3, h.options(), placed);
+  REQUIRE(placed.points.size() == 2);
+  const PointConstraint& sharp = placed.points[0];
+  const PointConstraint& plain = placed.points[1];
+  REQUIRE_FALSE(sharp.surface.empty());
+  CHECK(marked_vertices(sharp) == std::vector<int>{0});
+  CHECK(plain.surface.empty());
+  CHECK(plain.on_limit);
+  const Vec3 exact = LimitEvaluator::apply(sharp.surface.position, h.mesh(0).positions());
+  const double size = model_size(h.mesh(0));
+  const MatrixX3 coarse = limit_positions(h.mesh(0), h.options()), fine = limit_positions(h.mesh(3), h.options());
+  INFO("level-0 mask off by " << (exact - coarse.row(0).transpose()).norm() << ", level-3 mask by "
+                              << (exact - fine.row(0).transpose()).norm());
+  CHECK((exact - fine.row(0).transpose()).norm() <= 1e-12 * size);
+  CHECK((exact - coarse.row(0).transpose()).norm() > 1e-3 * size);
+  CHECK((fine.row(6) - coarse.row(6)).norm() <= 1e-12 * size);  // vertex 6: exact at every level
+  CHECK_NOTHROW(check_constraints(h, 0, placed));
+}

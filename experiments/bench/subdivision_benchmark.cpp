@@ -112,8 +112,8 @@ void BM_Topology_Fairshape(benchmark::State& state) {
   const int levels = static_cast<int>(state.range(0));
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(state.range(1)));
   for (auto _ : state) {
-    SurfaceMesh m = refine_topology(cow(), SchemeType::CatmullClark);
-    for (int l = 1; l < levels; ++l) m = refine_topology(m, SchemeType::CatmullClark);
+    SurfaceMesh m = refine_topology(cow(), SchemeType::CatmullClark, CreaseMethod::Uniform);
+    for (int l = 1; l < levels; ++l) m = refine_topology(m, SchemeType::CatmullClark, CreaseMethod::Uniform);
     benchmark::DoNotOptimize(m.n_faces());
   }
   set_counters(state, levels);

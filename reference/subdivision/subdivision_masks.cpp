@@ -43,7 +43,7 @@ Row smooth_edge_point(const SurfaceMesh& m, int e, const SubdivisionOptions& opt
 // midpoint and smooth mask by their sharpness (crease_rules.h).
 Row edge_point(const SurfaceMesh& m, int e, const SubdivisionOptions& opt) {
   const int h = 2 * e, a = m.from_vertex(h), b = m.to_vertex(h);
-  const double w = edge_crease_weight(m, e);
+  const double w = edge_crease_weight(m, e, opt.crease);
   if (w == 1.0) return {{a, 0.5}, {b, 0.5}};
   if (w == 0.0) return smooth_edge_point(m, e, opt);
   Row r{{a, 0.5 * w}, {b, 0.5 * w}};
@@ -73,7 +73,7 @@ Row smooth_vertex_point(const SurfaceMesh& m, int v, const SubdivisionOptions& o
 // Smooth, crease (a cubic B-spline along the two sharp edges; on the boundary, the boundary
 // curve) and corner masks, blended as crease_rules.h decides.
 Row vertex_point(const SurfaceMesh& m, int v, const SubdivisionOptions& opt) {
-  const VertexMaskBlend b = vertex_mask_blend(m, v, opt.boundary);
+  const VertexMaskBlend b = vertex_mask_blend(m, v, opt.boundary, opt.crease);
   if (b.smooth == 1.0) return smooth_vertex_point(m, v, opt);
   Row r;
   if (b.crease > 0) r = {{v, 0.75 * b.crease}, {b.crease_a, 0.125 * b.crease}, {b.crease_b, 0.125 * b.crease}};

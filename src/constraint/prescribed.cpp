@@ -4,6 +4,7 @@
 #include "constraint/rigid_motion.h"
 #include "constraint/surface_points.h"
 #include "constraint/vertex_selection.h"
+#include "subdivision/limit.h"
 
 namespace fairshape {
 namespace {
@@ -16,6 +17,36 @@ class PositionConstraint : public Constraint {
   void add_to(const LevelMeshes& mesh_at, int finest, DesignConstraints& out) const override {
     const int level = resolve_level(level_, finest, who_);
     for (int v : selection_.resolve(mesh_at(level), who_)) out.points.push_back({level, v, on_limit_, offset_, who_});
+  }
+
+  // `on_limit` rows are the vertex limit masks (limit_matrix), exact except at darts and
+  // undecayed semi-sharp tags of a creased mesh (vertex_limit_mask_exact). There the vertex's
+  // limit point is taken from the exact evaluator instead, as a surface point at the vertex:
+  // the constraint then holds on the surface the hierarchy converges to.
+  void add_on_surface(const LevelMeshes& mesh_at, int finest, const SubdivisionOptions& rules,
+                      DesignConstraints& out) const override {
+    const int level = resolve_level(level_, finest, who_);
+    const SurfaceMesh& m = mesh_at(level);
+    if (!on_limit_ || !m.has_sharpness()) {
+      add_to(mesh_at, finest, out);
+      return;
+    }
+    std::unique_ptr<LimitEvaluator> exact;  // built for the first vertex that needs it
+    for (int v : selection_.resolve(m, who_)) {
+      if (vertex_limit_mask_exact(m, v)) {
+        out.points.push_back({level, v, true, offset_, who_});
+        continue;
+      }
+      if (!exact) exact = std::make_unique<LimitEvaluator>(m, rules);
+      const FaceParameter at = exact->at_vertex(v);
+      if (at.face < 0)
+        throw InvalidInput(who_ + ": vertex " + std::to_string(v) + " of level " + std::to_string(level) +
+                           " has a sharp feature whose limit needs exact evaluation, but no quad around it (an "
+                           "N-gon of the base): select it on level " + std::to_string(level + 1));
+      SurfacePoint sp = make_surface_point(*exact, at);
+      sp.corners = {v};  // marks the vertex itself
+      out.points.push_back({level, v, false, offset_, who_, std::move(sp)});
+    }
   }
 
  private:

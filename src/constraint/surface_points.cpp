@@ -2,6 +2,7 @@
 
 #include <limits>
 
+#include "constraint/crease_normals.h"
 #include "constraint/rigid_motion.h"
 
 namespace fairshape {
@@ -86,43 +87,32 @@ namespace {
 // The constrained vertex recorded with a surface point (checks, messages): its face's first corner.
 int anchor(const SurfacePoint& sp) { return sp.corners.empty() ? 0 : sp.corners.front(); }
 
-class SurfacePointOffset : public Constraint {
+// `position`/`fixed` and `normal` at a surface point differ only in what they ask of the
+// point, so one class serves both: it resolves the point once the rules are known, then
+// records an offset or a normal there.
+class AtSurfacePoint : public Constraint {
  public:
-  SurfacePointOffset(SurfacePointSelection where, Vec3 offset, std::string who)
-      : where_(std::move(where)), offset_(offset), who_(std::move(who)) {}
+  enum class Asks { Offset, Normal };
+  AtSurfacePoint(SurfacePointSelection where, Asks asks, Vec3 value, std::string who)
+      : where_(std::move(where)), asks_(asks), value_(value), who_(std::move(who)) {}
   void add_to(const LevelMeshes&, int, DesignConstraints&) const override {
     throw InvalidInput(who_ + ": a point of the limit surface needs the subdivision rules (add_on_surface)");
   }
   void add_on_surface(const LevelMeshes& mesh_at, int finest, const SubdivisionOptions& rules,
                       DesignConstraints& out) const override {
     auto [level, sp] = where_.resolve(mesh_at, finest, rules, who_);
+    // A normal needs a side of a crease; a point given by its face has one, a found one not.
+    if (asks_ == Asks::Normal && !where_.face_given())
+      refuse_normal_on_crease_point(mesh_at(level), rules, level, sp.at, level < finest, who_);
     const int v = anchor(sp);
-    out.points.push_back({level, v, false, offset_, who_, std::move(sp)});
+    if (asks_ == Asks::Offset) out.points.push_back({level, v, false, value_, who_, std::move(sp)});
+    else out.normals.push_back({level, v, value_, who_, std::move(sp)});
   }
 
  private:
   SurfacePointSelection where_;
-  Vec3 offset_;
-  std::string who_;
-};
-
-class SurfacePointNormal : public Constraint {
- public:
-  SurfacePointNormal(SurfacePointSelection where, Vec3 normal, std::string who)
-      : where_(std::move(where)), normal_(normal), who_(std::move(who)) {}
-  void add_to(const LevelMeshes&, int, DesignConstraints&) const override {
-    throw InvalidInput(who_ + ": a point of the limit surface needs the subdivision rules (add_on_surface)");
-  }
-  void add_on_surface(const LevelMeshes& mesh_at, int finest, const SubdivisionOptions& rules,
-                      DesignConstraints& out) const override {
-    auto [level, sp] = where_.resolve(mesh_at, finest, rules, who_);
-    const int v = anchor(sp);
-    out.normals.push_back({level, v, normal_, who_, std::move(sp)});
-  }
-
- private:
-  SurfacePointSelection where_;
-  Vec3 normal_;
+  Asks asks_;
+  Vec3 value_;  // the offset, or the unit normal
   std::string who_;
 };
 
@@ -130,12 +120,13 @@ class SurfacePointNormal : public Constraint {
 
 std::unique_ptr<Constraint> surface_point_offset(SurfacePointSelection where, const Vec3& offset, std::string who) {
   if (!offset.allFinite()) throw InvalidInput(who + ": the offset is not finite");
-  return std::make_unique<SurfacePointOffset>(std::move(where), offset, std::move(who));
+  return std::make_unique<AtSurfacePoint>(std::move(where), AtSurfacePoint::Asks::Offset, offset, std::move(who));
 }
 
 std::unique_ptr<Constraint> surface_point_normal(SurfacePointSelection where, const Vec3& normal, std::string who) {
   if (!normal.allFinite() || normal.norm() == 0) throw InvalidInput(who + ": the normal is zero or not finite");
-  return std::make_unique<SurfacePointNormal>(std::move(where), normal.normalized(), std::move(who));
+  return std::make_unique<AtSurfacePoint>(std::move(where), AtSurfacePoint::Asks::Normal, normal.normalized(),
+                                          std::move(who));
 }
 
 }  // namespace fairshape

@@ -28,6 +28,8 @@ class SurfacePointSelection {
   //! The level (resolved) and the surface point there. \throw InvalidInput naming the key
   //! (`key_`) and the valid range: a face that does not exist or is not a quad (Catmull-Clark)
   //! or triangle (Loop), a (u, v) outside the face.
+  //! True for `at` (a face given), false for `nearest_on_limit` (a face found).
+  bool face_given() const { return at_.has_value(); }
   std::pair<int, SurfacePoint> resolve(const LevelMeshes& mesh_at, int finest, const SubdivisionOptions& rules,
                                        const std::string& who) const;
 

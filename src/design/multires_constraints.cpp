@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 
+#include "constraint/crease_normals.h"
 #include "energy/divided_differences.h"
 #include "subdivision/limit.h"
 
@@ -98,6 +99,7 @@ std::vector<const NormalConstraint*> distinct_normals(const MultiresSurface& h, 
       unique.push_back(&nc);
       continue;
     }
+    refuse_normal_on_crease(h.mesh(nc.level), h.options(), nc.level, nc.vertex, nc.level < h.levels(), nc.label);
     auto [first, inserted] = seen.try_emplace({nc.level, nc.vertex}, &nc);
     if (inserted) {
       unique.push_back(&nc);

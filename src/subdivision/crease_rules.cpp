@@ -12,6 +12,37 @@ float decayed_sharpness(float s) {
   return s > 1.0f ? s - 1.0f : 0.0f;  // float subtraction, as OpenSubdiv does it
 }
 
+namespace {
+bool semi_sharp(float s) { return s > 0.0f && s < kInfiniteSharpness; }
+}  // namespace
+
+// OpenSubdiv's Chaikin rule (Sdc::Crease, learned, not copied): each semi-sharp edge among
+// two or more becomes 3/4 of itself plus 1/4 of the mean of the other semi-sharp ones, then
+// decays by one; smooth and infinite edges, and a lone semi-sharp edge, decay uniformly. The
+// float operations are OpenSubdiv's, in the same order, so the values agree bit for bit.
+std::vector<float> child_sharpness_around(const std::vector<float>& parent, CreaseMethod method) {
+  std::vector<float> child(parent.size());
+  float sum = 0.0f;
+  int count = 0;
+  if (method == CreaseMethod::Chaikin)
+    for (float s : parent)
+      if (semi_sharp(s)) {
+        sum += s;
+        ++count;
+      }
+  for (std::size_t i = 0; i < parent.size(); ++i) {
+    const float s = parent[i];
+    if (count < 2 || !semi_sharp(s)) {
+      child[i] = decayed_sharpness(s);
+      continue;
+    }
+    const float others = (sum - s) / static_cast<float>(count - 1);
+    const float c = ((0.75f * s) + (0.25f * others)) - 1.0f;
+    child[i] = c > 0.0f ? c : 0.0f;
+  }
+  return child;
+}
+
 float effective_edge_sharpness(const SurfaceMesh& m, int e) {
   return m.is_boundary_edge(e) ? kInfiniteSharpness : m.edge_sharpness(e);
 }
@@ -77,18 +108,19 @@ void add_mask(VertexRule rule, double w, const VertexSharpness& s, const std::ve
 }
 
 // The parent's share when the rule changes: the mean of the sharpness values (vertex and
-// edges) that reach zero in this step, at most 1. With the uniform method an edge reaches
-// zero exactly when its sharpness is at most 1.
-float fractional_weight(float parent_vertex, float child_vertex, const std::vector<float>& parent_edges) {
+// edges) that reach zero in this step, at most 1. (With the uniform method an edge reaches
+// zero exactly when its sharpness is at most 1; with Chaikin's, possibly from above 1.)
+float fractional_weight(float parent_vertex, float child_vertex, const std::vector<float>& parent_edges,
+                        const std::vector<float>& child_edges) {
   int count = 0;
   float sum = 0.0f;
   if (parent_vertex > 0.0f && child_vertex <= 0.0f) {
     count = 1;
     sum = parent_vertex;
   }
-  for (float s : parent_edges)
-    if (s > 0.0f && s <= 1.0f) {
-      sum += s;
+  for (std::size_t i = 0; i < parent_edges.size(); ++i)
+    if (parent_edges[i] > 0.0f && child_edges[i] <= 0.0f) {
+      sum += parent_edges[i];
       ++count;
     }
   if (count == 0) return 0.0f;
@@ -102,7 +134,7 @@ VertexRule vertex_rule(const SurfaceMesh& m, int v, BoundaryMode boundary) {
   return rule_of(s.vertex, s.edges);
 }
 
-VertexMaskBlend vertex_mask_blend(const SurfaceMesh& m, int v, BoundaryMode boundary) {
+VertexMaskBlend vertex_mask_blend(const SurfaceMesh& m, int v, BoundaryMode boundary, CreaseMethod method) {
   VertexMaskBlend out;
   if (m.is_isolated(v)) {
     out.corner = 1.0;
@@ -118,15 +150,14 @@ VertexMaskBlend vertex_mask_blend(const SurfaceMesh& m, int v, BoundaryMode boun
     out.smooth = 1.0;
     return out;
   }
-  std::vector<float> child_edges(s.edges.size());
-  std::transform(s.edges.begin(), s.edges.end(), child_edges.begin(), decayed_sharpness);
+  const std::vector<float> child_edges = child_sharpness_around(s.edges, method);
   const float child_vertex = decayed_sharpness(s.vertex);
   const VertexRule child = rule_of(child_vertex, child_edges);
   if (child == parent) {
     add_mask(parent, 1.0, s, s.edges, out);
     return out;
   }
-  const double p = fractional_weight(s.vertex, child_vertex, s.edges);
+  const double p = fractional_weight(s.vertex, child_vertex, s.edges, child_edges);
   add_mask(parent, p, s, s.edges, out);
   add_mask(child, 1.0 - p, s, child_edges, out);
   return out;
@@ -143,22 +174,49 @@ bool crease_neighbours(const SurfaceMesh& m, int v, int& a, int& b) {
   return sharp == 2;
 }
 
-double edge_crease_weight(const SurfaceMesh& m, int e) {
+float child_edge_sharpness(const SurfaceMesh& m, int e, int v, CreaseMethod method) {
   const float s = effective_edge_sharpness(m, e);
-  if (s <= 0.0f) return 0.0;
-  return s >= 1.0f ? 1.0 : static_cast<double>(s);
+  if (method == CreaseMethod::Uniform || !semi_sharp(s)) return decayed_sharpness(s);
+  std::vector<float> around;
+  int at = -1;
+  m.for_each_outgoing(v, [&](int h) {
+    if (SurfaceMesh::edge(h) == e) at = static_cast<int>(around.size());
+    around.push_back(effective_edge_sharpness(m, SurfaceMesh::edge(h)));
+  });
+  return child_sharpness_around(around, method)[static_cast<std::size_t>(at)];
 }
 
-void child_sharpness(const SurfaceMesh& coarse, SurfaceMesh& fine) {
+double edge_crease_weight(const SurfaceMesh& m, int e, CreaseMethod method) {
+  const float s = effective_edge_sharpness(m, e);
+  if (s <= 0.0f) return 0.0;
+  if (s >= kInfiniteSharpness) return 1.0;
+  // The edge point's rule in the child is a crease when both halves stay sharp (OpenSubdiv's
+  // Sdc::Scheme::ComputeEdgeVertexMask with the child's rule): then the midpoint alone.
+  const int h = 2 * e;
+  if (child_edge_sharpness(m, e, m.from_vertex(h), method) > 0.0f &&
+      child_edge_sharpness(m, e, m.to_vertex(h), method) > 0.0f)
+    return 1.0;
+  return static_cast<double>(s);
+}
+
+void child_sharpness(const SurfaceMesh& coarse, SurfaceMesh& fine, CreaseMethod method) {
   if (!coarse.has_sharpness()) return;
   std::vector<float> edges, vertices;
   bool any_edge = false, any_vertex = false;
   if (!coarse.edge_sharpness_array().empty()) {
     edges.assign(fine.n_edges(), 0.0f);
     for (int e = 0; e < coarse.n_edges(); ++e) {
-      const float s = decayed_sharpness(coarse.edge_sharpness(e));
-      edges[2 * e] = edges[2 * e + 1] = s;  // refine_topology: the halves of e are 2e, 2e + 1
-      any_edge |= s > 0.0f;
+      // refine_topology: the halves of e are 2e (at from_vertex(2e)) and 2e + 1 (at
+      // to_vertex(2e)). A boundary edge keeps its decayed tag: its effective sharpness is
+      // infinite on every level anyway.
+      const float tag = coarse.edge_sharpness(e);
+      if (tag <= 0.0f) continue;
+      const bool plain = method == CreaseMethod::Uniform || coarse.is_boundary_edge(e);
+      const float a = plain ? decayed_sharpness(tag) : child_edge_sharpness(coarse, e, coarse.from_vertex(2 * e), method);
+      const float b = plain ? a : child_edge_sharpness(coarse, e, coarse.to_vertex(2 * e), method);
+      edges[2 * e] = a;
+      edges[2 * e + 1] = b;
+      any_edge |= a > 0.0f || b > 0.0f;
     }
   }
   if (!coarse.vertex_sharpness_array().empty()) {

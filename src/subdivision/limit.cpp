@@ -162,6 +162,19 @@ void corner_tangents(const SurfaceMesh& m, int v, const std::vector<int>& hs, Ve
 
 }  // namespace
 
+bool vertex_limit_mask_exact(const SurfaceMesh& m, int v) {
+  const float vertex = m.vertex_sharpness(v);
+  if (vertex >= kInfiniteSharpness) return true;
+  if (vertex > 0.0f) return false;
+  int infinite = 0, semi = 0;
+  m.for_each_outgoing(v, [&](int h) {
+    const float s = effective_edge_sharpness(m, SurfaceMesh::edge(h));
+    infinite += s >= kInfiniteSharpness;
+    semi += s > 0.0f && s < kInfiniteSharpness;
+  });
+  return semi == 0 && infinite != 1;
+}
+
 SparseMatrix limit_matrix(const SurfaceMesh& mesh, const SubdivisionOptions& opt) {
   if (opt.scheme == SchemeType::CatmullClark && !all_quads(mesh)) {
     SparseMatrix S;

@@ -12,6 +12,15 @@ namespace fairshape {
 SparseMatrix limit_matrix(const SurfaceMesh& mesh, const SubdivisionOptions& opt);
 MatrixX3 limit_positions(const SurfaceMesh& mesh, const SubdivisionOptions& opt);
 
+//! Whether row v of limit_matrix is the exact limit of the surface: a vertex whose edges are
+//! all smooth (its one-ring subdivides by the smooth rules forever), a vertex on two or more
+//! infinitely sharp edges (a crease is a cubic B-spline, three make a corner), an infinitely
+//! sharp corner. At a dart (one sharp edge) or where a semi-sharp tag at or around v has not
+//! decayed yet the rules around v change in later steps, which a mask of this level cannot
+//! know: the row is then an approximation, as OpenSubdiv's Far::PrimvarRefiner::Limit() is
+//! (they agree); LimitEvaluator (Bfr) refines those features away and is exact.
+bool vertex_limit_mask_exact(const SurfaceMesh& mesh, int v);
+
 //! Two tangents spanning the limit tangent plane at each vertex (not unit, not orthogonal).
 //! Interior vertices of both schemes and Loop boundary vertices (Hoppe et al. 1994 masks);
 //! vertices on a tagged crease: the bisector of the two sides' limit normals, t1 along the

@@ -35,16 +35,38 @@ std::unique_ptr<Osd::Far::TopologyRefiner> make_refiner(const SurfaceMesh& m, co
     sizes.push_back(static_cast<int>(vs.size()));
     indices.insert(indices.end(), vs.begin(), vs.end());
   }
+  // Crease and corner tags, as OpenSubdiv's descriptor takes them: without them a creased
+  // mesh would be evaluated as smooth. Boundary edges need no tag (OpenSubdiv sharpens them).
+  std::vector<int> crease_pairs, corners;
+  std::vector<float> crease_weights, corner_weights;
+  for (int e = 0; e < m.n_edges(); ++e)
+    if (m.edge_sharpness(e) > 0.0f) {
+      crease_pairs.insert(crease_pairs.end(), {m.from_vertex(2 * e), m.to_vertex(2 * e)});
+      crease_weights.push_back(m.edge_sharpness(e));
+    }
+  for (int v = 0; v < m.n_vertices(); ++v)
+    if (m.vertex_sharpness(v) > 0.0f) {
+      corners.push_back(v);
+      corner_weights.push_back(m.vertex_sharpness(v));
+    }
   Osd::Far::TopologyDescriptor d;
   d.numVertices = m.n_vertices();
   d.numFaces = m.n_faces();
   d.numVertsPerFace = sizes.data();
   d.vertIndicesPerFace = indices.data();
+  d.numCreases = static_cast<int>(crease_weights.size());
+  d.creaseVertexIndexPairs = crease_pairs.data();
+  d.creaseWeights = crease_weights.data();
+  d.numCorners = static_cast<int>(corners.size());
+  d.cornerVertexIndices = corners.data();
+  d.cornerWeights = corner_weights.data();
   // The same rules as our subdivider (tests/conformance/opensubdiv_oracle_test.cpp checks the
   // refinement against OpenSubdiv with exactly these options).
   Osd::Sdc::Options o;
   o.SetVtxBoundaryInterpolation(opt.boundary == BoundaryMode::EdgeOnly ? Osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
                                                                        : Osd::Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
+  o.SetCreasingMethod(opt.crease == CreaseMethod::Chaikin ? Osd::Sdc::Options::CREASE_CHAIKIN
+                                                          : Osd::Sdc::Options::CREASE_UNIFORM);
   const auto type = opt.scheme == SchemeType::Loop ? Osd::Sdc::SCHEME_LOOP : Osd::Sdc::SCHEME_CATMARK;
   std::unique_ptr<Osd::Far::TopologyRefiner> r(Factory::Create(d, Factory::Options(type, o)));
   if (!r) throw InvalidInput("limit evaluation: OpenSubdiv rejected the mesh topology");
@@ -104,6 +126,9 @@ LimitEvaluator::LimitEvaluator(const SurfaceMesh& mesh, const SubdivisionOptions
   impl_->refiner = make_refiner(mesh, opt);
   Osd::Bfr::SurfaceFactory::Options fo;
   fo.SetApproxLevelSmooth(kApproxLevel);
+  // Semi-sharp creases and corners are refined until their sharpness has decayed (exact up to
+  // sharpness kApproxLevel; OpenSubdiv's default stops at 6).
+  fo.SetApproxLevelSharp(kApproxLevel);
   impl_->factory = std::make_unique<Osd::Bfr::RefinerSurfaceFactory<>>(*impl_->refiner, fo);
   // The limit patch of a face is a combination of its one-ring's control points with
   // nonnegative weights (B-spline and box-spline bases; the Gregory patches near extraordinary
@@ -128,9 +153,7 @@ std::string LimitEvaluator::why_not(const FaceParameter& at) const {
   const int n = mesh_.face_size(at.face);
   if (!std::isfinite(at.u) || !std::isfinite(at.v)) return "(u, v) is not finite";
   if (opt_.scheme == SchemeType::CatmullClark) {
-    if (n != 4)
-      return "face " + std::to_string(at.face) + " has " + std::to_string(n) +
-             " sides; Catmull-Clark surface points need a quad (every level from 1 on is all quads)";
+    if (n != 4) return non_quad_face(at.face);
     for (const auto& [name, x] : {std::pair<const char*, double>{"u", at.u}, {"v", at.v}})
       if (x < 0 || x > 1) return std::string(name) + " = " + number(x) + " is outside the quad's range [0, 1]";
     return {};
@@ -138,6 +161,19 @@ std::string LimitEvaluator::why_not(const FaceParameter& at) const {
   if (n != 3) return "face " + std::to_string(at.face) + " is not a triangle (Loop)";
   if (at.u < 0 || at.v < 0 || at.u + at.v > 1)
     return "(u, v) = (" + number(at.u) + ", " + number(at.v) + ") is outside the triangle's range u, v >= 0, u + v <= 1";
+  return {};
+}
+
+FaceParameter LimitEvaluator::at_vertex(int v) const {
+  static const double quad[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}}, tri[3][2] = {{0, 0}, {1, 0}, {0, 1}};
+  const int corners = opt_.scheme == SchemeType::Loop ? 3 : 4;
+  for (int f : mesh_.vertex_faces(v)) {
+    const auto vs = mesh_.face_vertices(f);
+    if (static_cast<int>(vs.size()) != corners) continue;
+    const auto c = static_cast<std::size_t>(std::find(vs.begin(), vs.end(), v) - vs.begin());
+    const double* uv = corners == 4 ? quad[c] : tri[c];
+    return {f, uv[0], uv[1]};
+  }
   return {};
 }
 
@@ -186,8 +222,29 @@ void project_to_domain(SchemeType scheme, double& u, double& v) {
 
 }  // namespace
 
+std::string LimitEvaluator::non_quad_face(int face) const {
+  // Subdivision splits face f into quads numbered from the sum of the sizes of faces 0..f-1
+  // (subdivider.h: quad i at corner i), so the point can be named exactly one level finer.
+  long first = 0;
+  for (int g = 0; g < face; ++g) first += mesh_.face_size(g);
+  const int n = mesh_.face_size(face);
+  return "face " + std::to_string(face) + " is a " + std::to_string(n) + "-gon (valence " + std::to_string(n) +
+         "); Catmull-Clark surface points are given on quads: give the point one level finer, where face " +
+         std::to_string(face) + " is the quads " + std::to_string(first) + ".." + std::to_string(first + n - 1) +
+         " (quad " + std::to_string(first) + " + i at its corner i, (u, v) = (0, 0) at that corner, (1, 0) at the "
+         "middle of the side towards corner i + 1, (0, 1) at the middle of the side towards corner i - 1, (1, 1) at "
+         "the face's centroid)";
+}
+
 FaceParameter LimitEvaluator::closest_point(const Vec3& p, int hint) const {
   const Impl& I = *impl_;
+  // A non-quad Catmull-Clark face has a limit patch too, and the closest point may lie on it:
+  // searching the quads only would silently return a farther point.
+  if (opt_.scheme == SchemeType::CatmullClark)
+    for (int f = 0; f < mesh_.n_faces(); ++f)
+      if (mesh_.face_size(f) != 4)
+        throw InvalidInput("closest point on the limit surface: " + non_quad_face(f) +
+                           " (every level from 1 on is all quads)");
   // Branch and bound over the faces: in order of the distance from p to their boxes (a lower
   // bound of the distance to their patch), until that bound exceeds the best distance found.
   // The hint face (a curve's previous sample) goes first, to find a good bound early.

@@ -14,8 +14,11 @@
 //
 // Parameterization of a face (its vertices in the mesh's order): a quad (Catmull-Clark) is
 // [0, 1]², vertices at (0,0), (1,0), (1,1), (0,1); a triangle (Loop) is u, v ≥ 0, u + v ≤ 1,
-// vertices at (0,0), (1,0), (0,1). Catmull-Clark faces that are not quads are not supported
-// here (levels ≥ 1 of a Catmull-Clark hierarchy are all quads).
+// vertices at (0,0), (1,0), (0,1). A Catmull-Clark face that is not a quad (an N-gon of a
+// base mesh) is refused with a message that names the same point one level finer, where the
+// N-gon is N quads (each with the parameterization above, from its corner of the N-gon to
+// the N-gon's centroid): that is how OpenSubdiv parameterizes N-gons too (its quad sub-faces),
+// and every level from 1 on is all quads, so the finer address is the unambiguous one.
 #pragma once
 
 #include <memory>
@@ -54,6 +57,9 @@ class LimitEvaluator {
   //! Empty when (face, u, v) can be evaluated; otherwise why not, with the valid range
   //! ("face 12 does not exist (0..99)", "u = 1.2 is outside [0, 1]", ...).
   std::string why_not(const FaceParameter& at) const;
+  //! Vertex v as a corner (u, v at the domain's corner) of an incident face the evaluator
+  //! takes (a quad under Catmull-Clark, a triangle under Loop); face -1 when there is none.
+  FaceParameter at_vertex(int v) const;
   //! \throw InvalidInput (the text of why_not) for a point that cannot be evaluated.
   LimitStencils stencils(const FaceParameter& at) const;
   //! Applies stencils to the mesh's positions (or to `positions`, same vertex count).
@@ -64,11 +70,13 @@ class LimitEvaluator {
   //! the exact limit in each face, faces taken in order of the distance to the (padded) box of
   //! the control points their patch depends on, until that lower bound exceeds the best
   //! distance found. `hint` (a face, or -1: a curve's previous sample) is tried first.
-  //! Not thread-safe (one face's surface is cached). \throw InvalidInput when the mesh has no
-  //! quad (Catmull-Clark) or triangle (Loop) face.
+  //! Not thread-safe (one face's surface is cached). \throw InvalidInput when a Catmull-Clark
+  //! mesh has a face that is not a quad (use a level from 1 on), or a Loop mesh no triangle.
   FaceParameter closest_point(const Vec3& p, int hint = -1) const;
 
  private:
+  //! Why an N-gon is refused, and where the point is one level finer.
+  std::string non_quad_face(int face) const;
   struct Impl;
   const SurfaceMesh& mesh_;
   SubdivisionOptions opt_;

@@ -44,7 +44,7 @@ void subdivide_positions_matrix_free(const SurfaceMesh& m, const SubdivisionOpti
   parallel_range(ne, [&](int e) {
     const int h = 2 * e, t = h ^ 1;
     const Row a = X.row(m.from_vertex(h)), b = X.row(m.to_vertex(h));
-    const double w = tagged ? edge_crease_weight(m, e) : (m.is_boundary_edge(e) ? 1.0 : 0.0);
+    const double w = tagged ? edge_crease_weight(m, e, opt.crease) : (m.is_boundary_edge(e) ? 1.0 : 0.0);
     Row smooth;
     if (w == 1.0) { Y.row(nv + e) = 0.5 * (a + b); return; }
     if (cc) smooth = 0.25 * (a + b + Y.row(fp + m.face(h)) + Y.row(fp + m.face(t)));
@@ -64,7 +64,7 @@ void subdivide_positions_matrix_free(const SurfaceMesh& m, const SubdivisionOpti
     }
     VertexMaskBlend blend;
     blend.smooth = 1.0;
-    if (tagged) blend = vertex_mask_blend(m, v, opt.boundary);
+    if (tagged) blend = vertex_mask_blend(m, v, opt.boundary, opt.crease);
     Row sharp = Row::Zero();
     if (blend.crease > 0.0) sharp += blend.crease * (0.75 * x + 0.125 * (X.row(blend.crease_a) + X.row(blend.crease_b)));
     if (blend.corner > 0.0) sharp += blend.corner * x;

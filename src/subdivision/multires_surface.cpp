@@ -152,6 +152,7 @@ void MultiresSurface::save(const std::string& vtm_path) const {
               {"scheme", to_string(opt_.scheme)},
               {"boundary", to_string(opt_.boundary)},
               {"weights", to_string(opt_.weights)},
+              {"crease_method", to_string(opt_.crease)},
               {"levels", levels()}},
              (p.parent_path() / (p.stem().string() + ".json")).string());
   write_vtm(named, vtm_path);
@@ -170,7 +171,9 @@ MultiresSurface::Stored MultiresSurface::stored(const std::string& vtm_path) {
       throw InvalidInput(vtm_path + ": its sidecar is not a fairshape hierarchy's");
     s.options = {scheme_from_string(meta.at("scheme").get<std::string>()),
                  boundary_from_string(meta.at("boundary").get<std::string>()),
-                 loop_weights_from_string(meta.at("weights").get<std::string>())};
+                 loop_weights_from_string(meta.at("weights").get<std::string>()),
+                 // hierarchies saved before the crease method was an option used uniform decay
+                 crease_method_from_string(meta.value("crease_method", std::string("uniform")))};
     s.levels = meta.at("levels").get<int>();
   } catch (const nlohmann::json::exception& e) {
     throw InvalidInput(vtm_path + ": the sidecar JSON lacks scheme options: " + e.what());

@@ -27,7 +27,7 @@ void parallel_range(int n, const F& body) {
 
 }  // namespace
 
-SurfaceMesh refine_topology(const SurfaceMesh& m, SchemeType scheme) {
+SurfaceMesh refine_topology(const SurfaceMesh& m, SchemeType scheme, CreaseMethod crease) {
   const int nv = m.n_vertices(), ne = m.n_edges(), nf = m.n_faces(), nh = m.n_halfedges();
   const bool cc = scheme == SchemeType::CatmullClark;
   if (!cc) require_triangles(m, "subdivide");
@@ -101,7 +101,7 @@ SurfaceMesh refine_topology(const SurfaceMesh& m, SchemeType scheme) {
   });
   if (cc) parallel_range(nf, [&](int f) { a.vertex_halfedge[nv + ne + f] = 2 * (2 * ne + corner[f]) + 1; });
   SurfaceMesh fine = SurfaceMesh::from_halfedge_arrays(MatrixX3::Zero(child_vertex_count(m, scheme), 3), std::move(a));
-  child_sharpness(m, fine);  // crease and corner tags decay into the child
+  child_sharpness(m, fine, crease);  // crease and corner tags decay into the child
   return fine;
 }
 

@@ -49,7 +49,7 @@ class RowBuilder {
   // semi-sharp ones below 1 a blend by their sharpness (crease_rules.h).
   void edge_point(int e) {
     const int h = 2 * e, t = h ^ 1, a = m_.from_vertex(h), b = m_.to_vertex(h);
-    const double w = edge_crease_weight(m_, e);
+    const double w = edge_crease_weight(m_, e, opt_.crease);
     if (w == 1.0) {
       scratch_.insert(scratch_.end(), {{a, 0.5}, {b, 0.5}});
       return;
@@ -71,7 +71,7 @@ class RowBuilder {
   void vertex_point(int v) {
     const int h0 = m_.halfedge(v);
     if (h0 < 0) { scratch_.emplace_back(v, 1.0); return; }
-    const VertexMaskBlend blend = vertex_mask_blend(m_, v, opt_.boundary);
+    const VertexMaskBlend blend = vertex_mask_blend(m_, v, opt_.boundary, opt_.crease);
     if (blend.crease > 0.0)
       scratch_.insert(scratch_.end(), {{v, 0.75 * blend.crease}, {blend.crease_a, 0.125 * blend.crease},
                                        {blend.crease_b, 0.125 * blend.crease}});

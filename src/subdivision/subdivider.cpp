@@ -13,7 +13,7 @@ SurfaceMesh subdivide_once(const SurfaceMesh& coarse, const SubdivisionOptions& 
   // Connectivity is shared bookkeeping (so vertex ids agree across back ends); the
   // arithmetic, S and its application, is each back end's own. The optimized back end
   // builds no operator unless the caller wants it.
-  SurfaceMesh fine = refine_topology(coarse, opt.scheme);
+  SurfaceMesh fine = refine_topology(coarse, opt.scheme, opt.crease);
   if (backend == Backend::Optimized && !S_out) {
     subdivide_positions_matrix_free(coarse, opt, coarse.positions(), fine.positions());
     return fine;

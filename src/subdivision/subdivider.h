@@ -49,8 +49,9 @@ std::vector<int> extraordinary_vertices(const SurfaceMesh& mesh, SchemeType sche
 PolygonList child_faces(const SurfaceMesh& coarse, SchemeType scheme);
 int child_vertex_count(const SurfaceMesh& coarse, SchemeType scheme);
 //! The fine mesh's connectivity (positions zero), built directly from the parent's half-edges
-//! in parallel; polygons() equals child_faces().
-SurfaceMesh refine_topology(const SurfaceMesh& coarse, SchemeType scheme);
+//! in parallel; polygons() equals child_faces(). Crease and corner sharpness decays into it by
+//! `crease` (crease_rules.h).
+SurfaceMesh refine_topology(const SurfaceMesh& coarse, SchemeType scheme, CreaseMethod crease);
 void require_triangles(const SurfaceMesh& mesh, const char* who);  // throws InvalidInput
 
 //! One step, positions included. \throw InvalidInput as refine().

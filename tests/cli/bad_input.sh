@@ -7,6 +7,14 @@ expect_error 2 "truncated_faces.off:.*file ends after 1 of 2 faces" -- "$FS" inf
 expect_error 2 "crease_missing_edge.obj:6: crease 0-2: the mesh has no edge between vertices 0 and 2" -- "$FS" info $M/crease_missing_edge.obj
 expect_error 2 "crease/corner tags would be lost" -- "$FS" run configs/smoke/cow_nose_pull.yaml --out "$SCRATCH/x" \
   --set input.mesh=tests/data/osd-shapes/tagged/catmark_cube_creases1.obj --set input.representation=catmull-clark --set input.remesh_base_faces=6
+# The crease method names its choices; a normal at a vertex on a sharp crease names each
+# side's surface point instead (constraint/crease_normals.h).
+CREASED=(--set input.mesh=tests/data/osd-shapes/tagged/catmark_inf_crease1.obj --set input.representation=catmull-clark --set input.levels=1)
+expect_error 2 "input.crease_method: unknown value 'sharp' (valid: uniform, chaikin)" -- "$FS" run configs/smoke/cow_nose_pull.yaml \
+  --out "$SCRATCH/x" "${CREASED[@]}" --set input.crease_method=sharp
+expect_error 2 "vertex 13 of level 0 is on a sharp crease.*side 1 (faces 7 8 9 10): at: {face: 7, uv: \[0, 0\], level: 0}" -- \
+  "$FS" run configs/smoke/cow_nose_pull.yaml --out "$SCRATCH/x" "${CREASED[@]}" --set input.edit_level=0 \
+  --set 'constraints=[{type: fixed, vertices: [0], level: 0}, {type: normal, vertices: [13], level: 0, normal: [0, 0, 1]}]'
 expect_error 2 "only .* bytes follow" -- "$FS" info $M/absurd_count.off
 expect_error 2 "valid: .obj, .off, .ply, .vtp" -- "$FS" convert data/cow.off "$SCRATCH/cow.stl"
 [ ! -e "$SCRATCH/cow.stl" ] || fail "a refused conversion left a file"

@@ -26,6 +26,8 @@ id=$(sed -n 2p "$S/a/runs.csv" | cut -d, -f1)
 "$FS" run $C --set input.mesh="$S/a/vtk/${id}_levels.vtm" "${EDIT[@]}" --out "$S/c" 2>/dev/null || fail "a run's own hierarchy as input"
 expect_error 2 "input.levels: '3', but .* is a saved hierarchy with '2'" -- \
   "$FS" run $C --set input.mesh="$S/cow.vtm" "${EDIT[@]}" --set input.levels=3 --dry-run
+expect_error 2 "input.crease_method: 'chaikin', but .* is a saved hierarchy with 'uniform'" -- \
+  "$FS" run $C --set input.mesh="$S/cow.vtm" "${EDIT[@]}" --set input.crease_method=chaikin --dry-run
 expect_error 2 "input.representation: 'loop', but" -- \
   "$FS" run $C --set input.mesh="$S/cow.vtm" --set input.representation=loop --dry-run
 expect_error 2 "remeshed already" -- \

@@ -76,6 +76,8 @@ std::unique_ptr<Osd::Far::TopologyRefiner> osd_refiner(const SurfaceMesh& m, con
   Osd::Sdc::Options o;
   o.SetVtxBoundaryInterpolation(opt.boundary == BoundaryMode::EdgeOnly ? Osd::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
                                                                        : Osd::Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
+  o.SetCreasingMethod(opt.crease == CreaseMethod::Chaikin ? Osd::Sdc::Options::CREASE_CHAIKIN
+                                                          : Osd::Sdc::Options::CREASE_UNIFORM);
   const auto type = opt.scheme == SchemeType::Loop ? Osd::Sdc::SCHEME_LOOP : Osd::Sdc::SCHEME_CATMARK;
   std::unique_ptr<Osd::Far::TopologyRefiner> r(Factory::Create(d, Factory::Options(type, o)));
   REQUIRE(r);
@@ -298,10 +300,10 @@ TEST_CASE("OpenSubdiv regression shapes refine exactly like OpenSubdiv", "[subdi
 TEST_CASE("crease- and corner-tagged regression shapes refine exactly like OpenSubdiv", "[subdivision][opensubdiv][crease]") {
   // The tags go to both sides (ours through the OBJ reader, OpenSubdiv's through the
   // descriptor); every other tag is applied on neither side, as above. Both back ends and
-  // both boundary modes, levels 1 to 3, every level to 1e-12 of the model size. fairshape
-  // has OpenSubdiv's default crease method (uniform) only: the three shapes tagged
-  // `creasemethod chaikin` (catmark_chaikin1/2, loop_chaikin1) are compared with uniform
-  // decay on both sides, as their `hole` and `interpolateboundary` tags are not applied.
+  // both boundary modes, levels 1 to 3, every level to 1e-12 of the model size, with the
+  // uniform crease method (OpenSubdiv's default; the `creasemethod chaikin` tags of
+  // catmark_chaikin1/2 and loop_chaikin1 are not applied here, as `hole` and
+  // `interpolateboundary` are not: the next test runs Chaikin's method on every shape).
   int catmark = 0, loop = 0;
   double worst = 0;
   for (const auto& entry : fs::directory_iterator(test::source_path("tests/data/osd-shapes/tagged"))) {
@@ -324,6 +326,56 @@ TEST_CASE("crease- and corner-tagged regression shapes refine exactly like OpenS
             << " Loop; largest vertex distance " << worst << " of the model size\n";
   CHECK(catmark == 38);
   CHECK(loop == 11);
+  CHECK(worst <= 1e-12);
+}
+
+namespace {
+
+bool has_semi_sharp(const SurfaceMesh& m) {
+  for (float s : m.edge_sharpness_array())
+    if (s > 0.0f && s < kInfiniteSharpness) return true;
+  for (float s : m.vertex_sharpness_array())
+    if (s > 0.0f && s < kInfiniteSharpness) return true;
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("tagged shapes with semi-sharp creases refine like OpenSubdiv's Chaikin crease method",
+          "[subdivision][opensubdiv][crease][chaikin]") {
+  // Sdc::Options::CREASE_CHAIKIN on both sides: every shape with a semi-sharp tag (the
+  // method changes nothing else), both boundary modes, both back ends (matrix-free and the
+  // reference masks; the stored-stencil back end is compared with them in crease_test),
+  // levels 1 to 3. Also checks that the method matters: on the shapes whose crease
+  // sharpness varies at a vertex, Chaikin's surface differs from the uniform one.
+  int shapes = 0, differing = 0;
+  double worst = 0;
+  for (const auto& entry : fs::directory_iterator(test::source_path("tests/data/osd-shapes/tagged"))) {
+    if (entry.path().extension() != ".obj") continue;
+    const std::string name = entry.path().stem().string();
+    const SurfaceMesh base = read_mesh(entry.path().string());
+    if (!has_semi_sharp(base)) continue;
+    INFO(name);
+    SubdivisionOptions opt;
+    opt.scheme = name.rfind("loop", 0) == 0 ? SchemeType::Loop : SchemeType::CatmullClark;
+    opt.crease = CreaseMethod::Chaikin;
+    for (BoundaryMode b : {BoundaryMode::EdgeOnly, BoundaryMode::EdgeAndCorner})
+      for (Backend backend : {Backend::Optimized, Backend::Reference}) {
+        INFO(to_string(b) << (backend == Backend::Reference ? " reference" : " optimized"));
+        opt.boundary = b;
+        worst = std::max(worst, compare_with_osd(base, opt, 3, backend));
+      }
+    SubdivisionOptions uniform = opt;
+    uniform.crease = CreaseMethod::Uniform;
+    const MatrixX3 a = refine_uniform(base, opt, 3, Backend::Optimized).back().positions();
+    const MatrixX3 b = refine_uniform(base, uniform, 3, Backend::Optimized).back().positions();
+    if ((a - b).cwiseAbs().maxCoeff() > 1e-6 * model_size(base.positions())) ++differing;
+    ++shapes;
+  }
+  std::cout << "Chaikin crease method: " << shapes << " tagged shapes with semi-sharp creases matched, " << differing
+            << " of them differ from uniform decay; largest vertex distance " << worst << " of the model size\n";
+  CHECK(shapes >= 20);
+  CHECK(differing >= 3);  // at least the three shapes OpenSubdiv made for it (catmark_chaikin1/2, loop_chaikin1)
   CHECK(worst <= 1e-12);
 }
 
@@ -376,15 +428,22 @@ TEST_CASE("limit positions and normals on tagged shapes match OpenSubdiv's", "[s
   // interior crease vertex OpenSubdiv gives one side's normal and fairshape the bisector of
   // both sides, so the check there is that ours is normal to OpenSubdiv's crease tangent
   // and on the same side of the surface; corners have no tangent plane and no check.
-  int shapes = 0, crease_vertices = 0, corner_vertices = 0;
+  // Both crease methods (Chaikin's on the shapes with semi-sharp tags).
+  int shapes = 0, crease_vertices = 0, corner_vertices = 0, chaikin_shapes = 0;
   for (const auto& entry : fs::directory_iterator(test::source_path("tests/data/osd-shapes/tagged"))) {
     if (entry.path().extension() != ".obj") continue;
     const std::string name = entry.path().stem().string();
     const SurfaceMesh mesh = read_mesh(entry.path().string());
     const SchemeType scheme = name.rfind("loop", 0) == 0 ? SchemeType::Loop : SchemeType::CatmullClark;
+    std::vector<CreaseMethod> methods{CreaseMethod::Uniform};
+    if (has_semi_sharp(mesh)) {
+      methods.push_back(CreaseMethod::Chaikin);
+      ++chaikin_shapes;
+    }
+    for (CreaseMethod method : methods)
     for (BoundaryMode b : {BoundaryMode::EdgeOnly, BoundaryMode::EdgeAndCorner}) {
-      INFO(name << " " << to_string(b));
-      const SubdivisionOptions opt{scheme, b, LoopWeights::Loop};
+      INFO(name << " " << to_string(b) << " " << to_string(method));
+      const SubdivisionOptions opt{scheme, b, LoopWeights::Loop, method};
       MatrixX3 osd_limit, osd_normals, osd_t1;
       const auto osd = osd_refine(mesh, opt, 1, &osd_limit, &osd_normals, &osd_t1);
       const SurfaceMesh fine = subdivide_once(mesh, opt, Backend::Optimized);
@@ -418,9 +477,10 @@ TEST_CASE("limit positions and normals on tagged shapes match OpenSubdiv's", "[s
     }
     ++shapes;
   }
-  std::cout << "limit on tagged shapes: " << shapes << " shapes, " << crease_vertices << " interior crease and "
-            << corner_vertices << " corner vertices checked\n";
+  std::cout << "limit on tagged shapes: " << shapes << " shapes (" << chaikin_shapes << " also with Chaikin's method), "
+            << crease_vertices << " interior crease and " << corner_vertices << " corner vertices checked\n";
   CHECK(shapes == 49);
+  CHECK(chaikin_shapes >= 20);
   CHECK(crease_vertices > 0);
   CHECK(corner_vertices > 0);
 }

@@ -209,6 +209,38 @@ TEST_CASE("semi-sharp creases decay by one per level and interpolate between smo
   }
 }
 
+TEST_CASE("Chaikin's crease method averages semi-sharp edges at a vertex before the decay", "[subdivision][crease][chaikin]") {
+  // Edges 0-1 (sharpness 2) and 1-2 (sharpness 1) meet at vertex 1; vertex 0 and 2 have no
+  // other semi-sharp edge. Chaikin: at vertex 1, 0-1 becomes 3/4 2 + 1/4 1 - 1 = 0.75 and
+  // 1-2 becomes 3/4 1 + 1/4 2 - 1 = 0.25; at their other ends they decay by one (1 and 0).
+  // Uniform: 1 and 0 on both halves. An infinitely sharp edge at the vertex takes no part.
+  const SurfaceMesh m = cube("t crease 2/1/0 0 1 2\nt crease 2/1/0 1 2 1\nt crease 2/1/0 1 5 10\n");
+  const int e01 = m.find_edge(0, 1), e12 = m.find_edge(1, 2);
+  CHECK(child_edge_sharpness(m, e01, 1, CreaseMethod::Chaikin) == 0.75f);
+  CHECK(child_edge_sharpness(m, e12, 1, CreaseMethod::Chaikin) == 0.25f);
+  CHECK(child_edge_sharpness(m, e01, 0, CreaseMethod::Chaikin) == 1.0f);
+  CHECK(child_edge_sharpness(m, e12, 2, CreaseMethod::Chaikin) == 0.0f);
+  CHECK(child_edge_sharpness(m, e01, 1, CreaseMethod::Uniform) == 1.0f);
+  CHECK(child_edge_sharpness(m, m.find_edge(1, 5), 1, CreaseMethod::Chaikin) == kInfiniteSharpness);
+  // The child mesh carries the two halves separately (half 2e at from_vertex(2e)).
+  SubdivisionOptions chaikin;
+  chaikin.crease = CreaseMethod::Chaikin;
+  const SurfaceMesh l1 = subdivide_once(m, chaikin, Backend::Optimized);
+  const bool forward = m.from_vertex(2 * e01) == 0;
+  CHECK(l1.edge_sharpness(2 * e01 + (forward ? 0 : 1)) == 1.0f);
+  CHECK(l1.edge_sharpness(2 * e01 + (forward ? 1 : 0)) == 0.75f);
+  // Edge 1-2 ends (one half smooth) from sharpness 1: its edge point is the midpoint still.
+  CHECK(edge_crease_weight(m, e12, CreaseMethod::Chaikin) == 1.0);
+  // The method changes the surface (from level 2 on, where the child sharpness is used) only
+  // where semi-sharp edges meet.
+  auto level2 = [](const SurfaceMesh& mesh, const SubdivisionOptions& opt) {
+    return refine_uniform(mesh, opt, 2, Backend::Optimized).back().positions();
+  };
+  CHECK((level2(m, chaikin) - level2(m, {})).cwiseAbs().maxCoeff() > 1e-3);
+  const SurfaceMesh lone = cube("t crease 2/1/0 0 1 2.5\n");
+  CHECK((level2(lone, chaikin) - level2(lone, {})).cwiseAbs().maxCoeff() == 0.0);
+}
+
 TEST_CASE("fractional sharpness blends the smooth and sharp rules linearly", "[subdivision][crease]") {
   // Below 1, an edge point is (1 - s) smooth + s midpoint, and a corner vertex point
   // (1 - s) smooth + s corner: the level-1 points are affine in s.
@@ -232,12 +264,14 @@ TEST_CASE("fractional sharpness blends the smooth and sharp rules linearly", "[s
 
 TEST_CASE("the back ends agree on tagged meshes and untagged meshes are unchanged", "[subdivision][crease]") {
   for (const char* name : {"catmark_cubes_semisharp", "catmark_pyramid_creases1", "catmark_tent_creases1",
-                           "catmark_val2_interior", "loop_cubes_semisharp", "loop_triangle_edgeonly"}) {
+                           "catmark_val2_interior", "catmark_chaikin1", "catmark_chaikin2", "loop_cubes_semisharp",
+                           "loop_triangle_edgeonly", "loop_chaikin1"}) {
     const SurfaceMesh m = read_mesh(test::source_path(std::string("tests/data/osd-shapes/tagged/") + name + ".obj"));
     const SchemeType scheme = std::string(name).rfind("loop", 0) == 0 ? SchemeType::Loop : SchemeType::CatmullClark;
+    for (CreaseMethod method : {CreaseMethod::Uniform, CreaseMethod::Chaikin})
     for (BoundaryMode b : {BoundaryMode::EdgeOnly, BoundaryMode::EdgeAndCorner}) {
-      INFO(name << " " << to_string(b));
-      const SubdivisionOptions opt{scheme, b, LoopWeights::Loop};
+      INFO(name << " " << to_string(b) << " " << to_string(method));
+      const SubdivisionOptions opt{scheme, b, LoopWeights::Loop, method};
       const SparseMatrix ref = make_subdivider(Backend::Reference)->refine(m, opt).S;
       const SparseMatrix fast = make_subdivider(Backend::Optimized)->refine(m, opt).S;
       CHECK((ref - fast).norm() <= 1e-14 * ref.norm());

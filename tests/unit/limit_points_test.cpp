@@ -9,6 +9,7 @@
 
 #include "constraint/curve_limit_points.h"
 #include "constraint/surface_points.h"
+#include "core/error.h"
 #include "design/edit_solve.h"
 #include "energy/local_quadratic.h"
 #include "experiment/components.h"
@@ -330,4 +331,39 @@ TEST_CASE("a curve on the finest level of a remeshed cow is met on the limit sur
     const bool said = s.summary.message.find("least-squares fit") != std::string::npos;
     CHECK((worst <= 1e-8 * diagonal || (edit < 2 && said)));
   }
+}
+
+TEST_CASE("an N-gon of a Catmull-Clark base is refused, naming its quads one level finer", "[limit_points]") {
+  // A pentagon between quads: level 0 has a 5-gon, level 1 only quads. The message gives the
+  // level-1 quads (0 + i at corner i); there (0, 0) is corner i's limit and (1, 1) the limit
+  // of the pentagon's centroid, the same point from all five quads.
+  MatrixX3 V(10, 3);
+  PolygonList F{{0, 1, 2, 3, 4}};
+  for (int i = 0; i < 5; ++i) {
+    V.row(i) << std::cos(2 * M_PI * i / 5), std::sin(2 * M_PI * i / 5), 0.1 * (i % 2);
+    V.row(5 + i) << 2 * std::cos(2 * M_PI * i / 5), 2 * std::sin(2 * M_PI * i / 5), -0.3;
+    F.push_back({i, 5 + i, 5 + (i + 1) % 5, (i + 1) % 5});  // quads around the pentagon
+  }
+  const MultiresSurface h(SurfaceMesh::from_polygons(V, F), {}, 1, Backend::Optimized);
+  const LimitEvaluator coarse(h.mesh(0), h.options());
+  const std::string why = coarse.why_not({0, 0.5, 0.5});
+  INFO(why);
+  CHECK_THAT(why, Catch::Matchers::Contains("face 0 is a 5-gon (valence 5)") && Catch::Matchers::Contains("quads 0..4") &&
+                      Catch::Matchers::Contains("one level finer"));
+  CHECK(coarse.why_not({1, 0.5, 0.5}).empty());  // a quad of the same level is fine
+  CHECK_THROWS_WITH(coarse.closest_point(Vec3::Zero()), Catch::Matchers::Contains("5-gon"));
+  const LimitEvaluator fine(h.mesh(1), h.options());
+  const MatrixX3 L = limit_positions(h.mesh(0), h.options());
+  const Vec3 centre = fine.position({0, 1, 1});
+  for (int i = 0; i < 5; ++i) {
+    CHECK((fine.position({i, 0, 0}) - L.row(i).transpose()).norm() <= 1e-12);
+    CHECK((fine.position({i, 1, 1}) - centre).norm() <= 1e-12);
+  }
+  // Through the config: the error names the key, the level and the finer address.
+  const LevelMeshes mesh_at = [&h](int l) -> const SurfaceMesh& { return h.mesh(l); };
+  DesignConstraints dc;
+  Config cfg(YAML::Load("{at: {face: 0, uv: [0.2, 0.2], level: 0}, offset: [0, 0, 1]}"), "constraints[1]");
+  CHECK_THROWS_WITH(
+      components().constraints.create("position", Backend::Optimized, cfg)->add_on_surface(mesh_at, 1, h.options(), dc),
+      Catch::Matchers::Contains("constraints[1].at: on level 0: face 0 is a 5-gon"));
 }

@@ -300,7 +300,8 @@ const MultiresSurface& RunCache::hierarchy(const SurfaceEditSpec& spec, double* 
   const std::string key = spec.mesh_path + "|" +
                           (subdivided ? std::string(to_string(spec.subdivision().scheme)) : std::string("mesh")) + "|" +
                           std::to_string(spec.levels) + "|" + std::string(to_string(spec.boundary)) + "|" +
-                          std::string(to_string(spec.loop_weights)) + "|" + std::to_string(spec.remesh_base_faces) + (spec.remesh_triangle_base ? "t" : "") +
+                          std::string(to_string(spec.loop_weights)) + "|" + std::string(to_string(spec.crease_method)) + "|" +
+                          std::to_string(spec.remesh_base_faces) + (spec.remesh_triangle_base ? "t" : "") +
                           "|" + std::string(to_string(spec.implementation)) + "|" + std::to_string(spec.crease_angle);
   auto it = hierarchies_.find(key);
   if (it == hierarchies_.end() && fs::path(spec.mesh_path).extension() == ".vtm") {  // saved: its details kept

@@ -43,7 +43,8 @@ Config SurfaceEditSpec::qp_config() const {
 
 SubdivisionOptions SurfaceEditSpec::subdivision() const {
   FAIRSHAPE_ASSERT(representation != Representation::Mesh, "the mesh representation has no subdivision");
-  return {representation == Representation::Loop ? SchemeType::Loop : SchemeType::CatmullClark, boundary, loop_weights};
+  return {representation == Representation::Loop ? SchemeType::Loop : SchemeType::CatmullClark, boundary, loop_weights,
+          crease_method};
 }
 
 namespace {
@@ -273,12 +274,15 @@ void adopt_saved_hierarchy(Config& in, SurfaceEditSpec& s) {
     clash("boundary", to_string(s.boundary), to_string(st.options.boundary));
   if (in.has("weights") && s.loop_weights != st.options.weights)
     clash("weights", to_string(s.loop_weights), to_string(st.options.weights));
+  if (in.has("crease_method") && s.crease_method != st.options.crease)
+    clash("crease_method", to_string(s.crease_method), to_string(st.options.crease));
   if (s.remesh_base_faces > 0)
     throw InvalidConfig(in.key_path("remesh_base_faces") + ": " + s.mesh_path + " is a saved hierarchy, remeshed already");
   s.representation = r;
   s.levels = st.levels;
   s.boundary = st.options.boundary;
   s.loop_weights = st.options.weights;
+  s.crease_method = st.options.crease;
 }
 
 }  // namespace
@@ -296,6 +300,9 @@ SurfaceEditSpec SurfaceEditSpec::from_config(const YAML::Node& run_config, const
   s.levels = in.get_int("levels", 0, 0, 8, "uniform subdivision steps; the problem lives on the finest level");
   s.boundary = in.get_enum("boundary", BoundaryMode::EdgeOnly, boundary_names(), "subdivision boundary rule");
   s.loop_weights = in.get_enum("weights", LoopWeights::Loop, loop_weight_names(), "Loop vertex weights");
+  s.crease_method = in.get_enum("crease_method", CreaseMethod::Uniform, crease_method_names(),
+                                "how semi-sharp crease sharpness decays per level (OpenSubdiv's creasing "
+                                "method): uniform (minus 1) or chaikin (averaged along the crease first)");
   s.remesh_base_faces = in.get_int("remesh_base_faces", 0, 0, 10000000,
                                    "remesh the input into a hierarchy with details from about this many base faces "
                                    "(0: the input mesh is the base, zero details)");
@@ -310,6 +317,7 @@ SurfaceEditSpec SurfaceEditSpec::from_config(const YAML::Node& run_config, const
   if (std::filesystem::path(s.mesh_path).extension() == ".vtm") adopt_saved_hierarchy(in, s);
   s.note_unused(in, "boundary", s.representation != Representation::Mesh);
   s.note_unused(in, "weights", s.representation == Representation::Loop);
+  s.note_unused(in, "crease_method", s.representation != Representation::Mesh);
   if (s.edit_level > s.levels)
     throw InvalidConfig(in.key_path("edit_level") + ": " + std::to_string(s.edit_level) + " is above the finest level " +
                         std::to_string(s.levels));

@@ -86,6 +86,7 @@ struct SurfaceEditSpec : RunBasics {
   double constraint_tolerance = kDefaultConstraintTolerance;
   BoundaryMode boundary = BoundaryMode::EdgeOnly;
   LoopWeights loop_weights = LoopWeights::Loop;
+  CreaseMethod crease_method = CreaseMethod::Uniform;  // how semi-sharp creases decay
   //! The subdivision of a catmull-clark or loop representation.
   SubdivisionOptions subdivision() const;
   std::vector<EnergyTerm> energies;

@@ -1,5 +1,6 @@
 #include "design/rotation_aware_edit.h"
 
+#include <algorithm>
 #include <memory>
 #include <sstream>
 
@@ -75,6 +76,7 @@ RotationAwareSolution solve_rotation_aware(const EditProblem& p, const std::vect
   // its E_R is below the plain round's (the safeguard of Peng et al., "Anderson acceleration for
   // geometry optimization and physics simulation"). Every iterate is an affine combination of
   // constrained solutions, so it meets the (linear) constraints.
+  const double model_size = rest.positions().norm();
   AndersonAcceleration accelerate(6);
   RotationFit how = RotationFit::TangentFrame;
   Eigen::MatrixXd x = out.solution.delta;
@@ -94,7 +96,10 @@ RotationAwareSolution solve_rotation_aware(const EditProblem& p, const std::vect
       break;
     }
     iterations += next.summary.iterations;
-    const double size = next.delta.norm();
+    // Relative to the deformation, but not below rounding of the model's size: an edit whose
+    // answer is no motion at all (a straight curve turned about itself) would otherwise
+    // compare noise with noise and never settle (measured on an open cylinder).
+    const double size = std::max(next.delta.norm(), 1e-12 * model_size);
     out.last_change = size > 0 ? (next.delta - x).norm() / size : 0.0;
     out.rounds = round;
     frame_rounds += how == RotationFit::TangentFrame;

@@ -74,7 +74,8 @@ void refuse_normal_on_crease(const SurfaceMesh& m, const SubdivisionOptions& rul
      << ". Give the normal of one side as a surface point at this vertex instead (or at a point off the crease):";
   int i = 0;
   for (const auto& side : sides(m, v)) {
-    os << (i ? ";" : "") << " side " << ++i << " (faces";
+    ++i;
+    os << (i > 1 ? ";" : "") << " side " << i << " (faces";
     for (int f : side) os << " " << f;
     const std::string at = address(m, rules, level, v, side.front(), has_finer_level);
     os << ")" << (at.empty() ? " has no quad to address the vertex on (add a level)" : ": " + at);

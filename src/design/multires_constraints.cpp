@@ -24,7 +24,11 @@ void check_edit_level(const MultiresSurface& h, int l) {
 void check_place(const MultiresSurface& h, int l, int level, int vertex, const std::string& label) {
   if (level < l || level > h.levels())
     throw InvalidInput(label + ": level " + std::to_string(level) + " is " +
-                       (level < l ? "coarser than the edit level " + std::to_string(l)
+                       (level < l ? "coarser than the edit level " + std::to_string(l) +
+                                        ": rows propagate only to coarser levels, so give it influence_level: k with "
+                                        "k <= " + std::to_string(level) +
+                                        " (its own region on level k, Boier-Martin et al. 4.2) or place it on a level >= " +
+                                        std::to_string(l)
                                   : "not in the hierarchy (levels 0.." + std::to_string(h.levels()) + ")"));
   if (vertex < 0 || vertex >= h.mesh(level).n_vertices())
     throw InvalidInput(label + ": vertex " + std::to_string(vertex) + " does not exist on level " +

@@ -50,7 +50,17 @@ expect_error 2 "cannot be combined" -- "$FS" run $C --out "$S/bad3" "${BASE[@]}"
   --set "constraints=[$FIX, {$NOSE, influence_level: 0}]"
 expect_error 2 "influence_rings" -- "$FS" run $C --out "$S/bad4" "${BASE[@]}" \
   --set "constraints=[$FIX, {$NOSE, influence_rings: -5}]"
+# Given on a coarse level: refused at the edit level, with the way out named; solved on its own level.
+expect_error 2 "level 0 is coarser than the edit level 2: .*give it influence_level: k with k <= 0" -- \
+  "$FS" run $C --out "$S/bad5" "${BASE[@]}" --set "constraints=[$FIX, {$NOSE, level: 0}]"
 [ ! -e "$S/bad1/runs.csv" ] || fail "a refused sweep wrote runs.csv"
+edit given0 "{$NOSE, level: 0, influence_level: 0}"
+$PY - "$S" <<'PYEOF'
+import csv, sys
+r = list(csv.DictReader(open(f"{sys.argv[1]}/given0/runs.csv")))[0]
+assert r["termination"] == "converged" and float(r["constraint_violation"]) < 1e-9, r
+assert float(r["outside_region_move"]) == 0.0, r
+PYEOF
 
 # Rotation-aware details: the nose's normal turned 45 degrees (remeshed cow, details). Whether
 # the rounds settle depends on the model (papers/boier-martin/README.md); what is tested is

@@ -6,7 +6,7 @@ namespace fairshape {
 
 const std::vector<std::string>& termination_names() {
   static const std::vector<std::string> names{"converged",         "energy_stalled", "schedule_completed",
-                                              "max_iterations",    "constraints_unmet", "numerical_failure",
+                                              "max_iterations",    "constraints_unmet", "ill_conditioned",   "numerical_failure",
                                               "invalid_input",     "output_failed",     "crashed"};
   return names;
 }

@@ -18,6 +18,9 @@ namespace fairshape {
 //   max_iterations     — a tolerance was asked and the iteration cap came first;
 //   constraints_unmet  — the solve ended, but the result misses its constraints by more than
 //                        the tolerance asked (measured on the result, not on the linear rows);
+//   ill_conditioned    — the constraints are met, but they are nearly dependent with
+//                        conflicting targets, so the answer is dominated by the conflict
+//                        (an exact solve moving a vertex far beyond every handle);
 //   numerical_failure  — diverged, singular, non-finite, or the result fails its own checks;
 //   invalid_input      — the input (files, constraints) made the run impossible;
 //   output_failed      — the result could not be written (disk full, permissions);
@@ -28,6 +31,7 @@ enum class Termination {
   ScheduleCompleted,
   MaxIterations,
   ConstraintsUnmet,
+  IllConditioned,
   NumericalFailure,
   InvalidInput,
   OutputFailed,

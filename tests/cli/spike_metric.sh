@@ -1,7 +1,9 @@
 # The default constraint mode is exact, and every surface edit reports spike_ratio (the
 # largest finest-level displacement over the largest handle): near 1 under kkt for a limit
 # handle and for a normal target beside a handle; paper mode's minimum-norm constrained values
-# spike on the same edits, and its rows say so.
+# spike on the same edits, and its rows say so. Two limit points 1e-4 apart pulled in opposite
+# directions: the exact answer is met to rounding but is the conflict's (a spike 1e5 times the
+# handles): ill_conditioned, a failure (exit 3), never converged.
 source "$(dirname "$0")/lib.sh"
 S="$SCRATCH"
 C=configs/smoke/cow_nose_pull.yaml
@@ -17,9 +19,18 @@ edit limit_default "{formulation: displacement}" "$LIMIT"
 edit normal_default "{formulation: displacement}" "$NORMAL"
 edit limit_paper "{constraint_mode: paper}" "$LIMIT"
 edit normal_paper "{constraint_mode: paper}" "$NORMAL"
+CONFLICT='{type: position, at: {face: 900, uv: [0.5, 0.5]}, offset: [0.0, 0.02, 0.0]}, {type: position, at: {face: 900, uv: [0.5, 0.5001]}, offset: [0.0, -0.02, 0.0]}'
+rc=0
+"$FS" run $C --out "$S/conflict" --set input.representation=catmull-clark --set input.levels=2 \
+  --set 'energy=[{type: detail_preserving}]' --set 'problem={formulation: displacement}' \
+  --set "constraints=[$FIX, $CONFLICT]" >/dev/null 2>&1 || rc=$?
+[ "$rc" -eq 3 ] || fail "conflicting rows: exit $rc, expected 3 (a failed run)"
 $PY - "$S" <<'PYEOF'
 import csv, sys
 d = sys.argv[1]
+c = list(csv.DictReader(open(f"{d}/conflict/runs.csv")))[0]
+assert c["termination"] == "ill_conditioned", (c["termination"], c["message"])
+assert float(c["spike_ratio"]) > 1e3 and "ill-conditioned constraints" in c["message"], c
 row = lambda name: list(csv.DictReader(open(f"{d}/{name}/runs.csv")))[0]
 for case in ("limit", "normal"):
     exact, paper = row(f"{case}_default"), row(f"{case}_paper")

@@ -158,7 +158,7 @@ constexpr double kSpikeRatio = 1.5;
 // In an exact solve of an energy of the deformation the constrained points pull the rest along,
 // so no vertex moves much beyond the handles (measured: at most 2.4 over the cow's figures and
 // six models it never saw); this many times more is the answer of conflicting rows (372,578 on
-// a curve crowding along an open patch's boundary).
+// curve along an open patch's boundary whose long boundary edges reach into a fixed region).
 constexpr double kIllConditionedRatio = 10.0;
 
 // spike_ratio: the largest displacement of an edit-level vertex over the largest handle
@@ -187,7 +187,7 @@ void report_spike(const SurfaceEditSpec& spec, const DesignConstraints& placed, 
     row["termination"] = std::string(to_string(Termination::IllConditioned));
     say("ill-conditioned constraints: the exact answer moves a vertex " + num(ratio) +
         " times the largest handle, so nearly dependent rows have conflicting targets (constrained points "
-        "close together that are asked to move apart; a curve whose samples crowd)");
+        "close together asked to move apart, or a handle whose surface point depends mostly on fixed vertices)");
   }
 }
 

@@ -156,8 +156,8 @@ void write_ladder(const SurfaceEditSpec& spec, const RunOutputs& out, const Mult
 // A vertex moving this many times the largest handle is a spike.
 constexpr double kSpikeRatio = 1.5;
 // In an exact solve of an energy of the deformation the constrained points pull the rest along,
-// so no vertex moves much beyond the handles (measured: at most 2.4 over the cow's figures and
-// six models it never saw); this many times more is the answer of conflicting rows (372,578 on
+// so no vertex moves much beyond the handles (measured: at most 5.0 over the cow's figures and
+// six other models, mushroom the highest); ten times is the answer of conflicting rows (372,578 on a
 // curve along an open patch's boundary whose long boundary edges reach into a fixed region).
 constexpr double kIllConditionedRatio = 10.0;
 

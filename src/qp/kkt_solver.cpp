@@ -18,6 +18,7 @@
 #include <random>
 
 #include "core/error.h"
+#include "core/message_format.h"
 #include "core/timer.h"
 #include "problem/least_squares.h"
 #include "qp/kkt_solver.h"
@@ -99,8 +100,8 @@ Eigen::MatrixXd refined_solve(const LuFactor& lu, const SparseMatrix& K, const E
 }
 
 std::string inconsistent_message(double residual) {
-  return "inconsistent constraints (or directions weaker than " + std::to_string(kRowDependenceTolerance) +
-         " of the strongest): least-squares fit, residual " + std::to_string(residual);
+  return "inconsistent constraints (or directions weaker than " + sci(kRowDependenceTolerance) +
+         " of the strongest): least-squares fit, residual " + sci(residual);
 }
 
 }  // namespace

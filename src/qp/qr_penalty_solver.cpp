@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/message_format.h"
 #include "core/timer.h"
 #include "problem/constrained_system.h"
 
@@ -130,7 +131,7 @@ QpReport QrPenaltySolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd&
   out.summary.termination = out.p.allFinite() ? Termination::Converged : Termination::NumericalFailure;
   out.summary.iterations = 1;  // one direct solve
   if (condition_ > 1e12)
-    out.summary.message = "warning: [mu A; K] is badly conditioned (estimate " + std::to_string(condition_) +
+    out.summary.message = "warning: [mu A; K] is badly conditioned (estimate " + sci(condition_) +
                   "): mu is too large for double precision";
   return out;
 }

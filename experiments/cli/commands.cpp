@@ -182,7 +182,10 @@ int cmd_remesh(const RemeshArgs& a) {
             << r.shortest_at.transpose() << ")"
             << "\nvalence, base       " << to_string(r.base_valence) << "\nvalence, finest     "
             << to_string(r.fine_valence) << "\nclosest-point fallback " << r.unprojected
-            << " finest vertices (no facing surface along the normal within reach)\nremesh time         " << r.seconds
+            << " finest vertices (no facing surface along the normal within reach)\noff the surface     "
+            << r.off_surface << " finest vertices, at most " << pct(r.off_surface_max)
+            << "% of the diagonal (held back where landing would crowd or stretch their edges)"
+            << "\nremesh time         " << r.seconds
             << " s\n";
   // A missed target is not an error (the hierarchy is usable, and the numbers are above), but
   // it must not pass silently.
@@ -212,6 +215,8 @@ int cmd_remesh(const RemeshArgs& a) {
   j["shortest_edge_at"] = {r.shortest_at.x(), r.shortest_at.y(), r.shortest_at.z()};
   j["longest_edge_at"] = {r.longest_at.x(), r.longest_at.y(), r.longest_at.z()};
   j["unprojected_vertices"] = r.unprojected;
+  j["off_surface_vertices"] = r.off_surface;
+  j["off_surface_max"] = r.off_surface_max;
   auto histogram = [](const std::map<int, int>& m) {
     nlohmann::json o = nlohmann::json::object();
     for (const auto& [valence, count] : m) o[std::to_string(valence)] = count;

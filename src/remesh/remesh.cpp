@@ -183,6 +183,9 @@ MultiresSurface remesh_once(const SurfaceMesh& dense, const RemeshOptions& opt, 
 
   const SurfaceMesh& fine = h.mesh(opt.levels);
   r.bbox_diagonal = bounding_box_diagonal(dense);
+  const Eigen::VectorXd off = (fine.positions() - on_dense.closest_points(fine.positions())).rowwise().norm();
+  r.off_surface = static_cast<int>((off.array() > 1e-9 * r.bbox_diagonal).count());
+  r.off_surface_max = off.size() ? off.maxCoeff() : 0.0;
   r.sample_spacing = opt.sample_spacing * r.bbox_diagonal;
   const ClosestPointQuery on_fine(fine);
   const SurfaceDistance d = hausdorff_distance(dense, on_dense, fine, on_fine, r.sample_spacing);

@@ -87,6 +87,10 @@ struct RemeshReport {
   double sample_spacing = 0;  // of the Hausdorff samples: the true value is within this of `hausdorff`
   double shortest_edge = 0, longest_edge = 0;  // of the finest level
   Vec3 shortest_at = Vec3::Zero(), longest_at = Vec3::Zero();  // their midpoints, to look at
+  // Finest vertices left off the dense surface (keep_even_moves held them back where landing
+  // would have crowded or stretched their edges), and the farthest one's distance.
+  int off_surface = 0;
+  double off_surface_max = 0;
   int unprojected = 0;  // finest vertices with no facing dense surface point within reach (left off it)
   std::map<int, int> base_valence, fine_valence;  // valence -> vertex count
   BaseMethod base_method = BaseMethod::EdgeCollapse;  // the base the result was made from

@@ -212,9 +212,7 @@ TEST_CASE("remesh: the finest level lies on the dense surface and synthesis repr
     again.synthesize(DetailSpace::Local);
     CHECK((again.mesh(2).positions() - fine).rowwise().norm().maxCoeff() <= 1e-9 * r.bbox_diagonal);
     CHECK(r.hausdorff > 0);
-    // At this coarse size neither scheme meets the 1.5 % target (the report warns); Loop's is
-    // 3.7 % since the moves are guarded (2.8 % before), Catmull-Clark's 2.5 % (2.7 % before).
-    CHECK(r.hausdorff_relative() < 0.04);
+    CHECK(r.hausdorff_relative() < 0.03);  // 2.7 % both (the 1.5 % target is not met at this size: warned)
     // The dense-side distances are real: a coarser base fits worse.
     RemeshOptions coarse = opt;
     coarse.base_faces = 30;

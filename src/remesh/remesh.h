@@ -56,8 +56,8 @@ struct RemeshOptions {
   // Tangential relaxation + re-projection rounds per level, before each of the two feature-pin
   // passes and after the last (so 1.5x as many in all). Unguarded, more was not better on thin
   // parts: each round drifted vertices along a tail or a horn (cow, 600 faces, 4 levels: edge
-  // ratio 100 at 3-4 rounds, 230-525 at 2, 6, 8 and 12); guarded, the ratio stays below the
-  // target at 2-8 rounds (README table).
+  // ratio 100 at 3-4 rounds, 230-525 at 2, 6, 8 and 12); guarded: 102 / 52 / 50 / 100 / 49 at
+  // 2 / 3 / 4 / 6 / 8 (papers/boier-martin/README.md, "Remesher quality").
   int relax_rounds = 4;
   RemeshBase base = RemeshBase::QuadDominant;
   BaseMethod base_method = BaseMethod::Auto;

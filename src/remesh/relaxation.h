@@ -9,7 +9,7 @@
 // point. Both make the extreme short edges that set the finest level's longest/shortest edge
 // ratio. So every move is guarded: a vertex keeps its new place only if the worst of its
 // edges, measured against the level's mean edge, is no worse than before or stays within a
-// benign band.
+// benign band; a relaxation move must also turn none of the vertex's faces over (a fold).
 #pragma once
 
 #include <vector>

@@ -178,12 +178,24 @@ int cmd_remesh(const RemeshArgs& a) {
             << "% of the bounding-box diagonal; dense->remesh " << pct(r.dense_to_fine) << "%, remesh->dense "
             << pct(r.fine_to_dense) << "%; samples " << pct(r.sample_spacing) << "% apart)"
             << "\nedge ratio          " << r.edge_ratio() << " (finest level: longest " << r.longest_edge
-            << ", shortest " << r.shortest_edge << ")"
+            << ", shortest " << r.shortest_edge << "; at " << r.longest_at.transpose() << " and "
+            << r.shortest_at.transpose() << ")"
             << "\nvalence, base       " << to_string(r.base_valence) << "\nvalence, finest     "
             << to_string(r.fine_valence) << "\nclosest-point fallback " << r.unprojected
-            << " finest vertices (no facing surface along the normal within reach)\nremesh time         " << r.seconds
+            << " finest vertices (no facing surface along the normal within reach)\noff the surface     "
+            << r.off_surface << " finest vertices, at most " << pct(r.off_surface_max)
+            << "% of the diagonal (held back where landing would crowd or stretch their edges)"
+            << "\nremesh time         " << r.seconds
             << " s\n";
+  // A missed target is not an error (the hierarchy is usable, and the numbers are above), but
+  // it must not pass silently.
+  const std::vector<std::string> misses = r.misses();
+  for (const auto& m : misses) std::cout << "warning: " << m << "\n";
+  for (const auto& m : misses) std::cerr << "warning: remesh " << a.input << ": " << m << "\n";
   nlohmann::json j;
+  j["targets"] = {{"hausdorff_relative", kHausdorffTarget}, {"edge_ratio", kEdgeRatioTarget}};
+  j["targets_met"] = misses.empty();
+  j["warnings"] = misses;
   j["input"] = a.input;
   j["asked"] = {{"scheme", a.scheme}, {"base_faces", a.base_faces}, {"levels", a.levels}, {"base", a.base},
                 {"base_method", a.base_method}, {"fit", a.fit}, {"relax_rounds", a.relax_rounds}};
@@ -200,7 +212,11 @@ int cmd_remesh(const RemeshArgs& a) {
   j["shortest_edge"] = r.shortest_edge;
   j["longest_edge"] = r.longest_edge;
   j["edge_ratio"] = r.edge_ratio();
+  j["shortest_edge_at"] = {r.shortest_at.x(), r.shortest_at.y(), r.shortest_at.z()};
+  j["longest_edge_at"] = {r.longest_at.x(), r.longest_at.y(), r.longest_at.z()};
   j["unprojected_vertices"] = r.unprojected;
+  j["off_surface_vertices"] = r.off_surface;
+  j["off_surface_max"] = r.off_surface_max;
   auto histogram = [](const std::map<int, int>& m) {
     nlohmann::json o = nlohmann::json::object();
     for (const auto& [valence, count] : m) o[std::to_string(valence)] = count;

@@ -58,8 +58,8 @@ EdgeLengthRange edge_length_range(const SurfaceMesh& mesh) {
   EdgeLengthRange r{std::numeric_limits<double>::infinity(), 0.0};
   for (int e = 0; e < mesh.n_edges(); ++e) {
     const double l = (mesh.position(mesh.from_vertex(2 * e)) - mesh.position(mesh.to_vertex(2 * e))).norm();
-    r.shortest = std::min(r.shortest, l);
-    r.longest = std::max(r.longest, l);
+    if (l < r.shortest) r.shortest = l, r.shortest_id = e;
+    if (l > r.longest) r.longest = l, r.longest_id = e;
   }
   return r;
 }

@@ -31,6 +31,7 @@ SurfaceDistance hausdorff_distance(const SurfaceMesh& a, const ClosestPointQuery
 
 struct EdgeLengthRange {
   double shortest = 0, longest = 0;
+  int shortest_id = -1, longest_id = -1;  // the edges (SurfaceMesh edge ids)
   double ratio() const { return longest / shortest; }  // +inf for a collapsed edge
 };
 EdgeLengthRange edge_length_range(const SurfaceMesh& mesh);

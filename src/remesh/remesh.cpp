@@ -3,7 +3,10 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <limits>
 #include <map>
+#include <sstream>
 #include <optional>
 
 #include "core/error.h"
@@ -11,88 +14,24 @@
 #include "remesh/closest_point.h"
 #include "remesh/quad_pairing.h"
 #include "remesh/quality.h"
+#include "remesh/relaxation.h"
 #include "remesh/simplify.h"
 #include "subdivision/subdivider.h"
 
 namespace fairshape {
 namespace {
 
-// Area-weighted vertex normals (each polygon's vector area, summed over its corners).
-MatrixX3 vertex_normals(const SurfaceMesh& m, const MatrixX3& X) {
-  MatrixX3 N = MatrixX3::Zero(X.rows(), 3);
-  for (int f = 0; f < m.n_faces(); ++f) {
-    const auto vs = m.face_vertices(f);
-    Vec3 area = Vec3::Zero();
-    for (std::size_t i = 0; i < vs.size(); ++i)
-      area += X.row(vs[i]).transpose().cross(X.row(vs[(i + 1) % vs.size()]).transpose());
-    for (int v : vs) N.row(v) += area.transpose();
-  }
-  return N;
-}
-
-// Edge neighbours of every vertex, flattened (CSR).
-struct Neighbours {
-  std::vector<int> start, ids;
-  std::vector<char> boundary;
-};
-Neighbours neighbours(const SurfaceMesh& m) {
-  Neighbours n;
-  n.start.push_back(0);
-  for (int v = 0; v < m.n_vertices(); ++v) {
-    for (int w : m.vertex_neighbors(v)) n.ids.push_back(w);
-    n.start.push_back(static_cast<int>(n.ids.size()));
-    n.boundary.push_back(m.is_boundary_vertex(v) ? 1 : 0);
-  }
-  return n;
-}
-
-// Tangential umbrella relaxation: each vertex moves half way towards the centroid of its
-// neighbours within its tangent plane, then back onto the dense surface. On a semi-regular
-// mesh this evens out edge lengths; the normal part is left out because it would shrink the
-// surface off the dense one. Boundary vertices are only re-projected.
-MatrixX3 relax(const SurfaceMesh& topology, MatrixX3 X, const ClosestPointQuery& dense, double reach, int rounds,
-               int* unmoved, const std::vector<int>* pins = nullptr) {
-  const Neighbours nb = neighbours(topology);
-  auto pinned = [pins](int v) { return pins && (*pins)[v] >= 0; };
-  for (int r = 0; r < rounds; ++r) {
-    const MatrixX3 N = vertex_normals(topology, X);
-    MatrixX3 Y = X;
-    for (int v = 0; v < X.rows(); ++v) {
-      const int k = nb.start[v + 1] - nb.start[v];
-      if (k == 0 || nb.boundary[v] || pinned(v)) continue;
-      Vec3 c = Vec3::Zero();
-      for (int i = nb.start[v]; i < nb.start[v + 1]; ++i) c += X.row(nb.ids[i]).transpose();
-      Vec3 d = c / k - X.row(v).transpose();
-      const double len = N.row(v).norm();
-      if (len > 0) {
-        const Vec3 n = N.row(v).transpose() / len;
-        d -= d.dot(n) * n;
-      }
-      Y.row(v) += 0.5 * d.transpose();
-    }
-    X = dense.facing_points(Y, N, reach, unmoved);
-    if (pins)
-      for (int v = 0; v < X.rows(); ++v)
-        if (pinned(v)) X.row(v) = Y.row(v);  // on a dense vertex already
-  }
-  return X;
-}
-
-double mean_edge(const SurfaceMesh& topology, const MatrixX3& X) {
-  double sum = 0;
-  for (int e = 0; e < topology.n_edges(); ++e)
-    sum += (X.row(topology.from_vertex(2 * e)) - X.row(topology.to_vertex(2 * e))).norm();
-  return topology.n_edges() ? sum / topology.n_edges() : 0.0;
-}
-
 // Closest-point projection and relaxation only slide vertices over the part of the dense
 // surface they are near, and subdivision rounds off whatever the coarser level had: the tip of
 // a horn, an ear or a tail that no vertex reached stays cut off on every finer level. So every
 // dense vertex farther than `tolerance` from the level pulls the nearest vertex of the level
 // (one facing its way, not yet pinned) onto itself, and pins it there; the pins are kept on the
-// finer levels (vertex ids nest), as MAPS keeps the base vertices on the dense ones.
+// finer levels (vertex ids nest), as MAPS keeps the base vertices on the dense ones. A pin
+// whose move (with its drag) takes some vertex's edges beyond `band` times the mean edge, and
+// further than they were, is not made (keep_even_moves): it would trade the tip for a spike of
+// long and short edges.
 int attract(const SurfaceMesh& topology, MatrixX3& X, const SurfaceMesh& dense, const ClosestPointQuery& on_dense,
-            const MatrixX3& dense_normals, double tolerance, std::vector<int>& pins) {
+            const MatrixX3& dense_normals, double tolerance, std::vector<int>& pins, double band) {
   SurfaceMesh level = topology;
   level.positions() = X;
   const ClosestPointQuery on_level(level);
@@ -121,6 +60,8 @@ int attract(const SurfaceMesh& topology, MatrixX3& X, const SurfaceMesh& dense, 
   // (one ring per round) would take many rounds to fill in.
   const Neighbours nb = neighbours(topology);
   const double edge = mean_edge(topology, X);
+  const MatrixX3 before = X;
+  const std::vector<int> pins_before = pins;
   MatrixX3 drag = MatrixX3::Zero(X.rows(), 3);
   std::vector<double> weight(static_cast<std::size_t>(X.rows()), 0.0);
   int n = 0;
@@ -157,6 +98,11 @@ int attract(const SurfaceMesh& topology, MatrixX3& X, const SurfaceMesh& dense, 
   for (std::size_t i = 0; i < moved.size(); ++i) P.row(i) = X.row(moved[i]), Q.row(i) = Nm.row(moved[i]);
   const MatrixX3 on = on_dense.facing_points(P, Q, 2.0 * edge);
   for (std::size_t i = 0; i < moved.size(); ++i) X.row(moved[i]) = on.row(i);
+  if (band > 0) {
+    keep_even_moves(topology, before, X, band);
+    for (int v = 0; v < X.rows(); ++v)
+      if (pins_before[v] < 0 && pins[v] >= 0 && X.row(v) == before.row(v)) pins[v] = -1, --n;
+  }
   return n;
 }
 
@@ -200,8 +146,8 @@ MultiresSurface remesh_once(const SurfaceMesh& dense, const RemeshOptions& opt, 
   if (opt.fit == FitMethod::Finest && opt.levels > 0) {
     const SurfaceMesh& topology = smooth.mesh(opt.levels);
     X = on_dense.closest_points(topology.positions());
-    for (int round = 0; round < opt.relax_rounds; ++round)
-      X = relax(topology, X, on_dense, 0.0, 1, &r.unprojected);
+    // The earlier pipeline as it was: closest points, no guard.
+    relax(topology, X, on_dense, {opt.relax_rounds, 0.0, std::numeric_limits<double>::infinity()}, &r.unprojected);
   }
   const MatrixX3 dense_normals = vertex_normals(dense, dense.positions());
   std::vector<int> pins;  // per vertex of the current level: the dense vertex it is pinned to, or -1
@@ -212,15 +158,24 @@ MultiresSurface remesh_once(const SurfaceMesh& dense, const RemeshOptions& opt, 
     // two of this level's average edges away (a longer ray only costs time: the nearest hit wins).
     const double reach = 2.0 * mean_edge(topology, predicted);
     X = on_dense.facing_points(predicted, vertex_normals(topology, predicted), reach);
+    // Rays from a rounded-off tip can miss it and fall back to its closest point, several onto
+    // one dense vertex (the mannequin's claws: zero-length edges); such a vertex stays where
+    // subdivision put it, and relaxation or a pin brings it onto the surface.
+    keep_even_moves(topology, predicted, X, opt.even_band);
     pins.resize(static_cast<std::size_t>(X.rows()), -1);
     for (int v = 0; v < X.rows(); ++v)
       if (pins[v] >= 0) X.row(v) = dense.positions().row(pins[v]);
     const double tolerance = mean_edge(topology, X);
+    RelaxSettings rs;
+    rs.reach = reach;
+    rs.band = opt.even_band;
     for (int half = 0; half < 2; ++half) {
-      X = relax(topology, X, on_dense, reach, (opt.relax_rounds + 1 - half) / 2, &r.unprojected, &pins);
-      attract(topology, X, dense, on_dense, dense_normals, tolerance, pins);
+      rs.rounds = (opt.relax_rounds + 1 - half) / 2;
+      relax(topology, X, on_dense, rs, &r.unprojected, &pins);
+      attract(topology, X, dense, on_dense, dense_normals, tolerance, pins, opt.pin_band);
     }
-    X = relax(topology, X, on_dense, reach, opt.relax_rounds / 2, &r.unprojected, &pins);
+    rs.rounds = opt.relax_rounds / 2;
+    relax(topology, X, on_dense, rs, &r.unprojected, &pins);
   }
   if (!X.allFinite()) throw InvalidInput("remesh: projection onto the dense surface failed (non-finite points)");
   MultiresSurface h = MultiresSurface::analyze(base, X, opt.subdivision, opt.levels, opt.backend);
@@ -228,6 +183,9 @@ MultiresSurface remesh_once(const SurfaceMesh& dense, const RemeshOptions& opt, 
 
   const SurfaceMesh& fine = h.mesh(opt.levels);
   r.bbox_diagonal = bounding_box_diagonal(dense);
+  const Eigen::VectorXd off = (fine.positions() - on_dense.closest_points(fine.positions())).rowwise().norm();
+  r.off_surface = static_cast<int>((off.array() > 1e-9 * r.bbox_diagonal).count());
+  r.off_surface_max = off.size() ? off.maxCoeff() : 0.0;
   r.sample_spacing = opt.sample_spacing * r.bbox_diagonal;
   const ClosestPointQuery on_fine(fine);
   const SurfaceDistance d = hausdorff_distance(dense, on_dense, fine, on_fine, r.sample_spacing);
@@ -240,18 +198,37 @@ MultiresSurface remesh_once(const SurfaceMesh& dense, const RemeshOptions& opt, 
   const EdgeLengthRange edges = edge_length_range(fine);
   r.shortest_edge = edges.shortest;
   r.longest_edge = edges.longest;
+  const auto midpoint = [&fine](int e) -> Vec3 {
+    return e < 0 ? Vec3::Zero() : Vec3(0.5 * (fine.position(fine.from_vertex(2 * e)) + fine.position(fine.to_vertex(2 * e))));
+  };
+  r.shortest_at = midpoint(edges.shortest_id);
+  r.longest_at = midpoint(edges.longest_id);
   r.base_valence = valence_histogram(h.mesh(0));
   r.fine_valence = valence_histogram(fine);
   return h;
 }
 
-// How far a result is from the targets (Hausdorff 1.5 % of the diagonal, edge ratio
-// 100): the worse of the two, 1 = on the target.
+// How far a result is from the targets: the worse of the two, 1 = on the target.
 double shortfall(const RemeshReport& r) {
-  return std::max(r.hausdorff_relative() / 0.015, r.edge_ratio() / 100.0);
+  return std::max(r.hausdorff_relative() / kHausdorffTarget, r.edge_ratio() / kEdgeRatioTarget);
 }
 
 }  // namespace
+
+std::vector<std::string> RemeshReport::misses() const {
+  std::vector<std::string> out;
+  auto say = [&out](const std::string& what, double got, double target, const std::string& unit) {
+    if (!(got <= target)) {  // NaN and inf miss too
+      std::ostringstream s;
+      s << std::setprecision(3) << what << " " << got << unit << " is above the target " << target << unit << " ("
+        << got / target << "x)";
+      out.push_back(s.str());
+    }
+  };
+  say("Hausdorff distance", 100.0 * hausdorff_relative(), 100.0 * kHausdorffTarget, "% of the bounding-box diagonal");
+  say("edge ratio", edge_ratio(), kEdgeRatioTarget, "");
+  return out;
+}
 
 MultiresSurface remesh(const SurfaceMesh& dense, const RemeshOptions& opt, RemeshReport* report) {
   if (opt.base_faces < 4 || opt.base_faces > dense.n_faces())

@@ -200,13 +200,19 @@ TEST_CASE("remesh: the finest level lies on the dense surface and synthesis repr
     RemeshReport r;
     const MultiresSurface h = remesh(dense, opt, &r);
     const MatrixX3& fine = h.mesh(2).positions();
-    CHECK((fine - on_dense.closest_points(fine)).rowwise().norm().maxCoeff() <= 1e-9 * r.bbox_diagonal);
+    // On the dense surface, except the vertices the fit held back (keep_even_moves) where
+    // landing would crowd or stretch their edges: the report counts those and bounds them.
+    const Eigen::VectorXd off = (fine - on_dense.closest_points(fine)).rowwise().norm();
+    CHECK((off.array() > 1e-9 * r.bbox_diagonal).count() == r.off_surface);
+    CHECK(r.off_surface < fine.rows() / 20);  // 2-4 % at this coarse size (cow, 200 faces, 2 levels)
+    CHECK(off.maxCoeff() == Approx(r.off_surface_max).margin(1e-12));
+    CHECK(off.maxCoeff() <= r.fine_to_dense + r.sample_spacing);
     // Re-synthesis from the base and the local details gives the same finest level.
     MultiresSurface again = h;
     again.synthesize(DetailSpace::Local);
     CHECK((again.mesh(2).positions() - fine).rowwise().norm().maxCoeff() <= 1e-9 * r.bbox_diagonal);
     CHECK(r.hausdorff > 0);
-    CHECK(r.hausdorff_relative() < 0.03);
+    CHECK(r.hausdorff_relative() < 0.03);  // 2.7 % both (the 1.5 % target is not met at this size: warned)
     // The dense-side distances are real: a coarser base fits worse.
     RemeshOptions coarse = opt;
     coarse.base_faces = 30;

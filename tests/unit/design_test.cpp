@@ -11,6 +11,7 @@
 #include "experiment/components.h"
 #include "io/mesh_io.h"
 #include "problem/least_squares.h"
+#include "edit_test_support.h"
 #include "test_support.h"
 
 using namespace fairshape;
@@ -21,19 +22,8 @@ MultiresSurface quad_hierarchy(int levels) {
   return MultiresSurface(read_mesh(test::data_path("double-torus-example.off")), {}, levels, Backend::Optimized);
 }
 
-std::unique_ptr<Solver> cholesky() {
-  Config none;
-  return components().solvers.create("cholesky", Backend::Optimized, none);
-}
-
-// Detail-preserving problem with the designer's point and normal constraints.
-EditProblem detail_preserving(const MultiresSurface& h, int level, const DesignConstraints& dc) {
-  EditProblem p;
-  p.H = stretch_bend_hessian(h.mesh(level), {0.1, 1.0}, Backend::Optimized);
-  p.g = Eigen::MatrixXd::Zero(p.H.rows(), 3);
-  p.constraints = propagate_constraints(h, level, dc);
-  return p;
-}
+using test::cholesky;
+using test::detail_preserving;
 
 EditProblem detail_preserving(const MultiresSurface& h, int level, const std::vector<PointConstraint>& cs) {
   return detail_preserving(h, level, DesignConstraints{cs, {}, {}});

@@ -17,6 +17,7 @@
 #include "remesh/remesh.h"
 #include "subdivision/limit.h"
 #include "subdivision/subdivider.h"
+#include "edit_test_support.h"
 #include "test_support.h"
 
 using namespace fairshape;
@@ -203,18 +204,8 @@ TEST_CASE("a (u, v) outside its face or a missing face is refused, naming the ke
 
 namespace {
 
-std::unique_ptr<Solver> cholesky() {
-  Config none;
-  return components().solvers.create("cholesky", Backend::Optimized, none);
-}
-
-EditProblem detail_preserving(const MultiresSurface& h, int level, const DesignConstraints& dc) {
-  EditProblem p;
-  p.H = stretch_bend_hessian(h.mesh(level), {0.1, 1.0}, Backend::Optimized);
-  p.g = Eigen::MatrixXd::Zero(p.H.rows(), 3);
-  p.constraints = propagate_constraints(h, level, dc);
-  return p;
-}
+using test::cholesky;
+using test::detail_preserving;
 
 // The finest level after an edit at `edit` (the deformation subdivided up).
 MatrixX3 edited_finest(const MultiresSurface& h, int edit, const EditSolution& s) {

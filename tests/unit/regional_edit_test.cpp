@@ -14,16 +14,14 @@
 #include "experiment/components.h"
 #include "io/mesh_io.h"
 #include "problem/constrained_system.h"
+#include "edit_test_support.h"
 #include "test_support.h"
 
 using namespace fairshape;
 
 namespace {
 
-std::unique_ptr<Solver> cholesky() {
-  Config none;
-  return components().solvers.create("cholesky", Backend::Optimized, none);
-}
+using test::cholesky;
 
 std::unique_ptr<Energy> detail_preserving() {
   Config cfg(YAML::Load("{alpha: 0.1, beta: 1.0}"), "energy");

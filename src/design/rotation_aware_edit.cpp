@@ -80,7 +80,9 @@ RotationAwareSolution solve_rotation_aware(const EditProblem& p, const std::vect
   AndersonAcceleration accelerate(6);
   RotationFit how = RotationFit::TangentFrame;
   Eigen::MatrixXd x = out.solution.delta;
-  double energy_x = objective(x).energy;
+  // x's E_R with the exact fit, and the global step's linear term for those rotations: the
+  // exact rounds reuse it rather than fit x again.
+  RotationObjective::Value at_x = objective(x);
   bool settled = false;
   int extrapolated = 0, frame_rounds = 0;
   const auto switch_to_exact = [&] {
@@ -88,7 +90,7 @@ RotationAwareSolution solve_rotation_aware(const EditProblem& p, const std::vect
     accelerate.reset();
   };
   for (int round = 1; round <= o.iterations; ++round) {
-    prepared.set_linear_term(objective(x, how).linear_term);
+    prepared.set_linear_term(how == RotationFit::Exact ? at_x.linear_term : objective(x, how).linear_term);
     EditSolution next = prepared.solve(p.constraints.C, {}, &x, ConstrainedStart::NearestToInitial);
     solve_s += next.solve_s;
     if (!is_success(next.summary.termination)) {
@@ -103,9 +105,9 @@ RotationAwareSolution solve_rotation_aware(const EditProblem& p, const std::vect
     out.last_change = size > 0 ? (next.delta - x).norm() / size : 0.0;
     out.rounds = round;
     frame_rounds += how == RotationFit::TangentFrame;
-    out.energy_history.push_back(energy_x);
-    const double energy_g = objective(next.delta).energy;
-    if (how == RotationFit::TangentFrame && energy_g >= energy_x) {
+    out.energy_history.push_back(at_x.energy);
+    RotationObjective::Value at_g = objective(next.delta);
+    if (how == RotationFit::TangentFrame && at_g.energy >= at_x.energy) {
       switch_to_exact();  // x stays: the tangent frame's round did not lower E_R
       continue;
     }
@@ -117,18 +119,22 @@ RotationAwareSolution solve_rotation_aware(const EditProblem& p, const std::vect
         break;
       }
       switch_to_exact();  // a fixed point of the tangent frame's rounds is not one of E_R's
-      x = g, energy_x = energy_g;
+      x = g, at_x = std::move(at_g);
       continue;
     }
     const Eigen::VectorXd next_x = accelerate.next(flat(x), flat(g));
     Eigen::MatrixXd xa = Eigen::Map<const Eigen::MatrixXd>(next_x.data(), x.rows(), x.cols());
-    const double energy_a = (xa - g).norm() == 0 ? energy_g : objective(xa).energy;
-    if (energy_a < energy_g) {
-      x = std::move(xa), energy_x = energy_a;
+    if ((xa - g).norm() == 0) {  // no history yet: the extrapolation is G(x) itself
+      x = g, at_x = std::move(at_g);
+      continue;
+    }
+    RotationObjective::Value at_a = objective(xa);
+    if (at_a.energy < at_g.energy) {
+      x = std::move(xa), at_x = std::move(at_a);
       ++extrapolated;
     } else {
-      x = g, energy_x = energy_g;
-      if (energy_a > energy_g) accelerate.reset();
+      if (at_a.energy > at_g.energy) accelerate.reset();
+      x = g, at_x = std::move(at_g);
     }
   }
   out.energy = objective(out.solution.delta).energy;

@@ -31,6 +31,11 @@ struct SheetShape {
   int spans_u = 4, spans_v = 4;
   int degree = 3;
   bool periodic_u = false;
+  //! The length of one base span in the sheet's design units (u, v): the energy, tangent
+  //! targets and every (u, v) a designer gives are in those units, so the same design at 8 or
+  //! 32 spans is one problem (papers/welch-witkin/README.md, "Units"). The basis itself works
+  //! in base-span units; VariationalSheet converts.
+  Eigen::Vector2d span_size{1, 1};
 };
 
 struct SpanId {

@@ -73,13 +73,17 @@ Point polyline_at(const std::vector<Point>& pts, double t) {
 template Eigen::Vector2d polyline_at(const std::vector<Eigen::Vector2d>&, double);
 template Vec3 polyline_at(const std::vector<Vec3>&, double);
 
-ConstraintRows curve_rows(const HierarchicalSurface& s, const CurveAttachment& curve, CurveQuadrature quadrature) {
+void check_curve_attachment(const HierarchicalSurface& s, const CurveAttachment& curve) {
   if (curve.uv.size() < 2 || curve.space.size() < 2)
     throw InvalidInput("curve constraint: needs at least two (u, v) points and two space points");
   for (std::size_t k = 0; k < curve.uv.size(); ++k)
     check_in_domain(s, curve.uv[k].x(), curve.uv[k].y(), "curve constraint, (u, v) point " + std::to_string(k));
   for (const Vec3& x : curve.space)
     if (!x.allFinite()) throw InvalidInput("curve constraint: a space-curve point is not finite");
+}
+
+ConstraintRows curve_rows(const HierarchicalSurface& s, const CurveAttachment& curve, CurveQuadrature quadrature) {
+  check_curve_attachment(s, curve);
   const int r = s.degree();
   const GaussRule g = gauss_legendre(quadrature == CurveQuadrature::Exact ? r + 1 : (r + 2) / 2);
   const double grid = std::ldexp(1.0, s.level_count() - 1);  // leaf cells end on the finest grid lines

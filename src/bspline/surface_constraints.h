@@ -5,12 +5,14 @@
 //   normal    both tangents at (u₀, v₀) set to the current ones projected onto the plane
 //             normal to n: two rows; uncoupled (per coordinate) like every constraint of §4.2,
 //             at the price of also fixing the tangents' lengths (a documented choice)
-//   curve     the transfinite constraint of eq. 7 in its gradient form: one row per control
+//   curve     by default the weak (mortar) form of bspline/mortar_curve.h: one row per
+//             multiplier along the curve, independent, no locking. `CurveFormulation::Paper`
+//             is the transfinite constraint of eq. 7 in its gradient form: one row per control
 //             point the (u, v) curve reaches, ∫ b_k(c(s)) b(c(s))ᵀ ds · p = ∫ D(s) b_k(c(s)) ds,
 //             integrated over the uv arc length piece by piece between leaf-cell crossings,
 //             exactly (r+1 Gauss points) or with reduced quadrature (⌈(r+1)/2⌉ points), which
-//             §4.2.2 proposes against locking. Rows are dependent in general (an isoparametric
-//             line yields r+1 independent rows per span): the solvers handle that.
+//             §4.2.2 proposes against locking. Its rows are dependent in general, with singular
+//             values spread down to rounding: the solvers' rank tolerance picks the surface.
 #pragma once
 
 #include <string>
@@ -34,6 +36,11 @@ struct CurveAttachment {
 };
 
 enum class CurveQuadrature { Exact, Reduced };
+enum class CurveFormulation { Mortar, Paper };
+
+//! \throw InvalidInput for fewer than two points, a uv point outside the domain or a
+//! non-finite space point.
+void check_curve_attachment(const HierarchicalSurface& s, const CurveAttachment& curve);
 
 //! \throw InvalidInput naming `what` and the point when (u, v) leaves the domain.
 void check_in_domain(const HierarchicalSurface& s, double u, double v, const std::string& what);

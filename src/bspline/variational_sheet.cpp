@@ -5,7 +5,9 @@
 #include <set>
 #include <tuple>
 
+#include "bspline/mortar_curve.h"
 #include "core/error.h"
+#include "core/message_format.h"
 #include "core/timer.h"
 
 namespace fairshape::bspline {
@@ -66,7 +68,9 @@ qp::QuadraticProgram assemble(const VariationalSheet& sheet, const SheetEnergy& 
         case SheetConstraint::Kind::Point: rows.push_back(point_rows(s, c.u, c.v, c.target)); break;
         case SheetConstraint::Kind::Tangent: rows.push_back(tangent_rows(s, c.u, c.v, c.direction, c.target)); break;
         case SheetConstraint::Kind::Normal: rows.push_back(normal_rows(s, sheet.coefficients(), c.u, c.v, c.target)); break;
-        case SheetConstraint::Kind::Curve: rows.push_back(curve_rows(s, c.curve, c.quadrature)); break;
+        case SheetConstraint::Kind::Curve:
+          rows.push_back(c.formulation == CurveFormulation::Mortar ? mortar_curve_rows(s, c.curve) : curve_rows(s, c.curve, c.quadrature));
+          break;
       }
     } catch (const InvalidInput& e) {
       throw InvalidInput(c.label.empty() ? std::string(e.what()) : c.label + ": " + e.what());
@@ -132,15 +136,21 @@ DesignReport solve_sheet(VariationalSheet& sheet, const SheetEnergy& energy, con
     report.qp = solver.solve(program.f, program.b);
     report.solve_s += timer.seconds();
     ++report.rounds;
-    if (report.qp.summary.termination != Termination::Converged) {
+    const Termination t = report.qp.summary.termination;
+    // Constraints unmet or ill-posed: the answer is kept and measured (the run reports what it
+    // achieved under that termination); a failed factorization leaves the sheet as it was.
+    const bool has_answer = t == Termination::Converged || t == Termination::ConstraintsUnmet || t == Termination::IllConditioned;
+    if (has_answer && report.qp.p.allFinite()) {
+      sheet.set_coefficients(report.qp.p);
+      report.energy = objective_value(sheet, energy, program);
+      report.errors_after = constraint_errors(sheet, constraints);
+      if (report.rounds == 1) report.errors_before = report.errors_after;
+      report.max_constraint_error = max_error(report.errors_after);
+    }
+    if (t != Termination::Converged) {
       report.message = report.qp.summary.message;
       return report;
     }
-    sheet.set_coefficients(report.qp.p);
-    report.energy = objective_value(sheet, energy, program);
-    report.errors_after = constraint_errors(sheet, constraints);
-    if (report.rounds == 1) report.errors_before = report.errors_after;
-    report.max_constraint_error = max_error(report.errors_after);
     if (refinement.tolerance <= 0 || report.max_constraint_error <= refinement.tolerance) break;
     if (report.rounds > refinement.max_rounds) {
       report.message = "refinement stopped after " + std::to_string(refinement.max_rounds) + " rounds above the tolerance";
@@ -157,7 +167,7 @@ DesignReport solve_sheet(VariationalSheet& sheet, const SheetEnergy& energy, con
       if (seen.insert(span).second) spans.push_back(span);
     }
     if (spans.empty()) {
-      report.message = "constraint error " + std::to_string(report.max_constraint_error) + " above the tolerance at the maximum depth " +
+      report.message = "constraint error " + sci(report.max_constraint_error) + " above the tolerance at the maximum depth " +
                        std::to_string(refinement.max_level);
       break;
     }

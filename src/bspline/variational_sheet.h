@@ -30,7 +30,8 @@ struct SheetConstraint {
   int direction = 0;  // tangent: 0 = D_u, 1 = D_v
   Vec3 target = Vec3::Zero();  // point / tangent target, normal direction
   CurveAttachment curve;
-  CurveQuadrature quadrature = CurveQuadrature::Exact;
+  CurveFormulation formulation = CurveFormulation::Mortar;
+  CurveQuadrature quadrature = CurveQuadrature::Exact;  // the paper's formulation only
   std::string label;  // for messages: "constraints[2]"
 };
 

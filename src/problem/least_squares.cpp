@@ -36,10 +36,10 @@ SparseMatrix compressed(SparseMatrix M) {
 // row space, and B = A A_Iᵀ has full column rank; w = argmin ‖B w − C‖ is unique, so x is
 // the least-squares solution of least norm, A⁺C, and stays sparse whatever the size.
 template <class QR>
-std::vector<int> independent_rows_by(const SparseMatrix& A) {
+std::vector<int> independent_rows_by(const SparseMatrix& A, double tolerance = kRowDependenceTolerance) {
   const SparseMatrix At = compressed(A.transpose());
   QR qr;
-  qr.setPivotThreshold(kRowDependenceTolerance * largest_column_norm(At));
+  qr.setPivotThreshold(tolerance * largest_column_norm(At));
   qr.compute(At);
   if (qr.info() != Eigen::Success) throw SolverError("least squares: QR of the constraint rows failed");
   const auto permutation = qr.colsPermutation();  // SPQR returns it by value: keep it alive
@@ -193,8 +193,8 @@ double largest_column_norm(const SparseMatrix& M) {
   return largest;
 }
 
-std::vector<int> independent_rows(const SparseMatrix& A, Backend backend) {
-  return backend == Backend::Reference ? independent_rows_by<ReferenceQR>(A) : independent_rows_by<OptimizedQR>(A);
+std::vector<int> independent_rows(const SparseMatrix& A, Backend backend, double tolerance) {
+  return backend == Backend::Reference ? independent_rows_by<ReferenceQR>(A, tolerance) : independent_rows_by<OptimizedQR>(A, tolerance);
 }
 
 LeastSquaresResult min_norm_least_squares(const SparseMatrix& A, const Eigen::MatrixXd& C, Backend backend) {

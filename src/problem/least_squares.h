@@ -52,8 +52,8 @@ inline constexpr double kRowDependenceTolerance = 1e-8;
 
 //! A maximal set of linearly independent rows of A (ascending), from a rank-revealing QR of Aᵀ
 //! (reference Eigen SparseQR, optimized SuiteSparseQR) whose pivots below
-//! kRowDependenceTolerance × the largest row norm count as zero.
-std::vector<int> independent_rows(const SparseMatrix& A, Backend backend);
+//! `tolerance` × the largest row norm count as zero.
+std::vector<int> independent_rows(const SparseMatrix& A, Backend backend, double tolerance = kRowDependenceTolerance);
 
 //! The largest Euclidean norm of a column of M (0 for an empty M): the scale a QR's pivot
 //! threshold is relative to.

@@ -22,6 +22,7 @@
 #include "core/timer.h"
 #include "problem/least_squares.h"
 #include "qp/kkt_solver.h"
+#include "qp/constraint_policy.h"
 
 namespace fairshape::qp {
 
@@ -99,11 +100,6 @@ Eigen::MatrixXd refined_solve(const LuFactor& lu, const SparseMatrix& K, const E
   return x;
 }
 
-std::string inconsistent_message(double residual) {
-  return "inconsistent constraints (or directions weaker than " + sci(kRowDependenceTolerance) +
-         " of the strongest): least-squares fit, residual " + sci(residual);
-}
-
 }  // namespace
 
 SparseMatrix lagrange_matrix(const SparseMatrix& H, const SparseMatrix& A, double scale, double regularization) {
@@ -133,7 +129,7 @@ struct KktSolver::System {
   bool singular = false;
 };
 
-KktSolver::KktSolver(Backend backend) : backend_(backend) {}
+KktSolver::KktSolver(Backend backend, ConstraintPolicy policy) : backend_(backend), policy_(policy) {}
 KktSolver::~KktSolver() = default;
 
 std::unique_ptr<KktSolver::System> KktSolver::build(CompressedRows rows, std::unique_ptr<LuFactor> recycled) {
@@ -162,20 +158,23 @@ void KktSolver::analyze(const QuadraticProgram& qp) {
   validate(qp);
   const Timer timer;
   H_ = qp.H;
-  A_ = qp.A;
+  A_original_ = qp.A;
+  scaling_ = scale_rows(qp.A);  // unit rows: one meaning of "dependent" for every kind of row
+  A_ = scaling_.scaled;
   const double diag = H_.rows() ? H_.diagonal().cwiseAbs().maxCoeff() : 0.0;
   scale_ = diag > 0 ? diag : 1.0;
   least_squares_.reset();
-  CompressedRows rows = without_dependent_rows(A_, backend_);
+  CompressedRows rows = without_dependent_rows(A_, backend_, policy_.rank_tolerance);
   reduced_ = rows.orthogonal;
   const bool dropped = rows.rows.rows() < A_.rows();
   main_ = build(std::move(rows), main_ ? std::move(main_->lu) : nullptr);
   if (main_->singular && dropped && !reduced_) {
     // The kept original rows are still nearly dependent (curve rows along a curved path): the
     // orthogonal reduction R₁Pᵀ is well conditioned where a subset of the rows is not.
-    main_ = build(compress_rows(A_, backend_), nullptr);
+    main_ = build(compress_rows(A_, backend_, policy_.rank_tolerance), nullptr);
     reduced_ = true;
   }
+  condition_ = schur_condition(H_, A_, policy_.rank_tolerance);
   analyze_s_ = timer.seconds();
 }
 
@@ -209,23 +208,28 @@ QpReport KktSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) {
   FAIRSHAPE_ASSERT(main_, "KktSolver::solve before analyze");
   if (f.rows() != H_.rows() || b.rows() != A_.rows() || (b.rows() && b.cols() != f.cols()))
     throw InvalidInput("KKT solve: right-hand sides do not match the analyzed program");
-  QpReport out = solve_with(*main_, f, b);
-  out.constraint_residual = constraint_residual(A_, b, out.p);
-  if (reduced_ && out.summary.termination == Termination::Converged && out.constraint_residual > 1e-9 * (1 + b.norm()))
-    out.summary.message = inconsistent_message(out.constraint_residual);
-  else if (out.summary.termination == Termination::Converged && out.dropped_rows > 0 && out.constraint_residual > 1e-9 * (1 + b.norm())) {
+  const Eigen::MatrixXd unit_b = scaling_.d.asDiagonal() * b;
+  QpReport out = solve_with(*main_, f, unit_b);
+  const auto unmet = [&](const QpReport& r) {
+    const Eigen::MatrixXd Ap = A_ * r.p;
+    const double size = std::max(unit_b.cwiseAbs().maxCoeff(), Ap.cwiseAbs().maxCoeff());
+    return (Ap - unit_b).cwiseAbs().maxCoeff() > policy_.constraint_tolerance * size;
+  };
+  if (out.summary.termination == Termination::Converged && out.dropped_rows > 0 && !reduced_ && unmet(out)) {
     // The dropped rows disagree with the kept ones: fit all of them in the least-squares sense.
-    if (!least_squares_) least_squares_ = build(compress_rows(A_, backend_), nullptr);
+    if (!least_squares_) least_squares_ = build(compress_rows(A_, backend_, policy_.rank_tolerance), nullptr);
     const int dropped = out.dropped_rows;
-    out = solve_with(*least_squares_, f, b);
+    out = solve_with(*least_squares_, f, unit_b);
     out.dropped_rows = dropped;
-    out.constraint_residual = constraint_residual(A_, b, out.p);
-    out.summary.message = inconsistent_message(out.constraint_residual);
+    if (out.summary.termination == Termination::Converged) out.summary.message = "least-squares fit of all rows";
   }
   if (out.dropped_rows) {
-    const std::string note = "dropped " + std::to_string(out.dropped_rows) + " dependent constraint rows";
+    const std::string note = "dropped " + std::to_string(out.dropped_rows) + " dependent constraint rows (rank_tolerance " +
+                             sci(policy_.rank_tolerance) + ")";
     out.summary.message = out.summary.message.empty() ? note : out.summary.message + "; " + note;
   }
+  out.condition_estimate = condition_;
+  assess(out, A_original_, b, scaling_, policy_);
   return out;
 }
 

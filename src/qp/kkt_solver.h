@@ -6,6 +6,7 @@
 
 #include "core/backend.h"
 #include "qp/qp_solver.h"
+#include "qp/constraint_policy.h"
 #include "qp/row_dependence.h"
 
 namespace fairshape::qp {
@@ -17,7 +18,7 @@ SparseMatrix lagrange_matrix(const SparseMatrix& H, const SparseMatrix& A, doubl
 
 class KktSolver final : public QpSolver {
  public:
-  explicit KktSolver(Backend backend);
+  explicit KktSolver(Backend backend, ConstraintPolicy policy = {});
   ~KktSolver() override;
   void analyze(const QuadraticProgram& qp) override;
   QpReport solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) override;
@@ -31,7 +32,11 @@ class KktSolver final : public QpSolver {
   QpReport solve_with(const System& sys, const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) const;
 
   Backend backend_;
-  SparseMatrix H_, A_;
+  ConstraintPolicy policy_;
+  SparseMatrix H_, A_;  // A_: the unit-norm rows of A_original_
+  SparseMatrix A_original_;
+  RowScaling scaling_;
+  double condition_ = 1;
   double scale_ = 1;
   std::unique_ptr<System> main_, least_squares_;
   bool reduced_ = false;  // main_ works on R₁Pᵀ rather than a subset of A's rows

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/message_format.h"
 #include "core/timer.h"
+#include "qp/constraint_policy.h"
 #include "problem/constrained_system.h"
 
 namespace fairshape::qp {
@@ -31,6 +32,7 @@ SparseMatrix square_root_of(const SparseMatrix& H) {
 QrPenaltySolver::QrPenaltySolver(Backend backend, QrPenaltyOptions options) : backend_(backend), options_(options) {
   if (!(options.mu > 0) || !std::isfinite(options.mu)) throw InvalidConfig("qr_penalty: mu must be a positive number");
   if (options.refinement_steps < 0) throw InvalidConfig("qr_penalty: refinement_steps must be >= 0");
+  if (!(options.max_mu >= options.mu)) throw InvalidConfig("qr_penalty: max_mu must be at least mu");
 }
 QrPenaltySolver::~QrPenaltySolver() = default;
 
@@ -51,15 +53,24 @@ void QrPenaltySolver::analyze(const QuadraticProgram& qp) {
   validate(qp);
   const Timer timer;
   H_ = qp.H;
-  A_ = qp.A;
+  A_original_ = qp.A;
+  scaling_ = scale_rows(qp.A);  // unit rows: μ weighs every kind of row alike
+  A_ = scaling_.scaled;
   At_ = A_.transpose();
-  const SparseMatrix K = qp.K.size() ? qp.K : square_root_of(qp.H);
+  K_ = qp.K.size() ? qp.K : square_root_of(qp.H);
+  factor(options_.mu);
+  schur_condition_ = schur_condition(H_, A_, options_.policy.rank_tolerance);
+  analyze_s_ = timer.seconds();
+}
+
+void QrPenaltySolver::factor(double mu) {
+  mu_ = mu;
   const double diag = H_.rows() ? H_.diagonal().cwiseAbs().maxCoeff() : 0.0;
   double a_max = 0;
   for (Eigen::Index i = 0; i < A_.nonZeros(); ++i) a_max = std::max(a_max, std::abs(A_.valuePtr()[i]));
-  weight_ = options_.mu * (diag > 0 && a_max > 0 ? std::sqrt(diag) / a_max : 1.0);
+  weight_ = mu * (diag > 0 && a_max > 0 ? std::sqrt(diag) / a_max : 1.0);
   const SparseMatrix weighted = weight_ * A_;
-  SparseMatrix M = stack_rows({&weighted, &K});
+  SparseMatrix M = stack_rows({&weighted, &K_});
   M.makeCompressed();
   rows_ = M.rows();
   if (backend_ == Backend::Reference) {
@@ -75,7 +86,6 @@ void QrPenaltySolver::analyze(const QuadraticProgram& qp) {
   if (R_.rows() < R_.cols()) rank_ = std::min(rank_, static_cast<int>(R_.rows()));
   const Eigen::VectorXd d = R_.diagonal().cwiseAbs();
   condition_ = d.size() && d.minCoeff() > 0 ? d.maxCoeff() / d.minCoeff() : std::numeric_limits<double>::infinity();
-  analyze_s_ = timer.seconds();
 }
 
 Eigen::MatrixXd QrPenaltySolver::normal_product(const Eigen::MatrixXd& p) const {
@@ -98,41 +108,69 @@ Eigen::MatrixXd QrPenaltySolver::semi_normal_solve(const Eigen::MatrixXd& rhs) c
   return x;
 }
 
-QpReport QrPenaltySolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) {
-  if (f.rows() != H_.rows() || b.rows() != A_.rows() || (b.rows() && b.cols() != f.cols()))
+Eigen::MatrixXd QrPenaltySolver::penalty_solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& targets) const {
+  // orthogonal: the energy's linear term through the corrected semi-normal equations (f need
+  // not be Kᵀk), the constraint targets through Q (argmin ‖[μA; K] p − [μb; 0]‖).
+  // semi_normal: everything through R alone.
+  if (!options_.orthogonal) return semi_normal_solve(weight_ * weight_ * (At_ * targets) + f);
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(rows_, f.cols());
+  rhs.topRows(A_.rows()) = weight_ * targets;
+  const Eigen::MatrixXd from_f = f.isZero(0) ? Eigen::MatrixXd::Zero(H_.rows(), f.cols()) : semi_normal_solve(f);
+  return from_f + least_squares_(rhs);
+}
+
+QpReport QrPenaltySolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b_original) {
+  if (f.rows() != H_.rows() || b_original.rows() != A_.rows() || (b_original.rows() && b_original.cols() != f.cols()))
     throw InvalidInput("QR-penalty solve: right-hand sides do not match the analyzed program");
+  if (mu_ != options_.mu) factor(options_.mu);  // a previous solve raised μ
   QpReport out;
-  out.condition_estimate = condition_;
+  out.condition_estimate = schur_condition_;
   if (rank_ < H_.cols()) {
     out.p = Eigen::MatrixXd::Zero(H_.rows(), f.cols());
     out.summary.message = "[mu A; K] is numerically singular (rank " + std::to_string(rank_) + " of " + std::to_string(H_.cols()) +
                   "): the constraints do not pin the energy's null space, or mu is too large for the energy's scale";
     return out;
   }
-  // orthogonal: the energy's linear term through the corrected semi-normal equations (f need
-  // not be Kᵀk), the constraint targets through Q (argmin ‖[μA; K] p − [μb; 0]‖).
-  // semi_normal: everything through R alone.
-  Eigen::MatrixXd from_f;
-  if (options_.orthogonal) from_f = f.isZero(0) ? Eigen::MatrixXd::Zero(H_.rows(), f.cols()) : semi_normal_solve(f);
-  Eigen::MatrixXd shifted = b;  // Van Loan's weighting method: b plus the accumulated residual
-  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(rows_, f.cols());
-  for (int step = 0; step <= options_.refinement_steps; ++step) {
-    if (options_.orthogonal) {
-      rhs.topRows(A_.rows()) = weight_ * shifted;
-      out.p = from_f + least_squares_(rhs);
-    } else {
-      out.p = semi_normal_solve(weight_ * weight_ * (At_ * shifted) + f);
+  const Eigen::MatrixXd b = scaling_.d.asDiagonal() * b_original;
+  const double tolerance = options_.policy.constraint_tolerance;
+  const auto relative = [&](const Eigen::MatrixXd& residual, const Eigen::MatrixXd& p) {
+    const double size = std::max(b.cwiseAbs().maxCoeff(), (A_ * p).cwiseAbs().maxCoeff());
+    const double worst = residual.size() ? residual.cwiseAbs().maxCoeff() : 0.0;
+    return size > 0 ? worst / size : worst;
+  };
+  // Van Loan's weighting method: the targets shifted by the accumulated residual, until the
+  // residual meets the tolerance; when a step no longer halves it (the penalty's fixed point
+  // is too far for this μ, or the rows are inconsistent), μ grows tenfold, up to max_mu.
+  int steps = 0;
+  for (;;) {
+    Eigen::MatrixXd shifted = b;
+    double previous = std::numeric_limits<double>::infinity();
+    bool stalled = false;
+    for (int step = 0; step <= options_.refinement_steps; ++step) {
+      out.p = penalty_solve(f, shifted);
+      const Eigen::MatrixXd residual = b - A_ * out.p;
+      const double now = relative(residual, out.p);
+      out.residual_history.push_back(now);
+      ++steps;
+      if (!(now > tolerance)) break;
+      if (now > 0.5 * previous) {
+        stalled = true;
+        break;
+      }
+      previous = now;
+      shifted += residual;
     }
-    const Eigen::MatrixXd residual = b - A_ * out.p;
-    out.residual_history.push_back(residual.norm());
-    shifted += residual;
+    const bool met = !(out.residual_history.back() > tolerance);
+    if (met || !stalled || mu_ * 10 > options_.max_mu * (1 + 1e-12) || condition_ > 1e12) break;
+    factor(mu_ * 10);
   }
-  out.constraint_residual = out.residual_history.back();
   out.summary.termination = out.p.allFinite() ? Termination::Converged : Termination::NumericalFailure;
-  out.summary.iterations = 1;  // one direct solve
+  out.summary.iterations = steps;  // penalty solves with the factorization(s)
+  if (mu_ != options_.mu) out.summary.message = "mu raised to " + sci(mu_) + " (stalled refinement)";
   if (condition_ > 1e12)
-    out.summary.message = "warning: [mu A; K] is badly conditioned (estimate " + sci(condition_) +
-                  "): mu is too large for double precision";
+    out.summary.message += std::string(out.summary.message.empty() ? "" : "; ") + "[mu A; K] is badly conditioned (estimate " +
+                           sci(condition_) + "): mu is too large for double precision";
+  assess(out, A_original_, b_original, scaling_, options_.policy);
   return out;
 }
 

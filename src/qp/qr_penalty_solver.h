@@ -4,26 +4,32 @@
 // triangular solves and one correction, so f need not come as Kᵀk); with `orthogonal` the
 // constraint targets go through Q as a true least-squares solve.
 // Van Loan's weighting method then refines the constraint residual with the same R: the
-// target b is shifted by the remaining residual, `refinement_steps` times; each step shrinks
-// ‖A p − b‖ by roughly the factor 1/(1 + μ²σ²) (σ the constraint-energy scale ratio).
-// μ is relative: the constraint rows are weighted μ·√(max diag H)/max|A_ij|, so μ = 1 puts
-// them on the energy's scale whatever the units.
+// target b is shifted by the remaining residual until the residual meets the policy's
+// constraint_tolerance (qp/constraint_policy.h), at most `refinement_steps` times per μ; each
+// step shrinks ‖A p − b‖ by roughly 1/(1 + μ²σ²) (σ the constraint-energy scale ratio). When a
+// step no longer halves it, μ grows tenfold (a new factorization), up to max_mu; a residual
+// still above the tolerance is reported as constraints_unmet, never as converged.
+// Rows are scaled to unit norm and μ is relative: they are weighted μ·√(max diag H)/max|Â_ij|,
+// so μ = 1 puts them on the energy's scale whatever the units.
 #pragma once
 
 #include <functional>
 #include <memory>
 
 #include "core/backend.h"
+#include "qp/constraint_policy.h"
 #include "qp/qp_solver.h"
 
 namespace fairshape::qp {
 
 struct QrPenaltyOptions {
   double mu = 1e3;
-  int refinement_steps = 3;
+  int refinement_steps = 10;  // at most, per μ
+  double max_mu = 1e8;
   //! true: keep Q and solve through it (accurate to cond·ε, slow: Q of the tall [μA; K] is
   //! large); false: R alone, corrected semi-normal equations (fast, cond²·ε before correction).
   bool orthogonal = false;
+  ConstraintPolicy policy;
 };
 
 class QrPenaltySolver final : public QpSolver {
@@ -32,16 +38,21 @@ class QrPenaltySolver final : public QpSolver {
   ~QrPenaltySolver() override;
   void analyze(const QuadraticProgram& qp) override;
   QpReport solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) override;
-  //! The absolute weight of the constraint rows (μ times the scale ratio).
+  //! The absolute weight of the constraint rows (μ times the scale ratio) of the last factorization.
   double weight() const { return weight_; }
 
  private:
+  void factor(double mu);  // [μA; K] = Q R
+  Eigen::MatrixXd penalty_solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& targets) const;
   Eigen::MatrixXd semi_normal_solve(const Eigen::MatrixXd& rhs) const;
   Eigen::MatrixXd normal_product(const Eigen::MatrixXd& p) const;  // (KᵀK + w²AᵀA) p
 
   Backend backend_;
   QrPenaltyOptions options_;
-  SparseMatrix H_, A_, At_, R_, Rt_;
+  SparseMatrix H_, A_, At_, R_, Rt_, K_;  // A_: the unit-norm rows of A_original_
+  SparseMatrix A_original_;
+  RowScaling scaling_;
+  double mu_ = 0, schur_condition_ = 1;
   Eigen::VectorXi permutation_;  // column c of M P is column permutation_[c] of M
   Eigen::Index rows_ = 0;        // of M = [μA; K]
   std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)> least_squares_;  // argmin ‖M p − rhs‖ through Q

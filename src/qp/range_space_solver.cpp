@@ -1,7 +1,9 @@
 #include "qp/range_space_solver.h"
+#include "qp/constraint_policy.h"
 #include "qp/row_dependence.h"
 
 #include <Eigen/CholmodSupport>
+#include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 
 #include <algorithm>
@@ -9,6 +11,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/message_format.h"
 #include "core/timer.h"
 #include "problem/constrained_system.h"
 #include "problem/least_squares.h"
@@ -29,7 +32,7 @@ struct RangeSpaceSolver::Cholmod {
   }
 };
 
-RangeSpaceSolver::RangeSpaceSolver() : chol_(std::make_unique<Cholmod>()) {}
+RangeSpaceSolver::RangeSpaceSolver(ConstraintPolicy policy) : chol_(std::make_unique<Cholmod>()), policy_(policy) {}
 RangeSpaceSolver::~RangeSpaceSolver() = default;
 
 void RangeSpaceSolver::analyze(const QuadraticProgram& qp) {
@@ -39,11 +42,11 @@ void RangeSpaceSolver::analyze(const QuadraticProgram& qp) {
                        std::to_string(kMaxRows) + "); use kkt or qr_penalty");
   const Timer timer;
   H_ = qp.H;
-  A_ = qp.A;
-  const double h_diag = H_.rows() ? H_.diagonal().cwiseAbs().maxCoeff() : 0.0;
+  A_original_ = qp.A;
+  scaling_ = scale_rows(qp.A);  // unit rows: one meaning of "dependent" for every kind of row
+  A_ = scaling_.scaled;
   const SparseMatrix AtA = SparseMatrix(A_.transpose()) * A_;
-  const double a_diag = AtA.rows() && AtA.nonZeros() ? AtA.diagonal().cwiseAbs().maxCoeff() : 0.0;
-  rho_ = h_diag > 0 && a_diag > 0 ? h_diag / a_diag : 1.0;
+  rho_ = schur_rho(H_, A_);
   in_factor_.assign(static_cast<std::size_t>(A_.rows()), 1);
   SparseMatrix Hr = H_ + rho_ * AtA;
   Hr.makeCompressed();
@@ -75,10 +78,19 @@ void RangeSpaceSolver::rebuild_schur() {
   }
   Z_ = solve_h(Eigen::MatrixXd(SparseMatrix(A_.transpose())));
   S_ = A_ * Z_;
-  // qp/row_dependence.h's rank policy: S = A H⁻¹ Aᵀ squares A's singular values, so a
-  // direction of A at the tolerance is one of S at its square.
-  schur_.setThreshold(kRowDependenceTolerance * kRowDependenceTolerance);
-  schur_.compute(S_);
+  decompose_schur();
+}
+
+void RangeSpaceSolver::decompose_schur() {
+  // The rank policy (qp/constraint_policy.h) decides on A itself; S = A H⁻¹ Aᵀ squares A's
+  // singular values, so its eigenvalues below the square of the tolerance are rounding noise.
+  int rank = row_rank(A_, policy_.rank_tolerance);
+  if (rank < 0) {  // too large for the dense rank test: S's own spectrum at the squared tolerance
+    const Eigen::VectorXd l = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(S_, Eigen::EigenvaluesOnly).eigenvalues();
+    rank = static_cast<int>((l.array() > policy_.rank_tolerance * policy_.rank_tolerance * l.maxCoeff()).count());
+  }
+  schur_ = schur_spectrum(S_, rank);
+  condition_ = schur_.condition;
 }
 
 void RangeSpaceSolver::updown(bool update, const SparseMatrix& rows) {
@@ -94,11 +106,18 @@ void RangeSpaceSolver::updown(bool update, const SparseMatrix& rows) {
   if (!ok) throw SolverError("range-space: CHOLMOD update/downdate failed");
 }
 
-void RangeSpaceSolver::add_rows(const SparseMatrix& rows) {
-  if (rows.cols() != H_.cols())
-    throw InvalidInput("range-space: new constraint rows have " + std::to_string(rows.cols()) + " columns, expected " +
+void RangeSpaceSolver::add_rows(const SparseMatrix& original_rows) {
+  if (original_rows.cols() != H_.cols())
+    throw InvalidInput("range-space: new constraint rows have " + std::to_string(original_rows.cols()) + " columns, expected " +
                        std::to_string(H_.cols()));
   FAIRSHAPE_ASSERT(!singular_, "range-space: add_rows on a singular system");
+  const RowScaling added = scale_rows(original_rows);
+  const SparseMatrix& rows = added.scaled;
+  A_original_ = stack_rows({&A_original_, &original_rows});
+  Eigen::VectorXd d(scaling_.d.size() + added.d.size());
+  d << scaling_.d, added.d;
+  scaling_.d = std::move(d);
+  scaling_.zero_rows += added.zero_rows;
   // H_ρ is already positive definite, so new rows need not enter it: only S is bordered,
   // [S, A Z_C; C Z, C Z_C] with Z_C = H_ρ⁻¹Cᵀ (one solve per new row), and re-decomposed.
   const Eigen::MatrixXd Zc = solve_h(Eigen::MatrixXd(SparseMatrix(rows.transpose())));
@@ -114,7 +133,7 @@ void RangeSpaceSolver::add_rows(const SparseMatrix& rows) {
   Z_ = std::move(Z);
   A_ = stack_rows({&A_, &rows});
   in_factor_.resize(static_cast<std::size_t>(m + k), 0);
-  schur_.compute(S_);
+  decompose_schur();
 }
 
 void RangeSpaceSolver::remove_rows(std::vector<int> rows) {
@@ -132,6 +151,8 @@ void RangeSpaceSolver::remove_rows(std::vector<int> rows) {
     }
   }
   const SparseMatrix keep_t = SparseMatrix(row_picker(A_.rows(), keep).transpose());
+  A_original_ = keep_t * A_original_;
+  scaling_.d = Eigen::VectorXd(keep_t * scaling_.d);
   std::vector<char> in_factor;
   for (int r : keep) in_factor.push_back(in_factor_[r]);
   in_factor_ = std::move(in_factor);
@@ -151,11 +172,11 @@ void RangeSpaceSolver::remove_rows(std::vector<int> rows) {
   S_ = std::move(S);
   Z_ = std::move(Z);
   A_ = keep_t * A_;
-  schur_.compute(S_);
+  decompose_schur();
 }
 
-QpReport RangeSpaceSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) {
-  if (f.rows() != H_.rows() || b.rows() != A_.rows() || (b.rows() && b.cols() != f.cols()))
+QpReport RangeSpaceSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b_original) {
+  if (f.rows() != H_.rows() || b_original.rows() != A_.rows() || (b_original.rows() && b_original.cols() != f.cols()))
     throw InvalidInput("range-space solve: right-hand sides do not match the analyzed program");
   QpReport out;
   if (singular_) {
@@ -163,6 +184,7 @@ QpReport RangeSpaceSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd
     out.summary.message = "H + rho AᵀA is not positive definite: the constraints do not pin the energy's null space";
     return out;
   }
+  const Eigen::MatrixXd b = scaling_.d.asDiagonal() * b_original;
   // g = f + ρ A_Fᵀ b_F over the rows that are part of H_ρ (the augmented Lagrangian's term).
   Eigen::MatrixXd bf = b;
   for (Eigen::Index r = 0; r < bf.rows(); ++r)
@@ -173,12 +195,15 @@ QpReport RangeSpaceSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd
   if (A_.rows()) {
     const Eigen::MatrixXd lambda = schur_.solve(Eigen::MatrixXd(A_ * y - b));
     out.p -= Z_ * lambda;
-    out.dropped_rows = static_cast<int>(A_.rows() - schur_.rank());
+    out.dropped_rows = static_cast<int>(A_.rows() - schur_.values.size());
   }
-  out.constraint_residual = constraint_residual(A_, b, out.p);
   out.summary.termination = out.p.allFinite() ? Termination::Converged : Termination::NumericalFailure;
   out.summary.iterations = 1;  // one direct solve
-  if (out.dropped_rows) out.summary.message = std::to_string(out.dropped_rows) + " dependent constraint rows (minimum-norm multipliers)";
+  if (out.dropped_rows)
+    out.summary.message = std::to_string(out.dropped_rows) + " dependent constraint rows (minimum-norm multipliers, rank_tolerance " +
+                          sci(policy_.rank_tolerance) + ")";
+  out.condition_estimate = condition_;
+  assess(out, A_original_, b_original, scaling_, policy_);
   return out;
 }
 

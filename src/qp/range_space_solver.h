@@ -6,8 +6,8 @@
 // Adding constraint rows C borders S (H_ρ is already positive definite, so C need not enter
 // it: one solve per new row and a re-decomposition of the small S); removing rows that are part
 // of H_ρ is the downdate H_ρ − ρ CᵀC by cholmod_updown on the simplicial LDLᵀ factor, then S is
-// rebuilt; neither refactors H_ρ. Dependent rows leave S singular; a complete orthogonal decomposition
-// (minimum-norm λ) takes care of them, so nothing needs dropping.
+// rebuilt; neither refactors H_ρ. Dependent rows leave S singular; its eigendecomposition over the
+// rank of the unit rows (minimum-norm λ) takes care of them, so nothing needs dropping.
 #pragma once
 
 #include <Eigen/QR>
@@ -15,13 +15,14 @@
 #include <memory>
 #include <vector>
 
+#include "qp/constraint_policy.h"
 #include "qp/qp_solver.h"
 
 namespace fairshape::qp {
 
 class RangeSpaceSolver final : public QpSolver {
  public:
-  RangeSpaceSolver();
+  explicit RangeSpaceSolver(ConstraintPolicy policy = {});
   ~RangeSpaceSolver() override;
   void analyze(const QuadraticProgram& qp) override;
   QpReport solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) override;
@@ -37,15 +38,20 @@ class RangeSpaceSolver final : public QpSolver {
  private:
   void updown(bool update, const SparseMatrix& rows);
   void rebuild_schur();
+  void decompose_schur();  // S's decomposition and condition estimate
   Eigen::MatrixXd solve_h(const Eigen::MatrixXd& rhs) const;
 
   struct Cholmod;
   std::unique_ptr<Cholmod> chol_;
-  SparseMatrix H_, A_;
+  ConstraintPolicy policy_;
+  SparseMatrix H_, A_;  // A_: the unit-norm rows of A_original_ (scaling_.d)
+  SparseMatrix A_original_;
+  RowScaling scaling_;
+  double condition_ = 1;
   double rho_ = 1;
   Eigen::MatrixXd Z_;  // H_ρ⁻¹ Aᵀ
   Eigen::MatrixXd S_;
-  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> schur_;  // rank-revealing: dependent rows
+  SchurSpectrum schur_;  // over the independent directions: minimum-norm multipliers
   bool singular_ = false;
   std::vector<char> in_factor_;  // per row of A: part of H_ρ (analyze) or bordered on (add_rows)
 };

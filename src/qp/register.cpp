@@ -1,3 +1,5 @@
+#include <algorithm>
+
 #include "core/config.h"
 #include "qp/kkt_solver.h"
 #include "qp/qr_penalty_solver.h"
@@ -12,10 +14,14 @@ QrPenaltyOptions read_penalty(Config& cfg) {
   o.mu = cfg.get_number("mu", o.mu, 1e-6, 1e12,
                         "penalty weight of the constraint rows, relative to the energy's scale (sqrt(max diag H) / max|A|)");
   o.refinement_steps = cfg.get_int("refinement_steps", o.refinement_steps, 0, 100,
-                                   "Van Loan weighting-method steps refining the constraint residual with the same factorization");
+                                   "Van Loan weighting-method steps refining the constraint residual with one factorization, at most "
+                                   "(fewer once constraint_tolerance is met)");
+  o.max_mu = cfg.get_number("max_mu", std::max(o.max_mu, o.mu), o.mu, 1e12,
+                            "mu grows tenfold up to this while refinement stalls above constraint_tolerance (max_mu = mu: never)");
   static const NameTable<bool> solves{{false, "semi_normal"}, {true, "orthogonal"}};
   o.orthogonal = cfg.get_enum("solve", false, solves,
                               "semi_normal: R only (corrected semi-normal equations, fast); orthogonal: through Q (slow, accurate)");
+  o.policy = read_constraint_policy(cfg);
   return o;
 }
 // Every linear solver, both back ends: the split's free unknowns.
@@ -47,7 +53,9 @@ void register_qp_solvers(QpSolverRegistry& r) {
                 "Eigen SparseLU factors"
               : "Lagrange system (eq. 9): dependent rows dropped by a rank-revealing QR (dense pivoted, SuiteSparseQR when large), "
                 "UMFPACK factors (symbolic analysis reused)",
-          [backend](Config&) -> std::unique_ptr<QpSolver> { return std::make_unique<KktSolver>(backend); });
+          [backend](Config& cfg) -> std::unique_ptr<QpSolver> {
+            return std::make_unique<KktSolver>(backend, read_constraint_policy(cfg));
+          });
     r.add("qr_penalty", backend,
           ref ? "penalty least squares [mu A; K] (eq. 10) by Eigen SparseQR, Van Loan refinement"
               : "penalty least squares [mu A; K] (eq. 10) by SuiteSparseQR, Van Loan refinement",
@@ -64,7 +72,7 @@ void register_qp_solvers(QpSolverRegistry& r) {
   r.add("range_space", Backend::Optimized,
         "CHOLMOD on H + rho A'A and the dense Schur complement of the constraints; added rows border it, removed ones "
         "downdate the factor (cholmod_updown)",
-        [](Config&) -> std::unique_ptr<QpSolver> { return std::make_unique<RangeSpaceSolver>(); });
+        [](Config& cfg) -> std::unique_ptr<QpSolver> { return std::make_unique<RangeSpaceSolver>(read_constraint_policy(cfg)); });
 }
 
 const QpSolverRegistry& qp_solver_registry() {

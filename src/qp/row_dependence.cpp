@@ -53,11 +53,11 @@ std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)> compressed_targets(const 
 }
 
 template <class QR>
-CompressedRows sparse_compression(const SparseMatrix& A, const std::vector<int>& reached, Backend backend) {
+CompressedRows sparse_compression(const SparseMatrix& A, const std::vector<int>& reached, Backend backend, double tolerance) {
   SparseMatrix on_reached = A * row_picker(A.cols(), reached);
   on_reached.makeCompressed();
   QR qr;
-  qr.setPivotThreshold(kRowDependenceTolerance * largest_column_norm(on_reached));
+  qr.setPivotThreshold(tolerance * largest_column_norm(on_reached));
   qr.compute(on_reached);
   if (qr.info() != Eigen::Success) throw SolverError("constraint rows: sparse QR failed");
   const Eigen::Index rank = qr.rank();
@@ -76,17 +76,17 @@ CompressedRows sparse_compression(const SparseMatrix& A, const std::vector<int>&
 
 }  // namespace
 
-CompressedRows compress_rows(const SparseMatrix& A, Backend backend) {
+CompressedRows compress_rows(const SparseMatrix& A, Backend backend, double tolerance) {
   const std::vector<int> reached = reached_columns(A);
   if (!dense_enough(A, reached)) {
     if (backend == Backend::Reference)
-      return sparse_compression<Eigen::SparseQR<SparseMatrix, Eigen::COLAMDOrdering<int>>>(A, reached, backend);
-    return sparse_compression<Eigen::SPQR<SparseMatrix>>(A, reached, backend);
+      return sparse_compression<Eigen::SparseQR<SparseMatrix, Eigen::COLAMDOrdering<int>>>(A, reached, backend, tolerance);
+    return sparse_compression<Eigen::SPQR<SparseMatrix>>(A, reached, backend, tolerance);
   }
   // Column-pivoted Householder QR of A on the unknowns it reaches: rank-revealing in practice
   // (SPQR's pivot threshold is a heuristic that keeps nearly dependent curve rows).
   auto qr = std::make_shared<Eigen::ColPivHouseholderQR<Eigen::MatrixXd>>();
-  qr->setThreshold(kRowDependenceTolerance);
+  qr->setThreshold(tolerance);
   qr->compute(Eigen::MatrixXd(A * row_picker(A.cols(), reached)));
   const Eigen::Index k = qr->rank();
   const Eigen::MatrixXd R = qr->matrixR().topRows(k).triangularView<Eigen::Upper>();
@@ -97,27 +97,27 @@ CompressedRows compress_rows(const SparseMatrix& A, Backend backend) {
   return out;
 }
 
-CompressedRows independent_rows_of(const SparseMatrix& A, Backend backend) {
+CompressedRows independent_rows_of(const SparseMatrix& A, Backend backend, double tolerance) {
   const std::vector<int> reached = reached_columns(A);
   std::vector<int> keep;
   if (dense_enough(A, reached)) {
     // Column pivoting on Aᵀ picks rows in order of independence: rank-revealing in practice.
     Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr;
-    qr.setThreshold(kRowDependenceTolerance);
+    qr.setThreshold(tolerance);
     qr.compute(Eigen::MatrixXd(SparseMatrix(A * row_picker(A.cols(), reached)).transpose()));
     for (Eigen::Index k = 0; k < qr.rank(); ++k) keep.push_back(qr.colsPermutation().indices()[k]);
     std::sort(keep.begin(), keep.end());
   } else {
-    keep = independent_rows(A, backend);
+    keep = independent_rows(A, backend, tolerance);
   }
   const SparseMatrix pick_t = SparseMatrix(row_picker(A.rows(), keep).transpose());
   return {pick_t * A, [pick_t](const Eigen::MatrixXd& b) { return Eigen::MatrixXd(pick_t * b); }, false};
 }
 
-CompressedRows without_dependent_rows(const SparseMatrix& A, Backend backend) {
+CompressedRows without_dependent_rows(const SparseMatrix& A, Backend backend, double tolerance) {
   if (A.rows() == 0) return {SparseMatrix(0, A.cols()), [](const Eigen::MatrixXd& b) { return b; }, false};
-  if (A.rows() > static_cast<Eigen::Index>(reached_columns(A).size())) return compress_rows(A, backend);
-  return independent_rows_of(A, backend);
+  if (A.rows() > static_cast<Eigen::Index>(reached_columns(A).size())) return compress_rows(A, backend, tolerance);
+  return independent_rows_of(A, backend, tolerance);
 }
 
 }  // namespace fairshape::qp

@@ -35,15 +35,15 @@ struct CompressedRows {
   bool orthogonal = false;
 };
 
-//! Rows R₁Pᵀ from a QR A P = Q R whose pivots below kRowDependenceTolerance count as zero, and
-//! b ↦ Q₁ᵀ b (= R₁₁⁻ᵀ (A P₁)ᵀ b). For consistent b the same solutions; for inconsistent b the
-//! least-squares fit (§4.3's AᵀA p = Aᵀb, without squaring A's condition number).
-CompressedRows compress_rows(const SparseMatrix& A, Backend backend);
+//! Rows R₁Pᵀ from a QR A P = Q R whose pivots below `tolerance` × the largest count as zero,
+//! and b ↦ Q₁ᵀ b (= R₁₁⁻ᵀ (A P₁)ᵀ b). For consistent b the same solutions; for inconsistent b
+//! the least-squares fit (§4.3's AᵀA p = Aᵀb, without squaring A's condition number).
+CompressedRows compress_rows(const SparseMatrix& A, Backend backend, double tolerance = kRowDependenceTolerance);
 //! The rows a rank-revealing QR of Aᵀ keeps (same tolerance), and b ↦ those entries of b.
-CompressedRows independent_rows_of(const SparseMatrix& A, Backend backend);
+CompressedRows independent_rows_of(const SparseMatrix& A, Backend backend, double tolerance = kRowDependenceTolerance);
 //! The first choice of every solver: A's own independent rows, unless A has more rows than the
 //! unknowns it reaches — they cannot be independent, and the orthogonal reduction is both
 //! smaller and better conditioned than a subset.
-CompressedRows without_dependent_rows(const SparseMatrix& A, Backend backend);
+CompressedRows without_dependent_rows(const SparseMatrix& A, Backend backend, double tolerance = kRowDependenceTolerance);
 
 }  // namespace fairshape::qp

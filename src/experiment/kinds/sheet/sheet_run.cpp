@@ -142,10 +142,17 @@ SheetConstraintSpec read_constraint(Config& c, const std::string& label, const s
     k.kind = SheetConstraint::Kind::Curve;
     s.curve = c.require<std::string>("curve", "space curve name");
     k.curve.uv = read_uv_list(c, "uv", "uv polyline on the sheet (default: the curve's from_surface uv)");
+    static const NameTable<bspline::CurveFormulation> formulations{{bspline::CurveFormulation::Mortar, "mortar"},
+                                                                   {bspline::CurveFormulation::Paper, "paper"}};
+    k.formulation = c.get_enum("formulation", bspline::CurveFormulation::Mortar, formulations,
+                               "mortar: weak rows against multipliers along the curve (no locking); paper: eq. 7, one row "
+                               "per control point reached (locks; the rank tolerance picks the answer)");
     static const NameTable<bspline::CurveQuadrature> quadratures{{bspline::CurveQuadrature::Exact, "exact"},
                                                                  {bspline::CurveQuadrature::Reduced, "reduced"}};
+    if (c.has("quadrature") && k.formulation != bspline::CurveFormulation::Paper)
+      throw InvalidConfig(c.key_path("quadrature") + ": applies to formulation: paper only (the mortar rows are integrated exactly)");
     k.quadrature = c.get_enum("quadrature", bspline::CurveQuadrature::Exact, quadratures,
-                              "eq. 7 integration: exact, or reduced against locking");
+                              "formulation paper: eq. 7 integration, exact or reduced (§4.2.2, against locking)");
   } else {
     const Eigen::Vector2d uv = read_uv(c, "uv", "parameter point [u, v]");
     k.u = uv.x();
@@ -414,13 +421,13 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
                       std::to_string(s.level_count()), std::to_string(program.A.rows()), std::to_string(r.qp.dropped_rows),
                       num(r.qp.constraint_residual), num(r.max_constraint_error), num(r.energy),
                       std::to_string(r.spans_refined), std::to_string(r.rounds), num(r.analyze_s), num(r.solve_s)});
-        if (!is_success(r.qp.summary.termination)) {
+        failed = !is_success(r.qp.summary.termination);
+        if (failed) {
           row["termination"] = std::string(to_string(r.qp.summary.termination));
           row["message"] = "step " + std::to_string(step) + ", sheet " + spec.sheets[k].name + ": " + r.message;
-          failed = true;
-          break;
+        } else if (!r.message.empty()) {
+          row["message"] = spec.sheets[k].name + ": " + r.message;
         }
-        if (!r.message.empty()) row["message"] = spec.sheets[k].name + ": " + r.message;
         if (spec.solver_type == "paper")  // a different answer, said where the numbers are
           row["message"] += std::string(row["message"].empty() ? "" : "; ") +
                             "paper split: the constrained control points are the minimum-norm least-squares solution of "
@@ -431,7 +438,7 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
         solve_s += r.solve_s;
         refined += r.spans_refined;
         rounds += r.rounds;
-        if (step + 1 == spec.steps()) {
+        if (step + 1 == spec.steps() || failed) {  // the row: the last step, or the one that failed
           energy += r.energy;
           residual = std::hypot(residual, r.qp.constraint_residual);
           max_err = std::max(max_err, r.max_constraint_error);
@@ -439,12 +446,14 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
           rows += static_cast<int>(program.A.rows());
           dropped += r.qp.dropped_rows;
           levels = std::max(levels, s.level_count());
-          if (std::isfinite(r.qp.condition_estimate)) cond = std::max(cond, r.qp.condition_estimate);
+          if (!std::isnan(r.qp.condition_estimate)) cond = std::max(cond, r.qp.condition_estimate);
         }
+        if (failed) break;
       }
-      // Per step: all sheets in one polydata (point array displacement_norm) and the space curves.
-      if (!failed) {
-        if (spec.vtk == VtkPolicy::All || (spec.vtk == VtkPolicy::Final && step + 1 == spec.steps())) {
+      // Per step: all sheets in one polydata (point array displacement_norm) and the space curves
+      // (a failed step's too: what it achieved, under its termination).
+      {
+        if (spec.vtk == VtkPolicy::All || (spec.vtk == VtkPolicy::Final && (step + 1 == spec.steps() || failed))) {
           const std::string stem = (fs::path(out.dir) / "vtk" / (out.run_id + "_step" + std::to_string(step))).string();
           write_vtp(sheets_mesh(sheets, spec.samples_per_span, initial_surfaces, initial_P), stem + ".vtp");
           overlay.write(stem + "_constraints.vtp");

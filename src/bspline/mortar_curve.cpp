@@ -1,0 +1,151 @@
+#include "bspline/mortar_curve.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "bspline/knot_basis.h"
+#include "bspline/uniform_basis.h"
+#include "core/error.h"
+
+namespace fairshape::bspline {
+
+namespace {
+
+// The uv polyline by arc length: vertex k at S[k] (its points are equally spaced in t).
+struct ArcLength {
+  std::vector<double> S;
+  explicit ArcLength(const std::vector<Eigen::Vector2d>& uv) : S{0.0} {
+    for (std::size_t k = 0; k + 1 < uv.size(); ++k) S.push_back(S.back() + (uv[k + 1] - uv[k]).norm());
+  }
+  double length() const { return S.back(); }
+  // t ∈ [0, 1] of arc length s (the segment's t is linear in its s).
+  double t_of(double s) const {
+    const std::size_t n = S.size() - 1;
+    std::size_t k = static_cast<std::size_t>(std::upper_bound(S.begin(), S.end(), s) - S.begin());
+    k = std::clamp<std::size_t>(k, 1, n) - 1;
+    while (k + 1 < n && S[k + 1] - S[k] <= 0) ++k;
+    const double len = S[k + 1] - S[k];
+    const double a = len > 0 ? std::clamp((s - S[k]) / len, 0.0, 1.0) : 0.0;
+    return (static_cast<double>(k) + a) / static_cast<double>(n);
+  }
+  double s_of(double t) const {
+    const double x = std::clamp(t, 0.0, 1.0) * static_cast<double>(S.size() - 1);
+    const std::size_t k = std::min(static_cast<std::size_t>(x), S.size() - 2);
+    return S[k] + (x - static_cast<double>(k)) * (S[k + 1] - S[k]);
+  }
+};
+
+// The finest level whose unknowns are nonzero at (u, v): the surface's resolution there.
+int resolution_at(const HierarchicalSurface& s, const Eigen::Vector2d& uv, BasisRow& row) {
+  s.basis(uv.x(), uv.y(), row);
+  int level = 0;
+  for (const BasisEntry& e : row) level = std::max(level, s.dofs()[static_cast<std::size_t>(e.dof)].level);
+  return level;
+}
+
+// Crossings (arc length) of the finest grid's lines of `axis` on segment k, with each line's
+// finest index g (the line is one of level m for every m with g divisible by 2^(F−m)).
+template <class Visit>
+void grid_crossings(const std::vector<Eigen::Vector2d>& uv, const ArcLength& arc, std::size_t k, int axis, double grid,
+                    Visit visit) {
+  const double a = uv[k][axis] * grid, b = uv[k + 1][axis] * grid;
+  if (a == b) return;
+  for (double line = std::ceil(std::min(a, b)); line <= std::max(a, b); line += 1)
+    visit(arc.S[k] + (line - a) / (b - a) * (arc.S[k + 1] - arc.S[k]), static_cast<long long>(line));
+}
+
+// The coarsest level of which finest-grid line g is a line (F: the finest level).
+int line_level(long long g, int F) {
+  int m = F;
+  while (m > 0 && g % 2 == 0) g /= 2, --m;
+  return m;
+}
+
+Eigen::Vector2d uv_at(const std::vector<Eigen::Vector2d>& uv, const ArcLength& arc, double s) {
+  return polyline_at(uv, arc.t_of(s));
+}
+
+}  // namespace
+
+std::vector<double> mortar_knots(const HierarchicalSurface& s, const std::vector<Eigen::Vector2d>& uv) {
+  const ArcLength arc(uv);
+  const int F = s.level_count() - 1;
+  const double grid = std::ldexp(1.0, F), L = arc.length();
+  BasisRow row;
+  std::vector<double> knots;
+  double last = 0;
+  for (std::size_t k = 0; k + 1 < uv.size(); ++k) {
+    const Eigen::Vector2d d = uv[k + 1] - uv[k];
+    const int axis = std::abs(d.x()) >= std::abs(d.y()) ? 0 : 1;
+    grid_crossings(uv, arc, k, axis, grid, [&](double sk, long long g) {
+      // The resolution on either side of the line: a knot of a level the surface has there.
+      const double eps = 1e-7 / grid;
+      const int res = std::max(resolution_at(s, uv_at(uv, arc, std::max(sk - eps, 0.0)), row),
+                               resolution_at(s, uv_at(uv, arc, std::min(sk + eps, L)), row));
+      if (line_level(g, F) > res) return;
+      // Knots closer than half a cell to the previous one (where the dominant direction
+      // changes) or a quarter cell to an end would make nearly dependent multipliers.
+      const double h = std::ldexp(1.0, -res);
+      const double gap = knots.empty() ? 0.25 * h : 0.5 * h;
+      if (sk - last < gap || L - sk < 0.25 * h) return;
+      knots.push_back(sk);
+      last = sk;
+    });
+  }
+  return knots;
+}
+
+ConstraintRows mortar_curve_rows(const HierarchicalSurface& s, const CurveAttachment& curve) {
+  check_curve_attachment(s, curve);
+  const ArcLength arc(curve.uv);
+  const double L = arc.length();
+  if (!(L > 0)) throw InvalidInput("curve constraint: the (u, v) curve has zero length");
+  const int r = s.degree();
+  const std::vector<double> knots = mortar_knots(s, curve.uv);
+  const ClampedKnotBasis W(0, L, knots, r);
+
+  // Pieces on which the integrand is one polynomial: between uv and space-curve vertices, W's
+  // knots and every finest grid line crossed.
+  std::vector<double> breaks = arc.S;
+  const double nsp = static_cast<double>(curve.space.size() - 1);
+  for (std::size_t k = 0; k < curve.space.size(); ++k) breaks.push_back(arc.s_of(static_cast<double>(k) / nsp));
+  breaks.insert(breaks.end(), knots.begin(), knots.end());
+  const double grid = std::ldexp(1.0, s.level_count() - 1);
+  for (std::size_t k = 0; k + 1 < curve.uv.size(); ++k)
+    for (int axis = 0; axis < 2; ++axis) grid_crossings(curve.uv, arc, k, axis, grid, [&](double sk, long long) { breaks.push_back(sk); });
+  std::sort(breaks.begin(), breaks.end());
+
+  // ψ (degree r) · surface basis along a straight piece (degree ≤ 2r) · D (linear): degree 3r+1.
+  const GaussRule g = gauss_legendre((3 * r + 2) / 2 + 1);
+  const int m = W.size();
+  Triplets t;
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(m, 3);
+  BasisRow row;
+  std::vector<double> psi;
+  int first = 0;
+  for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
+    const double s0 = std::clamp(breaks[k], 0.0, L), s1 = std::clamp(breaks[k + 1], 0.0, L);
+    if (s1 - s0 <= 1e-14 * L) continue;
+    for (std::size_t q = 0; q < g.nodes.size(); ++q) {
+      const double sq = s0 + g.nodes[q] * (s1 - s0), w = g.weights[q] * (s1 - s0);
+      const double tq = arc.t_of(sq);
+      const Eigen::Vector2d c = polyline_at(curve.uv, tq);
+      const Vec3 D = polyline_at(curve.space, tq);
+      s.basis(c.x(), c.y(), row);
+      W.evaluate(sq, first, psi);
+      for (int a = 0; a <= r; ++a) {
+        const double wa = w * psi[static_cast<std::size_t>(a)] / W.integral(first + a);
+        if (wa == 0) continue;
+        C.row(first + a) += wa * D.transpose();
+        for (const BasisEntry& e : row) t.emplace_back(first + a, e.dof, wa * e.value);
+      }
+    }
+  }
+  ConstraintRows out;
+  out.A.resize(m, s.dof_count());
+  out.A.setFromTriplets(t.begin(), t.end());
+  out.C = std::move(C);
+  return out;
+}
+
+}  // namespace fairshape::bspline

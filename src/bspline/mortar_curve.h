@@ -1,0 +1,30 @@
+// A curve constraint w(c(s)) = D(s) that does not lock (issue 23; papers/welch-witkin/README.md,
+// "Curve constraints"): imposed weakly, against a space of multipliers along the curve,
+//   ∫ ψ_j(s) (w(c(s)) − D(s)) ds = 0   for every ψ_j of W,
+// with W the clamped B-splines of the surface's degree in the uv arc length s, with a knot
+// wherever the curve crosses a grid line of its dominant direction at the surface's local
+// resolution (the mortar methods' multiplier space). For a curve along a parameter line W is
+// exactly the space the surface traces on it, so the constraint is met exactly when the
+// target is in that space and as its L² projection otherwise; for other curves W has one
+// function per cell crossed, which the trace space always contains on straight pieces. Either
+// way the rows are independent (no rank tolerance decides the answer) and their number does
+// not depend on how densely the curves are sampled. Welch & Witkin's eq. 7 (one row per
+// control point reached) is the Galerkin form of the same condition with W the whole trace
+// space, whose Gram matrix has singular values spread down to rounding: which of its rows
+// count as dependent decides the surface.
+// Each row is normalized by ∫ψ_j, so it reads as a weighted mean of w along the curve and its
+// residual is a distance in world units.
+#pragma once
+
+#include "bspline/surface_constraints.h"
+
+namespace fairshape::bspline {
+
+//! \throw InvalidInput for fewer than two points, a point outside the domain, a non-finite
+//! target or a uv curve of zero length.
+ConstraintRows mortar_curve_rows(const HierarchicalSurface& s, const CurveAttachment& curve);
+
+//! The multiplier knots (uv arc length, span units) mortar_curve_rows uses: exposed for tests.
+std::vector<double> mortar_knots(const HierarchicalSurface& s, const std::vector<Eigen::Vector2d>& uv);
+
+}  // namespace fairshape::bspline

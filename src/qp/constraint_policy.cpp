@@ -1,0 +1,130 @@
+#include "qp/constraint_policy.h"
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/Eigenvalues>
+#include <Eigen/QR>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/config.h"
+#include "core/message_format.h"
+#include "problem/least_squares.h"
+
+namespace fairshape::qp {
+
+ConstraintPolicy read_constraint_policy(Config& cfg) {
+  ConstraintPolicy p;
+  p.rank_tolerance = cfg.get_number("rank_tolerance", p.rank_tolerance, 1e-16, 1e-2,
+                                    "a direction of the unit-norm constraint rows weaker than this times the strongest counts "
+                                    "as dependent (dropped; inconsistent targets then get a least-squares fit)");
+  p.constraint_tolerance = cfg.get_number("constraint_tolerance", p.constraint_tolerance, 1e-15, 1,
+                                          "largest unit-row residual, relative to the constrained values' size, still called "
+                                          "converged (above: constraints_unmet)");
+  p.max_condition = cfg.get_number("max_condition", p.max_condition, 1, 1e300,
+                                   "largest condition estimate of the constraints' Schur complement still called converged "
+                                   "(above: ill_conditioned)");
+  return p;
+}
+
+RowScaling scale_rows(const SparseMatrix& A) {
+  RowScaling out;
+  Eigen::VectorXd norm2 = Eigen::VectorXd::Zero(A.rows());
+  for (int c = 0; c < A.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(A, c); it; ++it) norm2[it.row()] += it.value() * it.value();
+  out.d.resize(A.rows());
+  for (Eigen::Index i = 0; i < A.rows(); ++i) {
+    if (norm2[i] > 0) {
+      out.d[i] = 1 / std::sqrt(norm2[i]);
+    } else {
+      out.d[i] = 1;
+      ++out.zero_rows;
+    }
+  }
+  out.scaled = out.d.asDiagonal() * A;
+  out.scaled.makeCompressed();
+  return out;
+}
+
+int row_rank(const SparseMatrix& unit_rows, double rank_tolerance) {
+  if (unit_rows.rows() == 0) return 0;
+  const std::vector<int> reached = reached_columns(unit_rows);
+  if (unit_rows.rows() > kConditionMaxRows || static_cast<double>(unit_rows.rows()) * static_cast<double>(reached.size()) > 2e7)
+    return -1;
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr;
+  qr.setThreshold(rank_tolerance);
+  qr.compute(Eigen::MatrixXd(unit_rows * row_picker(unit_rows.cols(), reached)));
+  return static_cast<int>(qr.rank());
+}
+
+SchurSpectrum schur_spectrum(const Eigen::MatrixXd& S, int rank) {
+  SchurSpectrum out;
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(S);
+  const Eigen::Index m = S.rows(), k = std::clamp<Eigen::Index>(rank, 0, m);
+  if (eig.info() != Eigen::Success) {
+    out.condition = std::numeric_limits<double>::infinity();
+    return out;
+  }
+  // Eigen orders ascending: the k largest are the last k.
+  out.vectors = eig.eigenvectors().rightCols(k).rowwise().reverse();
+  out.values = eig.eigenvalues().tail(k).reverse();
+  out.condition = k == 0 ? 1.0 : out.values[k - 1] > 0 ? out.values[0] / out.values[k - 1] : std::numeric_limits<double>::infinity();
+  return out;
+}
+
+Eigen::MatrixXd SchurSpectrum::solve(const Eigen::MatrixXd& rhs) const {
+  return vectors * (values.cwiseInverse().asDiagonal() * (vectors.transpose() * rhs));
+}
+
+double schur_rho(const SparseMatrix& H, const SparseMatrix& unit_rows) {
+  const double h = H.rows() ? H.diagonal().cwiseAbs().maxCoeff() : 0.0;
+  Eigen::VectorXd col2 = Eigen::VectorXd::Zero(unit_rows.cols());
+  for (int c = 0; c < unit_rows.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(unit_rows, c); it; ++it) col2[c] += it.value() * it.value();
+  const double a = col2.size() ? col2.maxCoeff() : 0.0;
+  return h > 0 && a > 0 ? h / a : 1.0;
+}
+
+double schur_condition(const SparseMatrix& H, const SparseMatrix& unit_rows, double rank_tolerance) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (unit_rows.rows() == 0) return 1;
+  if (H.rows() > kConditionMaxUnknowns) return nan;
+  const int rank = row_rank(unit_rows, rank_tolerance);
+  if (rank < 0) return nan;
+  const double rho = schur_rho(H, unit_rows);
+  SparseMatrix Hr = H + rho * SparseMatrix(unit_rows.transpose() * unit_rows);
+  Hr.makeCompressed();
+  Eigen::CholmodDecomposition<SparseMatrix> chol;
+  chol.compute(Hr);
+  if (chol.info() != Eigen::Success) return nan;
+  const Eigen::MatrixXd Z = chol.solve(Eigen::MatrixXd(SparseMatrix(unit_rows.transpose())));
+  if (chol.info() != Eigen::Success || !Z.allFinite()) return nan;
+  return schur_spectrum(Eigen::MatrixXd(unit_rows * Z), rank).condition;
+}
+
+void assess(QpReport& out, const SparseMatrix& A, const Eigen::MatrixXd& b, const RowScaling& rows, const ConstraintPolicy& policy) {
+  if (A.rows() == 0 || out.p.size() == 0) return;
+  const Eigen::MatrixXd Ap = A * out.p;
+  out.constraint_residual = (Ap - b).norm();
+  if (out.summary.termination != Termination::Converged) return;
+  const Eigen::MatrixXd unit_residual = rows.d.asDiagonal() * (Ap - b);
+  const double size = std::max((rows.d.asDiagonal() * b).cwiseAbs().maxCoeff(), (rows.d.asDiagonal() * Ap).cwiseAbs().maxCoeff());
+  const double worst = unit_residual.cwiseAbs().maxCoeff();
+  const double relative = size > 0 ? worst / size : worst;
+  const std::string notes = out.summary.message.empty() ? "" : "; " + out.summary.message;
+  const std::string cond = std::isnan(out.condition_estimate) ? "not estimated" : sci(out.condition_estimate);
+  if (out.condition_estimate > policy.max_condition) {
+    out.summary.termination = Termination::IllConditioned;
+    out.summary.message = "ill-posed constraints: condition estimate " + cond + " of their Schur complement is above max_condition " +
+                          sci(policy.max_condition) + " (nearly dependent constraints: the answer hangs on rank_tolerance and "
+                          "rounding, e.g. two point constraints very close together with different targets, or eq. 7's curve "
+                          "rows); relative residual " + sci(relative) + notes;
+  } else if (!(relative <= policy.constraint_tolerance)) {
+    out.summary.termination = Termination::ConstraintsUnmet;
+    out.summary.message = "constraints not met: relative residual " + sci(relative) + " (largest row " + sci(worst) +
+                          ") above constraint_tolerance " + sci(policy.constraint_tolerance) +
+                          " (inconsistent constraints get a least-squares fit); condition estimate " + cond + notes;
+  }
+}
+
+}  // namespace fairshape::qp

@@ -66,8 +66,8 @@ std::optional<int> read_samples(Config& c, bool closed) {
 template <int D>
 Samples read_polyline(Config& c) {
   const bool closed = c.get<bool>("closed", false, "the curve returns to its first point (points and bspline)");
-  Eigen::MatrixXd V = read_point_list<D>(c, "points", closed ? 3 : 2, closed ? " (closed)" : "",
-                                         std::string("polyline ") + "[" + point_spelling(D) + ", ...]");
+  const Eigen::MatrixXd V = read_point_list<D>(c, "points", closed ? 3 : 2, closed ? " (closed)" : "",
+                                               std::string("polyline ") + "[" + point_spelling(D) + ", ...]");
   const std::optional<int> samples = read_samples(c, closed);
   if (c.documenting()) return {V, closed};
   if (closed && V.row(0) == V.row(V.rows() - 1))

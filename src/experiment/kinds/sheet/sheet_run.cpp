@@ -10,6 +10,7 @@
 #include "core/summary.h"
 #include "core/config.h"
 #include "core/timer.h"
+#include "experiment/kinds/sheet/curve_forms.h"
 #include "experiment/metric_format.h"
 #include "io/constraint_overlay.h"
 #include "io/mesh_io.h"
@@ -30,16 +31,6 @@ Eigen::Vector2d read_uv(Config& c, const std::string& key, const std::string& do
   if (c.documenting()) return Eigen::Vector2d::Zero();
   if (v.size() != 2) throw InvalidConfig(c.key_path(key) + ": expected [u, v]");
   return {v[0], v[1]};
-}
-
-std::vector<Eigen::Vector2d> read_uv_list(Config& c, const std::string& key, const std::string& doc) {
-  const auto list = c.get<std::vector<std::vector<double>>>(key, {}, doc);
-  std::vector<Eigen::Vector2d> out;
-  for (std::size_t k = 0; k < list.size(); ++k) {
-    if (list[k].size() != 2) throw InvalidConfig(c.key_path(key) + "[" + std::to_string(k) + "]: expected [u, v]");
-    out.emplace_back(list[k][0], list[k][1]);
-  }
-  return out;
 }
 
 // A number (times `isotropic`) or a symmetric 2 × 2 matrix [[w11, w12], [w21, w22]].
@@ -101,20 +92,27 @@ SheetSpec read_sheet(Config& c) {
 SpaceCurveSpec read_curve(Config& c) {
   SpaceCurveSpec s;
   s.name = c.require<std::string>("name", "name curve constraints refer to");
-  s.samples = c.get_int("samples", s.samples, 2, 100000, "points of the space curve (equally spaced in t)");
-  Config fs_ = c.child("from_surface", "trace the curve on a sheet's initial surface: {sheet, uv: [[u, v], ...]}");
-  if (fs_.has("sheet") || fs_.has("uv") || fs_.documenting()) {
+  if (c.has("from_surface")) {
+    for (const char* form : {"points", "arc", "bspline", "closed"})
+      if (c.has(form))
+        throw InvalidConfig(c.key_path(form) + (std::string(form) == "closed"
+                                                    ? ": a traced curve is closed when its uv curve is (from_surface.uv: {..., closed: true})"
+                                                    : ": give either from_surface or a curve form, not both"));
+    s.samples = c.get_int("samples", s.samples, 2, kMaxCurveSamples, "points of the space curve (equally spaced in t)");
+    Config fs_ = c.child("from_surface", "trace the curve on a sheet's initial surface: {sheet, uv}");
     s.from_sheet = fs_.require<std::string>("sheet", "sheet name");
-    s.uv = read_uv_list(fs_, "uv", "uv polyline on that sheet");
-    if (!fs_.documenting() && s.uv.size() < 2) throw InvalidConfig(fs_.key_path("uv") + ": at least two [u, v] points");
+    const SampledCurve<2> uv = read_uv_curve(fs_, "uv", "(u, v) curve on that sheet");
+    if (uv.points.empty()) throw InvalidConfig(fs_.key_path("uv") + ": required key is missing");
+    s.uv = uv.points;
+    s.closed = uv.closed;
+    fs_.check_no_unknown_keys();
+  } else if (!c.documenting()) {  // points, arc or bspline (curve_forms.h), sampled already
+    if (!has_curve_form_key(c)) throw InvalidConfig(c.path() + ": give from_surface or a curve: points, arc or bspline");
+    const SampledCurve<3> curve = read_curve_form<3>(c);
+    s.points = curve.points;
+    s.closed = curve.closed;
+    s.samples = static_cast<int>(s.points.size());
   }
-  fs_.check_no_unknown_keys();
-  for (const auto& p : c.get<std::vector<std::vector<double>>>("points", {}, "explicit points [[x, y, z], ...]")) {
-    if (p.size() != 3) throw InvalidConfig(c.key_path("points") + ": expected [x, y, z] entries");
-    s.points.emplace_back(p[0], p[1], p[2]);
-  }
-  if (!c.documenting() && (s.from_sheet.empty() == s.points.empty() || (s.from_sheet.empty() && s.points.size() < 2)))
-    throw InvalidConfig(c.key_path("points") + ": give either from_surface or at least two points");
   for (Config e : c.child_list("edits", "smooth displacements [{step, t, radius, by: [x, y, z]}] (cosine bump in t)")) {
     SpaceCurveEdit ed;
     ed.step = e.get_int("step", 1, 0, 1000, "design step from which the edit applies");
@@ -141,7 +139,7 @@ SheetConstraintSpec read_constraint(Config& c, const std::string& label, const s
   if (type == "curve") {
     k.kind = SheetConstraint::Kind::Curve;
     s.curve = c.require<std::string>("curve", "space curve name");
-    k.curve.uv = read_uv_list(c, "uv", "uv polyline on the sheet (default: the curve's from_surface uv)");
+    k.curve.uv = read_uv_curve(c, "uv", "(u, v) curve on the sheet (default: the curve's from_surface uv)").points;
     static const NameTable<bspline::CurveFormulation> formulations{{bspline::CurveFormulation::Mortar, "mortar"},
                                                                    {bspline::CurveFormulation::Paper, "paper"}};
     k.formulation = c.get_enum("formulation", bspline::CurveFormulation::Mortar, formulations,
@@ -204,7 +202,7 @@ SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config) {
     throw InvalidConfig(key + ": no sheet named '" + name + "' (sheets: " + names + ")");
   };
   int k = 0;
-  for (Config c : root.child_list("curves", "space curves [{name, from_surface | points, samples, edits}]")) {
+  for (Config c : root.child_list("curves", "space curves [{name, from_surface | points | arc | bspline, closed, samples, edits}]")) {
     s.curves.push_back(read_curve(c));
     if (!s.curves.back().from_sheet.empty()) sheet_index(s.curves.back().from_sheet, "curves[" + std::to_string(k) + "].from_surface.sheet");
     ++k;
@@ -317,7 +315,9 @@ std::vector<Vec3> curve_at_step(const SpaceCurveSpec& c, const std::vector<Vec3>
   for (const SpaceCurveEdit& e : c.edits) {
     if (e.step > step) continue;
     for (std::size_t k = 0; k < pts.size(); ++k) {
-      const double t = static_cast<double>(k) / (pts.size() - 1), d = std::abs(t - e.t) / e.radius;
+      const double t = static_cast<double>(k) / (pts.size() - 1);
+      // A closed curve's bump wraps round its start (t = 0 and 1 are one point, moved alike).
+      const double d = (c.closed ? std::min(std::abs(t - e.t), 1 - std::abs(t - e.t)) : std::abs(t - e.t)) / e.radius;
       if (d < 1) pts[k] += 0.5 * (1 + std::cos(M_PI * d)) * e.by;
     }
   }

@@ -36,9 +36,10 @@ struct SpaceCurveEdit {
 struct SpaceCurveSpec {
   std::string name;
   std::string from_sheet;                 // non-empty: traced on this sheet's initial surface
-  std::vector<Eigen::Vector2d> uv;        // ... along this uv polyline
-  std::vector<Vec3> points;               // or given explicitly
+  std::vector<Eigen::Vector2d> uv;        // ... along this uv curve (curve_forms.h), `samples` points
+  std::vector<Vec3> points;               // or given as points, arc or bspline, sampled already
   int samples = 65;
+  bool closed = false;                    // ends where it starts (edits wrap round)
   std::vector<SpaceCurveEdit> edits;
 };
 

@@ -69,8 +69,7 @@ def cells_panel(ax, cells, when, vmin, vmax):
     for c in cells:
         if c["when"] != when:
             continue
-        size = float(c["size"])
-        r = Rectangle((float(c["u0"]), float(c["v0"])), size, size)
+        r = Rectangle((float(c["u0"]), float(c["v0"])), float(c["size_u"]), float(c["size_v"]))
         if float(c["error"]) > 0:
             rects.append(r)
             values.append(math.log10(float(c["error"])))

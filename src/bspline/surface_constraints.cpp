@@ -47,7 +47,10 @@ ConstraintRows tangent_rows(const HierarchicalSurface& s, double u, double v, in
   if (!target.allFinite()) throw InvalidInput("tangent constraint: target is not finite");
   BasisRow row;
   s.basis(u, v, row);
-  return single_row(s, row, direction == 0 ? &BasisEntry::du : &BasisEntry::dv, target);
+  // A derivative in design units: D_x = D_u / h_u (SheetShape::span_size).
+  ConstraintRows out = single_row(s, row, direction == 0 ? &BasisEntry::du : &BasisEntry::dv, target);
+  out.A /= s.shape().span_size[direction];
+  return out;
 }
 
 ConstraintRows normal_rows(const HierarchicalSurface& s, const Eigen::MatrixXd& P, double u, double v, const Vec3& normal) {

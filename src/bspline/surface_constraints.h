@@ -1,7 +1,7 @@
 // The geometric constraints of Welch & Witkin §4.2 as linear rows on a hierarchical B-spline
 // surface's control vector, shared by x, y and z (A p = C, C with three columns):
 //   point     w(u₀, v₀) = x                                     one row
-//   tangent   D_u w or D_v w at (u₀, v₀) = t                    one row
+//   tangent   D_u w or D_v w at (u₀, v₀) = t, in design units      one row
 //   normal    both tangents at (u₀, v₀) set to the current ones projected onto the plane
 //             normal to n: two rows; uncoupled (per coordinate) like every constraint of §4.2,
 //             at the price of also fixing the tangents' lengths (a documented choice)

@@ -142,13 +142,28 @@ SparseMatrix hessian_optimized(const HierarchicalSurface& s, const TensionWeight
 
 }  // namespace
 
-SparseMatrix thin_plate_hessian(const HierarchicalSurface& s, const TensionWeights& w, Backend backend) {
-  validate(w);
+TensionWeights in_span_units(const TensionWeights& w, const Eigen::Vector2d& span_size) {
+  // x_i = h_i u_i: D_{x_i} = D_{u_i} / h_i and dx dy = h_u h_v du dv.
+  TensionWeights out;
+  const double area = span_size.x() * span_size.y();
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) {
+      const double hij = span_size[i] * span_size[j];
+      out.alpha(i, j) = w.alpha(i, j) * area / hij;
+      out.beta(i, j) = w.beta(i, j) * area / (hij * hij);
+    }
+  return out;
+}
+
+SparseMatrix thin_plate_hessian(const HierarchicalSurface& s, const TensionWeights& design, Backend backend) {
+  validate(design);
+  const TensionWeights w = in_span_units(design, s.shape().span_size);
   return backend == Backend::Reference ? hessian_reference(s, w) : hessian_optimized(s, w);
 }
 
-SparseMatrix thin_plate_square_root(const HierarchicalSurface& s, const TensionWeights& w) {
-  validate(w);
+SparseMatrix thin_plate_square_root(const HierarchicalSurface& s, const TensionWeights& design) {
+  validate(design);
+  const TensionWeights w = in_span_units(design, s.shape().span_size);
   const GaussRule g = gauss_legendre(s.degree() + 1);
   const TermRows terms = term_rows(w);
   // Each cell's block (points × terms rows) is replaced by the R of its QR, which has the same

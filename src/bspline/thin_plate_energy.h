@@ -22,7 +22,11 @@ struct TensionWeights {
 //! \throw InvalidInput naming the offending entry (α not symmetric PSD, β negative or not symmetric).
 void validate(const TensionWeights& w);
 
-//! H of eq. 5 (Hessian of Q). Reference: per quadrature point outer products into triplets;
+//! The weights that give, in base-span units, the energy `w` defines in the sheet's design
+//! units (SheetShape::span_size h): α_ij h_u h_v / (h_i h_j), β_ij h_u h_v / (h_i h_j)².
+TensionWeights in_span_units(const TensionWeights& w, const Eigen::Vector2d& span_size);
+
+//! H of eq. 5 (Hessian of Q), the integral in the sheet's design units (SheetShape::span_size). Reference: per quadrature point outer products into triplets;
 //! optimized: dense local matrices per leaf cell in parallel (TBB).
 SparseMatrix thin_plate_hessian(const HierarchicalSurface& s, const TensionWeights& w, Backend backend);
 

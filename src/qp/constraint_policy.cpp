@@ -85,40 +85,69 @@ double schur_rho(const SparseMatrix& H, const SparseMatrix& unit_rows) {
   return h > 0 && a > 0 ? h / a : 1.0;
 }
 
-double schur_condition(const SparseMatrix& H, const SparseMatrix& unit_rows, double rank_tolerance) {
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  if (unit_rows.rows() == 0) return 1;
-  if (H.rows() > kConditionMaxUnknowns) return nan;
+ConstraintConditioning constraint_conditioning(const SparseMatrix& H, const SparseMatrix& unit_rows, double rank_tolerance) {
+  ConstraintConditioning out;
+  out.rho = schur_rho(H, unit_rows);
+  if (unit_rows.rows() == 0) {
+    out.estimated = true;
+    return out;
+  }
+  if (H.rows() > kConditionMaxUnknowns) return out;
   const int rank = row_rank(unit_rows, rank_tolerance);
-  if (rank < 0) return nan;
-  const double rho = schur_rho(H, unit_rows);
-  SparseMatrix Hr = H + rho * SparseMatrix(unit_rows.transpose() * unit_rows);
+  if (rank < 0) return out;
+  SparseMatrix Hr = H + out.rho * SparseMatrix(unit_rows.transpose() * unit_rows);
   Hr.makeCompressed();
   Eigen::CholmodDecomposition<SparseMatrix> chol;
   chol.compute(Hr);
-  if (chol.info() != Eigen::Success) return nan;
+  if (chol.info() != Eigen::Success) return out;
   const Eigen::MatrixXd Z = chol.solve(Eigen::MatrixXd(SparseMatrix(unit_rows.transpose())));
-  if (chol.info() != Eigen::Success || !Z.allFinite()) return nan;
-  return schur_spectrum(Eigen::MatrixXd(unit_rows * Z), rank).condition;
+  if (chol.info() != Eigen::Success || !Z.allFinite()) return out;
+  out.spectrum = schur_spectrum(Eigen::MatrixXd(unit_rows * Z), rank);
+  out.estimated = true;
+  return out;
 }
 
-void assess(QpReport& out, const SparseMatrix& A, const Eigen::MatrixXd& b, const RowScaling& rows, const ConstraintPolicy& policy) {
-  if (A.rows() == 0 || out.p.size() == 0) return;
-  const Eigen::MatrixXd Ap = A * out.p;
-  out.constraint_residual = (Ap - b).norm();
+double ConstraintConditioning::weak_share(const SparseMatrix& H, const SparseMatrix& unit_rows, const Eigen::MatrixXd& f,
+                                          const Eigen::MatrixXd& unit_b, const Eigen::MatrixXd& p, double max_condition) const {
+  if (!estimated || spectrum.values.size() == 0) return 0;
+  // Stationarity of ½pᵀH_ρp − gᵀp + λᵀ(Âp − b̂), g = f + ρÂᵀb̂:  Âᵀλ = f − Hp + ρÂᵀ(b̂ − Âp).
+  const Eigen::MatrixXd w = f - H * p + rho * (SparseMatrix(unit_rows.transpose()) * (unit_b - unit_rows * p));
+  const Eigen::MatrixXd AAt = Eigen::MatrixXd(unit_rows * SparseMatrix(unit_rows.transpose()));
+  const Eigen::MatrixXd lambda = AAt.completeOrthogonalDecomposition().solve(Eigen::MatrixXd(unit_rows * w));
+  const Eigen::MatrixXd c = spectrum.vectors.transpose() * lambda;  // per direction, per coordinate
+  double weak = 0, total = 0;
+  for (Eigen::Index i = 0; i < c.rows(); ++i) {
+    const double e = spectrum.values[i] * c.row(i).squaredNorm();
+    total += e;
+    if (spectrum.values[i] * max_condition < spectrum.values[0]) weak += e;
+  }
+  return total > 0 ? weak / total : 0.0;
+}
+
+void assess(QpReport& out, const AssessedProgram& program, const ConstraintPolicy& policy) {
+  out.condition_estimate = program.conditioning.condition();
+  if (program.A.rows() == 0 || out.p.size() == 0) return;
+  const Eigen::MatrixXd Ap = program.A * out.p;
+  out.constraint_residual = (Ap - program.b).norm();
   if (out.summary.termination != Termination::Converged) return;
-  const Eigen::MatrixXd unit_residual = rows.d.asDiagonal() * (Ap - b);
-  const double size = std::max((rows.d.asDiagonal() * b).cwiseAbs().maxCoeff(), (rows.d.asDiagonal() * Ap).cwiseAbs().maxCoeff());
+  const Eigen::VectorXd& d = program.rows.d;
+  const Eigen::MatrixXd unit_b = d.asDiagonal() * program.b;
+  const Eigen::MatrixXd unit_residual = d.asDiagonal() * (Ap - program.b);
+  const double size = std::max(unit_b.cwiseAbs().maxCoeff(), (d.asDiagonal() * Ap).cwiseAbs().maxCoeff());
   const double worst = unit_residual.cwiseAbs().maxCoeff();
   const double relative = size > 0 ? worst / size : worst;
   const std::string notes = out.summary.message.empty() ? "" : "; " + out.summary.message;
-  const std::string cond = std::isnan(out.condition_estimate) ? "not estimated" : sci(out.condition_estimate);
-  if (out.condition_estimate > policy.max_condition) {
+  const std::string cond = program.conditioning.estimated ? sci(out.condition_estimate) : "not estimated";
+  const double share = out.condition_estimate > policy.max_condition
+                           ? program.conditioning.weak_share(program.H, program.rows.scaled, program.f, unit_b, out.p, policy.max_condition)
+                           : 0.0;
+  if (share > kMaxWeakShare) {
     out.summary.termination = Termination::IllConditioned;
-    out.summary.message = "ill-posed constraints: condition estimate " + cond + " of their Schur complement is above max_condition " +
-                          sci(policy.max_condition) + " (nearly dependent constraints: the answer hangs on rank_tolerance and "
-                          "rounding, e.g. two point constraints very close together with different targets, or eq. 7's curve "
-                          "rows); relative residual " + sci(relative) + notes;
+    out.summary.message = "ill-posed constraints: " + sci(100 * share) + " % of the energy they impose sits in directions of their "
+                          "Schur complement weaker than 1/max_condition (" + sci(policy.max_condition) + ") of the strongest; "
+                          "condition estimate " + cond + " (nearly dependent constraints with different targets: e.g. two point "
+                          "constraints very close together pulled apart, or eq. 7's curve rows); relative residual " +
+                          sci(relative) + notes;
   } else if (!(relative <= policy.constraint_tolerance)) {
     out.summary.termination = Termination::ConstraintsUnmet;
     out.summary.message = "constraints not met: relative residual " + sci(relative) + " (largest row " + sci(worst) +

@@ -27,7 +27,7 @@ namespace fairshape::qp {
 
 struct ConstraintPolicy {
   double rank_tolerance = 1e-8;        // relative to the strongest direction of the unit rows
-  double constraint_tolerance = 1e-8;  // relative to max(‖D b‖∞, ‖D A p‖∞)
+  double constraint_tolerance = 1e-10;  // relative to max(‖D b‖∞, ‖D A p‖∞)
   double max_condition = 1e7;          // of S; beyond: ill_conditioned
 };
 //! Reads rank_tolerance, constraint_tolerance and max_condition from a solver's options.
@@ -63,13 +63,39 @@ struct SchurSpectrum {
 SchurSpectrum schur_spectrum(const Eigen::MatrixXd& S, int rank);
 //! The ρ of the policy for H and unit rows Â.
 double schur_rho(const SparseMatrix& H, const SparseMatrix& unit_rows);
-//! κ of S for H and unit rows Â (factoring H + ρÂᵀÂ) over its row_rank directions; NaN beyond
-//! the sizes above or when H + ρÂᵀÂ is not positive definite.
-double schur_condition(const SparseMatrix& H, const SparseMatrix& unit_rows, double rank_tolerance);
 
+//! S's spectrum for a program (from analyze), and what it says about a solution.
+struct ConstraintConditioning {
+  SchurSpectrum spectrum;
+  double rho = 1;
+  bool estimated = false;  // false: too large to estimate (or H + ρÂᵀÂ not positive definite)
+  double condition() const { return estimated ? spectrum.condition : std::numeric_limits<double>::quiet_NaN(); }
+  //! The share of the energy the constraints impose (λᵀSλ, λ the multipliers of the unit rows
+  //! at the solution p, one column per coordinate) that sits in S's directions weaker than
+  //! 1/max_condition of the strongest. A high condition alone is harmless when the targets
+  //! are consistent with a smooth answer (dense curve samples moved rigidly); ill-posed
+  //! constraints put their energy there (two close points pulled apart: all of it).
+  double weak_share(const SparseMatrix& H, const SparseMatrix& unit_rows, const Eigen::MatrixXd& f, const Eigen::MatrixXd& unit_b,
+                    const Eigen::MatrixXd& p, double max_condition) const;
+};
+//! S for H and unit rows Â (factoring H + ρÂᵀÂ) over its row_rank directions; not estimated
+//! beyond the sizes above or when H + ρÂᵀÂ is not positive definite.
+ConstraintConditioning constraint_conditioning(const SparseMatrix& H, const SparseMatrix& unit_rows, double rank_tolerance);
+
+//! What assess() judges a solution of `H`, `f` and the rows against.
+struct AssessedProgram {
+  const SparseMatrix& H;
+  const Eigen::MatrixXd& f;
+  const SparseMatrix& A;  // the original rows
+  const Eigen::MatrixXd& b;
+  const RowScaling& rows;
+  const ConstraintConditioning& conditioning;
+};
 //! Sets out.summary's termination and message from the policy: converged only when the rows
-//! are met to tolerance and well posed. `out.p` and `out.condition_estimate` must be set;
-//! fills out.constraint_residual (‖A p − b‖_F, original rows).
-void assess(QpReport& out, const SparseMatrix& A, const Eigen::MatrixXd& b, const RowScaling& rows, const ConstraintPolicy& policy);
+//! are met to tolerance and well posed (condition above max_condition with more than
+//! kMaxWeakShare of the constraint energy in the weak directions: ill_conditioned). Fills
+//! out.constraint_residual (‖A p − b‖_F, original rows) and out.condition_estimate.
+void assess(QpReport& out, const AssessedProgram& program, const ConstraintPolicy& policy);
+inline constexpr double kMaxWeakShare = 0.1;
 
 }  // namespace fairshape::qp

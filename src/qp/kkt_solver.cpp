@@ -174,7 +174,7 @@ void KktSolver::analyze(const QuadraticProgram& qp) {
     main_ = build(compress_rows(A_, backend_, policy_.rank_tolerance), nullptr);
     reduced_ = true;
   }
-  condition_ = schur_condition(H_, A_, policy_.rank_tolerance);
+  conditioning_ = constraint_conditioning(H_, A_, policy_.rank_tolerance);
   analyze_s_ = timer.seconds();
 }
 
@@ -228,8 +228,7 @@ QpReport KktSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) {
                              sci(policy_.rank_tolerance) + ")";
     out.summary.message = out.summary.message.empty() ? note : out.summary.message + "; " + note;
   }
-  out.condition_estimate = condition_;
-  assess(out, A_original_, b, scaling_, policy_);
+  assess(out, {H_, f, A_original_, b, scaling_, conditioning_}, policy_);
   return out;
 }
 

@@ -36,7 +36,7 @@ class KktSolver final : public QpSolver {
   SparseMatrix H_, A_;  // A_: the unit-norm rows of A_original_
   SparseMatrix A_original_;
   RowScaling scaling_;
-  double condition_ = 1;
+  ConstraintConditioning conditioning_;
   double scale_ = 1;
   std::unique_ptr<System> main_, least_squares_;
   bool reduced_ = false;  // main_ works on R₁Pᵀ rather than a subset of A's rows

@@ -59,7 +59,7 @@ void QrPenaltySolver::analyze(const QuadraticProgram& qp) {
   At_ = A_.transpose();
   K_ = qp.K.size() ? qp.K : square_root_of(qp.H);
   factor(options_.mu);
-  schur_condition_ = schur_condition(H_, A_, options_.policy.rank_tolerance);
+  conditioning_ = constraint_conditioning(H_, A_, options_.policy.rank_tolerance);
   analyze_s_ = timer.seconds();
 }
 
@@ -124,7 +124,6 @@ QpReport QrPenaltySolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd&
     throw InvalidInput("QR-penalty solve: right-hand sides do not match the analyzed program");
   if (mu_ != options_.mu) factor(options_.mu);  // a previous solve raised μ
   QpReport out;
-  out.condition_estimate = schur_condition_;
   if (rank_ < H_.cols()) {
     out.p = Eigen::MatrixXd::Zero(H_.rows(), f.cols());
     out.summary.message = "[mu A; K] is numerically singular (rank " + std::to_string(rank_) + " of " + std::to_string(H_.cols()) +
@@ -170,7 +169,7 @@ QpReport QrPenaltySolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd&
   if (condition_ > 1e12)
     out.summary.message += std::string(out.summary.message.empty() ? "" : "; ") + "[mu A; K] is badly conditioned (estimate " +
                            sci(condition_) + "): mu is too large for double precision";
-  assess(out, A_original_, b_original, scaling_, options_.policy);
+  assess(out, {H_, f, A_original_, b_original, scaling_, conditioning_}, options_.policy);
   return out;
 }
 

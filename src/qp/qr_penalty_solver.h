@@ -52,7 +52,8 @@ class QrPenaltySolver final : public QpSolver {
   SparseMatrix H_, A_, At_, R_, Rt_, K_;  // A_: the unit-norm rows of A_original_
   SparseMatrix A_original_;
   RowScaling scaling_;
-  double mu_ = 0, schur_condition_ = 1;
+  double mu_ = 0;
+  ConstraintConditioning conditioning_;
   Eigen::VectorXi permutation_;  // column c of M P is column permutation_[c] of M
   Eigen::Index rows_ = 0;        // of M = [μA; K]
   std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)> least_squares_;  // argmin ‖M p − rhs‖ through Q

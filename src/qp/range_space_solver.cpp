@@ -89,8 +89,9 @@ void RangeSpaceSolver::decompose_schur() {
     const Eigen::VectorXd l = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(S_, Eigen::EigenvaluesOnly).eigenvalues();
     rank = static_cast<int>((l.array() > policy_.rank_tolerance * policy_.rank_tolerance * l.maxCoeff()).count());
   }
-  schur_ = schur_spectrum(S_, rank);
-  condition_ = schur_.condition;
+  conditioning_.spectrum = schur_spectrum(S_, rank);
+  conditioning_.rho = rho_;
+  conditioning_.estimated = true;
 }
 
 void RangeSpaceSolver::updown(bool update, const SparseMatrix& rows) {
@@ -193,17 +194,16 @@ QpReport RangeSpaceSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd
   const Eigen::MatrixXd y = solve_h(g);
   out.p = y;
   if (A_.rows()) {
-    const Eigen::MatrixXd lambda = schur_.solve(Eigen::MatrixXd(A_ * y - b));
+    const Eigen::MatrixXd lambda = conditioning_.spectrum.solve(Eigen::MatrixXd(A_ * y - b));
     out.p -= Z_ * lambda;
-    out.dropped_rows = static_cast<int>(A_.rows() - schur_.values.size());
+    out.dropped_rows = static_cast<int>(A_.rows() - conditioning_.spectrum.values.size());
   }
   out.summary.termination = out.p.allFinite() ? Termination::Converged : Termination::NumericalFailure;
   out.summary.iterations = 1;  // one direct solve
   if (out.dropped_rows)
     out.summary.message = std::to_string(out.dropped_rows) + " dependent constraint rows (minimum-norm multipliers, rank_tolerance " +
                           sci(policy_.rank_tolerance) + ")";
-  out.condition_estimate = condition_;
-  assess(out, A_original_, b_original, scaling_, policy_);
+  assess(out, {H_, f, A_original_, b_original, scaling_, conditioning_}, policy_);
   return out;
 }
 

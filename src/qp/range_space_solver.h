@@ -47,11 +47,10 @@ class RangeSpaceSolver final : public QpSolver {
   SparseMatrix H_, A_;  // A_: the unit-norm rows of A_original_ (scaling_.d)
   SparseMatrix A_original_;
   RowScaling scaling_;
-  double condition_ = 1;
   double rho_ = 1;
   Eigen::MatrixXd Z_;  // H_ρ⁻¹ Aᵀ
   Eigen::MatrixXd S_;
-  SchurSpectrum schur_;  // over the independent directions: minimum-norm multipliers
+  ConstraintConditioning conditioning_;  // S over the independent directions: minimum-norm multipliers
   bool singular_ = false;
   std::vector<char> in_factor_;  // per row of A: part of H_ρ (analyze) or bordered on (add_rows)
 };

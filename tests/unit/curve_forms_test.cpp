@@ -61,7 +61,7 @@ bool on_path_at(const std::vector<Eigen::Vector2d>& path, const Eigen::Vector2d&
 
 }  // namespace
 
-TEST_CASE("curve forms: arcs lie on their circle, equally spaced; a full circle closes once", "[curve_forms]") {
+TEST_CASE("curve forms: arcs lie on their circle, equally spaced, and a full circle closes once", "[curve_forms]") {
   const auto quarter = curve<2>("{arc: {center: [1, 2], radius: 0.5, from_angle: 0, to_angle: 90}, samples: 9}");
   REQUIRE(quarter.points.size() == 9);
   CHECK(!quarter.closed);
@@ -223,12 +223,12 @@ name: forms
 sheets: [{name: s, spans: [8, 8], size: [2, 2]}]
 curves:
   - {name: ring, arc: {center: [1, 1, 0.2], radius: 0.5}, samples: 48, edits: [{step: 1, t: 0, radius: 0.2, by: [0, 0, 0.1]}]}
-  - {name: traced, from_surface: {sheet: s, uv: {bspline: {control_points: [[1, 1], [3, 6], [5, 6], [7, 1]]}, samples: 9}}, samples: 17}
+  - {name: traced, from_surface: {sheet: s, uv: {bspline: {control_points: [[0.25, 0.25], [0.75, 1.5], [1.25, 1.5], [1.75, 0.25]]}, samples: 9}}, samples: 17}
 constraints:
-  - {type: curve, curve: ring, uv: {arc: {center: [4, 4], radius: 2}, samples: 48}}
+  - {type: curve, curve: ring, uv: {arc: {center: [1, 1], radius: 0.5}, samples: 48}}
   - {type: curve, curve: traced}
-  - {type: point, uv: [0.5, 0.5], by: [0, 0, 0]}
-  - {type: point, uv: [7.5, 7.5], by: [0, 0, 0]}
+  - {type: point, uv: [0.125, 0.125], by: [0, 0, 0]}
+  - {type: point, uv: [1.875, 1.875], by: [0, 0, 0]}
 )");
   const SheetRunSpec spec = SheetRunSpec::from_config(cfg);
   REQUIRE(spec.curves.size() == 2);
@@ -264,7 +264,7 @@ constraints:
   CHECK_THROWS_WITH(refused("constraints.0.uv.arc.radius", "5"), Contains("constraints[0]"));
 }
 
-TEST_CASE("Figure 2: the joint is sampled into 33 points and the edit bends it; the constraint error is reported",
+TEST_CASE("Figure 2: the joint is sampled into 33 points and the edit bends it, and the constraint error is reported",
           "[curve_forms][sheet]") {
   const YAML::Node cfg = load_experiment_config(test::source_path("configs/welch-witkin/fig2.yaml"), {});
   SheetRunSpec spec = SheetRunSpec::from_config(cfg);

@@ -308,7 +308,12 @@ TEST_CASE("a curve on the finest level of a remeshed cow is met on the limit sur
     INFO("edit level " << edit);
     const EditSolution s = solve_edit(detail_preserving(h, edit, dc), ConstraintMode::Kkt, *solver, Backend::Optimized);
     INFO(s.summary.message);
-    REQUIRE(s.summary.termination == Termination::Converged);
+    // On coarser levels the curve's basis functions may also reach the fixed half (how far
+    // depends on the remesh): then the run says the constraints were not met (least-squares
+    // fit) or are ill-posed (nearly conflicting), never converged with a wrong answer.
+    const Termination t = s.summary.termination;
+    const bool said = t == Termination::ConstraintsUnmet || t == Termination::IllConditioned;
+    REQUIRE((t == Termination::Converged || (edit < 2 && said)));
     const MatrixX3 X = edited_finest(h, edit, s);
     double worst = 0;
     for (std::size_t i = 0; i < samples.size(); ++i) {
@@ -316,10 +321,7 @@ TEST_CASE("a curve on the finest level of a remeshed cow is met on the limit sur
       worst = std::max(worst, (LimitEvaluator::apply(samples[i].position, X) - target).norm());
     }
     INFO(samples.size() << " curve points, worst distance to target " << worst << ", diagonal " << diagonal);
-    // On the finest level every point has unknowns of its own: met exactly. On coarser levels
-    // the curve's basis functions may also reach the fixed half (how far depends on the remesh),
-    // and then the run must say it fitted in least squares rather than claim the points.
-    const bool said = s.summary.message.find("least-squares fit") != std::string::npos;
+    // On the finest level every point has unknowns of its own: met exactly.
     CHECK((worst <= 1e-8 * diagonal || (edit < 2 && said)));
   }
 }

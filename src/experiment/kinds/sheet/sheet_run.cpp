@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <sstream>
 
 #include <Eigen/Geometry>
 
@@ -74,6 +75,10 @@ SheetSpec read_sheet(Config& c) {
   if (size.size() != 2 || !(size[0] > 0) || !(size[1] > 0)) throw InvalidConfig(c.key_path("size") + ": expected two positive numbers");
   p.size_u = size[0];
   p.size_v = size[1];
+  // Design units: (u, v), energies and tangents are measured in the world lengths of the
+  // initial sheet (a cylinder's u along its circumference), whatever the resolution.
+  const double extent_u = p.geometry == SheetGeometry::Cylinder ? 2 * M_PI * p.size_u : p.size_u;
+  s.shape.span_size = {extent_u / spans[0], p.size_v / spans[1]};
   if (p.u_axis.norm() == 0 || p.v_axis.norm() == 0 || p.u_axis.cross(p.v_axis).norm() < 1e-9 * p.u_axis.norm() * p.v_axis.norm())
     throw InvalidConfig(c.key_path("u_axis") + ", " + c.key_path("v_axis") + ": must be nonzero and not parallel");
   for (const auto& r : c.get<std::vector<std::vector<int>>>("refine", {}, "spans refined up front: [[level, i, j], ...]")) {
@@ -223,22 +228,35 @@ SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config) {
     }
     s.constraints.push_back(std::move(cs));
   }
-  // Every (u, v) inside its sheet's domain, checked before anything runs.
-  const auto check_uv = [&](const std::string& sheet, const std::vector<Eigen::Vector2d>& uv, const std::string& what) {
-    const bspline::HierarchicalSurface domain(s.sheets[sheet_index(sheet, what)].shape);
-    try {
-      for (std::size_t i = 0; i < uv.size(); ++i)
-        bspline::check_in_domain(domain, uv[i].x(), uv[i].y(), uv.size() > 1 ? what + ", (u, v) point " + std::to_string(i) : what);
-    } catch (const InvalidInput& e) {
-      throw InvalidConfig(e.what());
+  // Every (u, v) inside its sheet's domain, checked in design units before anything runs, then
+  // converted to the surface's base-span units.
+  const auto to_spans = [&](const std::string& sheet, std::vector<Eigen::Vector2d>& uv, const std::string& what) {
+    const bspline::SheetShape& shape = s.sheets[sheet_index(sheet, what)].shape;
+    const bspline::HierarchicalSurface domain(shape);
+    for (std::size_t i = 0; i < uv.size(); ++i) {
+      const Eigen::Vector2d spans = uv[i].cwiseQuotient(shape.span_size);
+      if (!domain.in_domain(spans.x(), spans.y())) {
+        std::ostringstream m;
+        m << (uv.size() > 1 ? what + ", (u, v) point " + std::to_string(i) : what) << ": (u, v) = (" << uv[i].x() << ", " << uv[i].y()
+          << ") is outside the sheet's domain " << (shape.periodic_u ? "(periodic in u) x" : "[0, " + num(shape.spans_u * shape.span_size.x()) + "] x")
+          << " [0, " << num(shape.spans_v * shape.span_size.y()) << "] (design units: the sheet's size)";
+        throw InvalidConfig(m.str());
+      }
+      uv[i] = spans;
     }
   };
   for (std::size_t i = 0; i < s.curves.size(); ++i)
-    if (!s.curves[i].from_sheet.empty())
-      check_uv(s.curves[i].from_sheet, s.curves[i].uv, "curves[" + std::to_string(i) + "].from_surface.uv");
-  for (const SheetConstraintSpec& cs : s.constraints)
-    check_uv(cs.sheet, cs.curve.empty() ? std::vector<Eigen::Vector2d>{{cs.constraint.u, cs.constraint.v}} : cs.constraint.curve.uv,
-             cs.label);
+    if (!s.curves[i].from_sheet.empty()) to_spans(s.curves[i].from_sheet, s.curves[i].uv, "curves[" + std::to_string(i) + "].from_surface.uv");
+  for (SheetConstraintSpec& cs : s.constraints) {
+    if (!cs.curve.empty()) {
+      to_spans(cs.sheet, cs.constraint.curve.uv, cs.label);
+      continue;
+    }
+    std::vector<Eigen::Vector2d> at{{cs.constraint.u, cs.constraint.v}};
+    to_spans(cs.sheet, at, cs.label);
+    cs.constraint.u = at[0].x();
+    cs.constraint.v = at[0].y();
+  }
   Config ec = root.child("energy", "objective (§4.1): {metric, alpha, beta, rest_shape}");
   static const NameTable<bspline::ShapeMetric> metrics{{bspline::ShapeMetric::ThinPlate, "thin_plate"},
                                                        {bspline::ShapeMetric::Displacement, "displacement"}};
@@ -297,7 +315,7 @@ const std::vector<std::string>& sheet_metric_columns() {
 }
 
 const std::vector<std::string>& sheet_cell_columns() {
-  static const std::vector<std::string> cols{"sheet", "when", "level", "u0", "v0", "size", "error"};
+  static const std::vector<std::string> cols{"sheet", "when", "level", "u0", "v0", "size_u", "size_v", "error"};
   return cols;
 }
 
@@ -484,9 +502,9 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
     for (std::size_t k = 0; k < sheets.size(); ++k)
       for (const auto& [list, when] : {std::pair{&before[k], "before"}, std::pair{&after[k], "after"}})
         for (const bspline::CellError& e : *list) {
-          const double h = std::ldexp(1.0, -e.cell.level);
-          out.add_row("cells", {spec.sheets[k].name, when, std::to_string(e.cell.level), num(e.cell.i * h), num(e.cell.j * h),
-                        num(h), num(e.error)});
+          const Eigen::Vector2d h = std::ldexp(1.0, -e.cell.level) * spec.sheets[k].shape.span_size;  // design units
+          out.add_row("cells", {spec.sheets[k].name, when, std::to_string(e.cell.level), num(e.cell.i * h.x()), num(e.cell.j * h.y()),
+                        num(h.x()), num(h.y()), num(e.error)});
         }
     write_mesh(sheets_mesh(sheets, spec.samples_per_span, initial_surfaces, initial_P), out.final_path());
     row["dofs"] = std::to_string(dofs);

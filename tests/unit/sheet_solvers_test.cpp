@@ -1,0 +1,135 @@
+// Issue 23's failures as tests: curve constraints that do not lock (the three constrained
+// solvers agree on Figure 1 at three resolutions), one problem at every resolution (design
+// units), and every solver's termination on inconsistent and ill-posed constraints.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <string>
+
+#include <yaml-cpp/yaml.h>
+
+#include "experiment/config_loader.h"
+#include "experiment/kinds/sheet/sheet_run.h"
+#include "experiment/run_outputs.h"
+#include "io/mesh_io.h"
+#include "test_support.h"
+
+using namespace fairshape;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct SheetResult {
+  MetricRow row;
+  SurfaceMesh mesh;
+};
+
+SheetResult run_sheet(YAML::Node cfg, const std::string& id) {
+  cfg["output"]["vtk"] = "none";
+  const fs::path dir = test::scratch_dir(std::string("sheet_solvers_") + id);
+  create_run_folders(dir.string());
+  SheetRunSpec spec = SheetRunSpec::from_config(cfg);
+  const RunOutputs out{dir.string(), id, true, nullptr};
+  SheetResult r{execute_sheet_run(spec, out), {}};
+  r.mesh = read_mesh(out.final_path());
+  return r;
+}
+
+YAML::Node fig1(int spans, const std::string& solver) {
+  YAML::Node cfg = load_experiment_config(test::source_path("configs/welch-witkin/fig1.yaml"), {});
+  set_by_path(cfg, "sheets.0.spans", YAML::Load(std::string("[") + std::to_string(spans) + ", " + std::to_string(spans) + "]"));
+  set_by_path(cfg, "solver.type", YAML::Load(solver));
+  return cfg;
+}
+
+}  // namespace
+
+TEST_CASE("curve constraints do not lock: kkt, range_space and qr_penalty agree on Figure 1 at 8, 16 and 32 spans",
+          "[sheet][qp_agreement]") {
+  double energy_at_8 = 0;
+  for (int spans : {8, 16, 32}) {
+    const SheetResult kkt = run_sheet(fig1(spans, "kkt"), std::string("kkt") + std::to_string(spans));
+    REQUIRE(kkt.row.at("termination") == "converged");
+    const double energy = std::stod(kkt.row.at("energy"));
+    for (const std::string other : {"range_space", "qr_penalty"}) {
+      INFO(spans << " spans, " << other);
+      const SheetResult r = run_sheet(fig1(spans, other), other + std::to_string(spans));
+      REQUIRE(r.row.at("termination") == "converged");
+      CHECK(std::abs(std::stod(r.row.at("energy")) - energy) <= 1e-6 * energy);
+      REQUIRE(r.mesh.n_vertices() == kkt.mesh.n_vertices());
+      CHECK((r.mesh.positions() - kkt.mesh.positions()).cwiseAbs().maxCoeff() <= 1e-6 * 2.0);  // the sheet is 2 wide
+    }
+    // Design units: the same world design at every resolution is one problem, so its energy
+    // converges instead of scaling with the span size (it changed 10x from 8 to 32 spans in
+    // base-span units).
+    if (spans == 8) energy_at_8 = energy;
+    CHECK(std::abs(energy - energy_at_8) <= 0.02 * energy_at_8);
+  }
+}
+
+TEST_CASE("the curve rows' answer depends neither on the rank tolerance nor on how densely the curve is sampled",
+          "[sheet][qp_agreement]") {
+  YAML::Node loose_cfg = fig1(16, "kkt");
+  set_by_path(loose_cfg, "solver", YAML::Load("{type: kkt, kkt: {rank_tolerance: 1.0e-5}}"));
+  const SheetResult loose = run_sheet(loose_cfg, "rank_loose");
+  YAML::Node tight_cfg = fig1(16, "kkt");
+  set_by_path(tight_cfg, "solver", YAML::Load("{type: kkt, kkt: {rank_tolerance: 1.0e-13}}"));
+  const SheetResult tight = run_sheet(tight_cfg, "rank_tight");
+  REQUIRE(loose.row.at("termination") == "converged");
+  REQUIRE(tight.row.at("termination") == "converged");
+  CHECK(loose.row.at("dropped_rows") == "0");  // independent rows: nothing for a tolerance to decide
+  CHECK((loose.mesh.positions() - tight.mesh.positions()).cwiseAbs().maxCoeff() <= 1e-12);
+  // Twice the samples of each space curve: the same rows (one per multiplier along the curve,
+  // not per sample), and the answer moves only as much as the finer polyline moves the target.
+  YAML::Node dense = fig1(16, "kkt");
+  set_by_path(dense, "curves.0.samples", YAML::Load("129"));
+  set_by_path(dense, "curves.1.samples", YAML::Load("65"));
+  const SheetResult d = run_sheet(dense, "dense");
+  REQUIRE(d.row.at("termination") == "converged");
+  CHECK(d.row.at("constraint_rows") == tight.row.at("constraint_rows"));
+  CHECK((d.mesh.positions() - tight.mesh.positions()).cwiseAbs().maxCoeff() <= 2e-3);
+}
+
+TEST_CASE("every constrained solver says when constraints conflict or are ill-posed, and keeps what it achieved", "[sheet][qp_agreement]") {
+  const std::string pins = R"(
+sheets: [{name: s, spans: [8, 8], size: [2, 2]}]
+energy: {alpha: 0.01, beta: 1}
+output: {vtk: none}
+)";
+  // A point 0.46 off the curve it lies on: inconsistent.
+  YAML::Node conflict = YAML::Load(std::string("name: conflict") + pins + R"(
+curves: [{name: line, from_surface: {sheet: s, uv: [[0.25, 1], [1.75, 1]]}, samples: 33}]
+constraints:
+  - {type: point, uv: [0.125, 0.125], by: [0, 0, 0]}
+  - {type: point, uv: [1.875, 0.125], by: [0, 0, 0]}
+  - {type: point, uv: [0.125, 1.875], by: [0, 0, 0]}
+  - {type: point, uv: [1.875, 1.875], by: [0, 0, 0]}
+  - {type: curve, curve: line}
+  - {type: point, uv: [1, 1], by: [0, 0, 0.46]}
+)");
+  // Two points 2.5e-5 apart pulled 0.6 up and down: solvable only at an absurd energy.
+  YAML::Node pulled = YAML::Load(std::string("name: pulled") + pins + R"(
+constraints:
+  - {type: point, uv: [0.125, 0.125], by: [0, 0, 0]}
+  - {type: point, uv: [1.875, 0.125], by: [0, 0, 0]}
+  - {type: point, uv: [0.125, 1.875], by: [0, 0, 0]}
+  - {type: point, uv: [1.875, 1.875], by: [0, 0, 0]}
+  - {type: point, uv: [1, 1.25], by: [0, 0, 0.6]}
+  - {type: point, uv: [1, 1.250025], by: [0, 0, -0.6]}
+)");
+  for (const std::string solver : {"kkt", "range_space", "qr_penalty"}) {
+    INFO(solver);
+    conflict["solver"]["type"] = solver;
+    pulled["solver"]["type"] = solver;
+    const SheetResult c = run_sheet(conflict, std::string("conflict_") + solver);
+    INFO(c.row.at("message"));
+    CHECK(c.row.at("termination") == "constraints_unmet");
+    CHECK(c.row.at("message").find("relative residual") != std::string::npos);
+    CHECK(std::stod(c.row.at("constraint_residual")) > 0.1);  // what it achieved, in the row
+    const SheetResult p = run_sheet(pulled, std::string("pulled_") + solver);
+    INFO(p.row.at("message"));
+    CHECK(p.row.at("termination") == "ill_conditioned");
+    CHECK(std::stod(p.row.at("condition_estimate")) > 1e7);
+    CHECK(std::stod(p.row.at("energy")) > 1e8);
+  }
+}

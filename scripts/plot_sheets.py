@@ -10,6 +10,9 @@
       per span); FORMAT is a Python format over the runs.csv row (dots in names -> _)
       constraint error per leaf cell before and after automatic refinement (cells.csv), beside
       the refined surface
+  plot_sheets.py convergence RUN_DIR OUT.png --title TEXT
+      a resolution study (configs/welch-witkin/resolution.yaml): energy against base spans per
+      solver, and |E - E_finest| and the largest constraint error against the span size
 
 Panels are rendered by `fairshape render` (VTK offscreen).
 """
@@ -139,9 +142,42 @@ def runs_figure(run_dir, out, title, label, profile_v, spans_v, per_span):
     fig.savefig(out, dpi=110)
 
 
+def convergence_figure(run_dir, out, title):
+    rows = [r for r in csv.DictReader(open(os.path.join(run_dir, "runs.csv"))) if r["termination"] == "converged"]
+    spans = lambda r: int(r["sheets.0.spans"].strip("[]").split(",")[0])  # noqa: E731
+    solvers = sorted({r["solver.type"] for r in rows})
+    finest = max(spans(r) for r in rows)
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))
+    for k, solver in enumerate(solvers):
+        mine = sorted((r for r in rows if r["solver.type"] == solver), key=spans)
+        n = [spans(r) for r in mine]
+        e = [float(r["energy"]) for r in mine]
+        left.plot(n, e, marker="os^"[k % 3], markersize=9 - 2 * k, label=solver)
+        ref = e[n.index(finest)]
+        h = [2.0 / x for x in n[:-1]]
+        right.loglog(h, [max(abs(x - ref), 1e-16) for x in e[:-1]], marker="os^"[k % 3], markersize=9 - 2 * k,
+                     label=f"|E - E({finest} spans)|, {solver}")
+        if k == 0:
+            right.loglog([2.0 / x for x in n], [float(r["max_constraint_error"]) for r in mine], "k--", marker="x",
+                         label="largest constraint error")
+    left.set_xscale("log", base=2)
+    left.set_xlabel("base spans per direction")
+    left.set_ylabel("energy (design units)")
+    left.legend(fontsize=8)
+    left.set_title("energy of one design at every resolution", fontsize=10)
+    right.set_xlabel("span size h (design units)")
+    right.legend(fontsize=7)
+    right.set_title("convergence under refinement", fontsize=10)
+    fig.suptitle(title, fontsize=11)
+    fig.tight_layout()
+    tmp = out + ".tmp.png"
+    fig.savefig(tmp, dpi=110)
+    os.replace(tmp, out)
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("kind", choices=["steps", "cells", "runs"])
+    p.add_argument("kind", choices=["steps", "cells", "runs", "convergence"])
     p.add_argument("run_dir")
     p.add_argument("out")
     p.add_argument("--title", default="")
@@ -155,6 +191,8 @@ def main():
         steps_figure(a.run_dir, a.out, a.title, a.labels)
     elif a.kind == "cells":
         cells_figure(a.run_dir, a.out, a.title)
+    elif a.kind == "convergence":
+        convergence_figure(a.run_dir, a.out, a.title)
     else:
         runs_figure(a.run_dir, a.out, a.title, a.label, a.profile_v, a.spans_v, a.per_span)
 

@@ -53,17 +53,32 @@ ConstraintRows tangent_rows(const HierarchicalSurface& s, double u, double v, in
   return out;
 }
 
-ConstraintRows normal_rows(const HierarchicalSurface& s, const Eigen::MatrixXd& P, double u, double v, const Vec3& normal) {
+CoupledRows normal_rows(const HierarchicalSurface& s, double u, double v, const Vec3& normal) {
   check_in_domain(s, u, v, "normal constraint");
   if (!normal.allFinite() || normal.norm() == 0) throw InvalidInput("normal constraint: the normal must be a nonzero finite vector");
   const Vec3 n = normal.normalized();
-  Vec3 du, dv;
-  s.derivatives(P, u, v, du, dv);
-  const Vec3 tu = du - du.dot(n) * n, tv = dv - dv.dot(n) * n;
-  if (tu.cross(tv).norm() <= 1e-12 * du.norm() * dv.norm())  // also catches a zero tangent
-    throw InvalidInput("normal constraint at (" + std::to_string(u) + ", " + std::to_string(v) +
-                       "): the surface's tangents projected onto the requested plane are parallel (normal in the tangent plane?)");
-  return stack({tangent_rows(s, u, v, 0, tu), tangent_rows(s, u, v, 1, tv)}, s.dof_count());
+  BasisRow row;
+  s.basis(u, v, row);
+  const int dofs = s.dof_count();
+  Triplets t;
+  for (const BasisEntry& e : row)
+    for (int c = 0; c < 3; ++c) {
+      if (n[c] == 0) continue;
+      t.emplace_back(0, c * dofs + e.dof, n[c] * e.du / s.shape().span_size.x());
+      t.emplace_back(1, c * dofs + e.dof, n[c] * e.dv / s.shape().span_size.y());
+    }
+  CoupledRows out;
+  out.A.resize(2, 3 * dofs);
+  out.A.setFromTriplets(t.begin(), t.end());
+  out.b = Eigen::VectorXd::Zero(2);
+  return out;
+}
+
+CoupledRows stacked(const ConstraintRows& rows) {
+  CoupledRows out;
+  out.A = block_diagonal(rows.A, 3);
+  out.b = Eigen::Map<const Eigen::VectorXd>(rows.C.data(), rows.C.size());  // column-major: [C_x; C_y; C_z]
+  return out;
 }
 
 template <class Point>

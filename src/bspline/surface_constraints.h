@@ -2,9 +2,9 @@
 // surface's control vector, shared by x, y and z (A p = C, C with three columns):
 //   point     w(u₀, v₀) = x                                     one row
 //   tangent   D_u w or D_v w at (u₀, v₀) = t, in design units      one row
-//   normal    both tangents at (u₀, v₀) set to the current ones projected onto the plane
-//             normal to n: two rows; uncoupled (per coordinate) like every constraint of §4.2,
-//             at the price of also fixing the tangents' lengths (a documented choice)
+//   normal    n · D_u w = 0 and n · D_v w = 0 at (u₀, v₀): two rows coupling x, y and z
+//             (CoupledRows over the stacked unknowns [x; y; z]), so the tangent plane turns to
+//             n with the tangents' lengths and directions in it free, whatever the history
 //   curve     by default the weak (mortar) form of bspline/mortar_curve.h: one row per
 //             multiplier along the curve, independent, no locking. `CurveFormulation::Paper`
 //             is the transfinite constraint of eq. 7 in its gradient form: one row per control
@@ -48,8 +48,16 @@ void check_in_domain(const HierarchicalSurface& s, double u, double v, const std
 ConstraintRows point_rows(const HierarchicalSurface& s, double u, double v, const Vec3& target);
 //! direction 0: D_u, 1: D_v.
 ConstraintRows tangent_rows(const HierarchicalSurface& s, double u, double v, int direction, const Vec3& target);
-//! \throw InvalidInput for a zero normal or a degenerate current tangent plane.
-ConstraintRows normal_rows(const HierarchicalSurface& s, const Eigen::MatrixXd& P, double u, double v, const Vec3& normal);
+//! Rows over the stacked unknowns [x; y; z] (3 × dofs columns), targets one column.
+struct CoupledRows {
+  SparseMatrix A;
+  Eigen::VectorXd b;
+};
+//! \throw InvalidInput for a zero or non-finite normal or (u, v) outside the domain.
+CoupledRows normal_rows(const HierarchicalSurface& s, double u, double v, const Vec3& normal);
+//! Per-coordinate rows (shared by x, y, z) as rows over the stacked unknowns: kron(I₃, A),
+//! targets [C_x; C_y; C_z].
+CoupledRows stacked(const ConstraintRows& rows);
 //! \throw InvalidInput for fewer than two points or a uv point outside the domain.
 ConstraintRows curve_rows(const HierarchicalSurface& s, const CurveAttachment& curve, CurveQuadrature quadrature);
 

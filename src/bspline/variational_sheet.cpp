@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/message_format.h"
 #include "core/timer.h"
+#include "problem/constrained_system.h"
 
 namespace fairshape::bspline {
 
@@ -41,10 +42,43 @@ int VariationalSheet::refine(const std::vector<SpanId>& spans) {
   return static_cast<int>(after - before);
 }
 
+namespace {
+// A program over the stacked unknowns [x; y; z] (rows coupling the coordinates) or over the
+// control points' n × 3 coordinates (x, y and z sharing H and A).
+bool is_stacked(const qp::QuadraticProgram& program, const VariationalSheet& sheet) {
+  return program.H.rows() == 3 * static_cast<Eigen::Index>(sheet.surface().dof_count());
+}
+Eigen::MatrixXd in_program_shape(const Eigen::MatrixXd& P, bool stacked) {
+  return stacked ? Eigen::MatrixXd(Eigen::Map<const Eigen::VectorXd>(P.data(), P.size())) : P;
+}
+Eigen::MatrixXd as_coefficients(const Eigen::MatrixXd& p, int dofs) {
+  return p.cols() == 3 ? p : Eigen::MatrixXd(Eigen::Map<const Eigen::MatrixXd>(p.data(), dofs, 3));
+}
+
+// The program of the stacked unknowns: every per-coordinate row applies to x, y and z alike
+// (kron(I₃, A)), the coupled rows (normals) act on all three at once.
+void stack_coordinates(qp::QuadraticProgram& p, const ConstraintRows& shared, const std::vector<CoupledRows>& coupled) {
+  p.H = block_diagonal(p.H, 3);
+  if (p.K.size()) p.K = block_diagonal(p.K, 3);
+  p.f = in_program_shape(p.f, true);
+  std::vector<CoupledRows> parts{stacked(shared)};
+  parts.insert(parts.end(), coupled.begin(), coupled.end());
+  std::vector<const SparseMatrix*> blocks;
+  Eigen::Index m = 0;
+  for (const CoupledRows& c : parts) blocks.push_back(&c.A), m += c.b.size();
+  p.A = stack_rows(blocks);
+  p.b.resize(m, 1);
+  m = 0;
+  for (const CoupledRows& c : parts) p.b.middleRows(m, c.b.size()) = c.b, m += c.b.size();
+}
+}  // namespace
+
 double objective_value(const VariationalSheet& sheet, const SheetEnergy& energy, const qp::QuadraticProgram& program) {
   const bool about_rest = energy.rest_shape || energy.metric == ShapeMetric::Displacement;
-  return qp::objective(program, sheet.coefficients()) +
-         (about_rest ? 0.5 * (sheet.rest().transpose() * (program.H * sheet.rest())).trace() : 0.0);
+  const bool stacked = is_stacked(program, sheet);
+  const Eigen::MatrixXd rest = in_program_shape(sheet.rest(), stacked);
+  return qp::objective(program, in_program_shape(sheet.coefficients(), stacked)) +
+         (about_rest ? 0.5 * (rest.transpose() * (program.H * rest)).trace() : 0.0);
 }
 
 qp::QuadraticProgram assemble(const VariationalSheet& sheet, const SheetEnergy& energy,
@@ -62,12 +96,13 @@ qp::QuadraticProgram assemble(const VariationalSheet& sheet, const SheetEnergy& 
     p.f = energy.rest_shape ? Eigen::MatrixXd(p.H * sheet.rest()) : Eigen::MatrixXd::Zero(s.dof_count(), 3);
   }
   std::vector<ConstraintRows> rows;
+  std::vector<CoupledRows> coupled;
   for (const SheetConstraint& c : constraints) {
     try {
       switch (c.kind) {
         case SheetConstraint::Kind::Point: rows.push_back(point_rows(s, c.u, c.v, c.target)); break;
         case SheetConstraint::Kind::Tangent: rows.push_back(tangent_rows(s, c.u, c.v, c.direction, c.target)); break;
-        case SheetConstraint::Kind::Normal: rows.push_back(normal_rows(s, sheet.coefficients(), c.u, c.v, c.target)); break;
+        case SheetConstraint::Kind::Normal: coupled.push_back(normal_rows(s, c.u, c.v, c.target)); break;
         case SheetConstraint::Kind::Curve:
           rows.push_back(c.formulation == CurveFormulation::Mortar ? mortar_curve_rows(s, c.curve) : curve_rows(s, c.curve, c.quadrature));
           break;
@@ -77,6 +112,10 @@ qp::QuadraticProgram assemble(const VariationalSheet& sheet, const SheetEnergy& 
     }
   }
   const ConstraintRows all = stack(rows, s.dof_count());
+  if (!coupled.empty()) {
+    stack_coordinates(p, all, coupled);
+    return p;
+  }
   p.A = all.A;
   p.b = all.C;
   return p;
@@ -141,7 +180,7 @@ DesignReport solve_sheet(VariationalSheet& sheet, const SheetEnergy& energy, con
     // achieved under that termination); a failed factorization leaves the sheet as it was.
     const bool has_answer = t == Termination::Converged || t == Termination::ConstraintsUnmet || t == Termination::IllConditioned;
     if (has_answer && report.qp.p.allFinite()) {
-      sheet.set_coefficients(report.qp.p);
+      sheet.set_coefficients(as_coefficients(report.qp.p, sheet.surface().dof_count()));
       report.energy = objective_value(sheet, energy, program);
       report.errors_after = constraint_errors(sheet, constraints);
       if (report.rounds == 1) report.errors_before = report.errors_after;

@@ -55,7 +55,9 @@ class VariationalSheet {
   Eigen::MatrixXd P_, rest_, remembered_;
 };
 
-//! The program of one sheet: H, f of the energy and the stacked constraint rows.
+//! The program of one sheet: H, f of the energy and the stacked constraint rows, over the
+//! control points' n × 3 coordinates, or over the stacked unknowns [x; y; z] (3n × 1, H and K
+//! block-diagonal) when a constraint couples the coordinates (normals).
 //! \throw InvalidInput from the constraints (domain, degenerate normals, ...).
 qp::QuadraticProgram assemble(const VariationalSheet& sheet, const SheetEnergy& energy,
                               const std::vector<SheetConstraint>& constraints, Backend backend);

@@ -152,7 +152,8 @@ void assess(QpReport& out, const AssessedProgram& program, const ConstraintPolic
     out.summary.termination = Termination::ConstraintsUnmet;
     out.summary.message = "constraints not met: relative residual " + sci(relative) + " (largest row " + sci(worst) +
                           ") above constraint_tolerance " + sci(policy.constraint_tolerance) +
-                          " (inconsistent constraints get a least-squares fit); condition estimate " + cond + notes;
+                          " (inconsistent constraints, fitted in the least-squares sense, or a solver stopped short of "
+                          "them); condition estimate " + cond + notes;
   }
 }
 

@@ -166,6 +166,10 @@ QpReport QrPenaltySolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd&
   out.summary.termination = out.p.allFinite() ? Termination::Converged : Termination::NumericalFailure;
   out.summary.iterations = steps;  // penalty solves with the factorization(s)
   if (mu_ != options_.mu) out.summary.message = "mu raised to " + sci(mu_) + " (stalled refinement)";
+  if (out.residual_history.back() > tolerance)
+    out.summary.message += std::string(out.summary.message.empty() ? "" : "; ") + "qr_penalty stopped after " +
+                           std::to_string(steps) + " penalty solves at mu " + sci(mu_) + " (refinement_steps " +
+                           std::to_string(options_.refinement_steps) + ", max_mu " + sci(options_.max_mu) + ")";
   if (condition_ > 1e12)
     out.summary.message += std::string(out.summary.message.empty() ? "" : "; ") + "[mu A; K] is badly conditioned (estimate " +
                            sci(condition_) + "): mu is too large for double precision";

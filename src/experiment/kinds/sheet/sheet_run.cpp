@@ -140,6 +140,9 @@ SheetConstraintSpec read_constraint(Config& c, const std::string& label, const s
   const std::string type = c.get_choice("type", "point", kConstraintTypes, "constraint kind (Welch & Witkin §4.2)");
   s.sheet = c.get<std::string>("sheet", first_sheet, "sheet it acts on (default: the first)");
   s.step = c.get_int("step", 0, 0, 1000, "design step from which it is active");
+  s.until = c.get_int("until", -1, -1, 1001, "design step from which it is removed again (-1: never)");
+  if (s.until >= 0 && s.until <= s.step)
+    throw InvalidConfig(c.key_path("until") + ": " + std::to_string(s.until) + " must come after step " + std::to_string(s.step));
   SheetConstraint& k = s.constraint;
   if (type == "curve") {
     k.kind = SheetConstraint::Kind::Curve;
@@ -167,6 +170,16 @@ SheetConstraintSpec read_constraint(Config& c, const std::string& label, const s
       k.target = s.relative ? read_vec3(c, "by", Vec3::Zero(), "offset from the initial surface point")
                             : read_vec3(c, "target", Vec3::Zero(), "world position (or give `by`: offset from the initial point)");
       if (!s.relative) (void)c.get<std::vector<double>>("by", {0, 0, 0}, "offset from the initial surface point");
+      for (Config m : c.child_list("moves", "the target dragged over the steps: [{step, by: [x, y, z]}] (moves add up)")) {
+        PointMove mv;
+        mv.step = m.get_int("step", 1, 0, 1000, "design step from which the move applies");
+        mv.by = read_vec3(m, "by", mv.by, "displacement of the target");
+        m.check_no_unknown_keys();
+        if (mv.step <= s.step)
+          throw InvalidConfig(m.key_path("step") + ": " + std::to_string(mv.step) + " must come after the constraint's step " +
+                              std::to_string(s.step) + " (its target at that step is `target`/`by`)");
+        s.moves.push_back(mv);
+      }
     } else if (type == "tangent") {
       k.kind = SheetConstraint::Kind::Tangent;
       static const NameTable<int> directions{{0, "u"}, {1, "v"}};
@@ -187,7 +200,11 @@ bool is_sheet_config(const YAML::Node& c) { return c.IsMap() && c["sheets"].IsDe
 
 int SheetRunSpec::steps() const {
   int n = 1;
-  for (const auto& c : constraints) n = std::max(n, c.step + 1);
+  for (const auto& c : constraints) {
+    n = std::max({n, c.step + 1, c.until + 1});
+    for (const auto& m : c.moves) n = std::max(n, m.step + 1);
+  }
+  for (const auto& a : actions) n = std::max(n, a.step + 1);
   for (const auto& c : curves)
     for (const auto& e : c.edits) n = std::max(n, e.step + 1);
   return n;
@@ -273,6 +290,23 @@ SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config) {
   } catch (const InvalidInput& e) {
     throw InvalidConfig(ec.key_path("alpha") + "/" + ec.key_path("beta") + ": " + e.what());
   }
+  static const NameTable<RestShapeAction::Kind> action_kinds{{RestShapeAction::Kind::Install, "install_rest_shape"},
+                                                             {RestShapeAction::Kind::Melt, "melt_rest_shape"}};
+  k = 0;
+  for (Config a : root.child_list("actions", "§5 session actions: [{step, do: install_rest_shape | melt_rest_shape, sheet}]")) {
+    RestShapeAction act;
+    act.kind = a.get_enum("do", RestShapeAction::Kind::Install, action_kinds,
+                          "install the sheet's current shape as its rest shape (eq. 6 about it), or melt the rest shape (eq. 4)");
+    act.step = a.get_int("step", 1, 0, 1000, "design step at whose start the action applies");
+    act.sheet = a.get<std::string>("sheet", "", "the sheet (default: every sheet)");
+    a.check_no_unknown_keys();
+    if (!act.sheet.empty()) sheet_index(act.sheet, "actions[" + std::to_string(k) + "].sheet");
+    if (s.energy.metric == bspline::ShapeMetric::Displacement)
+      throw InvalidConfig("actions[" + std::to_string(k) + "].do: the displacement metric always measures from the rest shape; "
+                          "installing or melting applies to energy.metric: thin_plate");
+    s.actions.push_back(act);
+    ++k;
+  }
   Config sc = root.child("solver", "constrained solver: {type, <type>: {...}}");
   const auto& reg = qp::qp_solver_registry();
   s.solver_type = sc.get_choice("type", "kkt", reg.names(), "kkt (eq. 9), qr_penalty (eq. 10) or range_space (CHOLMOD)");
@@ -349,10 +383,12 @@ std::vector<SheetConstraint> active_constraints(const SheetRunSpec& spec, std::s
                                                 const bspline::HierarchicalSurface& initial_surface, const Eigen::MatrixXd& initial_P) {
   std::vector<SheetConstraint> active;
   for (const SheetConstraintSpec& cs : spec.constraints) {
-    if (cs.step > step || cs.sheet != spec.sheets[k].name) continue;
+    if (!cs.active_at(step) || cs.sheet != spec.sheets[k].name) continue;
     SheetConstraint c = cs.constraint;
     if (!cs.curve.empty()) c.curve.space = curves_now.at(cs.curve);
     if (cs.relative) c.target += initial_surface.position(initial_P, c.u, c.v);
+    for (const PointMove& m : cs.moves)
+      if (m.step <= step) c.target += m.by;
     active.push_back(std::move(c));
   }
   return active;
@@ -422,7 +458,17 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
     int dofs = 0, rows = 0, dropped = 0, refined = 0, rounds = 0, levels = 0;
     std::vector<std::vector<bspline::CellError>> before(sheets.size()), after(sheets.size());
     bool failed = false;
+    // Each sheet's objective: eq. 4, or eq. 6 about a rest shape the session installed.
+    std::vector<bspline::SheetEnergy> energies(sheets.size(), spec.energy);
     for (step = 0; step < spec.steps() && !failed; ++step) {
+      for (const RestShapeAction& a : spec.actions) {
+        if (a.step != step) continue;
+        for (std::size_t k = 0; k < sheets.size(); ++k) {
+          if (!a.sheet.empty() && a.sheet != spec.sheets[k].name) continue;
+          if (a.kind == RestShapeAction::Kind::Install) sheets[k].install_rest_shape();
+          energies[k].rest_shape = a.kind == RestShapeAction::Kind::Install;
+        }
+      }
       std::map<std::string, std::vector<Vec3>> curves_now;
       for (const SpaceCurveSpec& c : spec.curves) curves_now[c.name] = curve_at_step(c, base_curves.at(c.name), step);
       final_curves = curves_now;
@@ -432,9 +478,9 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
         if (active.empty()) continue;  // nothing acts on this sheet yet: it keeps its shape
         add_to_overlay(active, initial_surfaces[k], initial_P[k], overlay);
         const bspline::DesignReport r =
-            bspline::solve_sheet(sheets[k], spec.energy, active, *spec.solver, spec.refinement, spec.implementation);
+            bspline::solve_sheet(sheets[k], energies[k], active, *spec.solver, spec.refinement, spec.implementation);
         const auto& s = sheets[k].surface();
-        const qp::QuadraticProgram program = bspline::assemble(sheets[k], spec.energy, active, spec.implementation);
+        const qp::QuadraticProgram program = bspline::assemble(sheets[k], energies[k], active, spec.implementation);
         out.add_row("steps", {std::to_string(step), spec.sheets[k].name, std::to_string(s.dof_count()),
                       std::to_string(s.level_count()), std::to_string(program.A.rows()), std::to_string(r.qp.dropped_rows),
                       num(r.qp.constraint_residual), num(r.max_constraint_error), num(r.energy),
@@ -490,7 +536,7 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
         const auto active = active_constraints(spec, k, spec.steps() - 1, final_curves, initial_surfaces[k], initial_P[k]);
         if (active.empty()) continue;
         const bspline::ObjectiveErrorEstimate e =
-            bspline::estimate_objective_error(sheets[k], spec.energy, active, *spec.solver, spec.implementation);
+            bspline::estimate_objective_error(sheets[k], energies[k], active, *spec.solver, spec.implementation);
         if (!e.message.empty()) row["message"] = e.message;
         energy_change = std::max(energy_change, e.energy_change);
         surface_change = std::max(surface_change, e.surface_change);

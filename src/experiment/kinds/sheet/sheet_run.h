@@ -43,11 +43,28 @@ struct SpaceCurveSpec {
   std::vector<SpaceCurveEdit> edits;
 };
 
+//! A point constraint's target moved by `by` from design step `step` on (moves add up).
+struct PointMove {
+  int step = 1;
+  Vec3 by = Vec3::Zero();
+};
+
 struct SheetConstraintSpec {
   std::string sheet, curve, label;
-  int step = 0;
-  bool relative = false;  // point: target is an offset from the initial surface point
+  int step = 0;                 // active from this design step ...
+  int until = -1;               // ... up to (not including) this one; −1: never removed
+  bool relative = false;        // point: target is an offset from the initial surface point
+  std::vector<PointMove> moves;  // point: the target dragged over the steps
   bspline::SheetConstraint constraint;
+  bool active_at(int s) const { return step <= s && (until < 0 || s < until); }
+};
+
+//! §5's session actions on a sheet's objective: install its current shape as the rest shape
+//! (eq. 6 about it from then on), or melt the rest shape (back to eq. 4).
+struct RestShapeAction {
+  enum class Kind { Install, Melt } kind = Kind::Install;
+  int step = 1;
+  std::string sheet;  // empty: every sheet
 };
 
 struct SheetRunSpec : RunBasics {
@@ -55,6 +72,7 @@ struct SheetRunSpec : RunBasics {
   std::vector<SheetSpec> sheets;
   std::vector<SpaceCurveSpec> curves;
   std::vector<SheetConstraintSpec> constraints;
+  std::vector<RestShapeAction> actions;
   bspline::SheetEnergy energy;
   bspline::RefinementOptions refinement;
   bool estimate_objective_error = false;

@@ -7,6 +7,8 @@
 #include <Eigen/QR>
 
 #include <algorithm>
+#include <limits>
+#include <map>
 #include <cmath>
 #include <string>
 
@@ -35,12 +37,96 @@ struct RangeSpaceSolver::Cholmod {
 RangeSpaceSolver::RangeSpaceSolver(ConstraintPolicy policy) : chol_(std::make_unique<Cholmod>()), policy_(policy) {}
 RangeSpaceSolver::~RangeSpaceSolver() = default;
 
+namespace {
+bool same_matrix(const SparseMatrix& a, const SparseMatrix& b) {
+  if (a.rows() != b.rows() || a.cols() != b.cols() || a.nonZeros() != b.nonZeros()) return false;
+  const SparseMatrix x = a - b;
+  for (Eigen::Index i = 0; i < x.nonZeros(); ++i)
+    if (x.valuePtr()[i] != 0) return false;
+  return true;
+}
+using RowKey = std::vector<std::pair<int, double>>;
+std::vector<RowKey> row_keys(const SparseMatrix& A) {
+  std::vector<RowKey> keys(static_cast<std::size_t>(A.rows()));
+  for (int c = 0; c < A.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(A, c); it; ++it) keys[static_cast<std::size_t>(it.row())].emplace_back(c, it.value());
+  return keys;
+}
+}  // namespace
+
+bool RangeSpaceSolver::update_rows(const SparseMatrix& A) {
+  if (!chol_->factor || singular_ || A.rows() == 0 || A_.rows() == 0) return false;
+  // Match the new rows with the current ones (bit-identical: an unchanged constraint assembles
+  // the same row); the others are removed (a downdate) or bordered on.
+  const std::vector<RowKey> now = row_keys(A_original_), next = row_keys(A);
+  std::map<RowKey, std::vector<int>> unused;
+  for (int r = static_cast<int>(now.size()) - 1; r >= 0; --r) unused[now[static_cast<std::size_t>(r)]].push_back(r);
+  std::vector<int> match(next.size(), -1), added;
+  for (std::size_t i = 0; i < next.size(); ++i) {
+    auto it = unused.find(next[i]);
+    if (it == unused.end() || it->second.empty()) {
+      added.push_back(static_cast<int>(i));
+      continue;
+    }
+    match[i] = it->second.back();
+    it->second.pop_back();
+  }
+  std::vector<int> removed;
+  for (const auto& [key, rows] : unused) removed.insert(removed.end(), rows.begin(), rows.end());
+  if (removed.size() + added.size() > next.size()) return false;  // mostly new rows: refactoring is as cheap
+  try {
+    if (!removed.empty()) remove_rows(removed);
+  } catch (const SolverError&) {
+    return false;
+  }
+  if (!factor_positive_definite()) return false;  // the removed rows pinned what the others do not
+  if (!added.empty()) add_rows(SparseMatrix(row_picker(A.rows(), added).transpose()) * A);
+  // The solver's row order now: the kept rows in their old order, then the added ones.
+  std::vector<int> kept_position(now.size(), -1);
+  std::sort(removed.begin(), removed.end());
+  for (int r = 0, k = 0, gone = 0; r < static_cast<int>(now.size()); ++r) {
+    if (gone < static_cast<int>(removed.size()) && removed[gone] == r) {
+      ++gone;
+      continue;
+    }
+    kept_position[static_cast<std::size_t>(r)] = k++;
+  }
+  const int kept = static_cast<int>(now.size() - removed.size());
+  order_.assign(next.size(), -1);
+  for (std::size_t i = 0; i < next.size(); ++i)
+    if (match[i] >= 0) order_[static_cast<std::size_t>(kept_position[static_cast<std::size_t>(match[i])])] = static_cast<int>(i);
+  for (std::size_t j = 0; j < added.size(); ++j) order_[static_cast<std::size_t>(kept) + j] = added[j];
+  last_update_ = {static_cast<int>(added.size()), static_cast<int>(removed.size())};
+  return true;
+}
+
+bool RangeSpaceSolver::factor_positive_definite() const {
+  const cholmod_factor* L = chol_->factor;
+  if (!L || L->is_super || L->is_ll) return L != nullptr;
+  // Simplicial LDLᵀ: each column starts with its D entry.
+  const auto* p = static_cast<const int*>(L->p);
+  const auto* x = static_cast<const double*>(L->x);
+  double largest = 0, smallest = std::numeric_limits<double>::infinity();
+  for (std::size_t j = 0; j < L->n; ++j) {
+    largest = std::max(largest, x[p[j]]);
+    smallest = std::min(smallest, x[p[j]]);
+  }
+  return smallest > 1e-12 * largest;
+}
+
 void RangeSpaceSolver::analyze(const QuadraticProgram& qp) {
   validate(qp);
   if (qp.A.rows() > kMaxRows)
     throw InvalidInput("range_space: " + std::to_string(qp.A.rows()) + " constraint rows are too many for its dense Schur complement (at most " +
                        std::to_string(kMaxRows) + "); use kkt or qr_penalty");
   const Timer timer;
+  // Same energy, changed constraints (a design step): update the factor instead of refactoring.
+  if (same_matrix(qp.H, H_) && update_rows(qp.A)) {
+    analyze_s_ = timer.seconds();
+    return;
+  }
+  last_update_.reset();
+  order_.clear();
   H_ = qp.H;
   A_original_ = qp.A;
   scaling_ = scale_rows(qp.A);  // unit rows: one meaning of "dependent" for every kind of row
@@ -112,6 +198,7 @@ void RangeSpaceSolver::add_rows(const SparseMatrix& original_rows) {
     throw InvalidInput("range-space: new constraint rows have " + std::to_string(original_rows.cols()) + " columns, expected " +
                        std::to_string(H_.cols()));
   FAIRSHAPE_ASSERT(!singular_, "range-space: add_rows on a singular system");
+  order_.clear();  // b comes in the solver's own order (update_rows sets it afterwards)
   const RowScaling added = scale_rows(original_rows);
   const SparseMatrix& rows = added.scaled;
   A_original_ = stack_rows({&A_original_, &original_rows});
@@ -138,6 +225,7 @@ void RangeSpaceSolver::add_rows(const SparseMatrix& original_rows) {
 }
 
 void RangeSpaceSolver::remove_rows(std::vector<int> rows) {
+  order_.clear();  // b comes in the solver's own order (update_rows sets it afterwards)
   std::sort(rows.begin(), rows.end());
   rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
   for (int r : rows)
@@ -185,7 +273,10 @@ QpReport RangeSpaceSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd
     out.summary.message = "H + rho AᵀA is not positive definite: the constraints do not pin the energy's null space";
     return out;
   }
-  const Eigen::MatrixXd b = scaling_.d.asDiagonal() * b_original;
+  // The caller's rows in the solver's order (after updates: kept rows, then the added ones).
+  Eigen::MatrixXd ordered = b_original;
+  for (std::size_t i = 0; i < order_.size(); ++i) ordered.row(static_cast<Eigen::Index>(i)) = b_original.row(order_[i]);
+  const Eigen::MatrixXd b = scaling_.d.asDiagonal() * ordered;
   // g = f + ρ A_Fᵀ b_F over the rows that are part of H_ρ (the augmented Lagrangian's term).
   Eigen::MatrixXd bf = b;
   for (Eigen::Index r = 0; r < bf.rows(); ++r)
@@ -203,7 +294,7 @@ QpReport RangeSpaceSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd
   if (out.dropped_rows)
     out.summary.message = std::to_string(out.dropped_rows) + " dependent constraint rows (minimum-norm multipliers, rank_tolerance " +
                           sci(policy_.rank_tolerance) + ")";
-  assess(out, {H_, f, A_original_, b_original, scaling_, conditioning_}, policy_);
+  assess(out, {H_, f, A_original_, ordered, scaling_, conditioning_}, policy_);
   return out;
 }
 

@@ -13,6 +13,7 @@
 #include <Eigen/QR>
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "qp/constraint_policy.h"
@@ -27,6 +28,15 @@ class RangeSpaceSolver final : public QpSolver {
   void analyze(const QuadraticProgram& qp) override;
   QpReport solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) override;
 
+  //! analyze() of a program with the same H as the last one and rows that mostly agree with
+  //! the current ones (a design step that adds or removes constraints) updates the factor:
+  //! the rows no longer there are removed, the new ones added; b then comes in the program's
+  //! own row order. The last analyze's update (rows added, removed), or none: refactored.
+  struct RowUpdate {
+    int added = 0, removed = 0;
+  };
+  const std::optional<RowUpdate>& last_update() const { return last_update_; }
+
   //! Appends constraint rows (their targets come with the next solve's b). \throw InvalidInput
   //! when the column count differs.
   void add_rows(const SparseMatrix& rows);
@@ -36,6 +46,8 @@ class RangeSpaceSolver final : public QpSolver {
   static constexpr int kMaxRows = 3000;
 
  private:
+  bool update_rows(const SparseMatrix& A);
+  bool factor_positive_definite() const;
   void updown(bool update, const SparseMatrix& rows);
   void rebuild_schur();
   void decompose_schur();  // S's decomposition and condition estimate
@@ -52,6 +64,8 @@ class RangeSpaceSolver final : public QpSolver {
   Eigen::MatrixXd S_;
   ConstraintConditioning conditioning_;  // S over the independent directions: minimum-norm multipliers
   bool singular_ = false;
+  std::optional<RowUpdate> last_update_;
+  std::vector<int> order_;  // after an update: solver row i is row order_[i] of the program; empty: the same
   std::vector<char> in_factor_;  // per row of A: part of H_ρ (analyze) or bordered on (add_rows)
 };
 

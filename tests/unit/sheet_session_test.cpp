@@ -79,3 +79,23 @@ TEST_CASE("session keys are checked: a removal before the start, a move not afte
   CHECK_THROWS_WITH(refused("move", "0"), Contains("constraints[4].moves[0].step: 0 must come after the constraint's step 0"));
   CHECK_THROWS_WITH(refused("sheet", "roof"), Contains("actions[0].sheet: no sheet named 'roof'"));
 }
+
+TEST_CASE("across a session's steps the range-space solver updates its factor and gives the refactored answers", "[sheet][session]") {
+  YAML::Node kkt_cfg = YAML::Load(kSession), rs_cfg = YAML::Load(kSession);
+  kkt_cfg["solver"]["type"] = "kkt";
+  rs_cfg["solver"]["type"] = "range_space";
+  MetricRow kkt_row, rs_row;
+  const auto kkt = run_steps(kkt_cfg, "kkt", kkt_row);
+  const auto rs = run_steps(rs_cfg, "range_space", rs_row);
+  REQUIRE(rs_row.at("termination") == "converged");
+  REQUIRE(rs.size() == kkt.size());
+  for (std::size_t k = 0; k < rs.size(); ++k) {
+    INFO("step " << k << ": " << rs[k][13]);
+    CHECK(std::stod(rs[k][8]) == Approx(std::stod(kkt[k][8])).epsilon(1e-8).margin(1e-10));  // energy
+    CHECK(kkt[k][13] == "factored");
+  }
+  CHECK(rs[0][13] == "factored");
+  CHECK(rs[1][13] == "updated (+0 -0 rows)");  // a dragged target: new b, same rows
+  CHECK(rs[2][13] == "updated (+0 -1 rows)");  // a point removed: a downdate
+  CHECK(rs[3][13] == "updated (+0 -0 rows)");  // a rest shape installed: new f, same H
+}

@@ -20,6 +20,7 @@
 #include "mesh/disjoint_union.h"
 #include "mesh/polyline.h"
 #include "mesh/surface_mesh.h"
+#include "qp/range_space_solver.h"
 
 namespace fairshape {
 namespace fs = std::filesystem;
@@ -356,7 +357,7 @@ const std::vector<std::string>& sheet_cell_columns() {
 const std::vector<std::string>& sheet_step_columns() {
   static const std::vector<std::string> cols{"step", "sheet", "dofs", "levels", "constraint_rows", "dropped_rows",
                                              "constraint_residual", "max_constraint_error", "energy", "spans_refined",
-                                             "refinement_rounds", "analyze_s", "solve_s"};
+                                             "refinement_rounds", "analyze_s", "solve_s", "factorization"};
   return cols;
 }
 
@@ -405,6 +406,14 @@ void add_to_overlay(const std::vector<SheetConstraint>& active, const bspline::H
     if (c.kind == SheetConstraint::Kind::Normal) overlay.add_normal(initial.position(initial_P, c.u, c.v), c.target);
     if (c.kind == SheetConstraint::Kind::Curve) overlay.add_curve(c.curve.space);
   }
+}
+
+// How the last analyze() got its factor: the range-space solver updates it across design steps
+// that only add or remove constraints (steps.csv's `factorization`); the others factor anew.
+std::string factorization_note(const qp::QpSolver& solver) {
+  const auto* rs = dynamic_cast<const qp::RangeSpaceSolver*>(&solver);
+  if (!rs || !rs->last_update()) return "factored";
+  return "updated (+" + std::to_string(rs->last_update()->added) + " -" + std::to_string(rs->last_update()->removed) + " rows)";
 }
 
 // The sheets at their current shape as one mesh (separate components) with displacement_norm.
@@ -484,7 +493,8 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
         out.add_row("steps", {std::to_string(step), spec.sheets[k].name, std::to_string(s.dof_count()),
                       std::to_string(s.level_count()), std::to_string(program.A.rows()), std::to_string(r.qp.dropped_rows),
                       num(r.qp.constraint_residual), num(r.max_constraint_error), num(r.energy),
-                      std::to_string(r.spans_refined), std::to_string(r.rounds), num(r.analyze_s), num(r.solve_s)});
+                      std::to_string(r.spans_refined), std::to_string(r.rounds), num(r.analyze_s), num(r.solve_s),
+                      factorization_note(*spec.solver)});
         failed = !is_success(r.qp.summary.termination);
         if (failed) {
           row["termination"] = std::string(to_string(r.qp.summary.termination));

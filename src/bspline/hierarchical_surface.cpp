@@ -47,8 +47,8 @@ HierarchicalSurface HierarchicalSurface::from_layers(const SheetShape& shape,
   std::vector<Layer> layers(levels);
   for (int level = 0; level < levels; ++level) {
     if (!out.level_fits(level))
-      throw InvalidInput("layer " + std::to_string(level) + " of a " + std::to_string(shape.spans_u) + " x " +
-                         std::to_string(shape.spans_v) + " sheet would have more spans than an int counts");
+      throw InvalidInput("layer " + std::to_string(level) + " of a sheet of " + std::to_string(shape.spans_u) + " x " +
+                         std::to_string(shape.spans_v) + " base spans would have more spans than an int counts");
     if (spans_per_level[level].empty()) throw InvalidInput("layer " + std::to_string(level) + " has no spans");
     for (const SpanId& s : spans_per_level[level]) {
       if (s.level != level) throw InvalidInput(span_name(s) + " is listed under layer " + std::to_string(level));
@@ -150,8 +150,9 @@ SparseMatrix HierarchicalSurface::refine(const std::vector<SpanId>& spans) {
     if (s.level + 1 > kMaxLevel)
       throw InvalidInput("cannot refine beyond layer " + std::to_string(kMaxLevel) + " (the maximum depth)");
     if (!level_fits(s.level + 1))
-      throw InvalidInput("cannot refine to layer " + std::to_string(s.level + 1) + ": a " + std::to_string(shape_.spans_u) +
-                         " x " + std::to_string(shape_.spans_v) + " sheet would have more spans than an int counts");
+      throw InvalidInput("cannot refine to layer " + std::to_string(s.level + 1) + ": on a sheet of " +
+                         std::to_string(shape_.spans_u) + " x " + std::to_string(shape_.spans_v) +
+                         " base spans it would have more spans than an int counts");
   }
   const std::vector<ControlId> old_dofs = dofs_;
   for (const SpanId& s : spans) {

@@ -88,7 +88,7 @@ SheetShape read_shape(TextScanner& sc) {
   const long long base = static_cast<long long>(shape.periodic_u ? shape.spans_u : shape.spans_u + shape.degree) *
                          (shape.spans_v + shape.degree);
   if (static_cast<unsigned long long>(base) > sc.remaining_bytes() / kControlLineBytes)
-    sc.fail("a " + std::to_string(shape.spans_u) + " x " + std::to_string(shape.spans_v) + " sheet has at least " +
+    sc.fail("a sheet of " + std::to_string(shape.spans_u) + " x " + std::to_string(shape.spans_v) + " base spans has at least " +
             std::to_string(base) + " control points, more than the " + std::to_string(sc.remaining_bytes()) +
             " bytes that follow can hold (file truncated?)");
   return shape;
@@ -101,9 +101,9 @@ std::vector<std::vector<SpanId>> read_layers(TextScanner& sc, const Hierarchical
   expect(sc, "layers", 1, "layers <count, the base layer included>");
   const int count = int_in(sc, sc.tokens()[1], "the layer count", 1, HierarchicalSurface::kMaxLevel + 1);
   if (!base.level_fits(count - 1))
-    sc.fail(std::to_string(count) + " layers: layer " + std::to_string(count - 1) + " of a " +
+    sc.fail(std::to_string(count) + " layers: layer " + std::to_string(count - 1) + " of a sheet of " +
             std::to_string(base.shape().spans_u) + " x " + std::to_string(base.shape().spans_v) +
-            " sheet would have more spans than an int counts");
+            " base spans would have more spans than an int counts");
   std::unordered_set<std::int64_t> coarse, fine;  // Ω_{L−1}, Ω_L as i · spans_v(L) + j
   for (const SpanId& s : layers[0]) coarse.insert(static_cast<std::int64_t>(s.i) * base.spans_v(0) + s.j);
   for (int level = 1; level < count; ++level) {

@@ -120,11 +120,11 @@ std::vector<std::vector<SpanId>> read_layers(TextScanner& sc, const Hierarchical
     for (long long k = 0; k < n; ++k) {
       expect(sc, "s", 2, "s <i> <j>", where + ", span " + std::to_string(k + 1) + " of " + std::to_string(n));
       const SpanId s{level, int_in(sc, sc.tokens()[1], "span i", 0, nu - 1), int_in(sc, sc.tokens()[2], "span j", 0, nv - 1)};
-      const std::string name = where + " span (" + std::to_string(s.i) + ", " + std::to_string(s.j) + ")";
+      const auto name = [&] { return where + " span (" + std::to_string(s.i) + ", " + std::to_string(s.j) + ")"; };
       if (!coarse.count(static_cast<std::int64_t>(s.i / 2) * base.spans_v(level - 1) + s.j / 2))
-        sc.fail(name + " is not nested: its parent (" + std::to_string(s.i / 2) + ", " + std::to_string(s.j / 2) +
+        sc.fail(name() + " is not nested: its parent (" + std::to_string(s.i / 2) + ", " + std::to_string(s.j / 2) +
                 ") is not a span of layer " + std::to_string(level - 1));
-      if (!fine.insert(static_cast<std::int64_t>(s.i) * nv + s.j).second) sc.fail(name + " is listed twice");
+      if (!fine.insert(static_cast<std::int64_t>(s.i) * nv + s.j).second) sc.fail(name() + " is listed twice");
       layers.back().push_back(s);
     }
     coarse.swap(fine);
@@ -198,14 +198,15 @@ VariationalSheet parse_sheet(std::string_view text, const std::string& name) {
     const auto& t = sc.tokens();
     const ControlId c{int_in(sc, t[1], "control level", 0, surface->level_count() - 1), int_in(sc, t[2], "control i", 0, most),
                       int_in(sc, t[3], "control j", 0, most)};
-    const std::string id = "control point (level " + std::to_string(c.level) + ", " + std::to_string(c.i) + ", " +
-                           std::to_string(c.j) + ")";
+    const auto id = [&] {
+      return "control point (level " + std::to_string(c.level) + ", " + std::to_string(c.i) + ", " + std::to_string(c.j) + ")";
+    };
     // dof_index keys (i, j) as one integer, so an out-of-range j could alias another control
     // point: the dof found must be this very one.
     const int d = surface->dof_index(c);
     const bool same = d >= 0 && surface->dofs()[d].level == c.level && surface->dofs()[d].i == c.i && surface->dofs()[d].j == c.j;
-    if (!same) sc.fail(id + " is not an unknown of the surface the layers define");
-    if (seen[d]) sc.fail(id + " is listed twice");
+    if (!same) sc.fail(id() + " is not an unknown of the surface the layers define");
+    if (seen[d]) sc.fail(id() + " is listed twice");
     seen[d] = 1;
     static const char* const what[6] = {"x", "y", "z", "rest x", "rest y", "rest z"};
     for (int a = 0; a < 3; ++a) {

@@ -32,7 +32,7 @@ asan-test: deps
 	cmake --preset asan && cmake --build build-asan -j $(JOBS)
 	cd build-asan && ASAN_OPTIONS=detect_leaks=0 ctest --output-on-failure -j $(JOBS) -L unit -E "$(ASAN_SKIP)"
 
-FUZZ_TARGETS := fuzz_read_obj fuzz_read_off fuzz_read_ply fuzz_read_vtp fuzz_config
+FUZZ_TARGETS := fuzz_read_obj fuzz_read_off fuzz_read_ply fuzz_read_vtp fuzz_config fuzz_read_sheet
 
 fuzz: deps
 	cmake --preset fuzz && cmake --build build-fuzz -j $(JOBS) --target $(FUZZ_TARGETS)

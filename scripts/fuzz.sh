@@ -12,7 +12,7 @@ runs="${1:-100000}"
 findings=build-fuzz/findings
 mkdir -p "$findings"
 status=0
-for pair in obj:fuzz_read_obj:1 off:fuzz_read_off:1 ply:fuzz_read_ply:1 config:fuzz_config:1 vtp:fuzz_read_vtp:5; do
+for pair in obj:fuzz_read_obj:1 off:fuzz_read_off:1 ply:fuzz_read_ply:1 config:fuzz_config:1 sheet:fuzz_read_sheet:1 vtp:fuzz_read_vtp:5; do
   IFS=: read -r corpus target slower <<< "$pair"
   target_runs=$((runs / slower))
   work="$(mktemp -d)"

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <set>
 #include <string>
 
@@ -29,6 +30,60 @@ HierarchicalSurface::HierarchicalSurface(const SheetShape& shape) : shape_(shape
     for (int j = 0; j < shape.spans_v; ++j) base.spans.insert(key(0, i, j));
   levels_.push_back(std::move(base));
   rebuild_dofs();
+}
+
+namespace {
+std::string span_name(const SpanId& s) {
+  return "span (level " + std::to_string(s.level) + ", " + std::to_string(s.i) + ", " + std::to_string(s.j) + ")";
+}
+}  // namespace
+
+HierarchicalSurface HierarchicalSurface::from_layers(const SheetShape& shape,
+                                                     const std::vector<std::vector<SpanId>>& spans_per_level) {
+  HierarchicalSurface out(shape);
+  const int levels = static_cast<int>(spans_per_level.size());
+  if (levels < 1 || levels > kMaxLevel + 1)
+    throw InvalidInput("a sheet has 1 to " + std::to_string(kMaxLevel + 1) + " layers (got " + std::to_string(levels) + ")");
+  std::vector<Layer> layers(levels);
+  for (int level = 0; level < levels; ++level) {
+    if (!out.level_fits(level))
+      throw InvalidInput("layer " + std::to_string(level) + " of a sheet of " + std::to_string(shape.spans_u) + " x " +
+                         std::to_string(shape.spans_v) + " base spans would have more spans than an int counts");
+    if (spans_per_level[level].empty()) throw InvalidInput("layer " + std::to_string(level) + " has no spans");
+    for (const SpanId& s : spans_per_level[level]) {
+      if (s.level != level) throw InvalidInput(span_name(s) + " is listed under layer " + std::to_string(level));
+      if (s.i < 0 || s.i >= out.spans_u(level) || s.j < 0 || s.j >= out.spans_v(level))
+        throw InvalidInput(span_name(s) + " is outside the layer's " + std::to_string(out.spans_u(level)) + " x " +
+                           std::to_string(out.spans_v(level)) + " grid");
+      if (level > 0 && !layers[level - 1].spans.count(out.key(level - 1, s.i / 2, s.j / 2)))
+        throw InvalidInput(span_name(s) + " is not nested: its parent (" + std::to_string(s.i / 2) + ", " +
+                           std::to_string(s.j / 2) + ") is not in layer " + std::to_string(level - 1));
+      if (!layers[level].spans.insert(out.key(level, s.i, s.j)).second) throw InvalidInput(span_name(s) + " is listed twice");
+    }
+  }
+  // Distinct and in range, so equal counts mean the whole grid.
+  if (layers[0].spans.size() != out.levels_[0].spans.size())
+    throw InvalidInput("layer 0 must be the whole " + std::to_string(shape.spans_u) + " x " + std::to_string(shape.spans_v) +
+                       " base grid (got " + std::to_string(layers[0].spans.size()) + " spans)");
+  out.levels_ = std::move(layers);
+  out.rebuild_dofs();
+  return out;
+}
+
+std::vector<SpanId> HierarchicalSurface::spans(int level) const {
+  std::vector<SpanId> out;
+  out.reserve(levels_[level].spans.size());
+  for (const std::int64_t k : levels_[level].spans)
+    out.push_back({level, static_cast<int>(k / spans_v(level)), static_cast<int>(k % spans_v(level))});
+  std::sort(out.begin(), out.end(), [](const SpanId& a, const SpanId& b) { return a.i != b.i ? a.i < b.i : a.j < b.j; });
+  return out;
+}
+
+bool HierarchicalSurface::level_fits(int level) const {
+  if (level < 0 || level > kMaxLevel) return false;
+  const long long most = std::numeric_limits<int>::max() - shape_.degree;
+  return (static_cast<long long>(shape_.spans_u) << level) <= most &&
+         (static_cast<long long>(shape_.spans_v) << level) <= most;
 }
 
 int HierarchicalSurface::wrap_u(int level, int i) const {
@@ -94,6 +149,10 @@ SparseMatrix HierarchicalSurface::refine(const std::vector<SpanId>& spans) {
                          std::to_string(s.j) + "): it is not part of that layer");
     if (s.level + 1 > kMaxLevel)
       throw InvalidInput("cannot refine beyond layer " + std::to_string(kMaxLevel) + " (the maximum depth)");
+    if (!level_fits(s.level + 1))
+      throw InvalidInput("cannot refine to layer " + std::to_string(s.level + 1) + ": on a sheet of " +
+                         std::to_string(shape_.spans_u) + " x " + std::to_string(shape_.spans_v) +
+                         " base spans it would have more spans than an int counts");
   }
   const std::vector<ControlId> old_dofs = dofs_;
   for (const SpanId& s : spans) {

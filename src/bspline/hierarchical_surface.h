@@ -58,6 +58,13 @@ class HierarchicalSurface {
   //! \throw InvalidInput for spans < 1, degree outside [2, 5], or a periodic direction with
   //! fewer than degree + 1 spans (a basis function would overlap itself).
   explicit HierarchicalSurface(const SheetShape& shape);
+  //! The surface whose layer L is exactly spans_per_level[L] (any order), e.g. one read back
+  //! from a sheet file: Ω is set directly rather than replayed through refine(), whose widening
+  //! could not reproduce every nested set. Layer 0 must be the whole base grid, and no layer
+  //! empty. \throw InvalidInput for a span outside its layer's grid, a span listed twice, a
+  //! span whose parent is not in the layer below (Ω_{L+1} must lie in the children of Ω_L), or
+  //! more than kMaxLevel + 1 layers, naming the span.
+  static HierarchicalSurface from_layers(const SheetShape& shape, const std::vector<std::vector<SpanId>>& spans_per_level);
 
   const SheetShape& shape() const { return shape_; }
   int degree() const { return shape_.degree; }
@@ -66,6 +73,11 @@ class HierarchicalSurface {
   int spans_v(int level) const { return shape_.spans_v << level; }
   bool has_span(const SpanId& s) const;
   std::size_t span_count(int level) const { return levels_[level].spans.size(); }
+  //! Ω_level, sorted by (i, j) so that files written from it are deterministic.
+  std::vector<SpanId> spans(int level) const;
+  //! Whether layer `level` can exist for this shape: its span and control-point counts fit an
+  //! int (a wide base grid 2^level times finer would overflow them).
+  bool level_fits(int level) const;
 
   int dof_count() const { return static_cast<int>(dofs_.size()); }
   const std::vector<ControlId>& dofs() const { return dofs_; }

@@ -20,6 +20,15 @@ VariationalSheet::VariationalSheet(const SheetShape& shape, Eigen::MatrixXd init
   rest_ = remembered_ = P_;
 }
 
+VariationalSheet::VariationalSheet(HierarchicalSurface surface, Eigen::MatrixXd P, Eigen::MatrixXd rest)
+    : surface_(std::move(surface)) {
+  const int n = surface_.dof_count();
+  if (P.rows() != n || P.cols() != 3 || rest.rows() != n || rest.cols() != 3)
+    throw InvalidInput("sheet control points: expected " + std::to_string(n) + " x 3 (current and rest)");
+  P_ = std::move(P);
+  rest_ = remembered_ = std::move(rest);
+}
+
 void VariationalSheet::set_coefficients(Eigen::MatrixXd P) {
   FAIRSHAPE_ASSERT(P.rows() == surface_.dof_count() && P.cols() == 3, "coefficients do not match the surface");
   P_ = std::move(P);

@@ -38,6 +38,10 @@ struct SheetConstraint {
 class VariationalSheet {
  public:
   VariationalSheet(const SheetShape& shape, Eigen::MatrixXd initial);
+  //! A sheet over an already refined surface with its current and rest control points (a
+  //! sheet read back from a file, bspline/sheet_file.h). \throw InvalidInput for P or rest
+  //! not dof_count × 3.
+  VariationalSheet(HierarchicalSurface surface, Eigen::MatrixXd P, Eigen::MatrixXd rest);
   const HierarchicalSurface& surface() const { return surface_; }
   const Eigen::MatrixXd& coefficients() const { return P_; }
   void set_coefficients(Eigen::MatrixXd P);

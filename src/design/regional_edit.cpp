@@ -234,7 +234,12 @@ RegionalPass solve_pass(const std::vector<PlacedTerm>& placed, const EditTerms& 
     const int iterations = pass.summary.iterations + sol.summary.iterations;
     pass.summary = sol.summary;
     pass.summary.iterations = iterations;
-    if (!is_success(sol.summary.termination) || !sol.delta.allFinite()) return pass;
+    // A round's rows, propagated to a coarse level, may be inconsistent (more rows than the level
+    // carries): the round's least-squares fit is a step, and the pass measures on the surface
+    // what its constraints still miss (below), so constraints_unmet of one round does not end it.
+    const Termination t = sol.summary.termination;
+    if ((!is_success(t) && t != Termination::ConstraintsUnmet) || !sol.delta.allFinite()) return pass;
+    if (t == Termination::ConstraintsUnmet) pass.summary = {Termination::Converged, pass.summary.iterations, -1, "", pass.summary.observe_s};
     const Eigen::VectorXd xs = Eigen::Map<const Eigen::VectorXd>(x.data(), x.size());
     const Eigen::MatrixXd gx = x + sol.delta;
     const Eigen::VectorXd next = accelerate.next(xs, Eigen::Map<const Eigen::VectorXd>(gx.data(), gx.size()));

@@ -12,6 +12,7 @@
 #include "core/config.h"
 #include "core/timer.h"
 #include "experiment/kinds/sheet/curve_forms.h"
+#include "experiment/kinds/sheet/sheet_files.h"
 #include "experiment/metric_format.h"
 #include "io/constraint_overlay.h"
 #include "io/mesh_io.h"
@@ -51,9 +52,11 @@ Eigen::Matrix2d read_weights(Config& c, const std::string& key, double fallback,
   return w;
 }
 
-SheetSpec read_sheet(Config& c) {
+SheetSpec read_sheet(Config& c, const std::vector<std::string>& search_dirs) {
+  if (c.has("file")) return read_sheet_from_file(c, search_dirs);
   SheetSpec s;
   s.name = c.get<std::string>("name", "sheet", "name constraints and curves refer to");
+  (void)c.get<std::string>("file", "", "a saved sheet (sheets/<run>_<sheet>.sheet) to start from, instead of the shape keys");
   const std::vector<int> spans = c.get<std::vector<int>>("spans", {4, 4}, "base spans [u, v]");
   if (spans.size() != 2) throw InvalidConfig(c.key_path("spans") + ": expected [spans_u, spans_v]");
   s.shape.spans_u = spans[0];
@@ -211,11 +214,11 @@ int SheetRunSpec::steps() const {
   return n;
 }
 
-SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config) {
+SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config, const std::vector<std::string>& search_dirs) {
   Config root(run_config, "");
   SheetRunSpec s;
   static_cast<RunBasics&>(s) = read_run_basics(root);
-  for (Config c : root.child_list("sheets", "hierarchical B-spline sheets")) s.sheets.push_back(read_sheet(c));
+  for (Config c : root.child_list("sheets", "hierarchical B-spline sheets")) s.sheets.push_back(read_sheet(c, search_dirs));
   if (s.sheets.empty()) throw InvalidConfig("sheets: at least one sheet");
   const auto sheet_index = [&](const std::string& name, const std::string& key) {
     for (std::size_t k = 0; k < s.sheets.size(); ++k)
@@ -445,8 +448,7 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
     std::vector<bspline::HierarchicalSurface> initial_surfaces;
     std::vector<Eigen::MatrixXd> initial_P;
     for (const SheetSpec& ss : spec.sheets) {
-      bspline::HierarchicalSurface surface(ss.shape);
-      sheets.emplace_back(ss.shape, bspline::initial_coefficients(ss.placement, surface));
+      sheets.push_back(initial_sheet(ss));
       if (!ss.refine.empty()) sheets.back().refine(ss.refine);
       initial_surfaces.push_back(sheets.back().surface());
       initial_P.push_back(sheets.back().coefficients());
@@ -532,6 +534,7 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
           write_vtp(sheets_mesh(sheets, spec.samples_per_span, initial_surfaces, initial_P), stem + ".vtp");
           overlay.write(stem + "_constraints.vtp");
         }
+        if (spec.vtk == VtkPolicy::All) write_sheet_files(out, spec.sheets, sheets, step);
         fs::create_directories(fs::path(out.dir) / "curves");
         for (const auto& [name, pts] : curves_now) {
           MatrixX3 X(static_cast<Eigen::Index>(pts.size()), 3);
@@ -563,6 +566,7 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
                         num(h.x()), num(h.y()), num(e.error)});
         }
     write_mesh(sheets_mesh(sheets, spec.samples_per_span, initial_surfaces, initial_P), out.final_path());
+    write_sheet_files(out, spec.sheets, sheets, -1);
     row["dofs"] = std::to_string(dofs);
     row["levels"] = std::to_string(levels);
     row["constraint_rows"] = std::to_string(rows);

@@ -25,6 +25,8 @@ struct SheetSpec {
   bspline::SheetShape shape;
   bspline::SheetPlacement placement;
   std::vector<bspline::SpanId> refine;
+  std::string file;  // non-empty: the sheet starts from this saved sheet (kinds/sheet/sheet_files.h)
+  std::shared_ptr<const bspline::VariationalSheet> loaded;  // ... as read at load
 };
 
 struct SpaceCurveEdit {
@@ -82,7 +84,8 @@ struct SheetRunSpec : RunBasics {
   int steps() const;
 
   //! \throw InvalidConfig naming the key (unknown sheets or curves, uv outside the domain, ...).
-  static SheetRunSpec from_config(const YAML::Node& run_config);
+  //! \param search_dirs where relative sheet `file:` paths are looked up (input_search_dirs).
+  static SheetRunSpec from_config(const YAML::Node& run_config, const std::vector<std::string>& search_dirs = {});
 };
 
 bool is_sheet_config(const YAML::Node& run_config);
@@ -92,7 +95,8 @@ const std::vector<std::string>& sheet_cell_columns();    // cells.csv: constrain
 
 //! Runs every step, writes steps.csv rows, cells.csv (constraint error per leaf cell before and
 //! after refinement), vtk/<run>_step<k>.vtp (every sheet, point array displacement_norm),
-//! curves/<run>_step<k>_<curve>.obj, and final.obj. Never throws
+//! curves/<run>_step<k>_<curve>.obj, final.obj, and sheets/<run>_<sheet>.sheet (with
+//! output.vtk: all also sheets/<run>_step<k>_<sheet>.sheet). Never throws
 //! for problems of the input or the numerics: they become the row's termination and message.
 MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out);
 

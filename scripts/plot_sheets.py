@@ -8,8 +8,8 @@
       one rendered panel per run of a sweep (its last step), plus the height profile z(x) of
       every run along the grid line v = V of final/<run_id>.obj (N base spans in v, K samples
       per span); FORMAT is a Python format over the runs.csv row (dots in names -> _)
-      constraint error per leaf cell before and after automatic refinement (cells.csv), beside
-      the refined surface
+      constraint error per leaf cell after every solve of the last step (cells.csv: the first,
+      unrefined solve and each refinement round), above the surface before and after refinement
   plot_sheets.py convergence RUN_DIR OUT.png --title TEXT
       a resolution study (configs/welch-witkin/resolution.yaml): energy against base spans per
       solver, and |E - E_finest| and the largest constraint error against the span size
@@ -67,11 +67,9 @@ def steps_figure(run_dir, out, title, labels):
     os.replace(tmp, out)
 
 
-def cells_panel(ax, cells, when, vmin, vmax):
+def cells_panel(ax, cells, label, vmin, vmax):
     rects, values, empty = [], [], []
     for c in cells:
-        if c["when"] != when:
-            continue
         r = Rectangle((float(c["u0"]), float(c["v0"])), float(c["size_u"]), float(c["size_v"]))
         if float(c["error"]) > 0:
             rects.append(r)
@@ -85,30 +83,44 @@ def cells_panel(ax, cells, when, vmin, vmax):
     ax.add_collection(pc)
     ax.set_aspect("equal")
     ax.autoscale_view()
-    worst = max(float(c["error"]) for c in cells if c["when"] == when)
-    ax.set_title(f"{when} refinement: {len(rects) + len(empty)} cells, max error {worst:.1e}", fontsize=10)
+    worst = max(float(c["error"]) for c in cells)
+    ax.set_title(f"{label}: {len(rects) + len(empty)} cells\nmax error {worst:.1e}", fontsize=10)
     ax.set_xlabel("u")
     ax.set_ylabel("v")
     return pc
 
 
 def cells_figure(run_dir, out, title):
+    """The error map after every solve of the last step (cells.csv), then the surface before and
+    after automatic refinement, rendered with one camera and one colour range."""
     cells = read_csv(os.path.join(run_dir, "cells.csv"))
+    rounds = sorted({int(c["round"]) for c in cells})
+    per_round = [[c for c in cells if int(c["round"]) == r and c["when"] == ("before" if r == 1 else c["when"])] for r in rounds]
     logs = [math.log10(float(c["error"])) for c in cells if float(c["error"]) > 0]
     vmin, vmax = max(min(logs), -8), max(logs)
-    fig, axes = plt.subplots(1, 3, figsize=(14, 4.3))
-    cells_panel(axes[0], cells, "before", vmin, vmax)
-    pc = cells_panel(axes[1], cells, "after", vmin, vmax)
-    fig.colorbar(pc, ax=axes[1], label="log10 constraint error per cell")
-    files = sorted(step_files(os.path.join(run_dir, "vtk", "*_step*.vtp")))
+    fig = plt.figure(figsize=(3.6 * max(len(rounds), 3), 8))
+    grid = fig.add_gridspec(2, len(rounds))
+    pc = None
+    for k, round_cells in enumerate(per_round):
+        ax = fig.add_subplot(grid[0, k])
+        label = "unrefined" if k == 0 else f"round {rounds[k]}"
+        pc = cells_panel(ax, round_cells, label, vmin, vmax)
+    fig.colorbar(pc, ax=fig.axes, label="log10 constraint error per cell", shrink=0.45, location="right")
+    steps = sorted(step_files(os.path.join(run_dir, "vtk", "*_step*.vtp")),
+                   key=lambda p: int(p.rsplit("_step", 1)[1].split(".")[0]))
+    last = int(steps[-1].rsplit("_step", 1)[1].split(".")[0])
+    before = glob.glob(os.path.join(run_dir, "vtk", f"*_unrefined{last}.vtp"))
+    files, labels = (before + steps[-1:], ["first solve (unrefined)", f"after {len(rounds) - 1} refinement rounds"]) if before else \
+        (steps[-1:], ["surface"])
+    ax = fig.add_subplot(grid[1, :])
     with tempfile.TemporaryDirectory() as tmp:
-        render_panels(files[-1:], os.path.join(tmp, "s.png"), [])
-        axes[2].imshow(mpimg.imread(os.path.join(tmp, "s.png")))
-    axes[2].axis("off")
-    axes[2].set_title("refined surface", fontsize=10)
+        render_panels(files, os.path.join(tmp, "s.png"), labels)
+        ax.imshow(mpimg.imread(os.path.join(tmp, "s.png")))
+    ax.axis("off")
     fig.suptitle(title)
-    fig.tight_layout()
-    fig.savefig(out, dpi=110)
+    tmp = out + ".tmp.png"
+    fig.savefig(tmp, dpi=110)
+    os.replace(tmp, out)
 
 
 def read_obj_vertices(path):

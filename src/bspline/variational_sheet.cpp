@@ -193,6 +193,7 @@ DesignReport solve_sheet(VariationalSheet& sheet, const SheetEnergy& energy, con
       report.energy = objective_value(sheet, energy, program);
       report.errors_after = constraint_errors(sheet, constraints);
       if (report.rounds == 1) report.errors_before = report.errors_after;
+      report.errors_per_round.push_back(report.errors_after);
       report.max_constraint_error = max_error(report.errors_after);
     }
     if (t != Termination::Converged) {
@@ -219,6 +220,7 @@ DesignReport solve_sheet(VariationalSheet& sheet, const SheetEnergy& energy, con
                        std::to_string(refinement.max_level);
       break;
     }
+    if (!report.unrefined) report.unrefined = std::make_shared<const VariationalSheet>(sheet);
     report.spans_refined += sheet.refine(spans);
   }
   if (!report.qp.summary.message.empty()) report.message = report.message.empty() ? report.qp.summary.message : report.qp.summary.message + "; " + report.message;

@@ -3,6 +3,7 @@
 // a QuadraticProgram, and the automatic refinement of §4.4 driven by constraint error.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -91,6 +92,9 @@ struct DesignReport {
   double energy = 0, analyze_s = 0, solve_s = 0, max_constraint_error = 0;
   int rounds = 0, spans_refined = 0;
   std::vector<CellError> errors_before, errors_after;  // first and last solve
+  std::vector<std::vector<CellError>> errors_per_round;  // every solve, in order
+  //! The sheet as the first solve left it, when refinement followed (Figure 3's unrefined surface).
+  std::shared_ptr<const VariationalSheet> unrefined;
   std::string message;
 };
 

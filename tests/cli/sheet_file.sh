@@ -27,7 +27,7 @@ grep -q "${id}_sheet.sheet" "$S/reload/run.json" || fail "run.json does not list
 
 # The design goes on: refined further, one more constraint, about the saved rest shape.
 "$FS" run "$S/reload.yaml" --out "$S/more" --set 'sheets.0.refine=[[0, 3, 3]]' \
-  --set 'constraints=[{type: point, uv: [4, 4], by: [0, 0, 0.2]}, {type: point, uv: [0.5, 0.5], by: [0, 0, 0]}, {type: point, uv: [7.5, 7.5], by: [0, 0, 0]}]' \
+  --set 'constraints=[{type: point, uv: [1, 1], by: [0, 0, 0.2]}, {type: point, uv: [0.125, 0.125], by: [0, 0, 0]}, {type: point, uv: [1.875, 1.875], by: [0, 0, 0]}]' \
   --set energy.alpha=0.01 --set energy.rest_shape=true 2>/dev/null || fail "a further design step failed"
 grep -q ",converged," "$S/more/runs.csv" || fail "the further design step did not converge"
 mid=$(sed -n 2p "$S/more/runs.csv" | cut -d, -f1)

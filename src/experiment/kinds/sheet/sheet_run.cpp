@@ -353,7 +353,7 @@ const std::vector<std::string>& sheet_metric_columns() {
 }
 
 const std::vector<std::string>& sheet_cell_columns() {
-  static const std::vector<std::string> cols{"sheet", "when", "level", "u0", "v0", "size_u", "size_v", "error"};
+  static const std::vector<std::string> cols{"sheet", "when", "round", "level", "u0", "v0", "size_u", "size_v", "error"};
   return cols;
 }
 
@@ -467,11 +467,13 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
     std::map<std::string, std::vector<Vec3>> final_curves;  // the space curves at the last step
     double analyze_s = 0, solve_s = 0, energy = 0, residual = 0, max_err = 0, cond = 0;
     int dofs = 0, rows = 0, dropped = 0, refined = 0, rounds = 0, levels = 0;
-    std::vector<std::vector<bspline::CellError>> before(sheets.size()), after(sheets.size());
+    // Per sheet, the last step's constraint error per leaf cell after every solve (Figure 3).
+    std::vector<std::vector<std::vector<bspline::CellError>>> cell_errors(sheets.size());
     bool failed = false;
     // Each sheet's objective: eq. 4, or eq. 6 about a rest shape the session installed.
     std::vector<bspline::SheetEnergy> energies(sheets.size(), spec.energy);
     for (step = 0; step < spec.steps() && !failed; ++step) {
+      std::vector<std::shared_ptr<const bspline::VariationalSheet>> unrefined(sheets.size());
       for (const RestShapeAction& a : spec.actions) {
         if (a.step != step) continue;
         for (std::size_t k = 0; k < sheets.size(); ++k) {
@@ -508,8 +510,8 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
           row["message"] += std::string(row["message"].empty() ? "" : "; ") +
                             "paper split: the constrained control points are the minimum-norm least-squares solution of "
                             "their rows, not optimized (energy above the minimizer's)";
-        before[k] = r.errors_before;  // the last step's solve wins (Figure 3: before/after refinement)
-        after[k] = r.errors_after;
+        cell_errors[k] = r.errors_per_round;  // the last step's solve wins (Figure 3: every refinement round)
+        unrefined[k] = r.unrefined;
         analyze_s += r.analyze_s;
         solve_s += r.solve_s;
         refined += r.spans_refined;
@@ -533,6 +535,15 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
           const std::string stem = (fs::path(out.dir) / "vtk" / (out.run_id + "_step" + std::to_string(step))).string();
           write_vtp(sheets_mesh(sheets, spec.samples_per_span, initial_surfaces, initial_P), stem + ".vtp");
           overlay.write(stem + "_constraints.vtp");
+          // The step's first solve, before automatic refinement changed it (no "_step" in the
+          // name: figure scripts glob the steps).
+          if (std::any_of(unrefined.begin(), unrefined.end(), [](const auto& u) { return u != nullptr; })) {
+            std::vector<bspline::VariationalSheet> first;
+            for (std::size_t k = 0; k < sheets.size(); ++k) first.push_back(unrefined[k] ? *unrefined[k] : sheets[k]);
+            const std::string before = (fs::path(out.dir) / "vtk" / (out.run_id + "_unrefined" + std::to_string(step))).string();
+            write_vtp(sheets_mesh(first, spec.samples_per_span, initial_surfaces, initial_P), before + ".vtp");
+            overlay.write(before + "_constraints.vtp");
+          }
         }
         if (spec.vtk == VtkPolicy::All) write_sheet_files(out, spec.sheets, sheets, step);
         fs::create_directories(fs::path(out.dir) / "curves");
@@ -557,14 +568,21 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
       row["objective_error_estimate"] = num(energy_change);
       row["surface_change_estimate"] = num(surface_change);
     }
-    // Constraint error per leaf cell, first and last solve of the last step (Figure 3).
+    // Constraint error per leaf cell after every solve of the last step (Figure 3): `when` is
+    // before (the first solve), after (the last; a single solve is both) or between.
     for (std::size_t k = 0; k < sheets.size(); ++k)
-      for (const auto& [list, when] : {std::pair{&before[k], "before"}, std::pair{&after[k], "after"}})
-        for (const bspline::CellError& e : *list) {
-          const Eigen::Vector2d h = std::ldexp(1.0, -e.cell.level) * spec.sheets[k].shape.span_size;  // design units
-          out.add_row("cells", {spec.sheets[k].name, when, std::to_string(e.cell.level), num(e.cell.i * h.x()), num(e.cell.j * h.y()),
-                        num(h.x()), num(h.y()), num(e.error)});
-        }
+      for (std::size_t n = 0; n < cell_errors[k].size(); ++n) {
+        std::vector<std::string> whens;
+        if (n == 0) whens.push_back("before");
+        if (n + 1 == cell_errors[k].size()) whens.push_back("after");
+        if (whens.empty()) whens.push_back("between");
+        for (const std::string& when : whens)
+          for (const bspline::CellError& e : cell_errors[k][n]) {
+            const Eigen::Vector2d h = std::ldexp(1.0, -e.cell.level) * spec.sheets[k].shape.span_size;  // design units
+            out.add_row("cells", {spec.sheets[k].name, when, std::to_string(n + 1), std::to_string(e.cell.level), num(e.cell.i * h.x()),
+                                  num(e.cell.j * h.y()), num(h.x()), num(h.y()), num(e.error)});
+          }
+      }
     write_mesh(sheets_mesh(sheets, spec.samples_per_span, initial_surfaces, initial_P), out.final_path());
     write_sheet_files(out, spec.sheets, sheets, -1);
     row["dofs"] = std::to_string(dofs);

@@ -42,6 +42,73 @@ void ClampedKnotBasis::evaluate(double x, int& first, std::vector<double>& value
   first = s - r;
 }
 
+void ClampedKnotBasis::derivatives(double x, int order, int& first, std::vector<std::vector<double>>& ders) const {
+  const int r = degree_;
+  FAIRSHAPE_ASSERT(order >= 0 && order <= r, "clamped knot basis: derivative order above the degree");
+  const double a = knots_.front(), b = knots_.back();
+  x = std::clamp(x, a, b);
+  int s = static_cast<int>(std::upper_bound(knots_.begin(), knots_.end(), x) - knots_.begin()) - 1;
+  s = std::min(s, static_cast<int>(knots_.size()) - r - 2);
+  first = s - r;
+  // The triangular table of every lower degree's functions (upper part) and knot differences
+  // (lower part); the derivatives are differences of the lower degrees' functions (Piegl &
+  // Tiller's scheme). On a non-empty interval [t_s, t_{s+1}) no difference used is zero.
+  const auto R = static_cast<std::size_t>(r + 1);
+  std::vector<std::vector<double>> ndu(R, std::vector<double>(R, 0.0));
+  std::vector<double> left(R), right(R);
+  ndu[0][0] = 1;
+  for (int j = 1; j <= r; ++j) {
+    left[j] = x - knots_[s + 1 - j];
+    right[j] = knots_[s + j] - x;
+    double saved = 0;
+    for (int k = 0; k < j; ++k) {
+      ndu[j][k] = right[k + 1] + left[j - k];
+      const double temp = ndu[k][j - 1] / ndu[j][k];
+      ndu[k][j] = saved + right[k + 1] * temp;
+      saved = left[j - k] * temp;
+    }
+    ndu[j][j] = saved;
+  }
+  ders.assign(static_cast<std::size_t>(order + 1), std::vector<double>(R, 0.0));
+  for (int j = 0; j <= r; ++j) ders[0][j] = ndu[j][r];
+  std::vector<std::vector<double>> c(2, std::vector<double>(R, 0.0));
+  for (int k = 0; k <= r; ++k) {
+    int s1 = 0, s2 = 1;
+    c[0][0] = 1;
+    for (int d = 1; d <= order; ++d) {
+      double sum = 0;
+      const int rk = k - d, pk = r - d;
+      if (k >= d) {
+        c[s2][0] = c[s1][0] / ndu[pk + 1][rk];
+        sum = c[s2][0] * ndu[rk][pk];
+      }
+      const int j1 = rk >= -1 ? 1 : -rk, j2 = k - 1 <= pk ? d - 1 : r - k;
+      for (int j = j1; j <= j2; ++j) {
+        c[s2][j] = (c[s1][j] - c[s1][j - 1]) / ndu[pk + 1][rk + j];
+        sum += c[s2][j] * ndu[rk + j][pk];
+      }
+      if (k <= pk) {
+        c[s2][d] = -c[s1][d - 1] / ndu[pk + 1][k];
+        sum += c[s2][d] * ndu[k][pk];
+      }
+      ders[d][k] = sum;
+      std::swap(s1, s2);
+    }
+  }
+  double factor = r;
+  for (int d = 1; d <= order; ++d) {
+    for (double& v : ders[d]) v *= factor;
+    factor *= r - d;
+  }
+}
+
+std::vector<double> ClampedKnotBasis::breaks() const {
+  std::vector<double> out;
+  for (double k : knots_)
+    if (out.empty() || k > out.back()) out.push_back(k);
+  return out;
+}
+
 double ClampedKnotBasis::integral(int j) const {
   return (knots_[j + degree_ + 1] - knots_[j]) / (degree_ + 1);
 }

@@ -95,56 +95,79 @@ std::vector<double> mortar_knots(const HierarchicalSurface& s, const std::vector
   return knots;
 }
 
-ConstraintRows mortar_curve_rows(const HierarchicalSurface& s, const CurveAttachment& curve) {
-  check_curve_attachment(s, curve);
-  const ArcLength arc(curve.uv);
+ClampedKnotBasis polyline_basis(std::size_t points) {
+  FAIRSHAPE_ASSERT(points >= 2, "a polyline has at least two points");
+  const double n = static_cast<double>(points - 1);
+  std::vector<double> interior;
+  for (std::size_t k = 1; k + 1 < points; ++k) interior.push_back(static_cast<double>(k) / n);
+  return ClampedKnotBasis(0, 1, interior, 1);
+}
+
+MortarRows mortar_rows(const HierarchicalSurface& s, const std::vector<Eigen::Vector2d>& uv, const ClampedKnotBasis& target) {
+  if (uv.size() < 2) throw InvalidInput("curve constraint: needs at least two (u, v) points");
+  for (std::size_t k = 0; k < uv.size(); ++k) check_in_domain(s, uv[k].x(), uv[k].y(), "curve constraint, (u, v) point " + std::to_string(k));
+  const ArcLength arc(uv);
   const double L = arc.length();
   if (!(L > 0)) throw InvalidInput("curve constraint: the (u, v) curve has zero length");
   const int r = s.degree();
-  const std::vector<double> knots = mortar_knots(s, curve.uv);
+  const std::vector<double> knots = mortar_knots(s, uv);
   const ClampedKnotBasis W(0, L, knots, r);
 
-  // Pieces on which the integrand is one polynomial: between uv and space-curve vertices, W's
-  // knots and every finest grid line crossed.
+  // Pieces on which the integrand is one polynomial: between uv vertices, the target's knots
+  // (in t), W's knots and every finest grid line crossed.
   std::vector<double> breaks = arc.S;
-  const double nsp = static_cast<double>(curve.space.size() - 1);
-  for (std::size_t k = 0; k < curve.space.size(); ++k) breaks.push_back(arc.s_of(static_cast<double>(k) / nsp));
+  for (double tk : target.breaks()) breaks.push_back(arc.s_of(tk));
   breaks.insert(breaks.end(), knots.begin(), knots.end());
   const double grid = std::ldexp(1.0, s.level_count() - 1);
-  for (std::size_t k = 0; k + 1 < curve.uv.size(); ++k)
-    for (int axis = 0; axis < 2; ++axis) grid_crossings(curve.uv, arc, k, axis, grid, [&](double sk, long long) { breaks.push_back(sk); });
+  for (std::size_t k = 0; k + 1 < uv.size(); ++k)
+    for (int axis = 0; axis < 2; ++axis) grid_crossings(uv, arc, k, axis, grid, [&](double sk, long long) { breaks.push_back(sk); });
   std::sort(breaks.begin(), breaks.end());
 
-  // ψ (degree r) · surface basis along a straight piece (degree ≤ 2r) · D (linear): degree 3r+1.
-  const GaussRule g = gauss_legendre((3 * r + 2) / 2 + 1);
+  // ψ (degree r) · surface basis along a straight piece (degree ≤ 2r), and ψ · the target's
+  // basis (t is linear in s on a piece): exact Gauss rule for the higher (at least 3r + 1).
+  const int degree = std::max(3 * r + 1, r + target.degree());
+  const GaussRule g = gauss_legendre(degree / 2 + 1);
   const int m = W.size();
-  Triplets t;
-  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(m, 3);
+  Triplets ta, tb;
   BasisRow row;
-  std::vector<double> psi;
-  int first = 0;
+  std::vector<double> psi, x;
+  int first = 0, first_x = 0;
   for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
     const double s0 = std::clamp(breaks[k], 0.0, L), s1 = std::clamp(breaks[k + 1], 0.0, L);
     if (s1 - s0 <= 1e-14 * L) continue;
     for (std::size_t q = 0; q < g.nodes.size(); ++q) {
       const double sq = s0 + g.nodes[q] * (s1 - s0), w = g.weights[q] * (s1 - s0);
       const double tq = arc.t_of(sq);
-      const Eigen::Vector2d c = polyline_at(curve.uv, tq);
-      const Vec3 D = polyline_at(curve.space, tq);
+      const Eigen::Vector2d c = polyline_at(uv, tq);
       s.basis(c.x(), c.y(), row);
+      target.evaluate(tq, first_x, x);
       W.evaluate(sq, first, psi);
       for (int a = 0; a <= r; ++a) {
         const double wa = w * psi[static_cast<std::size_t>(a)] / W.integral(first + a);
         if (wa == 0) continue;
-        C.row(first + a) += wa * D.transpose();
-        for (const BasisEntry& e : row) t.emplace_back(first + a, e.dof, wa * e.value);
+        for (const BasisEntry& e : row) ta.emplace_back(first + a, e.dof, wa * e.value);
+        for (std::size_t i = 0; i < x.size(); ++i) tb.emplace_back(first + a, first_x + static_cast<int>(i), wa * x[i]);
       }
     }
   }
-  ConstraintRows out;
+  MortarRows out;
   out.A.resize(m, s.dof_count());
-  out.A.setFromTriplets(t.begin(), t.end());
-  out.C = std::move(C);
+  out.A.setFromTriplets(ta.begin(), ta.end());
+  out.B.resize(m, target.size());
+  out.B.setFromTriplets(tb.begin(), tb.end());
+  return out;
+}
+
+ConstraintRows mortar_curve_rows(const HierarchicalSurface& s, const CurveAttachment& curve) {
+  check_curve_attachment(s, curve);
+  // The fixed space curve is the target whose coefficients are known: its points, on the hat
+  // functions of a polyline equally spaced in t.
+  MortarRows rows = mortar_rows(s, curve.uv, polyline_basis(curve.space.size()));
+  Eigen::MatrixXd D(static_cast<Eigen::Index>(curve.space.size()), 3);
+  for (std::size_t k = 0; k < curve.space.size(); ++k) D.row(static_cast<Eigen::Index>(k)) = curve.space[k].transpose();
+  ConstraintRows out;
+  out.C = rows.B * D;
+  out.A = std::move(rows.A);
   return out;
 }
 

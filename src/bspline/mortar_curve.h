@@ -16,10 +16,29 @@
 // residual is a distance in world units.
 #pragma once
 
+#include "bspline/knot_basis.h"
 #include "bspline/surface_constraints.h"
 
 namespace fairshape::bspline {
 
+//! The rows of a curve whose target is a spline in t ∈ [0, 1], X(t) = Σ_i T_i(t) x_i:
+//! ∫ψ_j (w(c(s)) − X(t(s))) ds / ∫ψ_j = 0 for every multiplier ψ_j reads A p − B x = 0, A
+//! (m × dofs) acting on the surface's unknowns, B (m × T.size()) on the target's coefficients,
+//! B_ji = ∫ψ_j T_i(t(s)) ds / ∫ψ_j. One integration for both kinds of target: a fixed space
+//! curve (a polyline: hat functions, x its points, known) and a variational curve
+//! (bspline/variational_curve.h: x its control points, unknowns beside the surface's).
+struct MortarRows {
+  SparseMatrix A, B;
+};
+//! \throw InvalidInput for fewer than two uv points, one outside the domain or a uv curve of
+//! zero length.
+MortarRows mortar_rows(const HierarchicalSurface& s, const std::vector<Eigen::Vector2d>& uv, const ClampedKnotBasis& target);
+
+//! A polyline of `points` points equally spaced in t as a spline in t: degree 1, a knot at
+//! every point (its coefficients are the points).
+ClampedKnotBasis polyline_basis(std::size_t points);
+
+//! The fixed-target case: A p = C with C = B D (D the space curve's points).
 //! \throw InvalidInput for fewer than two points, a point outside the domain, a non-finite
 //! target or a uv curve of zero length.
 ConstraintRows mortar_curve_rows(const HierarchicalSurface& s, const CurveAttachment& curve);

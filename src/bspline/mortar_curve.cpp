@@ -103,15 +103,33 @@ ClampedKnotBasis polyline_basis(std::size_t points) {
   return ClampedKnotBasis(0, 1, interior, 1);
 }
 
-MortarRows mortar_rows(const HierarchicalSurface& s, const std::vector<Eigen::Vector2d>& uv, const ClampedKnotBasis& target) {
+namespace {
+void check_uv_curve(const HierarchicalSurface& s, const std::vector<Eigen::Vector2d>& uv) {
   if (uv.size() < 2) throw InvalidInput("curve constraint: needs at least two (u, v) points");
   for (std::size_t k = 0; k < uv.size(); ++k) check_in_domain(s, uv[k].x(), uv[k].y(), "curve constraint, (u, v) point " + std::to_string(k));
+  if (!(ArcLength(uv).length() > 0)) throw InvalidInput("curve constraint: the (u, v) curve has zero length");
+}
+}  // namespace
+
+int mortar_multiplier_count(const HierarchicalSurface& s, const std::vector<Eigen::Vector2d>& uv) {
+  check_uv_curve(s, uv);
+  return static_cast<int>(mortar_knots(s, uv).size()) + s.degree() + 1;
+}
+
+MortarRows mortar_rows(const HierarchicalSurface& s, const std::vector<Eigen::Vector2d>& uv, const ClampedKnotBasis& target,
+                       Multipliers multipliers) {
+  check_uv_curve(s, uv);
   const ArcLength arc(uv);
   const double L = arc.length();
-  if (!(L > 0)) throw InvalidInput("curve constraint: the (u, v) curve has zero length");
   const int r = s.degree();
   const std::vector<double> knots = mortar_knots(s, uv);
   const ClampedKnotBasis W(0, L, knots, r);
+  const bool on_target = multipliers == Multipliers::Target;
+  // ψ_j(s): W's functions in the arc length, or the target's in t(s).
+  const auto multipliers_at = [&](double sq, double tq, int& first, std::vector<double>& psi) {
+    if (on_target) target.evaluate(tq, first, psi);
+    else W.evaluate(sq, first, psi);
+  };
 
   // Pieces on which the integrand is one polynomial: between uv vertices, the target's knots
   // (in t), W's knots and every finest grid line crossed.
@@ -123,12 +141,14 @@ MortarRows mortar_rows(const HierarchicalSurface& s, const std::vector<Eigen::Ve
     for (int axis = 0; axis < 2; ++axis) grid_crossings(uv, arc, k, axis, grid, [&](double sk, long long) { breaks.push_back(sk); });
   std::sort(breaks.begin(), breaks.end());
 
-  // ψ (degree r) · surface basis along a straight piece (degree ≤ 2r), and ψ · the target's
-  // basis (t is linear in s on a piece): exact Gauss rule for the higher (at least 3r + 1).
-  const int degree = std::max(3 * r + 1, r + target.degree());
+  // ψ · the surface's basis along a straight piece (degree ≤ 2r) and ψ · the target's basis
+  // (t is linear in s on a piece): an exact Gauss rule for the higher (at least 3r + 1).
+  const int psi_degree = on_target ? target.degree() : r;
+  const int degree = std::max(3 * r + 1, psi_degree + std::max(2 * r, target.degree()));
   const GaussRule g = gauss_legendre(degree / 2 + 1);
-  const int m = W.size();
+  const int m = on_target ? target.size() : W.size();
   Triplets ta, tb;
+  Eigen::VectorXd mass = Eigen::VectorXd::Zero(m);  // ∫ψ_j ds: each row is divided by it
   BasisRow row;
   std::vector<double> psi, x;
   int first = 0, first_x = 0;
@@ -141,20 +161,25 @@ MortarRows mortar_rows(const HierarchicalSurface& s, const std::vector<Eigen::Ve
       const Eigen::Vector2d c = polyline_at(uv, tq);
       s.basis(c.x(), c.y(), row);
       target.evaluate(tq, first_x, x);
-      W.evaluate(sq, first, psi);
-      for (int a = 0; a <= r; ++a) {
-        const double wa = w * psi[static_cast<std::size_t>(a)] / W.integral(first + a);
+      multipliers_at(sq, tq, first, psi);
+      for (std::size_t a = 0; a < psi.size(); ++a) {
+        const double wa = w * psi[a];
         if (wa == 0) continue;
-        for (const BasisEntry& e : row) ta.emplace_back(first + a, e.dof, wa * e.value);
-        for (std::size_t i = 0; i < x.size(); ++i) tb.emplace_back(first + a, first_x + static_cast<int>(i), wa * x[i]);
+        const int j = first + static_cast<int>(a);
+        mass[j] += wa;
+        for (const BasisEntry& e : row) ta.emplace_back(j, e.dof, wa * e.value);
+        for (std::size_t i = 0; i < x.size(); ++i) tb.emplace_back(j, first_x + static_cast<int>(i), wa * x[i]);
       }
     }
   }
+  const Eigen::VectorXd inverse_mass = mass.cwiseInverse();
   MortarRows out;
   out.A.resize(m, s.dof_count());
   out.A.setFromTriplets(ta.begin(), ta.end());
+  out.A = inverse_mass.asDiagonal() * out.A;
   out.B.resize(m, target.size());
   out.B.setFromTriplets(tb.begin(), tb.end());
+  out.B = inverse_mass.asDiagonal() * out.B;
   return out;
 }
 

@@ -30,9 +30,22 @@ namespace fairshape::bspline {
 struct MortarRows {
   SparseMatrix A, B;
 };
+//! Where the multipliers live. The mortar methods' rule: on the finer side, so that every mode
+//! of the finer side's trace is tied to the other side and none floats free of the constraint.
+//!   SurfaceTrace  the functions above (one per cell crossed, plus r): the surface follows the
+//!                 target (w∘c is the target's projection where the target is coarser);
+//!   Target        the target's own basis T_j(t(s)): the target follows the surface (a
+//!                 variational curve finer than the sheet's trace is the trace's projection).
+//! A fixed target (a polyline) always takes SurfaceTrace: its hat functions as multipliers
+//! would tie the surface at every sample (eq. 7's locking).
+enum class Multipliers { SurfaceTrace, Target };
 //! \throw InvalidInput for fewer than two uv points, one outside the domain or a uv curve of
 //! zero length.
-MortarRows mortar_rows(const HierarchicalSurface& s, const std::vector<Eigen::Vector2d>& uv, const ClampedKnotBasis& target);
+MortarRows mortar_rows(const HierarchicalSurface& s, const std::vector<Eigen::Vector2d>& uv, const ClampedKnotBasis& target,
+                       Multipliers multipliers = Multipliers::SurfaceTrace);
+//! The number of SurfaceTrace multipliers along uv (for choosing the finer side).
+//! \throw InvalidInput as mortar_rows.
+int mortar_multiplier_count(const HierarchicalSurface& s, const std::vector<Eigen::Vector2d>& uv);
 
 //! A polyline of `points` points equally spaced in t as a spline in t: degree 1, a knot at
 //! every point (its coefficients are the points).

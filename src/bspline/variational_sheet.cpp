@@ -139,6 +139,11 @@ struct CellKey {
 }  // namespace
 
 std::vector<CellError> constraint_errors(const VariationalSheet& sheet, const std::vector<SheetConstraint>& constraints) {
+  return constraint_errors(sheet, constraints, [&](std::size_t i, double t) { return polyline_at(constraints[i].curve.space, t); });
+}
+
+std::vector<CellError> constraint_errors(const VariationalSheet& sheet, const std::vector<SheetConstraint>& constraints,
+                                         const CurveTarget& target) {
   const HierarchicalSurface& s = sheet.surface();
   const Eigen::MatrixXd& P = sheet.coefficients();
   std::map<SpanId, double, CellKey> worst;
@@ -146,7 +151,8 @@ std::vector<CellError> constraint_errors(const VariationalSheet& sheet, const st
     double& w = worst[s.leaf_cell_at(u, v)];
     w = std::max(w, e);
   };
-  for (const SheetConstraint& c : constraints) {
+  for (std::size_t i = 0; i < constraints.size(); ++i) {
+    const SheetConstraint& c = constraints[i];
     if (c.kind == SheetConstraint::Kind::Point) record(c.u, c.v, (s.position(P, c.u, c.v) - c.target).norm());
     if (c.kind != SheetConstraint::Kind::Curve) continue;
     // Samples dense enough to see every finest cell the curve crosses several times.
@@ -156,7 +162,7 @@ std::vector<CellError> constraint_errors(const VariationalSheet& sheet, const st
     for (int k = 0; k <= samples; ++k) {
       const double t = static_cast<double>(k) / samples;
       const Eigen::Vector2d uv = polyline_at(c.curve.uv, t);
-      record(uv.x(), uv.y(), (s.position(P, uv.x(), uv.y()) - polyline_at(c.curve.space, t)).norm());
+      record(uv.x(), uv.y(), (s.position(P, uv.x(), uv.y()) - target(i, t)).norm());
     }
   }
   std::vector<CellError> out;  // every leaf cell, 0 where no constraint acts

@@ -3,6 +3,7 @@
 // a QuadraticProgram, and the automatic refinement of §4.4 driven by constraint error.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -79,6 +80,12 @@ struct CellError {
   double error;
 };
 std::vector<CellError> constraint_errors(const VariationalSheet& sheet, const std::vector<SheetConstraint>& constraints);
+//! The same with the curve constraints' targets given as functions of t instead of their
+//! polylines (a variational curve's X(t), bspline/joined_design.h): target(i, t) for
+//! constraints[i].
+using CurveTarget = std::function<Vec3(std::size_t constraint, double t)>;
+std::vector<CellError> constraint_errors(const VariationalSheet& sheet, const std::vector<SheetConstraint>& constraints,
+                                         const CurveTarget& target);
 double max_error(const std::vector<CellError>& errors);
 
 struct RefinementOptions {

@@ -5,8 +5,10 @@
 #include <cmath>
 #include <random>
 
+#include "bspline/joined_design.h"
 #include "bspline/knot_basis.h"
 #include "bspline/mortar_curve.h"
+#include "bspline/sheet_geometry.h"
 #include "bspline/variational_curve.h"
 #include "core/config.h"
 #include "core/error.h"
@@ -155,4 +157,140 @@ TEST_CASE("variational curve alone: a point pulled from a straight curve gives t
   CHECK((c.tangent(1) - Vec3(0, 1, 0)).norm() < 1e-9);
   cs[2].t = 1.5;
   CHECK_THROWS_WITH(curve_constraint_rows(c, {cs[2]}), Catch::Matchers::Contains("t must lie in [0, 1]"));
+}
+
+namespace {
+
+// Figure 2's floor (z = 0) and wall (y = 1), 2 × 2 in design units on 8 × 8 spans, joined along
+// v = 1 (design units; v = 4 in base spans) from u0 to u1 (design units) by a variational curve
+// that starts straight, each sheet held at four points near its corners.
+struct Fig2Joint {
+  VariationalSheet floor, wall;
+  VariationalCurve curve;
+  std::vector<Eigen::Vector2d> uv;
+  CurveEnergy curve_energy_weights;
+
+  static VariationalSheet plane(const Vec3& origin, const Vec3& v_axis) {
+    const SheetShape shape{8, 8, 3, false, Eigen::Vector2d(0.25, 0.25)};
+    SheetPlacement at;
+    at.origin = origin;
+    at.v_axis = v_axis;
+    at.size_u = at.size_v = 2;
+    return VariationalSheet(shape, initial_coefficients(at, HierarchicalSurface(shape)));
+  }
+  Fig2Joint(double u0, double u1, int curve_spans)
+      : floor(plane(Vec3(0, 0, 0), Vec3::UnitY())),
+        wall(plane(Vec3(0, 1, -1), Vec3::UnitZ())),
+        curve({curve_spans, 3}, std::vector<Vec3>{Vec3(u0, 1, 0), Vec3(u1, 1, 0)}),
+        uv{Eigen::Vector2d(4 * u0, 4), Eigen::Vector2d(4 * u1, 4)} {}
+
+  // The sheets' pins, the curve's ends held and its middle pulled by `pull`.
+  JoinedDesign design(const Vec3& pull) {
+    JoinedDesign d;
+    for (VariationalSheet* s : {&floor, &wall}) {
+      JoinedSheet js;
+      js.sheet = s;
+      js.energy.weights.alpha = 0.01 * Eigen::Matrix2d::Identity();
+      for (const Eigen::Vector2d& c : {Eigen::Vector2d(0.5, 0.5), Eigen::Vector2d(7.5, 0.5), Eigen::Vector2d(0.5, 7.5), Eigen::Vector2d(7.5, 7.5)}) {
+        SheetConstraint pin;
+        pin.u = c.x(), pin.v = c.y();
+        pin.target = s->surface().position(s->coefficients(), c.x(), c.y());
+        js.constraints.push_back(pin);
+      }
+      d.sheets.push_back(js);
+    }
+    JoinedCurve jc;
+    jc.curve = &curve;
+    jc.energy = curve_energy_weights;
+    for (double t : {0.0, 0.5, 1.0}) {
+      CurveConstraint c;
+      c.t = t;
+      c.target = curve.position(t) + (t == 0.5 ? pull : Vec3::Zero());
+      jc.constraints.push_back(c);
+    }
+    d.curves.push_back(jc);
+    d.joints = {{0, 0, uv, "floor joint"}, {1, 0, uv, "wall joint"}};
+    return d;
+  }
+};
+
+}  // namespace
+
+TEST_CASE("joined sheets: the joint is C0 and the curve's own constraints are met", "[sheet][free_curve]") {
+  // Along a whole grid line with the curve on the sheets' knots, the curve's space is the
+  // sheets' trace space and so is the multiplier space: the weak joint is met pointwise.
+  Fig2Joint f(0, 2, 8);
+  JoinedDesign d = f.design(Vec3(0, 0.35, 0.45));
+  auto kkt = make_solver("kkt");
+  const JoinedReport r = solve_joined(d, *kkt, Backend::Optimized);
+  INFO(r.message);
+  REQUIRE(r.qp.summary.termination == Termination::Converged);
+  for (std::size_t j = 0; j < 2; ++j) {
+    CHECK(r.joint_error[j] < 1e-9);
+    CHECK(r.joint_weak[j] < 1e-10);
+  }
+  CHECK(r.curve_error[0] < 1e-10);
+  // Both sheets' traces equal the curve: sampled directly.
+  for (double t = 0; t <= 1; t += 1.0 / 64) {
+    const Vec3 X = f.curve.position(t);
+    CHECK((f.floor.surface().position(f.floor.coefficients(), 8 * t, 4) - X).norm() < 1e-9);
+    CHECK((f.wall.surface().position(f.wall.coefficients(), 8 * t, 4) - X).norm() < 1e-9);
+  }
+  CHECK(max_error(r.sheet_errors[0]) < 1e-9);
+  CHECK(r.sheet_rows[0] > 4);  // its pins and its joint's rows
+  CHECK(r.energy() == Approx(r.sheet_energy[0] + r.sheet_energy[1] + r.curve_energy[0]));
+}
+
+TEST_CASE("joined sheets: a point pulled on the curve bends both sheets; every solver agrees", "[sheet][free_curve]") {
+  // Figure 2's joint (inset from the sheets' edges, off their knots): met in the weak sense to
+  // the constraint tolerance, pointwise to the discretization. A curve finer than the sheets'
+  // trace (16 spans) carries the multipliers and follows the sheets, whose traces then agree
+  // exactly; a coarser one (4 spans) leads them.
+  const Vec3 pull(0, 0.35, 0.45);
+  for (const int spans : {4, 16}) {
+    std::vector<double> energies;
+    for (const std::string name : {"kkt", "range_space", "qr_penalty"}) {
+      Fig2Joint f(0.125, 1.875, spans);
+      JoinedDesign d = f.design(pull);
+      auto solver = make_solver(name);
+      const JoinedReport r = solve_joined(d, *solver, Backend::Optimized);
+      INFO(name << " with " << spans << " curve spans: " << r.message << "; pointwise " << r.joint_error[0] << ", " << r.joint_error[1]);
+      REQUIRE(r.qp.summary.termination == Termination::Converged);
+      CHECK(r.joint_weak[0] < 1e-9);
+      CHECK(r.joint_weak[1] < 1e-9);
+      CHECK(r.joint_error[0] < (spans == 16 ? 1e-4 : 1e-3));
+      CHECK(r.curve_error[0] < 1e-9);
+      energies.push_back(r.energy());
+      // The curve's middle moved by the pull, and both sheets followed it there and around it.
+      CHECK((f.curve.position(0.5) - Vec3(1, 1, 0) - pull).norm() < 1e-9);
+      const Vec3 floor_mid = f.floor.surface().position(f.floor.coefficients(), 4, 4);
+      const Vec3 wall_mid = f.wall.surface().position(f.wall.coefficients(), 4, 4);
+      CHECK((floor_mid - f.curve.position(0.5)).norm() < r.joint_error[0] + 1e-12);
+      CHECK((wall_mid - f.curve.position(0.5)).norm() < r.joint_error[1] + 1e-12);
+      if (spans == 16) CHECK((floor_mid - wall_mid).norm() < 1e-9);
+      CHECK(f.floor.surface().position(f.floor.coefficients(), 4, 3).z() > 0.2);  // inside the floor
+      CHECK(f.wall.surface().position(f.wall.coefficients(), 4, 5).y() > 1.1);    // inside the wall
+      CHECK(r.sheet_energy[0] > 0.1);
+      CHECK(r.sheet_energy[1] > 0.1);
+      CHECK(r.curve_energy[0] > 0);
+    }
+    CHECK(energies[1] == Approx(energies[0]).epsilon(1e-6));
+    CHECK(energies[2] == Approx(energies[0]).epsilon(1e-6));
+  }
+}
+
+TEST_CASE("joined sheets: normal constraints and bad joints are refused with their label", "[sheet][free_curve]") {
+  Fig2Joint f(0, 2, 8);
+  JoinedDesign d = f.design(Vec3::Zero());
+  SheetConstraint n;
+  n.kind = SheetConstraint::Kind::Normal;
+  n.u = n.v = 2;
+  n.target = Vec3::UnitZ();
+  n.label = "constraints[7]";
+  d.sheets[0].constraints.push_back(n);
+  auto kkt = make_solver("kkt");
+  CHECK_THROWS_WITH(solve_joined(d, *kkt, Backend::Optimized), Catch::Matchers::Contains("constraints[7]: normal constraints are not supported"));
+  d.sheets[0].constraints.pop_back();
+  d.joints[1].uv[1] = Eigen::Vector2d(9, 4);
+  CHECK_THROWS_WITH(solve_joined(d, *kkt, Backend::Optimized), Catch::Matchers::Contains("wall joint: curve constraint, (u, v) point 1"));
 }

@@ -115,15 +115,12 @@ void measure(const JoinedDesign& design, const JoinedProgram& jp, const Eigen::M
   const std::size_t S = design.sheets.size(), C = design.curves.size(), J = design.joints.size();
   const Eigen::MatrixXd residual = jp.program.A * p - jp.program.b;
   const auto block_norm = [&](std::size_t b) { return residual.middleRows(jp.row[b], jp.row[b + 1] - jp.row[b]).norm(); };
-  const auto block_rows = [&](std::size_t b) { return static_cast<int>(jp.row[b + 1] - jp.row[b]); };
   report.sheet_energy.assign(S, 0.0);
   report.sheet_errors.assign(S, {});
-  report.sheet_rows.assign(S, 0);
   report.sheet_residual.assign(S, 0.0);
   for (std::size_t k = 0; k < S; ++k) {
     const JoinedSheet& s = design.sheets[k];
     report.sheet_energy[k] = objective_value(*s.sheet, s.energy, jp.sheet_programs[k]);
-    report.sheet_rows[k] = block_rows(k);
     report.sheet_residual[k] = block_norm(k);
     // Its own constraints against their polylines, its joints against the curves' X(t).
     std::vector<SheetConstraint> all = s.constraints;
@@ -135,7 +132,6 @@ void measure(const JoinedDesign& design, const JoinedProgram& jp, const Eigen::M
       c.curve.uv = design.joints[j].uv;
       all.push_back(c);
       joined_to.push_back(design.curves[design.joints[j].curve].curve);
-      report.sheet_rows[k] += block_rows(S + C + j);
       report.sheet_residual[k] = std::hypot(report.sheet_residual[k], block_norm(S + C + j));
     }
     report.sheet_errors[k] = constraint_errors(*s.sheet, all, [&](std::size_t i, double t) {
@@ -146,7 +142,6 @@ void measure(const JoinedDesign& design, const JoinedProgram& jp, const Eigen::M
     const JoinedCurve& c = design.curves[k];
     report.curve_energy.push_back(curve_energy(*c.curve, c.energy));
     report.curve_error.push_back(max_error(*c.curve, c.constraints));
-    report.curve_rows.push_back(block_rows(S + k));
     report.curve_residual.push_back(block_norm(S + k));
   }
   for (std::size_t j = 0; j < J; ++j) {
@@ -167,6 +162,12 @@ void measure(const JoinedDesign& design, const JoinedProgram& jp, const Eigen::M
 JoinedReport solve_joined(JoinedDesign& design, qp::QpSolver& solver, Backend backend) {
   JoinedReport report;
   const JoinedProgram jp = assemble_joined(design, backend);
+  // The rows acting on each member: a sheet's own and its joints', a curve's own.
+  const std::size_t S = design.sheets.size(), C = design.curves.size();
+  const auto block_rows = [&](std::size_t b) { return static_cast<int>(jp.row[b + 1] - jp.row[b]); };
+  for (std::size_t k = 0; k < S; ++k) report.sheet_rows.push_back(block_rows(k));
+  for (std::size_t k = 0; k < C; ++k) report.curve_rows.push_back(block_rows(S + k));
+  for (std::size_t j = 0; j < design.joints.size(); ++j) report.sheet_rows[design.joints[j].sheet] += block_rows(S + C + j);
   solver.analyze(jp.program);
   report.analyze_s = solver.analyze_seconds();
   const Timer timer;
@@ -177,7 +178,6 @@ JoinedReport solve_joined(JoinedDesign& design, qp::QpSolver& solver, Backend ba
   // As solve_sheet: an answer under constraints_unmet or ill_conditioned is kept and measured.
   const bool has_answer = t == Termination::Converged || t == Termination::ConstraintsUnmet || t == Termination::IllConditioned;
   if (!has_answer || !report.qp.p.allFinite()) return report;
-  const std::size_t S = design.sheets.size();
   for (std::size_t k = 0; k < jp.column.size() - 1; ++k) {
     Eigen::MatrixXd part = report.qp.p.middleRows(jp.column[k], jp.column[k + 1] - jp.column[k]);
     if (k < S) design.sheets[k].sheet->set_coefficients(std::move(part));

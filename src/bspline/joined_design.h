@@ -76,7 +76,8 @@ struct JoinedReport {
 
 //! Solves the joint program and hands each sheet its coefficients and each curve its control
 //! points (when the solver returns an answer: converged, constraints_unmet or ill_conditioned;
-//! a failed factorization leaves every member as it was).
+//! a failed factorization leaves every member as it was, and the report has its row counts
+//! but no energies or errors).
 JoinedReport solve_joined(JoinedDesign& design, qp::QpSolver& solver, Backend backend);
 
 }  // namespace fairshape::bspline

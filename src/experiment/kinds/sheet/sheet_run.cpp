@@ -11,7 +11,9 @@
 #include "core/summary.h"
 #include "core/config.h"
 #include "core/timer.h"
+#include "experiment/kinds/sheet/constraint_schedule.h"
 #include "experiment/kinds/sheet/curve_forms.h"
+#include "experiment/kinds/sheet/free_curves.h"
 #include "experiment/kinds/sheet/sheet_files.h"
 #include "experiment/metric_format.h"
 #include "io/constraint_overlay.h"
@@ -131,11 +133,12 @@ SpaceCurveSpec read_curve(Config& c) {
     e.check_no_unknown_keys();
     s.edits.push_back(ed);
   }
+  read_variational(c, s);
   c.check_no_unknown_keys();
   return s;
 }
 
-const std::vector<std::string> kConstraintTypes{"point", "tangent", "normal", "curve"};
+const std::vector<std::string> kConstraintTypes{"point", "tangent", "normal", "curve", "curve_point", "curve_tangent"};
 
 SheetConstraintSpec read_constraint(Config& c, const std::string& label, const std::string& first_sheet) {
   SheetConstraintSpec s;
@@ -143,10 +146,7 @@ SheetConstraintSpec read_constraint(Config& c, const std::string& label, const s
   s.constraint.label = label;
   const std::string type = c.get_choice("type", "point", kConstraintTypes, "constraint kind (Welch & Witkin §4.2)");
   s.sheet = c.get<std::string>("sheet", first_sheet, "sheet it acts on (default: the first)");
-  s.step = c.get_int("step", 0, 0, 1000, "design step from which it is active");
-  s.until = c.get_int("until", -1, -1, 1001, "design step from which it is removed again (-1: never)");
-  if (s.until >= 0 && s.until <= s.step)
-    throw InvalidConfig(c.key_path("until") + ": " + std::to_string(s.until) + " must come after step " + std::to_string(s.step));
+  read_schedule(c, s.step, s.until);
   SheetConstraint& k = s.constraint;
   if (type == "curve") {
     k.kind = SheetConstraint::Kind::Curve;
@@ -174,16 +174,7 @@ SheetConstraintSpec read_constraint(Config& c, const std::string& label, const s
       k.target = s.relative ? read_vec3(c, "by", Vec3::Zero(), "offset from the initial surface point")
                             : read_vec3(c, "target", Vec3::Zero(), "world position (or give `by`: offset from the initial point)");
       if (!s.relative) (void)c.get<std::vector<double>>("by", {0, 0, 0}, "offset from the initial surface point");
-      for (Config m : c.child_list("moves", "the target dragged over the steps: [{step, by: [x, y, z]}] (moves add up)")) {
-        PointMove mv;
-        mv.step = m.get_int("step", 1, 0, 1000, "design step from which the move applies");
-        mv.by = read_vec3(m, "by", mv.by, "displacement of the target");
-        m.check_no_unknown_keys();
-        if (mv.step <= s.step)
-          throw InvalidConfig(m.key_path("step") + ": " + std::to_string(mv.step) + " must come after the constraint's step " +
-                              std::to_string(s.step) + " (its target at that step is `target`/`by`)");
-        s.moves.push_back(mv);
-      }
+      s.moves = read_moves(c, s.step);
     } else if (type == "tangent") {
       k.kind = SheetConstraint::Kind::Tangent;
       static const NameTable<int> directions{{0, "u"}, {1, "v"}};
@@ -205,6 +196,10 @@ bool is_sheet_config(const YAML::Node& c) { return c.IsMap() && c["sheets"].IsDe
 int SheetRunSpec::steps() const {
   int n = 1;
   for (const auto& c : constraints) {
+    n = std::max({n, c.step + 1, c.until + 1});
+    for (const auto& m : c.moves) n = std::max(n, m.step + 1);
+  }
+  for (const auto& c : curve_constraints) {
     n = std::max({n, c.step + 1, c.until + 1});
     for (const auto& m : c.moves) n = std::max(n, m.step + 1);
   }
@@ -234,8 +229,12 @@ SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config, const std::
     ++k;
   }
   k = 0;
-  for (Config c : root.child_list("constraints", "[{type: point|tangent|normal|curve, sheet, uv, ...}]")) {
+  for (Config c : root.child_list("constraints", "[{type: point|tangent|normal|curve|curve_point|curve_tangent, sheet, uv, ...}]")) {
     const std::string label = "constraints[" + std::to_string(k++) + "]";
+    if (is_curve_constraint(c)) {  // a variational curve's own (free_curves.h)
+      s.curve_constraints.push_back(read_curve_constraint(c, label));
+      continue;
+    }
     SheetConstraintSpec cs = read_constraint(c, label, s.sheets.front().name);
     sheet_index(cs.sheet, label + ".sheet");
     if (!cs.curve.empty()) {
@@ -341,6 +340,7 @@ SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config, const std::
   s.vtk = read_vtk_policy(oc, "vtk/<run>_step<k>.vtp of all sheets after every step");
   oc.check_no_unknown_keys();
   root.check_no_unknown_keys();
+  check_free_curves(s);
   return s;
 }
 
@@ -381,13 +381,14 @@ std::vector<Vec3> curve_at_step(const SpaceCurveSpec& c, const std::vector<Vec3>
 }
 
 // The constraints of sheet k active at `step`, with the space curves as they are then and
-// relative point targets resolved on the initial surface.
+// relative point targets resolved on the initial surface; not its joints to variational curves
+// (solved with them, free_curves.h).
 std::vector<SheetConstraint> active_constraints(const SheetRunSpec& spec, std::size_t k, int step,
                                                 const std::map<std::string, std::vector<Vec3>>& curves_now,
                                                 const bspline::HierarchicalSurface& initial_surface, const Eigen::MatrixXd& initial_P) {
   std::vector<SheetConstraint> active;
   for (const SheetConstraintSpec& cs : spec.constraints) {
-    if (!cs.active_at(step) || cs.sheet != spec.sheets[k].name) continue;
+    if (!cs.active_at(step) || cs.sheet != spec.sheets[k].name || cs.joins_free_curve) continue;  // joints: free_curves.h
     SheetConstraint c = cs.constraint;
     if (!cs.curve.empty()) c.curve.space = curves_now.at(cs.curve);
     if (cs.relative) c.target += initial_surface.position(initial_P, c.u, c.v);
@@ -464,6 +465,7 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
       base_curves[c.name] = c.from_sheet.empty() ? c.points
                                                  : bspline::surface_curve(sheets[k].surface(), sheets[k].coefficients(), c.uv, c.samples);
     }
+    FreeCurves free_curves(spec, base_curves);
     std::map<std::string, std::vector<Vec3>> final_curves;  // the space curves at the last step
     double analyze_s = 0, solve_s = 0, energy = 0, residual = 0, max_err = 0, cond = 0;
     int dofs = 0, rows = 0, dropped = 0, refined = 0, rounds = 0, levels = 0;
@@ -484,18 +486,26 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
       }
       std::map<std::string, std::vector<Vec3>> curves_now;
       for (const SpaceCurveSpec& c : spec.curves) curves_now[c.name] = curve_at_step(c, base_curves.at(c.name), step);
-      final_curves = curves_now;
       ConstraintOverlay overlay;
+      std::vector<std::vector<SheetConstraint>> actives;
+      for (std::size_t k = 0; k < sheets.size(); ++k)
+        actives.push_back(active_constraints(spec, k, step, curves_now, initial_surfaces[k], initial_P[k]));
+      // Sheets joined to variational curves first, with them (their curves' shapes into curves_now).
+      const JoinedStep joined = free_curves.solve_step(spec, step, sheets, energies, actives, curves_now, overlay);
+      final_curves = curves_now;
       for (std::size_t k = 0; k < sheets.size(); ++k) {
-        const std::vector<SheetConstraint> active = active_constraints(spec, k, step, curves_now, initial_surfaces[k], initial_P[k]);
-        if (active.empty()) continue;  // nothing acts on this sheet yet: it keeps its shape
+        const std::vector<SheetConstraint>& active = actives[k];
+        const auto joint = joined.sheets.find(k);
+        if (active.empty() && joint == joined.sheets.end()) continue;  // nothing acts on this sheet yet: it keeps its shape
         add_to_overlay(active, initial_surfaces[k], initial_P[k], overlay);
-        const bspline::DesignReport r =
-            bspline::solve_sheet(sheets[k], energies[k], active, *spec.solver, spec.refinement, spec.implementation);
+        const bspline::DesignReport r = joint != joined.sheets.end()
+                                            ? joint->second.report
+                                            : bspline::solve_sheet(sheets[k], energies[k], active, *spec.solver, spec.refinement, spec.implementation);
         const auto& s = sheets[k].surface();
-        const qp::QuadraticProgram program = bspline::assemble(sheets[k], energies[k], active, spec.implementation);
+        const Eigen::Index constraint_rows =
+            joint != joined.sheets.end() ? joint->second.rows : bspline::assemble(sheets[k], energies[k], active, spec.implementation).A.rows();
         out.add_row("steps", {std::to_string(step), spec.sheets[k].name, std::to_string(s.dof_count()),
-                      std::to_string(s.level_count()), std::to_string(program.A.rows()), std::to_string(r.qp.dropped_rows),
+                      std::to_string(s.level_count()), std::to_string(constraint_rows), std::to_string(r.qp.dropped_rows),
                       num(r.qp.constraint_residual), num(r.max_constraint_error), num(r.energy),
                       std::to_string(r.spans_refined), std::to_string(r.rounds), num(r.analyze_s), num(r.solve_s),
                       factorization_note(*spec.solver)});
@@ -521,12 +531,27 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
           residual = std::hypot(residual, r.qp.constraint_residual);
           max_err = std::max(max_err, r.max_constraint_error);
           dofs += s.dof_count();
-          rows += static_cast<int>(program.A.rows());
+          rows += static_cast<int>(constraint_rows);
           dropped += r.qp.dropped_rows;
           levels = std::max(levels, s.level_count());
           if (!std::isnan(r.qp.condition_estimate)) cond = std::max(cond, r.qp.condition_estimate);
         }
         if (failed) break;
+      }
+      for (const FreeCurveStep& c : joined.curves) {  // a row per free curve (its group's termination)
+        out.add_row("steps", free_curve_step_row(step, c));
+        if (!failed && !is_success(c.termination)) {
+          failed = true;
+          row["termination"] = std::string(to_string(c.termination));
+          row["message"] = "step " + std::to_string(step) + ", curve " + c.name + ": " + c.message;
+        }
+        if (step + 1 == spec.steps() || failed) {
+          energy += c.energy;
+          residual = std::hypot(residual, c.residual);
+          max_err = std::max(max_err, c.max_error);
+          dofs += c.dofs;
+          rows += c.rows;
+        }
       }
       // Per step: all sheets in one polydata (point array displacement_norm) and the space curves
       // (a failed step's too: what it achieved, under its termination).

@@ -12,6 +12,7 @@
 
 #include "bspline/sheet_geometry.h"
 #include "bspline/uniform_basis.h"
+#include "bspline/variational_curve.h"
 #include "bspline/variational_sheet.h"
 #include "experiment/run_outputs.h"
 #include "experiment/vtk_policy.h"
@@ -43,6 +44,12 @@ struct SpaceCurveSpec {
   int samples = 65;
   bool closed = false;                    // ends where it starts (edits wrap round)
   std::vector<SpaceCurveEdit> edits;
+  //! A variational curve (`variational:`, kinds/sheet/free_curves.h): it starts as the
+  //! least-squares fit of the form above and then moves by its own constraints (curve_point,
+  //! curve_tangent) and with the sheets joined to it, solved together at every step.
+  bool variational = false;
+  bspline::CurveShape curve_shape;
+  bspline::CurveEnergy curve_energy;
 };
 
 //! A point constraint's target moved by `by` from design step `step` on (moves add up).
@@ -58,6 +65,18 @@ struct SheetConstraintSpec {
   bool relative = false;        // point: target is an offset from the initial surface point
   std::vector<PointMove> moves;  // point: the target dragged over the steps
   bspline::SheetConstraint constraint;
+  //! A curve constraint whose space curve is variational: a joint, solved with the curve.
+  bool joins_free_curve = false;
+  bool active_at(int s) const { return step <= s && (until < 0 || s < until); }
+};
+
+//! A variational curve's own constraint (type curve_point or curve_tangent).
+struct CurveConstraintSpec {
+  std::string curve, label;
+  int step = 0, until = -1;
+  bool relative = false;         // curve_point `by`: an offset from the initial curve's point
+  std::vector<PointMove> moves;  // curve_point: the target dragged over the steps
+  bspline::CurveConstraint constraint;
   bool active_at(int s) const { return step <= s && (until < 0 || s < until); }
 };
 
@@ -74,6 +93,7 @@ struct SheetRunSpec : RunBasics {
   std::vector<SheetSpec> sheets;
   std::vector<SpaceCurveSpec> curves;
   std::vector<SheetConstraintSpec> constraints;
+  std::vector<CurveConstraintSpec> curve_constraints;  // `constraints:` entries of a curve_* type
   std::vector<RestShapeAction> actions;
   bspline::SheetEnergy energy;
   bspline::RefinementOptions refinement;
@@ -93,7 +113,8 @@ const std::vector<std::string>& sheet_metric_columns();  // runs.csv
 const std::vector<std::string>& sheet_step_columns();    // steps.csv: one row per step and sheet
 const std::vector<std::string>& sheet_cell_columns();    // cells.csv: constraint error per leaf cell
 
-//! Runs every step, writes steps.csv rows, cells.csv (constraint error per leaf cell before and
+//! Runs every step, writes steps.csv rows (one per sheet, and one per variational curve with
+//! `curve:<name>` in its sheet column), cells.csv (constraint error per leaf cell before and
 //! after refinement), vtk/<run>_step<k>.vtp (every sheet, point array displacement_norm),
 //! curves/<run>_step<k>_<curve>.obj, final.obj, and sheets/<run>_<sheet>.sheet (with
 //! output.vtk: all also sheets/<run>_step<k>_<sheet>.sheet). Never throws

@@ -28,6 +28,24 @@ row = next(csv.DictReader(open(sys.argv[1])))
 sys.exit(0 if float(row["objective_error_estimate"]) > 0 and float(row["surface_change_estimate"]) > 0 else 1)
 PYEOF
 
+# Figure 2 with a free joint: sheets and a variational curve solved together at every step.
+F=configs/welch-witkin/fig2_free.yaml
+"$FS" run $F --out "$SCRATCH/free" 2>/dev/null || fail "fig2_free failed"
+grep -q ",converged," "$SCRATCH/free/runs.csv" || fail "fig2_free did not converge"
+[ "$(grep -c ',curve:joint,' "$SCRATCH/free/steps.csv")" -eq 2 ] || fail "expected a steps.csv row per step for the free curve"
+[ "$(ls "$SCRATCH/free/curves/"*_joint.obj | wc -l)" -eq 2 ] || fail "expected the solved curve per step"
+"$FS" run $F --out "$SCRATCH/free_solvers" --set 'sweep={solver.type: [kkt, qr_penalty, range_space]}' --set output.vtk=none 2>/dev/null \
+  || fail "fig2_free solver sweep failed"
+$PY - "$SCRATCH/free_solvers/runs.csv" <<'PYEOF' || fail "the solvers disagree on fig2_free"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+e = [float(r["energy"]) for r in rows]
+sys.exit(0 if len(rows) == 3 and all(r["termination"] == "converged" for r in rows) and max(e) - min(e) <= 1e-6 * max(e) else 1)
+PYEOF
+expect_error 2 "constraints\[4\].t: 1.5 is out of range" -- "$FS" run $F --set constraints.4.t=1.5 --out "$SCRATCH/x"
+expect_error 2 "curves\[0\].variational.spam: unknown key" -- "$FS" run $F --set curves.0.variational.spam=1 --out "$SCRATCH/x"
+expect_error 2 "refinement.tolerance: automatic refinement is not supported" -- "$FS" run $F --set refinement.tolerance=0.01 --out "$SCRATCH/x"
+
 expect_error 2 "constraints\[0\]: (u, v) = (9, 0.5) is outside the sheet's domain \[0, 2\] x \[0, 2\]" -- \
   "$FS" run $C --set 'constraints.0.uv=[9, 0.5]' --out "$SCRATCH/x"
 expect_error 2 "curves\[0\].from_surface.uv, (u, v) point 1" -- "$FS" run $C \

@@ -3,7 +3,11 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <fstream>
 #include <random>
+#include <sstream>
+
+#include <yaml-cpp/yaml.h>
 
 #include "bspline/joined_design.h"
 #include "bspline/knot_basis.h"
@@ -12,7 +16,10 @@
 #include "bspline/variational_curve.h"
 #include "core/config.h"
 #include "core/error.h"
+#include "experiment/kinds/sheet/sheet_run.h"
+#include "experiment/run_outputs.h"
 #include "qp/qp_solver.h"
+#include "test_support.h"
 
 using namespace fairshape;
 using namespace fairshape::bspline;
@@ -293,4 +300,113 @@ TEST_CASE("joined sheets: normal constraints and bad joints are refused with the
   d.sheets[0].constraints.pop_back();
   d.joints[1].uv[1] = Eigen::Vector2d(9, 4);
   CHECK_THROWS_WITH(solve_joined(d, *kkt, Backend::Optimized), Catch::Matchers::Contains("wall joint: curve constraint, (u, v) point 1"));
+}
+
+namespace {
+
+YAML::Node fig2_free() {
+  YAML::Node cfg = YAML::LoadFile(test::source_path("configs/welch-witkin/fig2_free.yaml"));
+  cfg.remove("smoke");  // the file's, not a run's key
+  return cfg;
+}
+
+std::vector<std::vector<std::string>> run_steps(YAML::Node cfg, const std::string& id, MetricRow& row) {
+  cfg["output"]["vtk"] = "none";
+  const auto dir = test::scratch_dir(std::string("free_curve_") + id);
+  create_run_folders(dir.string());
+  SheetRunSpec spec = SheetRunSpec::from_config(cfg);
+  RunTables tables;
+  row = execute_sheet_run(spec, RunOutputs{dir.string(), id, true, &tables});
+  return tables.rows().at("steps");
+}
+
+}  // namespace
+
+TEST_CASE("fig2_free: the joint is dragged, both sheets follow, the curve has its row", "[sheet][free_curve]") {
+  MetricRow row;
+  const auto steps = run_steps(fig2_free(), "fig2", row);
+  INFO(row.at("message"));
+  REQUIRE(row.at("termination") == "converged");
+  REQUIRE(steps.size() == 6);  // floor, wall, curve:joint per step
+  // Columns: step, sheet, dofs, levels, constraint_rows, dropped_rows, constraint_residual,
+  // max_constraint_error, energy, ...
+  CHECK(steps[2][1] == "curve:joint");
+  CHECK(steps[2][2] == "19");
+  CHECK(steps[2][4] == "3");
+  for (const auto& s : steps) CHECK(std::stod(s[7]) < 1e-4);  // the joint pointwise, the curve's points
+  const auto energy = [&](std::size_t k) { return std::stod(steps[k][8]); };
+  CHECK(energy(3) > 10 * energy(0));  // the floor bent by the drag
+  CHECK(energy(4) > 10 * energy(1));  // the wall too
+  CHECK(energy(5) > energy(2));       // and the curve
+  CHECK(std::stod(row.at("energy")) == Approx(energy(3) + energy(4) + energy(5)).epsilon(1e-9));
+  CHECK(row.at("dofs") == "261");  // 2 x 121 + 19
+  // The solved curve, written per step, ends where the drag put its middle.
+  std::ifstream obj(std::filesystem::path(FAIRSHAPE_BINARY_DIR) / "test-scratch" / "free_curve_fig2" / "curves" / "fig2_step1_joint.obj");
+  REQUIRE(obj.good());
+  std::vector<Vec3> v;
+  std::string line;
+  while (std::getline(obj, line)) {
+    std::istringstream in(line);
+    std::string tag;
+    double x, y, z;
+    if (in >> tag >> x >> y >> z && tag == "v") v.emplace_back(x, y, z);
+  }
+  REQUIRE(v.size() % 2 == 1);
+  CHECK((v[v.size() / 2] - Vec3(1, 1.35, 0.45)).norm() < 1e-9);
+}
+
+TEST_CASE("free curves in configs: every refusal names its key", "[sheet][free_curve]") {
+  const auto refused = [](const std::string& path, const std::string& value) {
+    YAML::Node cfg = fig2_free();
+    if (path == "variational") cfg["curves"][0]["variational"]["spam"] = 1;
+    if (path == "t") cfg["constraints"][4]["t"] = YAML::Load(value);
+    if (path == "curve") cfg["constraints"][2]["curve"] = value;
+    if (path == "fixed") cfg["curves"][0].remove("variational"), cfg["constraints"].remove(0), cfg["constraints"].remove(0);
+    if (path == "edits") cfg["curves"][0]["edits"] = YAML::Load("[{step: 1, by: [0, 0, 1]}]");
+    if (path == "refinement") cfg["refinement"]["tolerance"] = 0.01;
+    if (path == "normal") cfg["constraints"].push_back(YAML::Load("{type: normal, sheet: wall, uv: [1, 1.5], normal: [0, 1, 0]}"));
+    if (path == "paper") cfg["constraints"][0]["formulation"] = "paper";
+    if (path == "both") cfg["constraints"][2]["target"] = YAML::Load("[0, 0, 0]");
+    if (path == "tangent") cfg["constraints"].push_back(YAML::Load("{type: curve_tangent, curve: joint, t: 0, target: [1, 0, 0], by: [0, 0, 1]}"));
+    return SheetRunSpec::from_config(cfg);
+  };
+  using Catch::Matchers::Contains;
+  CHECK_THROWS_WITH(refused("variational", ""), Contains("curves[0].variational.spam: unknown key"));
+  CHECK_THROWS_WITH(refused("t", "1.5"), Contains("constraints[4].t: 1.5 is out of range [0, 1]"));
+  CHECK_THROWS_WITH(refused("curve", "nope"), Contains("constraints[2].curve: no space curve named 'nope'"));
+  CHECK_THROWS_WITH(refused("fixed", ""), Contains("constraints[0].curve: 'joint' is not a variational curve"));
+  CHECK_THROWS_WITH(refused("edits", ""), Contains("curves[0].edits: a variational curve moves by its constraints"));
+  CHECK_THROWS_WITH(refused("refinement", ""), Contains("refinement.tolerance: automatic refinement is not supported"));
+  CHECK_THROWS_WITH(refused("normal", ""), Contains("constraints[13].type: normal constraints are not supported on a sheet joined"));
+  CHECK_THROWS_WITH(refused("paper", ""), Contains("constraints[0].formulation:"));
+  CHECK_THROWS_WITH(refused("both", ""), Contains("constraints[2].by: give target or by, not both"));
+  CHECK_THROWS_WITH(refused("tangent", ""), Contains("constraints[13].by: unknown key"));
+}
+
+TEST_CASE("a variational curve alone in a config: tangents and points, over steps", "[sheet][free_curve]") {
+  // No sheet joined: the curve is its own program; a sheet elsewhere is solved as before.
+  YAML::Node cfg = YAML::Load(R"(
+name: alone
+sheets: [{name: s, spans: [4, 4]}]
+curves:
+  - {name: c, points: [[0, 0, 0], [2, 0, 0]], variational: {spans: 8, alpha: 0, beta: 1}}
+constraints:
+  - {type: point, uv: [0.5, 0.5], by: [0, 0, 0.1]}
+  - {type: point, uv: [0.1, 0.1], by: [0, 0, 0]}
+  - {type: point, uv: [0.9, 0.1], by: [0, 0, 0]}
+  - {type: point, uv: [0.1, 0.9], by: [0, 0, 0]}
+  - {type: curve_point, curve: c, t: 0, by: [0, 0, 0]}
+  - {type: curve_point, curve: c, t: 1, target: [2, 0, 0]}
+  - {type: curve_point, curve: c, t: 0.5, by: [0, 0, 0], moves: [{step: 1, by: [0, 0, 0.3]}], until: 2}
+  - {type: curve_tangent, curve: c, t: 0, target: [1, 0, 0], step: 2}
+)");
+  MetricRow row;
+  const auto steps = run_steps(cfg, "alone", row);
+  INFO(row.at("message"));
+  REQUIRE(row.at("termination") == "converged");
+  REQUIRE(steps.size() == 6);  // s and curve:c at steps 0, 1, 2
+  CHECK(std::stod(steps[1][8]) == Approx(0).margin(1e-12));        // straight, held where it is
+  CHECK(std::stod(steps[3][8]) == Approx(48 * 0.09 / 8).epsilon(1e-8));  // the natural spline (L = 2)
+  CHECK(std::stod(steps[5][8]) == Approx(0).margin(1e-12));        // released, tangent along the line: straight again
+  CHECK(steps[5][4] == "3");
 }

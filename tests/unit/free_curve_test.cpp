@@ -16,10 +16,8 @@
 #include "bspline/variational_curve.h"
 #include "core/config.h"
 #include "core/error.h"
-#include "experiment/kinds/sheet/sheet_run.h"
-#include "experiment/run_outputs.h"
 #include "qp/qp_solver.h"
-#include "test_support.h"
+#include "sheet_test_support.h"
 
 using namespace fairshape;
 using namespace fairshape::bspline;
@@ -312,12 +310,7 @@ YAML::Node fig2_free() {
 
 std::vector<std::vector<std::string>> run_steps(YAML::Node cfg, const std::string& id, MetricRow& row) {
   cfg["output"]["vtk"] = "none";
-  const auto dir = test::scratch_dir(std::string("free_curve_") + id);
-  create_run_folders(dir.string());
-  SheetRunSpec spec = SheetRunSpec::from_config(cfg);
-  RunTables tables;
-  row = execute_sheet_run(spec, RunOutputs{dir.string(), id, true, &tables});
-  return tables.rows().at("steps");
+  return test::run_sheet_steps(cfg, std::string("free_curve_") + id, id, row);
 }
 
 }  // namespace

@@ -9,11 +9,10 @@
 
 #include "experiment/kinds/sheet/sheet_run.h"
 #include "experiment/run_outputs.h"
-#include "test_support.h"
+#include "sheet_test_support.h"
 
 using namespace fairshape;
 using Catch::Matchers::Contains;
-namespace fs = std::filesystem;
 
 namespace {
 
@@ -37,12 +36,7 @@ actions:
 // installed as rest (nothing else changes), 4 the rest shape melted.
 
 std::vector<std::vector<std::string>> run_steps(const YAML::Node& cfg, const std::string& id, MetricRow& row) {
-  const fs::path dir = test::scratch_dir(std::string("sheet_session_") + id);
-  create_run_folders(dir.string());
-  SheetRunSpec spec = SheetRunSpec::from_config(cfg);
-  RunTables tables;
-  row = execute_sheet_run(spec, RunOutputs{dir.string(), id, true, &tables});
-  return tables.rows().at("steps");
+  return test::run_sheet_steps(cfg, std::string("sheet_session_") + id, id, row);
 }
 
 }  // namespace

@@ -18,6 +18,11 @@ build/bin/fairshape run configs/welch-witkin/fig2.yaml --out $out-fig2 --force
   --title "Figure 2: two sheets joined along one space curve, which is then reshaped" \
   --labels "joined" "shared curve reshaped"
 keep $out-fig2 fig2
+build/bin/fairshape run configs/welch-witkin/fig2_free.yaml --out $out-fig2-free --force
+/usr/bin/python3 scripts/plot_sheets.py steps $out-fig2-free papers/welch-witkin/figures/fig2_free.png \
+  --title "Figure 2 with a free joint: two sheets and a variational curve solved together; the curve's middle dragged" \
+  --labels "joined (curve ends and middle held)" "curve's middle dragged"
+keep $out-fig2-free fig2_free
 build/bin/fairshape run configs/welch-witkin/fig3.yaml --out $out-fig3 --force
 /usr/bin/python3 scripts/plot_sheets.py cells $out-fig3 papers/welch-witkin/figures/fig3.png \
   --title "Figure 3: one bicubic span, four points and a curve; automatic refinement by constraint error"

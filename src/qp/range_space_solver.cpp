@@ -298,4 +298,10 @@ QpReport RangeSpaceSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd
   return out;
 }
 
+std::string factorization_note(const QpSolver& solver) {
+  const auto* rs = dynamic_cast<const RangeSpaceSolver*>(&solver);
+  if (!rs || !rs->last_update()) return "factored";
+  return "updated (+" + std::to_string(rs->last_update()->added) + " -" + std::to_string(rs->last_update()->removed) + " rows)";
+}
+
 }  // namespace fairshape::qp

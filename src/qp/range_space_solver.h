@@ -69,4 +69,9 @@ class RangeSpaceSolver final : public QpSolver {
   std::vector<char> in_factor_;  // per row of A: part of H_ρ (analyze) or bordered on (add_rows)
 };
 
+//! How `solver`'s last analyze() got its factor, for reports (steps.csv's `factorization`): the
+//! range-space solver updates it across design steps that only add or remove constraints,
+//! "updated (+a -r rows)"; the others factor anew, "factored".
+std::string factorization_note(const QpSolver& solver);
+
 }  // namespace fairshape::qp

@@ -6,6 +6,7 @@
 #include "experiment/kinds/sheet/constraint_schedule.h"
 #include "experiment/metric_format.h"
 #include "experiment/run_basics.h"
+#include "qp/range_space_solver.h"
 
 namespace fairshape {
 
@@ -100,7 +101,7 @@ void check_free_curves(SheetRunSpec& s) {
 
 std::vector<std::string> free_curve_step_row(int step, const FreeCurveStep& c) {
   return {std::to_string(step), "curve:" + c.name, std::to_string(c.dofs), "1", std::to_string(c.rows), "0", num(c.residual),
-          num(c.max_error), num(c.energy), "0", "1", "0", "0", "joint"};
+          num(c.max_error), num(c.energy), "0", "1", "0", "0", c.factorization};
 }
 
 FreeCurves::FreeCurves(const SheetRunSpec& spec, const std::map<std::string, std::vector<Vec3>>& initial_polylines) {
@@ -190,6 +191,7 @@ JoinedStep FreeCurves::solve_step(const SheetRunSpec& spec, int step, std::vecto
       d.joints.push_back({static_cast<int>(local_sheet), static_cast<int>(local_curve), cs->constraint.curve.uv, cs->label});
     }
     const bspline::JoinedReport r = bspline::solve_joined(d, *spec.solver, spec.implementation);
+    const std::string factorization = qp::factorization_note(*spec.solver);
     const bool measured = !r.sheet_energy.empty() || !r.curve_energy.empty();
     for (std::size_t i = 0; i < g.sheets.size(); ++i) {
       JoinedSheetStep& js = out.sheets[g.sheets[i]];
@@ -199,6 +201,7 @@ JoinedStep FreeCurves::solve_step(const SheetRunSpec& spec, int step, std::vecto
       dr.rounds = 1;
       dr.message = r.message;
       js.rows = r.sheet_rows[i];
+      js.factorization = factorization;
       if (i == 0) dr.analyze_s = r.analyze_s, dr.solve_s = r.solve_s;  // the group's time, counted once
       else dr.qp.dropped_rows = 0;
       if (!measured) continue;
@@ -215,6 +218,7 @@ JoinedStep FreeCurves::solve_step(const SheetRunSpec& spec, int step, std::vecto
       c.rows = r.curve_rows[i];
       c.termination = r.qp.summary.termination;
       c.message = r.message;
+      c.factorization = factorization;
       if (measured) c.residual = r.curve_residual[i], c.max_error = r.curve_error[i], c.energy = r.curve_energy[i];
       out.curves.push_back(c);
     }

@@ -39,6 +39,7 @@ void check_free_curves(SheetRunSpec& s);
 struct JoinedSheetStep {
   bspline::DesignReport report;
   int rows = 0;
+  std::string factorization;  // how the group's program was factored (qp::factorization_note)
 };
 //! A free curve after a step (its steps.csv row).
 struct FreeCurveStep {
@@ -46,7 +47,7 @@ struct FreeCurveStep {
   int dofs = 0, rows = 0;
   double residual = 0, max_error = 0, energy = 0;
   Termination termination = Termination::Converged;
-  std::string message;
+  std::string message, factorization;
 };
 struct JoinedStep {
   std::map<std::size_t, JoinedSheetStep> sheets;  // by sheet index: the sheets solved jointly

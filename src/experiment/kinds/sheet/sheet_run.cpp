@@ -412,14 +412,6 @@ void add_to_overlay(const std::vector<SheetConstraint>& active, const bspline::H
   }
 }
 
-// How the last analyze() got its factor: the range-space solver updates it across design steps
-// that only add or remove constraints (steps.csv's `factorization`); the others factor anew.
-std::string factorization_note(const qp::QpSolver& solver) {
-  const auto* rs = dynamic_cast<const qp::RangeSpaceSolver*>(&solver);
-  if (!rs || !rs->last_update()) return "factored";
-  return "updated (+" + std::to_string(rs->last_update()->added) + " -" + std::to_string(rs->last_update()->removed) + " rows)";
-}
-
 // The sheets at their current shape as one mesh (separate components) with displacement_norm.
 SurfaceMesh sheets_mesh(const std::vector<bspline::VariationalSheet>& sheets, int per_span,
                         const std::vector<bspline::HierarchicalSurface>& initial_surfaces,
@@ -508,7 +500,7 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
                       std::to_string(s.level_count()), std::to_string(constraint_rows), std::to_string(r.qp.dropped_rows),
                       num(r.qp.constraint_residual), num(r.max_constraint_error), num(r.energy),
                       std::to_string(r.spans_refined), std::to_string(r.rounds), num(r.analyze_s), num(r.solve_s),
-                      factorization_note(*spec.solver)});
+                      joint != joined.sheets.end() ? joint->second.factorization : qp::factorization_note(*spec.solver)});
         failed = !is_success(r.qp.summary.termination);
         if (failed) {
           row["termination"] = std::string(to_string(r.qp.summary.termination));

@@ -65,6 +65,16 @@ Eigen::Vector2d uv_at(const std::vector<Eigen::Vector2d>& uv, const ArcLength& a
   return polyline_at(uv, arc.t_of(s));
 }
 
+// The (u, v) curve ends where it starts: the same point, or once round a periodic u.
+bool closes(const HierarchicalSurface& s, const std::vector<Eigen::Vector2d>& uv) {
+  const Eigen::Vector2d d = uv.back() - uv.front();
+  const double tol = 1e-9 * std::max(s.shape().spans_u, s.shape().spans_v);
+  if (d.norm() <= tol) return true;
+  if (!s.shape().periodic_u || std::abs(d.y()) > tol) return false;
+  const double turns = d.x() / s.shape().spans_u;
+  return std::abs(turns) > 0.5 && std::abs(turns - std::round(turns)) * s.shape().spans_u <= tol;
+}
+
 }  // namespace
 
 std::vector<double> mortar_knots(const HierarchicalSurface& s, const std::vector<Eigen::Vector2d>& uv) {
@@ -101,8 +111,18 @@ ConstraintRows mortar_curve_rows(const HierarchicalSurface& s, const CurveAttach
   const double L = arc.length();
   if (!(L > 0)) throw InvalidInput("curve constraint: the (u, v) curve has zero length");
   const int r = s.degree();
-  const std::vector<double> knots = mortar_knots(s, curve.uv);
-  const ClampedKnotBasis W(0, L, knots, r);
+  std::vector<double> knots = mortar_knots(s, curve.uv);
+  // A closed curve's trace is periodic: clamped multipliers would pair r functions too many with
+  // it (dependent rows, and targets that disagree at the closure by their discretization).
+  const bool closed = closes(s, curve.uv);
+  if (closed) {
+    knots.insert(knots.begin(), 0.0);
+    if (static_cast<int>(knots.size()) < r + 1) {  // shorter than r + 1 cells: evenly spaced
+      knots.clear();
+      for (int k = 0; k <= r; ++k) knots.push_back(L * k / (r + 1));
+    }
+  }
+  const ClampedKnotBasis W = closed ? ClampedKnotBasis::periodic(0, L, knots, r) : ClampedKnotBasis(0, L, knots, r);
 
   // Pieces on which the integrand is one polynomial: between uv and space-curve vertices, W's
   // knots and every finest grid line crossed.
@@ -134,10 +154,11 @@ ConstraintRows mortar_curve_rows(const HierarchicalSurface& s, const CurveAttach
       s.basis(c.x(), c.y(), row);
       W.evaluate(sq, first, psi);
       for (int a = 0; a <= r; ++a) {
-        const double wa = w * psi[static_cast<std::size_t>(a)] / W.integral(first + a);
+        const int j = W.is_periodic() ? (first + a) % m : first + a;
+        const double wa = w * psi[static_cast<std::size_t>(a)] / W.integral(j);
         if (wa == 0) continue;
-        C.row(first + a) += wa * D.transpose();
-        for (const BasisEntry& e : row) t.emplace_back(first + a, e.dof, wa * e.value);
+        C.row(j) += wa * D.transpose();
+        for (const BasisEntry& e : row) t.emplace_back(j, e.dof, wa * e.value);
       }
     }
   }

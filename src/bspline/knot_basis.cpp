@@ -1,6 +1,7 @@
 #include "bspline/knot_basis.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/error.h"
 
@@ -16,9 +17,31 @@ ClampedKnotBasis::ClampedKnotBasis(double a, double b, std::vector<double> inter
   knots_.insert(knots_.end(), static_cast<std::size_t>(degree + 1), b);
 }
 
+ClampedKnotBasis ClampedKnotBasis::periodic(double a, double b, const std::vector<double>& knots, int degree) {
+  const int n = static_cast<int>(knots.size());
+  FAIRSHAPE_ASSERT(degree >= 0 && b > a && n >= degree + 1, "periodic knot basis: degree + 1 knots in [a, b)");
+  ClampedKnotBasis out;
+  out.degree_ = degree;
+  out.period_ = n;
+  // t_{j+n} = t_j + (b − a): `degree` knots before the first and degree + 1 after the last.
+  const double L = b - a;
+  for (int j = -degree; j < n + degree + 1; ++j) {
+    const int k = ((j % n) + n) % n;
+    out.knots_.push_back(knots[static_cast<std::size_t>(k)] + L * static_cast<double>((j - k) / n));
+  }
+  return out;
+}
+
 void ClampedKnotBasis::evaluate(double x, int& first, std::vector<double>& values) const {
   const int r = degree_;
-  const double a = knots_.front(), b = knots_.back();
+  double a = knots_.front(), b = knots_.back();
+  if (period_ > 0) {
+    // Into [t_0, t_0 + L): the interval of the extended knots that holds x.
+    a = knots_[static_cast<std::size_t>(r)];
+    const double L = knots_[static_cast<std::size_t>(r + period_)] - a;
+    x = a + std::fmod(std::fmod(x - a, L) + L, L);
+    b = a + L;
+  }
   x = std::clamp(x, a, b);
   // The knot interval [t_s, t_{s+1}) holding x (the last non-empty one at x = b).
   int s = static_cast<int>(std::upper_bound(knots_.begin(), knots_.end(), x) - knots_.begin()) - 1;
@@ -40,11 +63,17 @@ void ClampedKnotBasis::evaluate(double x, int& first, std::vector<double>& value
     values[j] = saved;
   }
   first = s - r;
+  if (period_ > 0) {
+    // Extended function e is periodic function (e − r) mod n: rotate so values[k] belongs to
+    // first + k, first in [0, n) (callers wrap first + k themselves).
+    first = ((first - r) % period_ + period_) % period_;
+  }
 }
 
 void ClampedKnotBasis::derivatives(double x, int order, int& first, std::vector<std::vector<double>>& ders) const {
   const int r = degree_;
   FAIRSHAPE_ASSERT(order >= 0 && order <= r, "clamped knot basis: derivative order above the degree");
+  FAIRSHAPE_ASSERT(period_ == 0, "knot basis derivatives: clamped bases only");
   const double a = knots_.front(), b = knots_.back();
   x = std::clamp(x, a, b);
   int s = static_cast<int>(std::upper_bound(knots_.begin(), knots_.end(), x) - knots_.begin()) - 1;
@@ -103,6 +132,7 @@ void ClampedKnotBasis::derivatives(double x, int order, int& first, std::vector<
 }
 
 std::vector<double> ClampedKnotBasis::breaks() const {
+  FAIRSHAPE_ASSERT(period_ == 0, "knot basis breaks: clamped bases only");
   std::vector<double> out;
   for (double k : knots_)
     if (out.empty() || k > out.back()) out.push_back(k);
@@ -110,6 +140,7 @@ std::vector<double> ClampedKnotBasis::breaks() const {
 }
 
 double ClampedKnotBasis::integral(int j) const {
+  if (period_ > 0) j += degree_;  // periodic function j is extended function j + r
   return (knots_[j + degree_ + 1] - knots_[j]) / (degree_ + 1);
 }
 

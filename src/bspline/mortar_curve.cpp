@@ -65,6 +65,16 @@ Eigen::Vector2d uv_at(const std::vector<Eigen::Vector2d>& uv, const ArcLength& a
   return polyline_at(uv, arc.t_of(s));
 }
 
+// The (u, v) curve ends where it starts: the same point, or once round a periodic u.
+bool closes(const HierarchicalSurface& s, const std::vector<Eigen::Vector2d>& uv) {
+  const Eigen::Vector2d d = uv.back() - uv.front();
+  const double tol = 1e-9 * std::max(s.shape().spans_u, s.shape().spans_v);
+  if (d.norm() <= tol) return true;
+  if (!s.shape().periodic_u || std::abs(d.y()) > tol) return false;
+  const double turns = d.x() / s.shape().spans_u;
+  return std::abs(turns) > 0.5 && std::abs(turns - std::round(turns)) * s.shape().spans_u <= tol;
+}
+
 }  // namespace
 
 std::vector<double> mortar_knots(const HierarchicalSurface& s, const std::vector<Eigen::Vector2d>& uv) {
@@ -109,11 +119,28 @@ void check_uv_curve(const HierarchicalSurface& s, const std::vector<Eigen::Vecto
   for (std::size_t k = 0; k < uv.size(); ++k) check_in_domain(s, uv[k].x(), uv[k].y(), "curve constraint, (u, v) point " + std::to_string(k));
   if (!(ArcLength(uv).length() > 0)) throw InvalidInput("curve constraint: the (u, v) curve has zero length");
 }
+
+// The surface-trace multipliers along uv (arc length L) on `knots` (mortar_knots): clamped B-splines
+// of the surface's degree, or periodic ones for a closed curve, whose trace is periodic: clamped
+// multipliers would pair r functions too many with it (dependent rows, and targets that disagree
+// at the closure by their discretization).
+ClampedKnotBasis trace_multipliers(const HierarchicalSurface& s, const std::vector<Eigen::Vector2d>& uv, double L,
+                                   std::vector<double>& knots) {
+  const int r = s.degree();
+  if (!closes(s, uv)) return ClampedKnotBasis(0, L, knots, r);
+  knots.insert(knots.begin(), 0.0);
+  if (static_cast<int>(knots.size()) < r + 1) {  // shorter than r + 1 cells: evenly spaced
+    knots.clear();
+    for (int k = 0; k <= r; ++k) knots.push_back(L * k / (r + 1));
+  }
+  return ClampedKnotBasis::periodic(0, L, knots, r);
+}
 }  // namespace
 
 int mortar_multiplier_count(const HierarchicalSurface& s, const std::vector<Eigen::Vector2d>& uv) {
   check_uv_curve(s, uv);
-  return static_cast<int>(mortar_knots(s, uv).size()) + s.degree() + 1;
+  std::vector<double> knots = mortar_knots(s, uv);
+  return trace_multipliers(s, uv, ArcLength(uv).length(), knots).size();
 }
 
 MortarRows mortar_rows(const HierarchicalSurface& s, const std::vector<Eigen::Vector2d>& uv, const ClampedKnotBasis& target,
@@ -122,8 +149,8 @@ MortarRows mortar_rows(const HierarchicalSurface& s, const std::vector<Eigen::Ve
   const ArcLength arc(uv);
   const double L = arc.length();
   const int r = s.degree();
-  const std::vector<double> knots = mortar_knots(s, uv);
-  const ClampedKnotBasis W(0, L, knots, r);
+  std::vector<double> knots = mortar_knots(s, uv);
+  const ClampedKnotBasis W = trace_multipliers(s, uv, L, knots);
   const bool on_target = multipliers == Multipliers::Target;
   // ψ_j(s): W's functions in the arc length, or the target's in t(s).
   const auto multipliers_at = [&](double sq, double tq, int& first, std::vector<double>& psi) {
@@ -165,7 +192,7 @@ MortarRows mortar_rows(const HierarchicalSurface& s, const std::vector<Eigen::Ve
       for (std::size_t a = 0; a < psi.size(); ++a) {
         const double wa = w * psi[a];
         if (wa == 0) continue;
-        const int j = first + static_cast<int>(a);
+        const int j = (first + static_cast<int>(a)) % m;  // a periodic W's functions wrap round
         mass[j] += wa;
         for (const BasisEntry& e : row) ta.emplace_back(j, e.dof, wa * e.value);
         for (std::size_t i = 0; i < x.size(); ++i) tb.emplace_back(j, first_x + static_cast<int>(i), wa * x[i]);

@@ -55,6 +55,13 @@ std::unique_ptr<QpSolver> make(const std::string& name, Backend backend, const s
   return solver;
 }
 
+// A fresh solver of that name (optimized) on the program.
+QpReport solved(const std::string& name, const QuadraticProgram& qp) {
+  auto solver = make(name, Backend::Optimized);
+  solver->analyze(qp);
+  return solver->solve(qp.f, qp.b);
+}
+
 }  // namespace
 
 TEST_CASE("KKT: constraints to 1e-10, dependent curve rows dropped and reported, reference equals optimized", "[qp]") {
@@ -199,9 +206,7 @@ TEST_CASE("constrained solvers report singular and inconsistent problems instead
   inconsistent.A = twice.A;
   inconsistent.b = twice.C;
   for (const std::string name : {"kkt", "range_space", "qr_penalty"}) {
-    auto solver = make(name, Backend::Optimized);
-    solver->analyze(inconsistent);
-    const QpReport r = solver->solve(inconsistent.f, inconsistent.b);
+    const QpReport r = solved(name, inconsistent);
     INFO(name << ": " << r.summary.message);
     CHECK(r.summary.termination == Termination::ConstraintsUnmet);
     CHECK(r.summary.message.find("not met: relative residual") != std::string::npos);
@@ -222,9 +227,7 @@ TEST_CASE("every constrained solver calls nearly coincident points pulled apart 
   pulled.A = all.A;
   pulled.b = all.C;
   for (const std::string name : {"kkt", "range_space", "qr_penalty"}) {
-    auto solver = make(name, Backend::Optimized);
-    solver->analyze(pulled);
-    const QpReport r = solver->solve(pulled.f, pulled.b);
+    const QpReport r = solved(name, pulled);
     INFO(name << ": " << r.summary.message);
     CHECK(r.summary.termination == Termination::IllConditioned);
     CHECK(r.condition_estimate > 1e7);
@@ -236,8 +239,7 @@ TEST_CASE("every constrained solver calls nearly coincident points pulled apart 
     const ConstraintRows rows = stack({{pr.qp.A.topRows(5), pr.qp.b.topRows(5)}, fine}, pr.s.dof_count());
     apart.A = rows.A;
     apart.b = rows.C;
-    solver->analyze(apart);
-    const QpReport ok = solver->solve(apart.f, apart.b);
+    const QpReport ok = solved(name, apart);
     CHECK(ok.summary.termination == Termination::Converged);
     CHECK(ok.condition_estimate < 1e5);
   }

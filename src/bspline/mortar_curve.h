@@ -3,7 +3,9 @@
 //   ∫ ψ_j(s) (w(c(s)) − D(s)) ds = 0   for every ψ_j of W,
 // with W the clamped B-splines of the surface's degree in the uv arc length s, with a knot
 // wherever the curve crosses a grid line of its dominant direction at the surface's local
-// resolution (the mortar methods' multiplier space). For a curve along a parameter line W is
+// resolution (the mortar methods' multiplier space; periodic ones round a closed curve). The
+// target may be a fixed space curve or a variational curve's unknowns (mortar_rows below).
+// For a curve along a parameter line W is
 // exactly the space the surface traces on it, so the constraint is met exactly when the
 // target is in that space and as its L² projection otherwise; for other curves W has one
 // function per cell crossed, which the trace space always contains on straight pieces. Either

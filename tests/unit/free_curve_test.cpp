@@ -246,7 +246,7 @@ TEST_CASE("joined sheets: the joint is C0 and the curve's own constraints are me
   CHECK(r.energy() == Approx(r.sheet_energy[0] + r.sheet_energy[1] + r.curve_energy[0]));
 }
 
-TEST_CASE("joined sheets: a point pulled on the curve bends both sheets; every solver agrees", "[sheet][free_curve]") {
+TEST_CASE("joined sheets: a point pulled on the curve bends both sheets, and every solver agrees", "[sheet][free_curve]") {
   // Figure 2's joint (inset from the sheets' edges, off their knots): met in the weak sense to
   // the constraint tolerance, pointwise to the discretization. A curve finer than the sheets'
   // trace (16 spans) carries the multipliers and follows the sheets, whose traces then agree

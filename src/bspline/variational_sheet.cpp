@@ -190,6 +190,7 @@ DesignReport solve_sheet(VariationalSheet& sheet, const SheetEnergy& energy, con
     report.qp = solver.solve(program.f, program.b);
     report.solve_s += timer.seconds();
     ++report.rounds;
+    report.constraint_rows = program.A.rows();
     const Termination t = report.qp.summary.termination;
     // Constraints unmet or ill-posed: the answer is kept and measured (the run reports what it
     // achieved under that termination); a failed factorization leaves the sheet as it was.
@@ -197,10 +198,8 @@ DesignReport solve_sheet(VariationalSheet& sheet, const SheetEnergy& energy, con
     if (has_answer && report.qp.p.allFinite()) {
       sheet.set_coefficients(as_coefficients(report.qp.p, sheet.surface().dof_count()));
       report.energy = objective_value(sheet, energy, program);
-      report.errors_after = constraint_errors(sheet, constraints);
-      if (report.rounds == 1) report.errors_before = report.errors_after;
-      report.errors_per_round.push_back(report.errors_after);
-      report.max_constraint_error = max_error(report.errors_after);
+      report.errors_per_round.push_back(constraint_errors(sheet, constraints));
+      report.max_constraint_error = max_error(report.errors_per_round.back());
     }
     if (t != Termination::Converged) {
       report.message = report.qp.summary.message;
@@ -215,7 +214,7 @@ DesignReport solve_sheet(VariationalSheet& sheet, const SheetEnergy& energy, con
     // through its parent span).
     std::vector<SpanId> spans;
     std::set<SpanId, CellKey> seen;
-    for (const CellError& e : report.errors_after) {
+    for (const CellError& e : report.errors_per_round.back()) {
       if (e.error <= refinement.tolerance) continue;
       SpanId span = sheet.surface().has_span(e.cell) ? e.cell : SpanId{e.cell.level - 1, e.cell.i / 2, e.cell.j / 2};
       if (span.level + 1 > refinement.max_level) continue;

@@ -98,8 +98,8 @@ struct DesignReport {
   qp::QpReport qp;
   double energy = 0, analyze_s = 0, solve_s = 0, max_constraint_error = 0;
   int rounds = 0, spans_refined = 0;
-  std::vector<CellError> errors_before, errors_after;  // first and last solve
-  std::vector<std::vector<CellError>> errors_per_round;  // every solve, in order
+  Eigen::Index constraint_rows = 0;                     // of the last solve's program
+  std::vector<std::vector<CellError>> errors_per_round;  // every solve with an answer, in order
   //! The sheet as the first solve left it, when refinement followed (Figure 3's unrefined surface).
   std::shared_ptr<const VariationalSheet> unrefined;
   std::string message;

@@ -200,14 +200,13 @@ JoinedStep FreeCurves::solve_step(const SheetRunSpec& spec, int step, std::vecto
       dr.qp.p.resize(0, 0);
       dr.rounds = 1;
       dr.message = r.message;
-      js.rows = r.sheet_rows[i];
+      dr.constraint_rows = r.sheet_rows[i];
       js.factorization = factorization;
       if (i == 0) dr.analyze_s = r.analyze_s, dr.solve_s = r.solve_s;  // the group's time, counted once
       else dr.qp.dropped_rows = 0;
       if (!measured) continue;
       dr.qp.constraint_residual = r.sheet_residual[i];
       dr.energy = r.sheet_energy[i];
-      dr.errors_before = dr.errors_after = r.sheet_errors[i];
       dr.errors_per_round = {r.sheet_errors[i]};
       dr.max_constraint_error = bspline::max_error(r.sheet_errors[i]);
     }

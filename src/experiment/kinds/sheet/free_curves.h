@@ -34,11 +34,10 @@ CurveConstraintSpec read_curve_constraint(Config& c, const std::string& label);
 void check_free_curves(SheetRunSpec& s);
 
 //! What a step's joint solves give a joined sheet: its report (the joint's termination and
-//! message; analyze_s, solve_s and dropped_rows in its group's first sheet only) and the rows
-//! acting on it (its own and its joints').
+//! message; analyze_s, solve_s and dropped_rows in its group's first sheet only; constraint_rows:
+//! the rows acting on it, its own and its joints').
 struct JoinedSheetStep {
   bspline::DesignReport report;
-  int rows = 0;
   std::string factorization;  // how the group's program was factored (qp::factorization_note)
 };
 //! A free curve after a step (its steps.csv row).

@@ -494,10 +494,8 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
                                             ? joint->second.report
                                             : bspline::solve_sheet(sheets[k], energies[k], active, *spec.solver, spec.refinement, spec.implementation);
         const auto& s = sheets[k].surface();
-        const Eigen::Index constraint_rows =
-            joint != joined.sheets.end() ? joint->second.rows : bspline::assemble(sheets[k], energies[k], active, spec.implementation).A.rows();
         out.add_row("steps", {std::to_string(step), spec.sheets[k].name, std::to_string(s.dof_count()),
-                      std::to_string(s.level_count()), std::to_string(constraint_rows), std::to_string(r.qp.dropped_rows),
+                      std::to_string(s.level_count()), std::to_string(r.constraint_rows), std::to_string(r.qp.dropped_rows),
                       num(r.qp.constraint_residual), num(r.max_constraint_error), num(r.energy),
                       std::to_string(r.spans_refined), std::to_string(r.rounds), num(r.analyze_s), num(r.solve_s),
                       joint != joined.sheets.end() ? joint->second.factorization : qp::factorization_note(*spec.solver)});
@@ -523,7 +521,7 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
           residual = std::hypot(residual, r.qp.constraint_residual);
           max_err = std::max(max_err, r.max_constraint_error);
           dofs += s.dof_count();
-          rows += static_cast<int>(constraint_rows);
+          rows += static_cast<int>(r.constraint_rows);
           dropped += r.qp.dropped_rows;
           levels = std::max(levels, s.level_count());
           if (!std::isnan(r.qp.condition_estimate)) cond = std::max(cond, r.qp.condition_estimate);

@@ -55,6 +55,14 @@ std::unique_ptr<QpSolver> make(const std::string& name, Backend backend, const s
   return solver;
 }
 
+// `base` with its constraint rows replaced.
+QuadraticProgram with_rows(const QuadraticProgram& base, const ConstraintRows& rows) {
+  QuadraticProgram out = base;
+  out.A = rows.A;
+  out.b = rows.C;
+  return out;
+}
+
 // A fresh solver of that name (optimized) on the program.
 QpReport solved(const std::string& name, const QuadraticProgram& qp) {
   auto solver = make(name, Backend::Optimized);
@@ -152,10 +160,7 @@ TEST_CASE("range space: agrees with KKT, and added/removed rows (bordered S, CHO
   // One more point constraint, by update and by a fresh analysis.
   const ConstraintRows extra = point_rows(pr.s, 1.5, 4.0, Vec3(1.5, 4.0, -0.7));
   rs.add_rows(extra.A);
-  const ConstraintRows grown = stack({{pr.qp.A, pr.qp.b}, extra}, pr.s.dof_count());
-  QuadraticProgram bigger = pr.qp;
-  bigger.A = grown.A;
-  bigger.b = grown.C;
+  const QuadraticProgram bigger = with_rows(pr.qp, stack({{pr.qp.A, pr.qp.b}, extra}, pr.s.dof_count()));
   kkt->analyze(bigger);
   const Eigen::MatrixXd exact2 = kkt->solve(bigger.f, bigger.b).p;
   CHECK((rs.solve(bigger.f, bigger.b).p - exact2).norm() < 1e-7 * exact2.norm());
@@ -201,10 +206,8 @@ TEST_CASE("constrained solvers report singular and inconsistent problems instead
     CHECK(r.p.allFinite());
   }
   // The same point pulled to two places: least-squares fit with the residual reported.
-  QuadraticProgram inconsistent = pr.qp;
-  const ConstraintRows twice = stack({{pr.qp.A, pr.qp.b}, point_rows(pr.s, 3, 3, Vec3(3, 3, -1.5))}, pr.s.dof_count());
-  inconsistent.A = twice.A;
-  inconsistent.b = twice.C;
+  const QuadraticProgram inconsistent =
+      with_rows(pr.qp, stack({{pr.qp.A, pr.qp.b}, point_rows(pr.s, 3, 3, Vec3(3, 3, -1.5))}, pr.s.dof_count()));
   for (const std::string name : {"kkt", "range_space", "qr_penalty"}) {
     const QpReport r = solved(name, inconsistent);
     INFO(name << ": " << r.summary.message);
@@ -220,12 +223,13 @@ TEST_CASE("every constrained solver calls nearly coincident points pulled apart 
   // Two points 1e-4 spans apart pulled 0.6 up and down: solvable, at an energy 1e8 times the
   // design's (the sheet spans z in [-23, 43]).
   SheetProblem pr;
-  QuadraticProgram pulled = pr.qp;
-  const ConstraintRows pair = stack({point_rows(pr.s, 1.5, 4.0, Vec3(1.5, 4.0, 0.6)), point_rows(pr.s, 1.5, 4.0001, Vec3(1.5, 4.0001, -0.6))},
-                                    pr.s.dof_count());
-  const ConstraintRows all = stack({{pr.qp.A.topRows(5), pr.qp.b.topRows(5)}, pair}, pr.s.dof_count());
-  pulled.A = all.A;
-  pulled.b = all.C;
+  // The five point constraints, and points at (1.5, 4) and (1.5, v) pulled up and down.
+  const auto pulled_apart = [&](double v) {
+    const ConstraintRows pair = stack({point_rows(pr.s, 1.5, 4.0, Vec3(1.5, 4.0, 0.6)), point_rows(pr.s, 1.5, v, Vec3(1.5, v, -0.6))},
+                                      pr.s.dof_count());
+    return with_rows(pr.qp, stack({{pr.qp.A.topRows(5), pr.qp.b.topRows(5)}, pair}, pr.s.dof_count()));
+  };
+  const QuadraticProgram pulled = pulled_apart(4.0001), apart = pulled_apart(4.5);
   for (const std::string name : {"kkt", "range_space", "qr_penalty"}) {
     const QpReport r = solved(name, pulled);
     INFO(name << ": " << r.summary.message);
@@ -233,12 +237,6 @@ TEST_CASE("every constrained solver calls nearly coincident points pulled apart 
     CHECK(r.condition_estimate > 1e7);
     CHECK(r.summary.message.find("condition estimate") != std::string::npos);
     // The same points 0.5 spans apart: well posed, converged, a moderate estimate.
-    QuadraticProgram apart = pulled;
-    const ConstraintRows fine = stack({point_rows(pr.s, 1.5, 4.0, Vec3(1.5, 4.0, 0.6)), point_rows(pr.s, 1.5, 4.5, Vec3(1.5, 4.5, -0.6))},
-                                      pr.s.dof_count());
-    const ConstraintRows rows = stack({{pr.qp.A.topRows(5), pr.qp.b.topRows(5)}, fine}, pr.s.dof_count());
-    apart.A = rows.A;
-    apart.b = rows.C;
     const QpReport ok = solved(name, apart);
     CHECK(ok.summary.termination == Termination::Converged);
     CHECK(ok.condition_estimate < 1e5);

@@ -27,6 +27,13 @@ ConstraintPolicy read_constraint_policy(Config& cfg) {
   return p;
 }
 
+double relative_unit_residual(const Eigen::MatrixXd& unit_Ap, const Eigen::MatrixXd& unit_b) {
+  if (unit_b.size() == 0) return 0;
+  const double size = std::max(unit_b.cwiseAbs().maxCoeff(), unit_Ap.cwiseAbs().maxCoeff());
+  const double worst = (unit_Ap - unit_b).cwiseAbs().maxCoeff();
+  return size > 0 ? worst / size : worst;
+}
+
 RowScaling scale_rows(const SparseMatrix& A) {
   RowScaling out;
   Eigen::VectorXd norm2 = Eigen::VectorXd::Zero(A.rows());
@@ -131,11 +138,9 @@ void assess(QpReport& out, const AssessedProgram& program, const ConstraintPolic
   out.constraint_residual = (Ap - program.b).norm();
   if (out.summary.termination != Termination::Converged) return;
   const Eigen::VectorXd& d = program.rows.d;
-  const Eigen::MatrixXd unit_b = d.asDiagonal() * program.b;
-  const Eigen::MatrixXd unit_residual = d.asDiagonal() * (Ap - program.b);
-  const double size = std::max(unit_b.cwiseAbs().maxCoeff(), (d.asDiagonal() * Ap).cwiseAbs().maxCoeff());
-  const double worst = unit_residual.cwiseAbs().maxCoeff();
-  const double relative = size > 0 ? worst / size : worst;
+  const Eigen::MatrixXd unit_b = d.asDiagonal() * program.b, unit_Ap = d.asDiagonal() * Ap;
+  const double worst = (unit_Ap - unit_b).cwiseAbs().maxCoeff();
+  const double relative = relative_unit_residual(unit_Ap, unit_b);
   const std::string notes = out.summary.message.empty() ? "" : "; " + out.summary.message;
   const std::string cond = program.conditioning.estimated ? sci(out.condition_estimate) : "not estimated";
   const double share = out.condition_estimate > policy.max_condition

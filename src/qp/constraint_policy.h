@@ -33,6 +33,10 @@ struct ConstraintPolicy {
 //! Reads rank_tolerance, constraint_tolerance and max_condition from a solver's options.
 ConstraintPolicy read_constraint_policy(Config& cfg);
 
+//! How far unit rows miss: max_i |(Âp − b̂)_i| / max(‖b̂‖∞, ‖Âp‖∞) (the worst row itself when
+//! both are 0), what constraint_tolerance bounds.
+double relative_unit_residual(const Eigen::MatrixXd& unit_Ap, const Eigen::MatrixXd& unit_b);
+
 //! Unit-norm rows: scaled = D A, D = diag(1 / ‖a_i‖) (1 for a zero row, reported separately).
 struct RowScaling {
   Eigen::VectorXd d;

@@ -210,12 +210,8 @@ QpReport KktSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) {
     throw InvalidInput("KKT solve: right-hand sides do not match the analyzed program");
   const Eigen::MatrixXd unit_b = scaling_.d.asDiagonal() * b;
   QpReport out = solve_with(*main_, f, unit_b);
-  const auto unmet = [&](const QpReport& r) {
-    const Eigen::MatrixXd Ap = A_ * r.p;
-    const double size = std::max(unit_b.cwiseAbs().maxCoeff(), Ap.cwiseAbs().maxCoeff());
-    return (Ap - unit_b).cwiseAbs().maxCoeff() > policy_.constraint_tolerance * size;
-  };
-  if (out.summary.termination == Termination::Converged && out.dropped_rows > 0 && !reduced_ && unmet(out)) {
+  if (out.summary.termination == Termination::Converged && out.dropped_rows > 0 && !reduced_ &&
+      relative_unit_residual(A_ * out.p, unit_b) > policy_.constraint_tolerance) {
     // The dropped rows disagree with the kept ones: fit all of them in the least-squares sense.
     if (!least_squares_) least_squares_ = build(compress_rows(A_, backend_, policy_.rank_tolerance), nullptr);
     const int dropped = out.dropped_rows;

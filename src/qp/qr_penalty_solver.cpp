@@ -132,11 +132,6 @@ QpReport QrPenaltySolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd&
   }
   const Eigen::MatrixXd b = scaling_.d.asDiagonal() * b_original;
   const double tolerance = options_.policy.constraint_tolerance;
-  const auto relative = [&](const Eigen::MatrixXd& residual, const Eigen::MatrixXd& p) {
-    const double size = std::max(b.cwiseAbs().maxCoeff(), (A_ * p).cwiseAbs().maxCoeff());
-    const double worst = residual.size() ? residual.cwiseAbs().maxCoeff() : 0.0;
-    return size > 0 ? worst / size : worst;
-  };
   // Van Loan's weighting method: the targets shifted by the accumulated residual, until the
   // residual meets the tolerance; when a step no longer halves it (the penalty's fixed point
   // is too far for this μ, or the rows are inconsistent), μ grows tenfold, up to max_mu.
@@ -147,8 +142,8 @@ QpReport QrPenaltySolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd&
     bool stalled = false;
     for (int step = 0; step <= options_.refinement_steps; ++step) {
       out.p = penalty_solve(f, shifted);
-      const Eigen::MatrixXd residual = b - A_ * out.p;
-      const double now = relative(residual, out.p);
+      const Eigen::MatrixXd Ap = A_ * out.p;
+      const double now = relative_unit_residual(Ap, b);
       out.residual_history.push_back(now);
       ++steps;
       if (!(now > tolerance)) break;
@@ -157,7 +152,7 @@ QpReport QrPenaltySolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd&
         break;
       }
       previous = now;
-      shifted += residual;
+      shifted += b - Ap;
     }
     const bool met = !(out.residual_history.back() > tolerance);
     if (met || !stalled || mu_ * 10 > options_.max_mu * (1 + 1e-12) || condition_ > 1e12) break;

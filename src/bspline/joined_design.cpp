@@ -6,6 +6,7 @@
 
 #include "bspline/mortar_curve.h"
 #include "core/error.h"
+#include "core/message_format.h"
 #include "core/timer.h"
 
 namespace fairshape::bspline {
@@ -57,9 +58,10 @@ JoinedProgram assemble_joined(const JoinedDesign& design, Backend backend) {
       // The multipliers on the finer side (bspline/mortar_curve.h): a curve finer than the
       // sheet's trace along the joint follows the sheet, a coarser one leads it.
       const HierarchicalSurface& surface = design.sheets[j.sheet].sheet->surface();
-      const ClampedKnotBasis& basis = design.curves[j.curve].curve->basis();
-      const Multipliers side = basis.size() > mortar_multiplier_count(surface, j.uv) ? Multipliers::Target : Multipliers::SurfaceTrace;
-      joints.push_back(mortar_rows(surface, j.uv, basis, side));
+      const VariationalCurve& curve = *design.curves[j.curve].curve;
+      const Multipliers side =
+          curve.dof_count() > mortar_multiplier_count(surface, j.uv) ? Multipliers::Target : Multipliers::SurfaceTrace;
+      joints.push_back(mortar_rows(surface, j.uv, curve.knot_basis(), side, &curve.basis().to_knot_basis()));
     } catch (const InvalidInput& e) {
       throw InvalidInput(j.label.empty() ? std::string(e.what()) : j.label + ": " + e.what());
     }
@@ -104,11 +106,33 @@ JoinedProgram assemble_joined(const JoinedDesign& design, Backend backend) {
   return out;
 }
 
+double JoinedReport::max_error() const {
+  double worst = 0;
+  for (const auto& cells : sheet_errors) worst = std::max(worst, bspline::max_error(cells));
+  for (const auto& leaves : curve_leaf_errors)
+    for (double e : leaves) worst = std::max(worst, e);
+  return worst;
+}
+
 double JoinedReport::energy() const {
   return std::accumulate(sheet_energy.begin(), sheet_energy.end(), 0.0) + std::accumulate(curve_energy.begin(), curve_energy.end(), 0.0);
 }
 
 namespace {
+
+// |w(c(t)) − X(t)| at 2(r + 1) points of every leaf cell of the curve, the worst into its leaf.
+void add_joint_errors(const VariationalSheet& sheet, const std::vector<Eigen::Vector2d>& uv, const VariationalCurve& X,
+                      std::vector<double>& leaf_error) {
+  const int samples = 2 * (X.basis().degree() + 1);
+  const std::vector<CurveSpan>& leaves = X.basis().leaf_cells();
+  for (std::size_t k = 0; k < leaves.size(); ++k)
+    for (int i = 0; i <= samples; ++i) {
+      const double t = leaves[k].t0 + (leaves[k].t1 - leaves[k].t0) * i / samples;
+      const Eigen::Vector2d c = polyline_at(uv, t);
+      const double e = (sheet.surface().position(sheet.coefficients(), c.x(), c.y()) - X.position(t)).norm();
+      leaf_error[k] = std::max(leaf_error[k], e);
+    }
+}
 
 // The errors, energies and per-member residuals of the design at the answer p.
 void measure(const JoinedDesign& design, const JoinedProgram& jp, const Eigen::MatrixXd& p, JoinedReport& report) {
@@ -141,8 +165,9 @@ void measure(const JoinedDesign& design, const JoinedProgram& jp, const Eigen::M
   for (std::size_t k = 0; k < C; ++k) {
     const JoinedCurve& c = design.curves[k];
     report.curve_energy.push_back(curve_energy(*c.curve, c.energy));
-    report.curve_error.push_back(max_error(*c.curve, c.constraints));
+    report.curve_error.push_back(bspline::max_error(*c.curve, c.constraints));
     report.curve_residual.push_back(block_norm(S + k));
+    report.curve_leaf_errors.push_back(leaf_errors(*c.curve, c.constraints));
   }
   for (std::size_t j = 0; j < J; ++j) {
     const CurveJoint& joint = design.joints[j];
@@ -151,7 +176,8 @@ void measure(const JoinedDesign& design, const JoinedProgram& jp, const Eigen::M
     c.curve.uv = joint.uv;
     const VariationalCurve& X = *design.curves[joint.curve].curve;
     report.joint_error.push_back(
-        max_error(constraint_errors(*design.sheets[joint.sheet].sheet, {c}, [&](std::size_t, double t) { return X.position(t); })));
+        bspline::max_error(constraint_errors(*design.sheets[joint.sheet].sheet, {c}, [&](std::size_t, double t) { return X.position(t); })));
+    add_joint_errors(*design.sheets[joint.sheet].sheet, joint.uv, X, report.curve_leaf_errors[joint.curve]);
     const std::size_t b = S + C + j;
     report.joint_weak.push_back(residual.middleRows(jp.row[b], jp.row[b + 1] - jp.row[b]).cwiseAbs().maxCoeff());
   }
@@ -159,7 +185,9 @@ void measure(const JoinedDesign& design, const JoinedProgram& jp, const Eigen::M
 
 }  // namespace
 
-JoinedReport solve_joined(JoinedDesign& design, qp::QpSolver& solver, Backend backend) {
+namespace {
+
+JoinedReport solve_once(JoinedDesign& design, qp::QpSolver& solver, Backend backend) {
   JoinedReport report;
   const JoinedProgram jp = assemble_joined(design, backend);
   // The rows acting on each member: a sheet's own and its joints', a curve's own.
@@ -185,6 +213,53 @@ JoinedReport solve_joined(JoinedDesign& design, qp::QpSolver& solver, Backend ba
   }
   measure(design, jp, report.qp.p, report);
   return report;
+}
+
+// The curve's leaf cells whose error exceeds the tolerance and whose next layer is within max_level.
+std::vector<CurveSpan> leaves_to_refine(const VariationalCurve& c, const std::vector<double>& errors, const RefinementOptions& refinement) {
+  std::vector<CurveSpan> out;
+  const std::vector<CurveSpan>& leaves = c.basis().leaf_cells();
+  for (std::size_t k = 0; k < leaves.size(); ++k)
+    if (errors[k] > refinement.tolerance && leaves[k].level + 1 <= refinement.max_level) out.push_back(leaves[k]);
+  return out;
+}
+
+}  // namespace
+
+JoinedReport solve_joined(JoinedDesign& design, qp::QpSolver& solver, Backend backend, const RefinementOptions& refinement) {
+  const std::size_t S = design.sheets.size(), C = design.curves.size();
+  std::vector<int> sheet_refined(S, 0), curve_refined(C, 0);
+  double analyze_s = 0, solve_s = 0;
+  for (int round = 1;; ++round) {
+    JoinedReport report = solve_once(design, solver, backend);
+    analyze_s += report.analyze_s;
+    solve_s += report.solve_s;
+    report.analyze_s = analyze_s, report.solve_s = solve_s, report.rounds = round;
+    report.sheet_spans_refined = sheet_refined, report.curve_spans_refined = curve_refined;
+    const Termination t = report.qp.summary.termination;
+    const bool measured = report.sheet_errors.size() == S && report.curve_leaf_errors.size() == C;
+    if (refinement.tolerance <= 0 || !measured || (t != Termination::Converged && t != Termination::ConstraintsUnmet)) return report;
+    const double worst = report.max_error();
+    if (worst <= refinement.tolerance) return report;
+    const auto unmet = [&](const std::string& why) {
+      report.qp.summary.termination = Termination::ConstraintsUnmet;
+      report.message = (report.message.empty() ? "" : report.message + "; ") + "constraint error " + sci(worst) +
+                       " above the refinement tolerance " + sci(refinement.tolerance) + " " + why;
+      report.qp.summary.message = report.message;
+      return report;
+    };
+    if (round > refinement.max_rounds) return unmet("after " + std::to_string(refinement.max_rounds) + " refinement rounds");
+    bool refined = false;
+    for (std::size_t k = 0; k < S; ++k) {
+      const std::vector<SpanId> spans = spans_to_refine(design.sheets[k].sheet->surface(), report.sheet_errors[k], refinement);
+      if (!spans.empty()) sheet_refined[k] += design.sheets[k].sheet->refine(spans), refined = true;
+    }
+    for (std::size_t k = 0; k < C; ++k) {
+      const std::vector<CurveSpan> leaves = leaves_to_refine(*design.curves[k].curve, report.curve_leaf_errors[k], refinement);
+      if (!leaves.empty()) curve_refined[k] += design.curves[k].curve->refine(leaves), refined = true;
+    }
+    if (!refined) return unmet("at the maximum depth " + std::to_string(refinement.max_level));
+  }
 }
 
 }  // namespace fairshape::bspline

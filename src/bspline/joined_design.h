@@ -10,7 +10,9 @@
 //             ∫ψ_j (w(c(s)) − X(t(s))) ds / ∫ψ_j = 0:   [ … A_sheet … −B_curve … ] = 0
 // Any registered QP solver takes the program; its constraint policy reports unmet or
 // ill-posed rows as for a single sheet. Normal constraints (which stack a sheet's x, y and z)
-// are refused on joined sheets, and there is no automatic refinement here.
+// are refused on joined sheets. Automatic refinement (§4.4) refines, after each solve, the
+// sheet cells and the curve's leaf cells where a constraint or a joint misses by more than the
+// tolerance — both sides of a joint, since either may be the one too coarse to follow.
 #pragma once
 
 #include <string>
@@ -66,18 +68,26 @@ struct JoinedReport {
   //! Per sheet, per leaf cell: its own constraints' errors and |w(c(t)) − X(t)| along its joints.
   std::vector<std::vector<CellError>> sheet_errors;
   std::vector<double> curve_error;                    // per curve: its own constraints
+  //! Per curve, per leaf cell: its own constraints' errors and |w(c(t)) − X(t)| of its joints.
+  std::vector<std::vector<double>> curve_leaf_errors;
   std::vector<double> joint_error;                    // per joint: max |w(c(t)) − X(t)| sampled (pointwise)
   std::vector<double> joint_weak;                     // per joint: max |row residual| (the weak form, a distance)
   std::vector<int> sheet_rows, curve_rows;            // a sheet's own rows and its joints'; a curve's own
   std::vector<double> sheet_residual, curve_residual;  // ‖A p − b‖_F over those rows
+  int rounds = 0;                                      // solves (1 + refinements)
+  std::vector<int> sheet_spans_refined, curve_spans_refined;
   std::string message;
   double energy() const;
+  //! The largest error of any sheet cell or curve leaf: what refinement compares with its tolerance.
+  double max_error() const;
 };
 
 //! Solves the joint program and hands each sheet its coefficients and each curve its control
 //! points (when the solver returns an answer: converged, constraints_unmet or ill_conditioned;
 //! a failed factorization leaves every member as it was, and the report has its row counts
-//! but no energies or errors).
-JoinedReport solve_joined(JoinedDesign& design, qp::QpSolver& solver, Backend backend);
+//! but no energies or errors). With a refinement tolerance, refines and solves again while an
+//! error exceeds it (an unmet answer included: a finer member may meet what a coarse one could
+//! not); an error still above it after max_rounds or at max_level is constraints_unmet, saying so.
+JoinedReport solve_joined(JoinedDesign& design, qp::QpSolver& solver, Backend backend, const RefinementOptions& refinement = {});
 
 }  // namespace fairshape::bspline

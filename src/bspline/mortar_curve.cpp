@@ -144,7 +144,7 @@ int mortar_multiplier_count(const HierarchicalSurface& s, const std::vector<Eige
 }
 
 MortarRows mortar_rows(const HierarchicalSurface& s, const std::vector<Eigen::Vector2d>& uv, const ClampedKnotBasis& target,
-                       Multipliers multipliers) {
+                       Multipliers multipliers, const SparseMatrix* target_map) {
   check_uv_curve(s, uv);
   const ArcLength arc(uv);
   const double L = arc.length();
@@ -199,13 +199,22 @@ MortarRows mortar_rows(const HierarchicalSurface& s, const std::vector<Eigen::Ve
       }
     }
   }
-  const Eigen::VectorXd inverse_mass = mass.cwiseInverse();
   MortarRows out;
   out.A.resize(m, s.dof_count());
   out.A.setFromTriplets(ta.begin(), ta.end());
-  out.A = inverse_mass.asDiagonal() * out.A;
   out.B.resize(m, target.size());
   out.B.setFromTriplets(tb.begin(), tb.end());
+  if (target_map) {
+    out.B = out.B * *target_map;
+    if (on_target) {  // the multipliers Σ_i R_ij T_i: rows (and their masses) combined by Rᵀ
+      const SparseMatrix Rt = target_map->transpose();
+      out.A = Rt * out.A;
+      out.B = Rt * out.B;
+      mass = Rt * mass;
+    }
+  }
+  const Eigen::VectorXd inverse_mass = mass.cwiseInverse();
+  out.A = inverse_mass.asDiagonal() * out.A;
   out.B = inverse_mass.asDiagonal() * out.B;
   return out;
 }

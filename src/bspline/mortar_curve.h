@@ -43,8 +43,11 @@ struct MortarRows {
 enum class Multipliers { SurfaceTrace, Target };
 //! \throw InvalidInput for fewer than two uv points, one outside the domain or a uv curve of
 //! zero length.
+//! `target_map` (optional, target.size() × m): the target's unknowns are y with coefficients
+//! x = R y (a hierarchical variational curve, bspline/hierarchical_curve_basis.h); B then acts
+//! on y, and Target multipliers are the functions Σ_i R_ij T_i (the curve's own basis).
 MortarRows mortar_rows(const HierarchicalSurface& s, const std::vector<Eigen::Vector2d>& uv, const ClampedKnotBasis& target,
-                       Multipliers multipliers = Multipliers::SurfaceTrace);
+                       Multipliers multipliers = Multipliers::SurfaceTrace, const SparseMatrix* target_map = nullptr);
 //! The number of SurfaceTrace multipliers along uv (for choosing the finer side).
 //! \throw InvalidInput as mortar_rows.
 int mortar_multiplier_count(const HierarchicalSurface& s, const std::vector<Eigen::Vector2d>& uv);

@@ -1,27 +1,27 @@
 // A variational space curve: Welch & Witkin ("Variational surface modeling", §5) make curves
 // "first-class variational objects" that constraints control, and join sheets along them. Here
-// a clamped uniform B-spline X(t), t ∈ [0, 1], of degree r (2..5) on `spans` equal spans, with
-// control points q (n × 3, n = spans + r), minimizing its own fairness energy
+// a clamped hierarchical B-spline X(t), t ∈ [0, 1], of degree r (2..5): `spans` equal base
+// spans, refined locally like the sheets (bspline/hierarchical_curve_basis.h), with unknowns
+// q (dofs × 3) minimizing its own fairness energy
 //   E = ∫ α |dX/dσ|² + β |d²X/dσ²|² dσ,   σ = L t   (the 1-D thin plate under tension, eq. 4)
 // subject to point constraints X(t₀) = x and tangent constraints dX/dσ(t₀) = d.
 // Design units: σ is t scaled by the length L of the polyline the curve was first fitted to, so
 // E and the tangents are world quantities and the same design at 8 or 64 spans is one problem
 // (as the sheets' design units, SheetShape::span_size): the energy does not change with `spans`
-// for a curve every resolution contains. The curve is uniform — no local refinement (a
-// documented limitation, papers/welch-witkin/README.md).
+// or with refinement for a curve every resolution contains.
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "bspline/knot_basis.h"
+#include "bspline/hierarchical_curve_basis.h"
 #include "bspline/surface_constraints.h"
 #include "qp/quadratic_program.h"
 
 namespace fairshape::bspline {
 
 struct CurveShape {
-  int spans = 16;
+  int spans = 16;  // base spans (before refinement)
   int degree = 3;
 };
 
@@ -45,18 +45,25 @@ class VariationalCurve {
   //! minimizing Σ_k |X(t_k) − P_k|². A polyline with fewer than n points is first subdivided
   //! evenly (the same path with the same t), so the fit is determined whatever the samples; one
   //! sampled from a curve of this space is reproduced exactly. L is the polyline's length.
-  //! \throw InvalidInput for spans < 1, a degree outside [2, 5], fewer than two points, a
-  //! non-finite point or a polyline of zero length.
+  //! \throw InvalidInput for spans outside [1, kMaxSpans], a degree outside [2, 5], fewer than
+  //! two points, a non-finite point or a polyline of zero length.
   VariationalCurve(const CurveShape& shape, const std::vector<Vec3>& polyline);
-  //! Given control points (n × 3) and design length L > 0.
+  //! Given control points (n × 3, the unrefined basis) and design length L > 0.
   VariationalCurve(const CurveShape& shape, Eigen::MatrixXd control_points, double design_length);
 
   const CurveShape& shape() const { return shape_; }
-  const ClampedKnotBasis& basis() const { return basis_; }
-  int dof_count() const { return basis_.size(); }
+  const HierarchicalCurveBasis& basis() const { return basis_; }
+  //! The clamped basis on the leaf cells' breaks, and X's coefficients in it (R q).
+  const ClampedKnotBasis& knot_basis() const { return basis_.knot_basis(); }
+  const Eigen::MatrixXd& knot_coefficients() const { return x_; }
+  int dof_count() const { return basis_.dof_count(); }
   double design_length() const { return length_; }
   const Eigen::MatrixXd& control_points() const { return q_; }
   void set_control_points(Eigen::MatrixXd q);
+  //! Refines the given leaf cells (HierarchicalCurveBasis::refine); the curve does not change
+  //! (its new control points are the exact fit of the old X in the finer space, which contains
+  //! it). Returns the number of spans added. \throw InvalidInput as HierarchicalCurveBasis::refine.
+  int refine(const std::vector<CurveSpan>& cells);
   Vec3 position(double t) const;
   //! dX/dσ at t: the derivative in design units.
   Vec3 tangent(double t) const;
@@ -65,13 +72,14 @@ class VariationalCurve {
 
  private:
   CurveShape shape_;
-  ClampedKnotBasis basis_;
+  HierarchicalCurveBasis basis_;
   double length_ = 1;
-  Eigen::MatrixXd q_;
+  Eigen::MatrixXd q_, x_;  // unknowns, and X's knot-basis coefficients R q
 };
 
 //! K with KᵀK = H and ½ qᵀHq = E per coordinate: the quadrature rows √(2wα/L) N'(t_g) and
-//! √(2wβ/L³) N''(t_g), r + 1 Gauss points per span (exact: the integrand has degree ≤ 2r − 2).
+//! √(2wβ/L³) N''(t_g), r + 1 Gauss points per leaf cell (exact: the integrand has degree
+//! ≤ 2r − 2), N the knot basis mapped by R.
 SparseMatrix curve_square_root(const VariationalCurve& c, const CurveEnergy& e);
 SparseMatrix curve_hessian(const VariationalCurve& c, const CurveEnergy& e);
 //! E of the curve's control points (summed over x, y, z).
@@ -85,5 +93,8 @@ ConstraintRows curve_constraint_rows(const VariationalCurve& c, const std::vecto
 qp::QuadraticProgram assemble(const VariationalCurve& c, const CurveEnergy& e, const std::vector<CurveConstraint>& constraints);
 //! The largest |X(t₀) − x| or |dX/dσ(t₀) − d| over the constraints (0 for none).
 double max_error(const VariationalCurve& c, const std::vector<CurveConstraint>& constraints);
+//! The same per leaf cell (the cell holding t₀; 0 where no constraint sits), in leaf order:
+//! what refinement reads.
+std::vector<double> leaf_errors(const VariationalCurve& c, const std::vector<CurveConstraint>& constraints);
 
 }  // namespace fairshape::bspline

@@ -179,6 +179,20 @@ double max_error(const std::vector<CellError>& errors) {
   return m;
 }
 
+std::vector<SpanId> spans_to_refine(const HierarchicalSurface& s, const std::vector<CellError>& errors, const RefinementOptions& refinement) {
+  // The layer span holding each offending cell (a cell outside Ω_L is refined through its
+  // parent span), once each.
+  std::vector<SpanId> spans;
+  std::set<SpanId, CellKey> seen;
+  for (const CellError& e : errors) {
+    if (e.error <= refinement.tolerance) continue;
+    const SpanId span = s.has_span(e.cell) ? e.cell : SpanId{e.cell.level - 1, e.cell.i / 2, e.cell.j / 2};
+    if (span.level + 1 > refinement.max_level) continue;
+    if (seen.insert(span).second) spans.push_back(span);
+  }
+  return spans;
+}
+
 DesignReport solve_sheet(VariationalSheet& sheet, const SheetEnergy& energy, const std::vector<SheetConstraint>& constraints,
                          qp::QpSolver& solver, const RefinementOptions& refinement, Backend backend) {
   DesignReport report;
@@ -210,16 +224,7 @@ DesignReport solve_sheet(VariationalSheet& sheet, const SheetEnergy& energy, con
       report.message = "refinement stopped after " + std::to_string(refinement.max_rounds) + " rounds above the tolerance";
       break;
     }
-    // Refine the layer span holding each offending cell (a cell outside Ω_L is refined
-    // through its parent span).
-    std::vector<SpanId> spans;
-    std::set<SpanId, CellKey> seen;
-    for (const CellError& e : report.errors_per_round.back()) {
-      if (e.error <= refinement.tolerance) continue;
-      SpanId span = sheet.surface().has_span(e.cell) ? e.cell : SpanId{e.cell.level - 1, e.cell.i / 2, e.cell.j / 2};
-      if (span.level + 1 > refinement.max_level) continue;
-      if (seen.insert(span).second) spans.push_back(span);
-    }
+    const std::vector<SpanId> spans = spans_to_refine(sheet.surface(), report.errors_per_round.back(), refinement);
     if (spans.empty()) {
       report.message = "constraint error " + sci(report.max_constraint_error) + " above the tolerance at the maximum depth " +
                        std::to_string(refinement.max_level);

@@ -94,6 +94,10 @@ struct RefinementOptions {
   int max_rounds = 8;
 };
 
+//! The spans whose refinement §4.4 asks for: those holding a cell with error above the
+//! tolerance whose next layer is within max_level.
+std::vector<SpanId> spans_to_refine(const HierarchicalSurface& s, const std::vector<CellError>& errors, const RefinementOptions& refinement);
+
 struct DesignReport {
   qp::QpReport qp;
   double energy = 0, analyze_s = 0, solve_s = 0, max_constraint_error = 0;

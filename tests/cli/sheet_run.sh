@@ -44,7 +44,7 @@ sys.exit(0 if len(rows) == 3 and all(r["termination"] == "converged" for r in ro
 PYEOF
 expect_error 2 "constraints\[4\].t: 1.5 is out of range" -- "$FS" run $F --set constraints.4.t=1.5 --out "$SCRATCH/x"
 expect_error 2 "curves\[0\].variational.spam: unknown key" -- "$FS" run $F --set curves.0.variational.spam=1 --out "$SCRATCH/x"
-expect_error 2 "refinement.tolerance: automatic refinement is not supported" -- "$FS" run $F --set refinement.tolerance=0.01 --out "$SCRATCH/x"
+expect_error 2 "refinement.estimate_objective_error: not supported in a run with a variational curve" -- "$FS" run $F --set refinement.estimate_objective_error=true --out "$SCRATCH/x"
 
 expect_error 2 "constraints\[0\]: (u, v) = (9, 0.5) is outside the sheet's domain \[0, 2\] x \[0, 2\]" -- \
   "$FS" run $C --set 'constraints.0.uv=[9, 0.5]' --out "$SCRATCH/x"

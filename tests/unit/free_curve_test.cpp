@@ -284,6 +284,34 @@ TEST_CASE("joined sheets: a point pulled on the curve bends both sheets, and eve
   }
 }
 
+TEST_CASE("joined sheets: refinement drives the pointwise joint error under the tolerance, sheets and curve alike", "[sheet][free_curve]") {
+  // Figure 2's inset joint with a coarse (4-span) curve: the weak joint leaves a pointwise gap
+  // of about 1e-3; refinement by that gap refines the curve and both sheets near the joint
+  // until it is below 2e-5.
+  Fig2Joint f(0.125, 1.875, 4);
+  JoinedDesign d = f.design(Vec3(0, 0.35, 0.45));
+  RefinementOptions refinement;
+  refinement.tolerance = 2e-5;
+  refinement.max_level = 4;
+  auto kkt = make_solver("kkt");
+  const int floor_dofs = f.floor.surface().dof_count(), curve_dofs = f.curve.dof_count();
+  const JoinedReport r = solve_joined(d, *kkt, Backend::Optimized, refinement);
+  INFO(r.message << "; joint errors " << r.joint_error[0] << ", " << r.joint_error[1] << " after " << r.rounds << " rounds");
+  REQUIRE(r.qp.summary.termination == Termination::Converged);
+  CHECK(r.rounds > 1);
+  CHECK(r.joint_error[0] <= 2e-5);
+  CHECK(r.joint_error[1] <= 2e-5);
+  CHECK(r.max_error() <= 2e-5);
+  CHECK(r.curve_error[0] < 1e-9);
+  CHECK(r.curve_spans_refined[0] > 0);
+  CHECK(f.curve.dof_count() > curve_dofs);
+  CHECK(r.sheet_spans_refined[0] + r.sheet_spans_refined[1] > 0);
+  CHECK(f.floor.surface().dof_count() > floor_dofs);
+  // Locally: the floor's corners (far from the joint at v = 4 base spans) keep their layer-0 cells.
+  CHECK(f.floor.surface().leaf_cell_at(0.5, 0.5).level == 0);
+  CHECK((f.curve.position(0.5) - Vec3(1, 1, 0) - Vec3(0, 0.35, 0.45)).norm() < 1e-9);
+}
+
 TEST_CASE("joined sheets: the rows a fine curve makes dependent are exactly so (the answer ignores rank_tolerance)", "[sheet][free_curve]") {
   // A 16-span curve has 19 functions, each sheet's trace along the joint 11: the two joints'
   // 38 rows have rank 30 in exact arithmetic, and the solvers drop 8 whatever the tolerance.
@@ -373,7 +401,7 @@ TEST_CASE("free curves in configs: every refusal names its key", "[sheet][free_c
     if (path == "curve") cfg["constraints"][2]["curve"] = value;
     if (path == "fixed") cfg["curves"][0].remove("variational"), cfg["constraints"].remove(0), cfg["constraints"].remove(0);
     if (path == "edits") cfg["curves"][0]["edits"] = YAML::Load("[{step: 1, by: [0, 0, 1]}]");
-    if (path == "refinement") cfg["refinement"]["tolerance"] = 0.01;
+    if (path == "estimate") cfg["refinement"]["estimate_objective_error"] = true;
     if (path == "normal") cfg["constraints"].push_back(YAML::Load("{type: normal, sheet: wall, uv: [1, 1.5], normal: [0, 1, 0]}"));
     if (path == "paper") cfg["constraints"][0]["formulation"] = "paper";
     if (path == "both") cfg["constraints"][2]["target"] = YAML::Load("[0, 0, 0]");
@@ -386,7 +414,7 @@ TEST_CASE("free curves in configs: every refusal names its key", "[sheet][free_c
   CHECK_THROWS_WITH(refused("curve", "nope"), Contains("constraints[2].curve: no space curve named 'nope'"));
   CHECK_THROWS_WITH(refused("fixed", ""), Contains("constraints[0].curve: 'joint' is not a variational curve"));
   CHECK_THROWS_WITH(refused("edits", ""), Contains("curves[0].edits: a variational curve moves by its constraints"));
-  CHECK_THROWS_WITH(refused("refinement", ""), Contains("refinement.tolerance: automatic refinement is not supported"));
+  CHECK_THROWS_WITH(refused("estimate", ""), Contains("refinement.estimate_objective_error: not supported in a run with a variational curve"));
   CHECK_THROWS_WITH(refused("normal", ""), Contains("constraints[13].type: normal constraints are not supported on a sheet joined"));
   CHECK_THROWS_WITH(refused("paper", ""), Contains("constraints[0].formulation:"));
   CHECK_THROWS_WITH(refused("both", ""), Contains("constraints[2].by: give target or by, not both"));

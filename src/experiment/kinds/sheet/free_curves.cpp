@@ -16,7 +16,9 @@ void read_variational(Config& c, SpaceCurveSpec& s) {
   Config v = c.child("variational", "a variational curve {spans, degree, alpha, beta}: it starts as the least-squares fit of the "
                                     "curve's form and moves by its curve_point / curve_tangent constraints and the sheets joined to it");
   s.variational = c.has("variational");
-  s.curve_shape.spans = v.get_int("spans", s.curve_shape.spans, 1, 4096, "uniform spans of the clamped B-spline X(t), t in [0, 1]");
+  s.curve_shape.spans = v.get_int("spans", s.curve_shape.spans, 1, 4096,
+                                  "base spans of the clamped hierarchical B-spline X(t), t in [0, 1] (refinement.tolerance "
+                                  "refines them locally)");
   s.curve_shape.degree = v.get_int("degree", s.curve_shape.degree, bspline::kMinDegree, bspline::kMaxDegree, "B-spline degree");
   s.curve_energy.alpha = v.get_number("alpha", s.curve_energy.alpha, 0, 1e12, "stretching weight: integral of alpha |X'|^2 (design units)");
   s.curve_energy.beta = v.get_number("beta", s.curve_energy.beta, 0, 1e12, "bending weight: integral of beta |X''|^2 (design units)");
@@ -94,14 +96,13 @@ void check_free_curves(SheetRunSpec& s) {
   const auto free = std::find_if(s.curves.begin(), s.curves.end(), [](const SpaceCurveSpec& c) { return c.variational; });
   if (free == s.curves.end()) return;
   const std::string which = " with a variational curve (curves[" + std::to_string(free - s.curves.begin()) + "], '" + free->name + "')";
-  if (s.refinement.tolerance > 0)
-    throw InvalidConfig("refinement.tolerance: automatic refinement is not supported in a run" + which + "; use 0");
   if (s.estimate_objective_error) throw InvalidConfig("refinement.estimate_objective_error: not supported in a run" + which);
 }
 
 std::vector<std::string> free_curve_step_row(int step, const FreeCurveStep& c) {
-  return {std::to_string(step), "curve:" + c.name, std::to_string(c.dofs), "1", std::to_string(c.rows), "0", num(c.residual),
-          num(c.max_error), num(c.energy), "0", "1", "0", "0", c.factorization};
+  return {std::to_string(step), "curve:" + c.name, std::to_string(c.dofs), std::to_string(c.levels), std::to_string(c.rows), "0",
+          num(c.residual), num(c.max_error), num(c.energy), std::to_string(c.spans_refined), std::to_string(c.rounds), "0", "0",
+          c.factorization};
 }
 
 FreeCurves::FreeCurves(const SheetRunSpec& spec, const std::map<std::string, std::vector<Vec3>>& initial_polylines) {
@@ -190,7 +191,7 @@ JoinedStep FreeCurves::solve_step(const SheetRunSpec& spec, int step, std::vecto
       const auto local_curve = std::find(g.curves.begin(), g.curves.end(), free_index(cs->curve)) - g.curves.begin();
       d.joints.push_back({static_cast<int>(local_sheet), static_cast<int>(local_curve), cs->constraint.curve.uv, cs->label});
     }
-    const bspline::JoinedReport r = bspline::solve_joined(d, *spec.solver, spec.implementation);
+    const bspline::JoinedReport r = bspline::solve_joined(d, *spec.solver, spec.implementation, spec.refinement);
     const std::string factorization = qp::factorization_note(*spec.solver);
     const bool measured = !r.sheet_energy.empty() || !r.curve_energy.empty();
     for (std::size_t i = 0; i < g.sheets.size(); ++i) {
@@ -198,7 +199,8 @@ JoinedStep FreeCurves::solve_step(const SheetRunSpec& spec, int step, std::vecto
       bspline::DesignReport& dr = js.report;
       dr.qp = r.qp;
       dr.qp.p.resize(0, 0);
-      dr.rounds = 1;
+      dr.rounds = r.rounds;
+      dr.spans_refined = r.sheet_spans_refined[i];
       dr.message = r.message;
       dr.constraint_rows = r.sheet_rows[i];
       js.factorization = factorization;
@@ -214,6 +216,9 @@ JoinedStep FreeCurves::solve_step(const SheetRunSpec& spec, int step, std::vecto
       FreeCurveStep c;
       c.name = spec.curves[spec_index_[g.curves[i]]].name;
       c.dofs = curves_[g.curves[i]].dof_count();
+      c.levels = curves_[g.curves[i]].basis().level_count();
+      c.spans_refined = r.curve_spans_refined[i];
+      c.rounds = r.rounds;
       c.rows = r.curve_rows[i];
       c.termination = r.qp.summary.termination;
       c.message = r.message;
@@ -226,7 +231,7 @@ JoinedStep FreeCurves::solve_step(const SheetRunSpec& spec, int step, std::vecto
   // spans; the point targets as handles from where the initial curve had them.
   for (std::size_t f = 0; f < F; ++f) {
     const SpaceCurveSpec& c = spec.curves[spec_index_[f]];
-    curves_now[c.name] = curves_[f].sample(std::max(c.samples, 8 * c.curve_shape.spans + 1));
+    curves_now[c.name] = curves_[f].sample(std::max(c.samples, 8 * static_cast<int>(curves_[f].basis().leaf_cells().size()) + 1));
     if (!acted_on[f]) continue;
     overlay.add_curve(curves_now[c.name]);
     for (const CurveConstraint& cc : constraints[f])

@@ -29,7 +29,8 @@ const std::vector<std::string>& curve_constraint_types();
 CurveConstraintSpec read_curve_constraint(Config& c, const std::string& label);
 
 //! After the whole config is read: curve constraints name variational curves, joints use the
-//! mortar rows, joined sheets have no normal constraint, refinement is off with free curves.
+//! mortar rows, joined sheets have no normal constraint, no objective-error estimate with free
+//! curves (automatic refinement refines sheets and curves together: bspline/joined_design.h).
 //! Marks the joints (SheetConstraintSpec::joins_free_curve). \throw InvalidConfig naming the key.
 void check_free_curves(SheetRunSpec& s);
 
@@ -43,7 +44,7 @@ struct JoinedSheetStep {
 //! A free curve after a step (its steps.csv row).
 struct FreeCurveStep {
   std::string name;
-  int dofs = 0, rows = 0;
+  int dofs = 0, rows = 0, levels = 1, spans_refined = 0, rounds = 1;
   double residual = 0, max_error = 0, energy = 0;
   Termination termination = Termination::Converged;
   std::string message, factorization;
@@ -53,7 +54,8 @@ struct JoinedStep {
   std::vector<FreeCurveStep> curves;              // the free curves solved at this step
 };
 
-//! steps.csv's row of a free curve (sheet column `curve:<name>`, levels 1, no refinement).
+//! steps.csv's row of a free curve (sheet column `curve:<name>`; levels, spans_refined and
+//! refinement_rounds its own).
 std::vector<std::string> free_curve_step_row(int step, const FreeCurveStep& c);
 
 class FreeCurves {

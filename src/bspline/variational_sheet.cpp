@@ -220,14 +220,18 @@ DesignReport solve_sheet(VariationalSheet& sheet, const SheetEnergy& energy, con
       return report;
     }
     if (refinement.tolerance <= 0 || report.max_constraint_error <= refinement.tolerance) break;
+    // A tolerance refinement cannot reach is not met: constraints_unmet, with what was achieved.
     if (report.rounds > refinement.max_rounds) {
-      report.message = "refinement stopped after " + std::to_string(refinement.max_rounds) + " rounds above the tolerance";
+      report.qp.summary.termination = Termination::ConstraintsUnmet;
+      report.message = "constraint error " + sci(report.max_constraint_error) + " above the refinement tolerance " +
+                       sci(refinement.tolerance) + " after " + std::to_string(refinement.max_rounds) + " rounds";
       break;
     }
     const std::vector<SpanId> spans = spans_to_refine(sheet.surface(), report.errors_per_round.back(), refinement);
     if (spans.empty()) {
-      report.message = "constraint error " + sci(report.max_constraint_error) + " above the tolerance at the maximum depth " +
-                       std::to_string(refinement.max_level);
+      report.qp.summary.termination = Termination::ConstraintsUnmet;
+      report.message = "constraint error " + sci(report.max_constraint_error) + " above the refinement tolerance " +
+                       sci(refinement.tolerance) + " at the maximum depth " + std::to_string(refinement.max_level);
       break;
     }
     if (!report.unrefined) report.unrefined = std::make_shared<const VariationalSheet>(sheet);

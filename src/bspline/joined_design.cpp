@@ -77,6 +77,29 @@ JoinedProgram assemble_joined(const JoinedDesign& design, Backend backend) {
     blocks.push_back({{{&joints[k].A, out.column[j.sheet]}, {&minus_B[k], out.column[S + j.curve]}},
                       Eigen::MatrixXd::Zero(joints[k].A.rows(), 3)});
   }
+  // Tangent joints: [first rows at the first sheet, second rows at the second], targets 0.
+  std::vector<TangentContinuityRows> tangents;
+  for (const TangentJoint& tj : design.tangent_joints) {
+    const std::string where = tj.label.empty() ? std::string("tangent continuity") : tj.label;
+    const std::size_t J = design.joints.size();
+    FAIRSHAPE_ASSERT(tj.first >= 0 && static_cast<std::size_t>(tj.first) < J && tj.second >= 0 && static_cast<std::size_t>(tj.second) < J,
+                     "a tangent joint names two joints of the design");
+    const CurveJoint &a = design.joints[tj.first], &b = design.joints[tj.second];
+    if (a.curve != b.curve) throw InvalidInput(where + ": its two joints are on different curves");
+    if (a.sheet == b.sheet) throw InvalidInput(where + ": its two joints are on the same sheet");
+    try {
+      tangents.push_back(tangent_continuity_rows({&design.sheets[a.sheet].sheet->surface(), a.uv, tj.keep_left_first},
+                                                 {&design.sheets[b.sheet].sheet->surface(), b.uv, tj.keep_left_second}));
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(where + ": " + e.what());
+    }
+  }
+  for (std::size_t k = 0; k < tangents.size(); ++k) {
+    const TangentJoint& tj = design.tangent_joints[k];
+    blocks.push_back({{{&tangents[k].first, out.column[design.joints[tj.first].sheet]},
+                       {&tangents[k].second, out.column[design.joints[tj.second].sheet]}},
+                      Eigen::MatrixXd::Zero(tangents[k].first.rows(), 3)});
+  }
   const Eigen::Index n = out.column.back();
   Triplets th, tk, ta;
   Eigen::Index k_rows = 0;
@@ -181,6 +204,21 @@ void measure(const JoinedDesign& design, const JoinedProgram& jp, const Eigen::M
     const std::size_t b = S + C + j;
     report.joint_weak.push_back(residual.middleRows(jp.row[b], jp.row[b + 1] - jp.row[b]).cwiseAbs().maxCoeff());
   }
+  for (std::size_t k = 0; k < design.tangent_joints.size(); ++k) {
+    const TangentJoint& tj = design.tangent_joints[k];
+    const CurveJoint &a = design.joints[tj.first], &b = design.joints[tj.second];
+    const VariationalSheet &sa = *design.sheets[a.sheet].sheet, &sb = *design.sheets[b.sheet].sheet;
+    const JointSide first{&sa.surface(), a.uv, tj.keep_left_first}, second{&sb.surface(), b.uv, tj.keep_left_second};
+    double worst = 0;
+    const int samples = 64 * std::max(sa.surface().level_count(), sb.surface().level_count());
+    for (int i = 0; i <= samples; ++i) {
+      const double t = static_cast<double>(i) / samples;
+      worst = std::max(worst, (outward_derivative(first, sa.coefficients(), t) + outward_derivative(second, sb.coefficients(), t)).norm());
+    }
+    report.tangent_error.push_back(worst);
+    const std::size_t block = S + C + J + k;
+    report.tangent_weak.push_back(residual.middleRows(jp.row[block], jp.row[block + 1] - jp.row[block]).cwiseAbs().maxCoeff());
+  }
 }
 
 }  // namespace
@@ -195,7 +233,11 @@ JoinedReport solve_once(JoinedDesign& design, qp::QpSolver& solver, Backend back
   const auto block_rows = [&](std::size_t b) { return static_cast<int>(jp.row[b + 1] - jp.row[b]); };
   for (std::size_t k = 0; k < S; ++k) report.sheet_rows.push_back(block_rows(k));
   for (std::size_t k = 0; k < C; ++k) report.curve_rows.push_back(block_rows(S + k));
-  for (std::size_t j = 0; j < design.joints.size(); ++j) report.sheet_rows[design.joints[j].sheet] += block_rows(S + C + j);
+  const std::size_t J = design.joints.size();
+  for (std::size_t j = 0; j < J; ++j) report.sheet_rows[design.joints[j].sheet] += block_rows(S + C + j);
+  for (std::size_t k = 0; k < design.tangent_joints.size(); ++k)  // they act on both sheets
+    for (int joint : {design.tangent_joints[k].first, design.tangent_joints[k].second})
+      report.sheet_rows[design.joints[joint].sheet] += block_rows(S + C + J + k);
   solver.analyze(jp.program);
   report.analyze_s = solver.analyze_seconds();
   const Timer timer;

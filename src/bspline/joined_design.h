@@ -31,6 +31,14 @@ struct CurveJoint {
   std::string label;  // for messages: "constraints[0]"
 };
 
+//! Two joints of one curve made tangent-continuous (bspline/mortar_curve.h,
+//! tangent_continuity_rows): the sides of their (u, v) curves each sheet keeps.
+struct TangentJoint {
+  int first = 0, second = 0;  // indices into JoinedDesign::joints, on the same curve
+  bool keep_left_first = true, keep_left_second = false;
+  std::string label;
+};
+
 struct JoinedSheet {
   VariationalSheet* sheet = nullptr;
   SheetEnergy energy;
@@ -47,18 +55,20 @@ struct JoinedDesign {
   std::vector<JoinedSheet> sheets;
   std::vector<JoinedCurve> curves;
   std::vector<CurveJoint> joints;
+  std::vector<TangentJoint> tangent_joints;
 };
 
 //! The joint program and where each member sits in it: member k (the sheets, then the curves)
 //! owns columns [column[k], column[k + 1]); row block b (each sheet's own rows, each curve's
-//! own rows, then each joint's) owns rows [row[b], row[b + 1]).
+//! own rows, each joint's, then each tangent joint's) owns rows [row[b], row[b + 1]).
 struct JoinedProgram {
   qp::QuadraticProgram program;
   std::vector<qp::QuadraticProgram> sheet_programs;  // each sheet's own (its energy's H and f)
   std::vector<Eigen::Index> column, row;
 };
 //! \throw InvalidInput naming the constraint's label: a normal constraint on a joined sheet, a
-//! joint's (u, v) outside its sheet, a bad curve constraint.
+//! joint's (u, v) outside its sheet, a bad curve constraint, a tangent joint between joints of
+//! different curves or of one sheet.
 JoinedProgram assemble_joined(const JoinedDesign& design, Backend backend);
 
 struct JoinedReport {
@@ -72,6 +82,8 @@ struct JoinedReport {
   std::vector<std::vector<double>> curve_leaf_errors;
   std::vector<double> joint_error;                    // per joint: max |w(c(t)) − X(t)| sampled (pointwise)
   std::vector<double> joint_weak;                     // per joint: max |row residual| (the weak form, a distance)
+  //! Per tangent joint: max |∂w₁/∂n₁ + ∂w₂/∂n₂| sampled (pointwise) and its rows' max |residual|.
+  std::vector<double> tangent_error, tangent_weak;
   std::vector<int> sheet_rows, curve_rows;            // a sheet's own rows and its joints'; a curve's own
   std::vector<double> sheet_residual, curve_residual;  // ‖A p − b‖_F over those rows
   int rounds = 0;                                      // solves (1 + refinements)

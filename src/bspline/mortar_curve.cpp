@@ -232,4 +232,98 @@ ConstraintRows mortar_curve_rows(const HierarchicalSurface& s, const CurveAttach
   return out;
 }
 
+namespace {
+
+// The unit (u, v) normal of uv's segment at t pointing out of the kept side, in design units,
+// as the factors of ∂/∂u and ∂/∂v in base-span units.
+Eigen::Vector2d outward_factors(const JointSide& side, double t) {
+  const Eigen::Vector2d h = side.surface->shape().span_size;
+  const std::size_t n = side.uv.size() - 1;
+  std::size_t k = std::min(static_cast<std::size_t>(std::clamp(t, 0.0, 1.0) * static_cast<double>(n)), n - 1);
+  while (k + 1 < n && (side.uv[k + 1] - side.uv[k]).norm() == 0) ++k;  // a repeated point has no direction
+  const Eigen::Vector2d d = (side.uv[k + 1] - side.uv[k]).cwiseProduct(h).normalized();
+  const Eigen::Vector2d left(-d.y(), d.x());
+  const Eigen::Vector2d out = side.keep_left ? Eigen::Vector2d(-left) : left;
+  return out.cwiseQuotient(h);
+}
+
+}  // namespace
+
+Vec3 outward_derivative(const JointSide& side, const Eigen::MatrixXd& P, double t) {
+  const Eigen::Vector2d c = polyline_at(side.uv, t), f = outward_factors(side, t);
+  Vec3 du, dv;
+  side.surface->derivatives(P, c.x(), c.y(), du, dv);
+  return f.x() * du + f.y() * dv;
+}
+
+TangentContinuityRows tangent_continuity_rows(const JointSide& first, const JointSide& second) {
+  for (const JointSide* side : {&first, &second}) check_uv_curve(*side->surface, side->uv);
+  // Integrate along the side with more multipliers, in its arc length; the other side is
+  // evaluated at the same t.
+  const bool first_leads = mortar_multiplier_count(*first.surface, first.uv) >= mortar_multiplier_count(*second.surface, second.uv);
+  const JointSide& lead = first_leads ? first : second;
+  const JointSide& other = first_leads ? second : first;
+  const ArcLength arc(lead.uv), other_arc(other.uv);
+  const double L = arc.length();
+  std::vector<double> knots = mortar_knots(*lead.surface, lead.uv);
+  const ClampedKnotBasis W = trace_multipliers(*lead.surface, lead.uv, L, knots);
+
+  // Pieces on which both integrands are polynomials: either side's vertices and finest grid
+  // lines (the other's mapped through t), and W's knots.
+  std::vector<double> breaks = arc.S;
+  breaks.insert(breaks.end(), knots.begin(), knots.end());
+  for (std::size_t k = 0; k < other.uv.size(); ++k) breaks.push_back(arc.s_of(static_cast<double>(k) / (other.uv.size() - 1)));
+  for (const JointSide* side : {&lead, &other}) {
+    const ArcLength& a = side == &lead ? arc : other_arc;
+    const double grid = std::ldexp(1.0, side->surface->level_count() - 1);
+    for (std::size_t k = 0; k + 1 < side->uv.size(); ++k)
+      for (int axis = 0; axis < 2; ++axis)
+        grid_crossings(side->uv, a, k, axis, grid, [&](double sk, long long) { breaks.push_back(arc.s_of(a.t_of(sk))); });
+  }
+  std::sort(breaks.begin(), breaks.end());
+
+  const int r = std::max(lead.surface->degree(), other.surface->degree());
+  const GaussRule g = gauss_legendre((3 * r + 1) / 2 + 1);  // ψ (degree r) times a derivative trace (≤ 2r − 1)
+  const int m = W.size();
+  Triplets t_lead, t_other;
+  Eigen::VectorXd mass = Eigen::VectorXd::Zero(m);
+  BasisRow row;
+  std::vector<double> psi;
+  int first_psi = 0;
+  const auto add = [&](const JointSide& side, double tq, const std::vector<double>& weights, Triplets& out) {
+    const Eigen::Vector2d c = polyline_at(side.uv, tq), f = outward_factors(side, tq);
+    side.surface->basis(c.x(), c.y(), row);
+    for (std::size_t a = 0; a < weights.size(); ++a) {
+      if (weights[a] == 0) continue;
+      const int j = (first_psi + static_cast<int>(a)) % m;
+      for (const BasisEntry& e : row) out.emplace_back(j, e.dof, weights[a] * (f.x() * e.du + f.y() * e.dv));
+    }
+  };
+  std::vector<double> weights;
+  for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
+    const double s0 = std::clamp(breaks[k], 0.0, L), s1 = std::clamp(breaks[k + 1], 0.0, L);
+    if (s1 - s0 <= 1e-14 * L) continue;
+    for (std::size_t q = 0; q < g.nodes.size(); ++q) {
+      const double sq = s0 + g.nodes[q] * (s1 - s0), w = g.weights[q] * (s1 - s0);
+      const double tq = arc.t_of(sq);
+      W.evaluate(sq, first_psi, psi);
+      weights.assign(psi.size(), 0.0);
+      for (std::size_t a = 0; a < psi.size(); ++a) {
+        weights[a] = w * psi[a];
+        mass[(first_psi + static_cast<int>(a)) % m] += weights[a];
+      }
+      add(lead, tq, weights, t_lead);
+      add(other, tq, weights, t_other);
+    }
+  }
+  const Eigen::VectorXd inverse_mass = mass.cwiseInverse();
+  SparseMatrix A_lead(m, lead.surface->dof_count()), A_other(m, other.surface->dof_count());
+  A_lead.setFromTriplets(t_lead.begin(), t_lead.end());
+  A_other.setFromTriplets(t_other.begin(), t_other.end());
+  TangentContinuityRows out;
+  out.first = inverse_mass.asDiagonal() * (first_leads ? A_lead : A_other);
+  out.second = inverse_mass.asDiagonal() * (first_leads ? A_other : A_lead);
+  return out;
+}
+
 }  // namespace fairshape::bspline

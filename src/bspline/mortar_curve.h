@@ -61,6 +61,28 @@ ClampedKnotBasis polyline_basis(std::size_t points);
 //! target or a uv curve of zero length.
 ConstraintRows mortar_curve_rows(const HierarchicalSurface& s, const CurveAttachment& curve);
 
+//! One side of a tangent-continuous joint: a sheet's surface, its (u, v) curve (base-span
+//! units, points equally spaced in t, paired with the other side's by t) and which side of that
+//! curve the design keeps (left: to the left of the curve's direction in (u, v)).
+struct JointSide {
+  const HierarchicalSurface* surface = nullptr;
+  std::vector<Eigen::Vector2d> uv;
+  bool keep_left = true;
+};
+//! The derivative of w across the curve at t, along the unit (u, v) normal that points out of the
+//! kept side, per unit design length (SheetShape::span_size).
+Vec3 outward_derivative(const JointSide& side, const Eigen::MatrixXd& P, double t);
+//! Tangent continuity of two sheets across a joint, weakly (papers/welch-witkin/README.md,
+//! "Tangent-continuous joints"): leaving one sheet's kept side across the curve one enters the
+//! other's, so C¹ in the design units reads ∂w₁/∂n₁ + ∂w₂/∂n₂ = 0 (n the outward normals), imposed
+//! as ∫ψ_j (∂w₁/∂n₁(c₁(t)) + ∂w₂/∂n₂(c₂(t))) ds / ∫ψ_j = 0 with ψ the surface-trace multipliers of
+//! the side that has more (the finer, as for the joint). Rows: first·p₁ + second·p₂ = 0.
+struct TangentContinuityRows {
+  SparseMatrix first, second;
+};
+//! \throw InvalidInput as mortar_rows, for either side.
+TangentContinuityRows tangent_continuity_rows(const JointSide& first, const JointSide& second);
+
 //! The multiplier knots (uv arc length, span units) mortar_curve_rows uses: exposed for tests.
 std::vector<double> mortar_knots(const HierarchicalSurface& s, const std::vector<Eigen::Vector2d>& uv);
 

@@ -44,6 +44,25 @@ sys.exit(0 if len(rows) == 3 and all(r["termination"] == "converged" for r in ro
 PYEOF
 expect_error 2 "constraints\[4\].t: 1.5 is out of range" -- "$FS" run $F --set constraints.4.t=1.5 --out "$SCRATCH/x"
 expect_error 2 "curves\[0\].variational.spam: unknown key" -- "$FS" run $F --set curves.0.variational.spam=1 --out "$SCRATCH/x"
+# With refinement: sheets and curve refined together until the pointwise joint gap is below 2e-5.
+"$FS" run $F --out "$SCRATCH/free_refined" --set refinement.tolerance=2e-5 --set output.vtk=none 2>/dev/null \
+  || fail "fig2_free with refinement failed"
+$PY - "$SCRATCH/free_refined/steps.csv" <<'PYEOF' || fail "fig2_free refinement did not refine the curve and the sheets below the tolerance"
+import csv, sys
+last = [r for r in csv.DictReader(open(sys.argv[1])) if r["step"] == "1"]
+curve = [r for r in last if r["sheet"] == "curve:joint"][0]
+sheets = [r for r in last if not r["sheet"].startswith("curve:")]
+ok = int(curve["spans_refined"]) > 0 and int(curve["levels"]) > 1 and all(int(r["spans_refined"]) > 0 and float(r["max_constraint_error"]) <= 2e-5 for r in sheets)
+sys.exit(0 if ok else 1)
+PYEOF
+# Two sheets made tangent-continuous across a free curve: the achieved continuity is reported.
+"$FS" run configs/welch-witkin/smooth_joint.yaml --out "$SCRATCH/smooth" --set output.vtk=none 2>/dev/null || fail "smooth_joint failed"
+grep -q ",converged," "$SCRATCH/smooth/runs.csv" || fail "smooth_joint did not converge"
+grep -q "max |dw1/dn1 + dw2/dn2| [0-9.]*e-1[0-9]" "$SCRATCH/smooth/runs.csv" || fail "smooth_joint does not report its continuity"
+expect_error 2 "constraints\[2\].keep: 'up' is not a side (valid: left, right)" -- \
+  "$FS" run configs/welch-witkin/smooth_joint.yaml --set 'constraints.2.keep=[up, left]' --out "$SCRATCH/x"
+expect_error 2 "constraints\[2\].sheets: sheet 'lower' has 2 curve constraints joining it to 'ridge'" -- \
+  "$FS" run configs/welch-witkin/smooth_joint.yaml --set 'constraints.1.sheet=lower' --out "$SCRATCH/x"
 expect_error 2 "refinement.estimate_objective_error: not supported in a run with a variational curve" -- "$FS" run $F --set refinement.estimate_objective_error=true --out "$SCRATCH/x"
 
 expect_error 2 "constraints\[0\]: (u, v) = (9, 0.5) is outside the sheet's domain \[0, 2\] x \[0, 2\]" -- \

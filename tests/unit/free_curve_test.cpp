@@ -312,6 +312,92 @@ TEST_CASE("joined sheets: refinement drives the pointwise joint error under the 
   CHECK((f.curve.position(0.5) - Vec3(1, 1, 0) - Vec3(0, 0.35, 0.45)).norm() < 1e-9);
 }
 
+namespace {
+
+// Two 2 × 1 sheets in the plane z = 0 that meet along y = 1 (the lower one's top edge, the upper
+// one's bottom edge), joined there by a straight variational curve whose middle is lifted by 0.3;
+// each sheet pinned along its far edge.
+struct SplitPlane {
+  VariationalSheet lower, upper;
+  VariationalCurve curve;
+  static VariationalSheet sheet(double y0) {
+    const SheetShape shape{8, 4, 3, false, Eigen::Vector2d(0.25, 0.25)};
+    SheetPlacement at;
+    at.origin = Vec3(0, y0, 0);
+    at.v_axis = Vec3::UnitY();
+    at.size_u = 2, at.size_v = 1;
+    return VariationalSheet(shape, initial_coefficients(at, HierarchicalSurface(shape)));
+  }
+  SplitPlane() : lower(sheet(0)), upper(sheet(1)), curve({8, 3}, std::vector<Vec3>{Vec3(0, 1, 0), Vec3(2, 1, 0)}) {}
+  JoinedDesign design(bool tangent) {
+    JoinedDesign d;
+    for (auto [s, v] : {std::pair{&lower, 0.0}, std::pair{&upper, 4.0}}) {
+      JoinedSheet js;
+      js.sheet = s;
+      for (double u : {0.0, 2.0, 4.0, 6.0, 8.0}) {
+        SheetConstraint pin;
+        pin.u = u, pin.v = v;
+        pin.target = s->surface().position(s->coefficients(), u, v);
+        js.constraints.push_back(pin);
+      }
+      d.sheets.push_back(js);
+    }
+    JoinedCurve jc;
+    jc.curve = &curve;
+    jc.energy.beta = 1e-3;
+    for (double t : {0.0, 0.5, 1.0}) jc.constraints.push_back({CurveConstraint::Kind::Point, t, Vec3(2 * t, 1, t == 0.5 ? 0.3 : 0), ""});
+    d.curves.push_back(jc);
+    const std::vector<Eigen::Vector2d> lower_edge{Eigen::Vector2d(0, 4), Eigen::Vector2d(8, 4)};
+    const std::vector<Eigen::Vector2d> upper_edge{Eigen::Vector2d(0, 0), Eigen::Vector2d(8, 0)};
+    d.joints = {{0, 0, lower_edge, "lower joint"}, {1, 0, upper_edge, "upper joint"}};
+    // The lower sheet lies right of its edge's direction (+u), the upper one left of it.
+    if (tangent) d.tangent_joints = {{0, 1, false, true, "smooth"}};
+    return d;
+  }
+  // ∂z/∂y on either side of the joint at x = 1 (one-sided, design units).
+  double slope(const VariationalSheet& s, double v) const { Vec3 du, dv; s.surface().derivatives(s.coefficients(), 4, v, du, dv); return dv.z() / 0.25; }
+};
+
+}  // namespace
+
+TEST_CASE("joined sheets: a tangent-continuous joint has no crease, and every solver agrees", "[sheet][free_curve]") {
+  // Without the rows the two sheets meet at a ridge (each rises towards the lifted curve: the
+  // slopes on the two sides have opposite signs); with them the slope is continuous across.
+  {
+    SplitPlane f;
+    JoinedDesign d = f.design(false);
+    auto kkt = make_solver("kkt");
+    REQUIRE(solve_joined(d, *kkt, Backend::Optimized).qp.summary.termination == Termination::Converged);
+    CHECK(f.slope(f.lower, 4) > 0.1);
+    CHECK(f.slope(f.upper, 0) < -0.1);
+  }
+  std::vector<double> energies;
+  for (const std::string name : {"kkt", "range_space", "qr_penalty"}) {
+    SplitPlane f;
+    JoinedDesign d = f.design(true);
+    auto solver = make_solver(name);
+    const JoinedReport r = solve_joined(d, *solver, Backend::Optimized);
+    INFO(name << ": " << r.message << "; tangent error " << r.tangent_error[0]);
+    REQUIRE(r.qp.summary.termination == Termination::Converged);
+    CHECK(r.tangent_weak[0] < 1e-9);
+    CHECK(r.tangent_error[0] < 1e-8);  // along a whole grid line the weak rows hold pointwise
+    CHECK(std::abs(f.slope(f.lower, 4) - f.slope(f.upper, 0)) < 1e-8);
+    CHECK(r.joint_error[0] < 1e-8);
+    CHECK(r.joint_error[1] < 1e-8);
+    CHECK((f.curve.position(0.5) - Vec3(1, 1, 0.3)).norm() < 1e-9);
+    CHECK(f.lower.surface().position(f.lower.coefficients(), 4, 3).z() > 0.1);  // the sheets still follow the curve
+    energies.push_back(r.energy());
+  }
+  CHECK(energies[1] == Approx(energies[0]).epsilon(1e-6));
+  CHECK(energies[2] == Approx(energies[0]).epsilon(1e-6));
+  // Refused: both joints on one sheet, or on different curves.
+  SplitPlane f;
+  JoinedDesign d = f.design(true);
+  d.joints[1].sheet = 0;
+  auto kkt = make_solver("kkt");
+  CHECK_THROWS_WITH(solve_joined(d, *kkt, Backend::Optimized), Catch::Matchers::Contains("smooth: its two joints are on the same sheet"));
+}
+
 TEST_CASE("joined sheets: the rows a fine curve makes dependent are exactly so (the answer ignores rank_tolerance)", "[sheet][free_curve]") {
   // A 16-span curve has 19 functions, each sheet's trace along the joint 11: the two joints'
   // 38 rows have rank 30 in exact arithmetic, and the solvers drop 8 whatever the tolerance.

@@ -1,8 +1,10 @@
 #include "experiment/kinds/sheet/free_curves.h"
 
 #include <algorithm>
+#include <array>
 #include <numeric>
 
+#include "core/message_format.h"
 #include "experiment/kinds/sheet/constraint_schedule.h"
 #include "experiment/metric_format.h"
 #include "experiment/run_basics.h"
@@ -70,6 +72,32 @@ CurveConstraintSpec read_curve_constraint(Config& c, const std::string& label) {
   return s;
 }
 
+bool is_tangent_continuity(const Config& c) {
+  return c.has("type") && c.node()["type"].IsScalar() && c.node()["type"].Scalar() == "tangent_continuity";
+}
+
+TangentContinuitySpec read_tangent_continuity(Config& c, const std::string& label) {
+  TangentContinuitySpec s;
+  s.label = label;
+  (void)c.get<std::string>("type", "tangent_continuity", "two joined sheets made tangent-continuous across their curve");
+  s.curve = c.require<std::string>("curve", "the variational curve both sheets are joined to");
+  const auto sheets = c.get<std::vector<std::string>>("sheets", {}, "the two sheets [a, b], each joined to the curve by one curve constraint");
+  if (!c.documenting() && (sheets.size() != 2 || sheets[0] == sheets[1]))
+    throw InvalidConfig(c.key_path("sheets") + ": give two different sheets [a, b]");
+  const auto keep = c.get<std::vector<std::string>>("keep", {"left", "right"},
+                                                    "per sheet, the side of its joint's (u, v) curve (left or right of its direction) "
+                                                    "the design keeps: crossing the curve leaves one and enters the other");
+  if (keep.size() != 2) throw InvalidConfig(c.key_path("keep") + ": give two sides [left|right, left|right]");
+  for (std::size_t i = 0; i < 2; ++i) {
+    if (keep[i] != "left" && keep[i] != "right")
+      throw InvalidConfig(c.key_path("keep") + ": '" + keep[i] + "' is not a side (valid: left, right)");
+    s.keep_left[i] = keep[i] == "left";
+    if (!c.documenting()) s.sheets[i] = sheets[i];
+  }
+  c.check_no_unknown_keys();
+  return s;
+}
+
 void check_free_curves(SheetRunSpec& s) {
   const auto curve_named = [&](const std::string& name) {
     return std::find_if(s.curves.begin(), s.curves.end(), [&](const SpaceCurveSpec& c) { return c.name == name; });
@@ -93,6 +121,19 @@ void check_free_curves(SheetRunSpec& s) {
         std::find(joined_sheets.begin(), joined_sheets.end(), cs.sheet) != joined_sheets.end())
       throw InvalidConfig(cs.label + ".type: normal constraints are not supported on a sheet joined to a variational curve (sheet '" +
                           cs.sheet + "')");
+  for (const TangentContinuitySpec& tc : s.tangent_continuity) {
+    const auto it = curve_named(tc.curve);
+    if (it == s.curves.end()) throw InvalidConfig(tc.label + ".curve: no space curve named '" + tc.curve + "'");
+    if (!it->variational) throw InvalidConfig(tc.label + ".curve: '" + tc.curve + "' is not a variational curve");
+    for (const std::string& sheet : tc.sheets) {
+      const auto joints = std::count_if(s.constraints.begin(), s.constraints.end(), [&](const SheetConstraintSpec& cs) {
+        return cs.joins_free_curve && cs.curve == tc.curve && cs.sheet == sheet;
+      });
+      if (joints != 1)
+        throw InvalidConfig(tc.label + ".sheets: sheet '" + sheet + "' has " + std::to_string(joints) + " curve constraints joining it to '" +
+                            tc.curve + "' (tangent continuity needs exactly one)");
+    }
+  }
   const auto free = std::find_if(s.curves.begin(), s.curves.end(), [](const SpaceCurveSpec& c) { return c.variational; });
   if (free == s.curves.end()) return;
   const std::string which = " with a variational curve (curves[" + std::to_string(free - s.curves.begin()) + "], '" + free->name + "')";
@@ -191,7 +232,18 @@ JoinedStep FreeCurves::solve_step(const SheetRunSpec& spec, int step, std::vecto
       const auto local_curve = std::find(g.curves.begin(), g.curves.end(), free_index(cs->curve)) - g.curves.begin();
       d.joints.push_back({static_cast<int>(local_sheet), static_cast<int>(local_curve), cs->constraint.curve.uv, cs->label});
     }
-    const bspline::JoinedReport r = bspline::solve_joined(d, *spec.solver, spec.implementation, spec.refinement);
+    // Tangent continuity between two of this group's joints, while both are active.
+    for (const TangentContinuitySpec& tc : spec.tangent_continuity) {
+      std::array<int, 2> joint{-1, -1};
+      for (std::size_t j = 0; j < g.joints.size(); ++j)
+        for (int side = 0; side < 2; ++side)
+          if (g.joints[j]->curve == tc.curve && g.joints[j]->sheet == tc.sheets[side]) joint[side] = static_cast<int>(j);
+      if (joint[0] >= 0 && joint[1] >= 0) d.tangent_joints.push_back({joint[0], joint[1], tc.keep_left[0], tc.keep_left[1], tc.label});
+    }
+    bspline::JoinedReport r = bspline::solve_joined(d, *spec.solver, spec.implementation, spec.refinement);
+    for (std::size_t k = 0; k < r.tangent_error.size(); ++k)  // what continuity was achieved, pointwise
+      r.message += std::string(r.message.empty() ? "" : "; ") + d.tangent_joints[k].label + ": max |dw1/dn1 + dw2/dn2| " +
+                   sci(r.tangent_error[k]);
     const std::string factorization = qp::factorization_note(*spec.solver);
     const bool measured = !r.sheet_energy.empty() || !r.curve_energy.empty();
     for (std::size_t i = 0; i < g.sheets.size(); ++i) {

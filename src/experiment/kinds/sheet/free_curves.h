@@ -28,8 +28,15 @@ const std::vector<std::string>& curve_constraint_types();
 //! \throw InvalidConfig naming the key (t outside [0, 1], target and by both given, ...).
 CurveConstraintSpec read_curve_constraint(Config& c, const std::string& label);
 
+//! Whether a `constraints:` entry is of type tangent_continuity.
+bool is_tangent_continuity(const Config& c);
+//! `{type: tangent_continuity, curve, sheets: [a, b], keep: [left|right, left|right]}`.
+//! \throw InvalidConfig naming the key.
+TangentContinuitySpec read_tangent_continuity(Config& c, const std::string& label);
+
 //! After the whole config is read: curve constraints name variational curves, joints use the
-//! mortar rows, joined sheets have no normal constraint, no objective-error estimate with free
+//! mortar rows, joined sheets have no normal constraint, a tangent_continuity names a variational
+//! curve and two sheets each joined to it once, no objective-error estimate with free
 //! curves (automatic refinement refines sheets and curves together: bspline/joined_design.h).
 //! Marks the joints (SheetConstraintSpec::joins_free_curve). \throw InvalidConfig naming the key.
 void check_free_curves(SheetRunSpec& s);

@@ -229,10 +229,15 @@ SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config, const std::
     ++k;
   }
   k = 0;
-  for (Config c : root.child_list("constraints", "[{type: point|tangent|normal|curve|curve_point|curve_tangent, sheet, uv, ...}]")) {
+  for (Config c : root.child_list("constraints", "[{type: point|tangent|normal|curve|curve_point|curve_tangent|tangent_continuity, sheet, uv, ...}]")) {
     const std::string label = "constraints[" + std::to_string(k++) + "]";
     if (is_curve_constraint(c)) {  // a variational curve's own (free_curves.h)
       s.curve_constraints.push_back(read_curve_constraint(c, label));
+      continue;
+    }
+    if (is_tangent_continuity(c)) {
+      s.tangent_continuity.push_back(read_tangent_continuity(c, label));
+      for (int side = 0; side < 2; ++side) sheet_index(s.tangent_continuity.back().sheets[side], label + ".sheets");
       continue;
     }
     SheetConstraintSpec cs = read_constraint(c, label, s.sheets.front().name);

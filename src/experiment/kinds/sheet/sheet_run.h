@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <array>
 #include <string>
 #include <vector>
 
@@ -80,6 +81,14 @@ struct CurveConstraintSpec {
   bool active_at(int s) const { return step <= s && (until < 0 || s < until); }
 };
 
+//! Two sheets joined to one variational curve made tangent-continuous across it, while both
+//! joints are active: the side of its joint's (u, v) curve each sheet keeps.
+struct TangentContinuitySpec {
+  std::string curve, label;
+  std::array<std::string, 2> sheets;
+  std::array<bool, 2> keep_left{true, false};
+};
+
 //! §5's session actions on a sheet's objective: install its current shape as the rest shape
 //! (eq. 6 about it from then on), or melt the rest shape (back to eq. 4).
 struct RestShapeAction {
@@ -94,6 +103,7 @@ struct SheetRunSpec : RunBasics {
   std::vector<SpaceCurveSpec> curves;
   std::vector<SheetConstraintSpec> constraints;
   std::vector<CurveConstraintSpec> curve_constraints;  // `constraints:` entries of a curve_* type
+  std::vector<TangentContinuitySpec> tangent_continuity;  // type tangent_continuity (free_curves.h)
   std::vector<RestShapeAction> actions;
   bspline::SheetEnergy energy;
   bspline::RefinementOptions refinement;

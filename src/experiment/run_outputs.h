@@ -28,6 +28,11 @@ class RunTables {
   std::map<std::string, std::vector<std::vector<std::string>>> rows_;
 };
 
+//! A user-given name (a sheet, a curve, a feature) as part of a file name: anything but letters,
+//! digits, '.', '_' and '-' becomes '_', so no name ("../x", "a/b") can place a file outside the
+//! run's folders.
+std::string file_name_part(const std::string& name);
+
 //! The folders every run may write into (vtk/), created under an output folder.
 void create_run_folders(const std::string& dir);
 

@@ -1,25 +1,15 @@
 #include "experiment/kinds/sheet/sheet_files.h"
 
-#include <cctype>
 #include <filesystem>
 #include <memory>
 
 #include "bspline/sheet_file.h"
 #include "core/error.h"
+#include "experiment/run_outputs.h"
 
 namespace fairshape {
 namespace fs = std::filesystem;
 
-namespace {
-// A sheet name as a file-name part: anything but letters, digits, '.', '_' and '-' becomes
-// '_', so no name ("../x", "a/b") can place a file outside the run's sheets/ folder.
-std::string file_name_part(const std::string& name) {
-  std::string out = name;
-  for (char& ch : out)
-    if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '.' && ch != '_' && ch != '-') ch = '_';
-  return out;
-}
-}  // namespace
 
 SheetSpec read_sheet_from_file(Config& c, const std::vector<std::string>& search_dirs) {
   SheetSpec s;

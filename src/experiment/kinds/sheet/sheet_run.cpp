@@ -570,7 +570,7 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
         for (const auto& [name, pts] : curves_now) {
           MatrixX3 X(static_cast<Eigen::Index>(pts.size()), 3);
           for (std::size_t i = 0; i < pts.size(); ++i) X.row(static_cast<Eigen::Index>(i)) = pts[i].transpose();
-          write_polyline(Polyline{X, false}, (fs::path(out.dir) / "curves" / (out.run_id + "_step" + std::to_string(step) + "_" + name + ".obj")).string());
+          write_polyline(Polyline{X, false}, (fs::path(out.dir) / "curves" / (out.run_id + "_step" + std::to_string(step) + "_" + file_name_part(name) + ".obj")).string());
         }
       }
     }

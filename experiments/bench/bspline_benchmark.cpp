@@ -1,11 +1,15 @@
 // Welch & Witkin on a 32×32-span bicubic sheet with 100 point constraints and one curve
 // constraint: the drag update with the prefactored KKT system (goal ≤ 10 ms), the factor and
 // solve of every constrained solver with its accuracy against KKT (time to accuracy), the
-// range-space solver adding one constraint (bordered Schur complement) against refactoring, and the energy
+// range-space solver adding one constraint (bordered Schur complement) against refactoring, a
+// design step adding or removing eight pins (factor updated against refactored) at 16, 32 and
+// 64 spans, and the energy
 // assembly, reference against optimized. Medians: --benchmark_repetitions.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <map>
+#include <memory>
 
 #include "bspline/hierarchical_surface.h"
 #include "bspline/surface_constraints.h"
@@ -106,10 +110,81 @@ void BM_AddConstraint(benchmark::State& state, bool update) {
     qp::RangeSpaceSolver s;
     s.analyze(sh.qp);
     state.ResumeTiming();
-    if (update) s.add_rows(sh.extra.A);
-    else s.analyze(grown);
-    benchmark::DoNotOptimize(s.solve(grown.f, grown.b).p.data());
+    if (update) {
+      s.add_rows(sh.extra.A);
+      benchmark::DoNotOptimize(s.solve(grown.f, grown.b).p.data());
+    } else {  // a fresh solver: analyze() on `s` would recognise the rows and border the new one
+      qp::RangeSpaceSolver fresh;
+      fresh.analyze(grown);
+      benchmark::DoNotOptimize(fresh.solve(grown.f, grown.b).p.data());
+    }
   }
+}
+
+// A design step that adds or removes point constraints, at several sheet sizes: the range-space
+// solver's update of its factor (bordered rows, CHOLMOD downdate) against analyzing the new
+// program from scratch. Arg: spans per side (the same 100 pins and curve pattern, scaled).
+struct RowStep {
+  HierarchicalSurface s;
+  qp::QuadraticProgram before, after;  // after: before plus 8 pins (or before minus them)
+  SparseMatrix extra;
+  explicit RowStep(int spans) : s({spans, spans, 3, false}) {
+    TensionWeights w;
+    w.alpha = 0.01 * Eigen::Matrix2d::Identity();
+    before.H = thin_plate_hessian(s, w, Backend::Optimized);
+    before.K = thin_plate_square_root(s, w);
+    before.f = Eigen::MatrixXd::Zero(s.dof_count(), 3);
+    const double h = spans / 10.0;
+    std::vector<ConstraintRows> pins, more;
+    for (int a = 0; a < 10; ++a)
+      for (int b = 0; b < 10; ++b) pins.push_back(point_rows(s, h * (a + 0.5), h * (b + 0.5), Vec3(a, b, 0.1 * std::sin(a + b))));
+    for (int k = 0; k < 8; ++k) more.push_back(point_rows(s, h * (k + 1), h * 4.9, Vec3(k, 4, -0.2)));
+    const ConstraintRows base = stack(pins, s.dof_count());
+    const ConstraintRows added = stack(more, s.dof_count());
+    before.A = base.A;
+    before.b = base.C;
+    after = before;
+    const ConstraintRows all = stack({base, added}, s.dof_count());
+    after.A = all.A;
+    after.b = all.C;
+    extra = added.A;
+  }
+};
+
+const RowStep& row_step(int spans) {
+  static std::map<int, std::unique_ptr<RowStep>> cache;
+  auto& p = cache[spans];
+  if (!p) p = std::make_unique<RowStep>(spans);
+  return *p;
+}
+
+enum class RowChange { AddUpdate, AddRefactor, RemoveUpdate, RemoveRefactor };
+
+void BM_RowStep(benchmark::State& state, RowChange change) {
+  const RowStep& p = row_step(static_cast<int>(state.range(0)));
+  const bool adding = change == RowChange::AddUpdate || change == RowChange::AddRefactor;
+  const qp::QuadraticProgram& from = adding ? p.before : p.after;
+  const qp::QuadraticProgram& to = adding ? p.after : p.before;
+  std::vector<int> last_rows;
+  for (int k = 0; k < 8; ++k) last_rows.push_back(static_cast<int>(p.before.A.rows()) + k);
+  for (auto _ : state) {
+    state.PauseTiming();
+    qp::RangeSpaceSolver s;
+    s.analyze(from);
+    state.ResumeTiming();
+    if (change == RowChange::AddUpdate) s.add_rows(p.extra);
+    if (change == RowChange::RemoveUpdate) s.remove_rows(last_rows);
+    if (change == RowChange::AddUpdate || change == RowChange::RemoveUpdate) {
+      benchmark::DoNotOptimize(s.solve(to.f, to.b).p.data());
+      continue;
+    }
+    // A fresh solver: analyze() on the old one would recognise the rows and update its factor.
+    qp::RangeSpaceSolver fresh;
+    fresh.analyze(to);
+    benchmark::DoNotOptimize(fresh.solve(to.f, to.b).p.data());
+  }
+  state.counters["dofs"] = p.s.dof_count();
+  state.counters["rows"] = static_cast<double>(to.A.rows());
 }
 
 void BM_Hessian(benchmark::State& state, Backend backend) {
@@ -132,6 +207,10 @@ BENCHMARK_CAPTURE(BM_FactorSolve, qr_penalty_mu1e4_steps0, std::string("qr_penal
 BENCHMARK_CAPTURE(BM_FactorSolve, qr_penalty_mu1e4_steps2, std::string("qr_penalty"), std::string("{mu: 10000, refinement_steps: 2}"))->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_AddConstraint, bordered_schur, true)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_AddConstraint, refactor, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RowStep, add_update, RowChange::AddUpdate)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RowStep, add_refactor, RowChange::AddRefactor)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RowStep, remove_update, RowChange::RemoveUpdate)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RowStep, remove_refactor, RowChange::RemoveRefactor)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Hessian, reference, Backend::Reference)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Hessian, optimized, Backend::Optimized)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

@@ -11,7 +11,7 @@ namespace fairshape::feature {
 namespace {
 
 std::string text(const Vec3& p) {
-  return "(" + std::to_string(p.x()) + ", " + std::to_string(p.y()) + ", " + std::to_string(p.z()) + ")";
+  return std::string("(") + std::to_string(p.x()) + ", " + std::to_string(p.y()) + ", " + std::to_string(p.z()) + ")";
 }
 
 double mean_edge_length(const TriangleSurface& s) {

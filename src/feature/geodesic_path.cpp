@@ -31,7 +31,7 @@ Mesh cgal_copy(const TriangleSurface& s) {
                                               Mesh::Vertex_index(static_cast<Mesh::size_type>(c[1])),
                                               Mesh::Vertex_index(static_cast<Mesh::size_type>(c[2])));
     if (added == Mesh::null_face() || static_cast<int>(added) != f)
-      throw InvalidInput("geodesic paths: face " + std::to_string(f) + " of the level cannot be copied (not a manifold mesh)");
+      throw InvalidInput(std::string("geodesic paths: face ") + std::to_string(f) + " of the level cannot be copied (not a manifold mesh)");
   }
   return m;
 }
@@ -174,12 +174,12 @@ std::vector<int> face_components(const TriangleSurface& s) {
 GeodesicPath geodesic_through(const TriangleSurface& s, const std::vector<SurfacePoint>& waypoints, bool closed) {
   const std::size_t n = waypoints.size();
   if (n < (closed ? 3u : 2u))
-    throw InvalidInput("a " + std::string(closed ? "closed " : "") + "geodesic path needs at least " +
+    throw InvalidInput(std::string("a ") + std::string(closed ? "closed " : "") + "geodesic path needs at least " +
                        (closed ? "3" : "2") + " waypoints, it has " + std::to_string(n));
   const std::vector<int> component = face_components(s);
   for (std::size_t i = 1; i < n; ++i)
     if (component[static_cast<std::size_t>(waypoints[i].face)] != component[static_cast<std::size_t>(waypoints[0].face)])
-      throw InvalidInput("waypoint " + std::to_string(i) + " lies on a different connected component of the surface "
+      throw InvalidInput(std::string("waypoint ") + std::to_string(i) + " lies on a different connected component of the surface "
                          "than waypoint 0: no path on the surface joins them");
   const Mesh m = cgal_copy(s);
   ShortestPath paths(m);
@@ -198,7 +198,7 @@ GeodesicPath geodesic_through(const TriangleSurface& s, const std::vector<Surfac
     const ShortestPath::Face_location target = cgal_location(m, s, to);
     const double distance = paths.shortest_path_sequence_to_source_points(target.first, target.second, recorder).first;
     if (distance < 0 || stops.empty())
-      throw InvalidInput("no path on the surface joins waypoint " + std::to_string(leg) + " to waypoint " +
+      throw InvalidInput(std::string("no path on the surface joins waypoint ") + std::to_string(leg) + " to waypoint " +
                          std::to_string((leg + 1) % n));
     // CGAL reports from the query back to the source: turn it around and name the ends.
     std::reverse(stops.begin(), stops.end());

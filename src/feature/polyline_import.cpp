@@ -14,7 +14,7 @@ Polyline read_point_list(const std::string& path) {
   std::vector<Vec3> points;
   while (scan.next_line()) {
     const auto& tok = scan.tokens();
-    if (tok.size() != 3) scan.fail("expected a point 'x y z', got " + std::to_string(tok.size()) + " values");
+    if (tok.size() != 3) scan.fail(std::string("expected a point 'x y z', got ") + std::to_string(tok.size()) + " values");
     points.emplace_back(scan.to_double(tok[0], "x"), scan.to_double(tok[1], "y"), scan.to_double(tok[2], "z"));
   }
   Polyline c;

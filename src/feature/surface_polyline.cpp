@@ -97,16 +97,25 @@ SurfacePolyline between_arcs(const TriangleSurface& s, const SurfacePolyline& li
 std::vector<SurfacePoint> resample(const TriangleSurface& s, const SurfacePolyline& line, double spacing,
                                    const std::vector<double>& keep, std::vector<char>* fixed) {
   const double total = polyline_length(s, line);
+  const double tiny = 1e-12 * (1 + total);
   // The stretches: between consecutive kept arcs (and the ends of an open polyline).
-  std::vector<double> stops = keep;
-  std::vector<char> stop_fixed(keep.size(), 1);
-  if (!line.closed) {
-    if (stops.empty() || stops.front() > 0) stops.insert(stops.begin(), 0.0), stop_fixed.insert(stop_fixed.begin(), 1);
-    if (stops.back() < total) stops.push_back(total), stop_fixed.push_back(1);
-  } else {
-    if (stops.empty()) stops.push_back(0.0), stop_fixed.push_back(0);
+  std::vector<double> stops;
+  std::vector<char> stop_fixed;
+  const auto stop_at = [&](double arc, char is_fixed) {
+    if (!stops.empty() && arc - stops.back() <= tiny) return;  // the same place twice
+    stops.push_back(arc);
+    stop_fixed.push_back(is_fixed);
+  };
+  if (!line.closed) stop_at(0.0, 1);
+  for (double arc : keep) stop_at(arc, 1);
+  if (line.closed) {
+    if (stops.empty()) stop_at(0.0, 0);
     stops.push_back(stops.front() + total);  // around to the first stop
     stop_fixed.push_back(stop_fixed.front());
+  } else if (total - stops.back() > tiny) {
+    stop_at(total, 1);
+  } else {
+    stop_fixed.back() = 1;  // the last kept arc is the end
   }
   std::vector<SurfacePoint> out;
   std::vector<char> marks;
@@ -114,7 +123,6 @@ std::vector<SurfacePoint> resample(const TriangleSurface& s, const SurfacePolyli
     const double a = stops[i], b = stops[i + 1];
     const int pieces = std::max(1, static_cast<int>(std::lround((b - a) / spacing)));
     for (int j = 0; j < pieces; ++j) {
-      if (j == 0 && !out.empty() && b - a <= 0) break;  // repeated kept arc
       out.push_back(point_at_arc(s, line, a + (b - a) * j / pieces));
       marks.push_back(j == 0 ? stop_fixed[i] : 0);
     }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "experiment/kinds/feature/feature_run.h"
 #include "experiment/run_basics.h"
 
 namespace fairshape {
@@ -100,6 +101,44 @@ std::optional<feature::CurvePlacement> read_curve_placement(Config& f, const std
     return feature::PolylineFilePlacement{resolve_input(path, dirs, f.key_path("polyline"))};
   }
   return std::nullopt;
+}
+
+// Where the feature's control polygon comes from (one of five keys) and whether it is closed.
+void read_curve_source(Config& c, const std::string& where, const std::vector<std::string>& dirs, FeatureSpec& f) {
+  if (curve_keys_given(c) != 1)
+    throw InvalidConfig(where + ": give exactly one of points ([[x, y, z], ...], projected onto the level), "
+                                "surface_points ([[face, b0, b1, b2], ...]), geodesic, section or polyline");
+  f.curve.closed = c.get<bool>("closed", false, "the curve closes on itself: no ends, no end caps, a periodic spline");
+  f.placement = read_curve_placement(c, dirs);
+  if (c.has("points")) f.world_points = read_point_list(c, "points", "world points, projected onto the level's surface");
+  if (c.has("surface_points")) f.curve.points = read_surface_point_list(c, "surface_points", "points as [face, b0, b1, b2] on the level");
+  const std::size_t given = f.world_points.size() + f.curve.points.size();
+  if (!f.placement && given < (f.curve.closed ? 3u : 2u))
+    throw InvalidConfig(f.curve.closed ? c.key_path("closed") + ": a closed curve needs at least three points"
+                                       : where + ": at least two points");
+  if (f.curve.closed && f.placement && std::holds_alternative<feature::SectionPlacement>(*f.placement))
+    throw InvalidConfig(c.key_path("closed") + ": a section is closed when taken whole around a loop (no from/to); "
+                                               "leave closed out");
+  if (f.curve.closed && f.placement && std::holds_alternative<feature::GeodesicPlacement>(*f.placement) &&
+      std::get<feature::GeodesicPlacement>(*f.placement).through.size() < 3)
+    throw InvalidConfig(c.key_path("closed") + ": a closed geodesic needs at least three waypoints");
+  if (f.curve.closed && f.curve.params.end_height_ratio != 1.0)
+    throw InvalidConfig(c.key_path("end_height_ratio") + ": " + std::to_string(f.curve.params.end_height_ratio) +
+                        " on a closed curve (the height would jump at the seam; only 1 is allowed)");
+}
+
+void place_on_level(const feature::TriangleSurface& s, double diagonal, FeatureSpec& f) {
+  if (f.placement) {  // a geodesic, a section or a file, on the level as it is before any feature
+    feature::PlacedCurve placed =
+        feature::place_curve(s, *f.placement, f.curve.closed, f.max_distance * diagonal, f.curve.name, f.key);
+    f.curve.points = std::move(placed.points);
+    f.curve.closed = placed.closed;
+    return;
+  }
+  if (f.world_points.empty()) return;  // surface points, as given
+  MatrixX3 P(static_cast<Eigen::Index>(f.world_points.size()), 3);
+  for (std::size_t i = 0; i < f.world_points.size(); ++i) P.row(static_cast<Eigen::Index>(i)) = f.world_points[i].transpose();
+  f.curve.points = feature::project_to_surface(s, P, f.max_distance * diagonal, "feature '" + f.curve.name + "'");
 }
 
 }  // namespace fairshape

@@ -33,6 +33,9 @@ struct FeatureCurve {
   int level = 0;                     // the hierarchy level it is drawn on
   std::vector<SurfacePoint> points;  // control polygon on that level's mesh
   FeatureParams params;
+  //! The polygon goes on from its last point back to its first: no end, no end cap, and the
+  //! quadratic spline is periodic (a repeated first point would leave a corner and two caps).
+  bool closed = false;
 };
 
 //! One straight piece of a base curve, inside one face of the level (Figure 5).
@@ -53,14 +56,18 @@ struct BaseSegment {
 
 struct BaseCurve {
   std::string name;
-  std::vector<BaseSegment> segments;
+  std::vector<BaseSegment> segments;  // closed: the last one's next is the first one
   double total_length = 0;
   FeatureParams params;
+  bool closed = false;
 };
 
 //! The polygon split at every edge of the level (and, when params.quadratic, replaced by the
-//! quadratic spline through its edge midpoints, sampled and walked on the surface).
-//! \throw InvalidInput when the curve leaves the surface or has fewer than 2 points.
+//! quadratic spline through its edge midpoints, sampled and walked on the surface). A closed
+//! curve also walks from its last point to its first, its segments link around, and its spline
+//! has a span at every point.
+//! \throw InvalidInput when the curve leaves the surface, has fewer than 2 points (3 when
+//! closed), ends where it starts without being closed, or is closed with end_height_ratio ≠ 1.
 BaseCurve build_base_curve(const TriangleSurface& s, const FeatureCurve& curve);
 
 //! World points projected to their closest points on `s` (CGAL AABB tree). \throw InvalidInput

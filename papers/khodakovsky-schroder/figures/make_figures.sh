@@ -33,8 +33,9 @@ run fig15
   --title "Figure 15: a coarse (level 0) edit of the surface carries the features along" \
   --label "base edit: {base_edit_enabled}" --render "${patch_view[@]}"
 run fig17
-/usr/bin/python3 scripts/panels.py $out-fig17 $figs/fig17.png --rest data/knot.off \
-  --title "Figure 17: ten feature curves (ridges and grooves) drawn on level 1 of the knot, level 3 shown" \
-  --label "{features:.0f} features, {segments:.0f} segments, {vertices_moved:.0f} vertices moved" \
-  --render --view front --elevation 10 --azimuth 0 --zoom 1.3 --width 900 --height 700 --component normal \
+# The helmet is z-up with its face opening towards −x: seen from behind its left side.
+/usr/bin/python3 scripts/panels.py $out-fig17 $figs/fig17.png --rest data/helmet.off \
+  --title "Figure 17: six placed features on level 1 of the helmet (sections, geodesics, a file), level 3 shown" \
+  --label "{features:.0f} features, {segments:.0f} segments, {vertices_moved:.0f} vertices moved, max {max_displacement:.4f}" \
+  --render --view front --up z --elevation 20 --azimuth 35 --zoom 1.3 --width 900 --height 700 --component normal \
   --colour-label "normal displacement"

@@ -7,6 +7,7 @@
 #include "core/summary.h"
 #include "core/config.h"
 #include "core/timer.h"
+#include "experiment/kinds/feature/curve_placement_config.h"
 #include "experiment/metric_format.h"
 #include "feature/adaptive_mesh.h"
 #include "feature/featured_surface.h"
@@ -20,13 +21,6 @@ namespace fairshape {
 namespace fs = std::filesystem;
 
 namespace {
-
-Vec3 read_point(const YAML::Node& n, const std::string& where) {
-  if (!n.IsSequence() || n.size() != 3) throw InvalidConfig(where + ": expected [x, y, z]");
-  Vec3 p(n[0].as<double>(), n[1].as<double>(), n[2].as<double>());
-  if (!p.allFinite()) throw InvalidConfig(where + ": not finite");
-  return p;
-}
 
 // Feature parameters: the config's `feature_defaults`, overridden per feature.
 feature::FeatureParams read_params(Config& c, const feature::FeatureParams& d) {
@@ -69,29 +63,8 @@ FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const s
     f.curve.level = c.get_int("level", 0, 0, s.levels, "the hierarchy level the curve is drawn on");
     f.curve.params = read_params(c, defaults);
     f.max_distance = c.get_number("max_distance", 0.02, 0, 1, "× bounding-box diagonal: farther points leave the surface");
-    if (c.has("points") == c.has("surface_points"))
-      throw InvalidConfig(where + ": give exactly one of points ([[x, y, z], ...], projected onto the level) or "
-                                  "surface_points ([[face, b0, b1, b2], ...])");
-    if (c.has("points")) {
-      const YAML::Node pts = c.node()["points"];
-      (void)c.get<YAML::Node>("points", {}, "world points, projected onto the level's surface");
-      if (!pts.IsSequence()) throw InvalidConfig(c.key_path("points") + ": expected a list of [x, y, z]");
-      for (std::size_t i = 0; i < pts.size(); ++i)
-        f.world_points.push_back(read_point(pts[i], c.key_path("points") + "[" + std::to_string(i) + "]"));
-    } else {
-      const YAML::Node pts = c.node()["surface_points"];
-      (void)c.get<YAML::Node>("surface_points", {}, "points as [face, b0, b1, b2] on the level");
-      if (!pts.IsSequence()) throw InvalidConfig(c.key_path("surface_points") + ": expected a list of [face, b0, b1, b2]");
-      for (std::size_t i = 0; i < pts.size(); ++i) {
-        const std::string w = c.key_path("surface_points") + "[" + std::to_string(i) + "]";
-        if (!pts[i].IsSequence() || pts[i].size() != 4) throw InvalidConfig(w + ": expected [face, b0, b1, b2]");
-        feature::SurfacePoint p{pts[i][0].as<int>(), Vec3(pts[i][1].as<double>(), pts[i][2].as<double>(), pts[i][3].as<double>())};
-        if (p.bary.minCoeff() < 0 || std::abs(p.bary.sum() - 1) > 1e-9)
-          throw InvalidConfig(w + ": barycentric coordinates must be >= 0 and sum to 1");
-        f.curve.points.push_back(p);
-      }
-    }
-    if (f.world_points.size() + f.curve.points.size() < 2) throw InvalidConfig(where + ": at least two points");
+    f.key = where;
+    read_curve_source(c, where, dirs, f);
     try {
       f.curve.params.validate(where);
     } catch (const InvalidInput& e) {
@@ -144,13 +117,11 @@ feature::FeaturedSurface placed_features(FeatureRunSpec& spec, MultiresSurface o
   const double diag = bounding_diagonal(surface.original().mesh(spec.levels));
   std::map<int, feature::TriangleSurface> drawn_on;  // one per level: its normals and AABB tree
   for (FeatureSpec& f : spec.features) {
-    if (!f.world_points.empty()) {
+    if (!f.world_points.empty() || f.placement) {
       const SurfaceMesh& level = surface.original().mesh(f.curve.level);
       const feature::TriangleSurface& s =
           drawn_on.try_emplace(f.curve.level, level, feature::loop_limit_normals(level)).first->second;
-      MatrixX3 P(static_cast<Eigen::Index>(f.world_points.size()), 3);
-      for (std::size_t i = 0; i < f.world_points.size(); ++i) P.row(static_cast<Eigen::Index>(i)) = f.world_points[i].transpose();
-      f.curve.points = feature::project_to_surface(s, P, f.max_distance * diag, "feature '" + f.curve.name + "'");
+      place_on_level(s, diag, f);
     }
     for (const auto& p : f.curve.points)
       if (p.face < 0 || p.face >= surface.original().mesh(f.curve.level).n_faces())
@@ -199,14 +170,15 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
     ConstraintOverlay drawn;  // vtk/<run>_constraints.vtp: the base curves, where the designer drew them
     for (const auto& [id, bc] : surface.base_curves()) {
       segments += static_cast<int>(bc.segments.size());
-      MatrixX3 X(static_cast<Eigen::Index>(bc.segments.size() + 1), 3);
+      // A closed curve's last segment ends at the first one's start: written once, as a loop.
+      MatrixX3 X(static_cast<Eigen::Index>(bc.segments.size() + (bc.closed ? 0 : 1)), 3);
       for (std::size_t i = 0; i < bc.segments.size(); ++i) X.row(static_cast<Eigen::Index>(i)) = bc.segments[i].a.transpose();
-      X.row(X.rows() - 1) = bc.segments.back().b.transpose();
-      write_polyline(Polyline{X, false}, (fs::path(out.dir) / "curves" /
+      if (!bc.closed) X.row(X.rows() - 1) = bc.segments.back().b.transpose();
+      write_polyline(Polyline{X, bc.closed}, (fs::path(out.dir) / "curves" /
                                           (out.run_id + "_" + surface.features().at(id).name + ".obj")).string());
       std::vector<Vec3> points;
       for (Eigen::Index i = 0; i < X.rows(); ++i) points.push_back(X.row(i).transpose());
-      drawn.add_curve(points);
+      drawn.add_curve(points, bc.closed);
     }
     if (spec.vtk) drawn.write((fs::path(out.dir) / "vtk" / (out.run_id + "_constraints.vtp")).string());
     row["segments"] = std::to_string(segments);

@@ -11,6 +11,7 @@
 #include "experiment/run_outputs.h"
 #include "experiment/run_basics.h"
 #include "feature/base_edit.h"
+#include "feature/curve_placement.h"
 #include "feature/feature_curve.h"
 #include "feature/featured_surface.h"
 #include "subdivision/scheme.h"
@@ -21,6 +22,8 @@ struct FeatureSpec {
   feature::FeatureCurve curve;       // points filled in when the run projects `world_points`
   std::vector<Vec3> world_points;    // or given as surface points (curve.points)
   double max_distance = 0.02;        // × bounding-box diagonal: farther points leave the surface
+  std::optional<feature::CurvePlacement> placement;  // or placed by a tool (geodesic, section, file)
+  std::string key;                   // "features[3]", for messages
 };
 
 struct BaseEditSpec {

@@ -5,6 +5,7 @@
 
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace fairshape {
@@ -32,6 +33,11 @@ class RunTables {
 //! digits, '.', '_' and '-' becomes '_', so no name ("../x", "a/b") can place a file outside the
 //! run's folders.
 std::string file_name_part(const std::string& name);
+
+//! (key, name) pairs of one kind of output (sheets, curves, features). \throw InvalidConfig
+//! naming both keys when two names make the same file-name part ("a/b" and "a_b"): one file
+//! would silently overwrite the other.
+void check_distinct_file_names(const std::vector<std::pair<std::string, std::string>>& keyed_names);
 
 //! The folders every run may write into (vtk/), created under an output folder.
 void create_run_folders(const std::string& dir);

@@ -64,6 +64,8 @@ grep -q "max |dw1/dn1 + dw2/dn2| [0-9.]*e-1[0-9]" "$SCRATCH/smooth/runs.csv" || 
   $(for i in 0 1 2 3 4 5; do echo "--set constraints.$i.curve=../esc"; done) 2>/dev/null || fail "a run with curve name ../esc failed"
 ls "$SCRATCH/esc/run/curves/"*"_.._esc.obj" >/dev/null 2>&1 || fail "the curve ../esc was not written inside curves/"
 [ -z "$(find "$SCRATCH/esc" -name '*esc.obj' -not -path '*/run/curves/*')" ] || fail "a curve file escaped the run's curves/ folder"
+expect_error 2 "sheets\[1\].name: 'a_b' would be written to the same file as sheets\[0\].name" -- \
+  "$FS" run configs/welch-witkin/smooth_joint.yaml --set 'sheets.0.name=a/b' --set 'sheets.1.name=a_b' --out "$SCRATCH/x"
 expect_error 2 "constraints\[2\].keep: 'up' is not a side (valid: left, right)" -- \
   "$FS" run configs/welch-witkin/smooth_joint.yaml --set 'constraints.2.keep=[up, left]' --out "$SCRATCH/x"
 expect_error 2 "constraints\[2\].sheets: sheet 'lower' has 2 curve constraints joining it to 'ridge'" -- \

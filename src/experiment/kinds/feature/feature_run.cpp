@@ -74,6 +74,9 @@ FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const s
     s.features.push_back(std::move(f));
   }
   if (s.features.empty()) throw InvalidConfig("features: at least one feature curve");
+  std::vector<std::pair<std::string, std::string>> names;
+  for (const FeatureSpec& f : s.features) names.emplace_back(f.key + ".name", f.curve.name);
+  check_distinct_file_names(names);
   Config ec = root.child("base_edit", "a coarse edit of the base surface (Figure 15): {enabled, nearest, offset, radius}");
   s.base_edit.enabled = ec.get<bool>("enabled", ec.has("offset"), "apply the edit");
   s.base_edit.edit.nearest = read_vec3(ec, "nearest", Vec3::Zero(), "the edit's centre: the base vertex nearest to this point");
@@ -175,7 +178,7 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
       for (std::size_t i = 0; i < bc.segments.size(); ++i) X.row(static_cast<Eigen::Index>(i)) = bc.segments[i].a.transpose();
       if (!bc.closed) X.row(X.rows() - 1) = bc.segments.back().b.transpose();
       write_polyline(Polyline{X, bc.closed}, (fs::path(out.dir) / "curves" /
-                                          (out.run_id + "_" + surface.features().at(id).name + ".obj")).string());
+                                          (out.run_id + "_" + file_name_part(surface.features().at(id).name) + ".obj")).string());
       std::vector<Vec3> points;
       for (Eigen::Index i = 0; i < X.rows(); ++i) points.push_back(X.row(i).transpose());
       drawn.add_curve(points, bc.closed);

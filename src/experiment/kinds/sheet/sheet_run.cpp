@@ -215,6 +215,9 @@ SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config, const std::
   static_cast<RunBasics&>(s) = read_run_basics(root);
   for (Config c : root.child_list("sheets", "hierarchical B-spline sheets")) s.sheets.push_back(read_sheet(c, search_dirs));
   if (s.sheets.empty()) throw InvalidConfig("sheets: at least one sheet");
+  std::vector<std::pair<std::string, std::string>> sheet_names;
+  for (std::size_t k = 0; k < s.sheets.size(); ++k) sheet_names.emplace_back("sheets[" + std::to_string(k) + "].name", s.sheets[k].name);
+  check_distinct_file_names(sheet_names);
   const auto sheet_index = [&](const std::string& name, const std::string& key) {
     for (std::size_t k = 0; k < s.sheets.size(); ++k)
       if (s.sheets[k].name == name) return static_cast<int>(k);
@@ -228,6 +231,9 @@ SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config, const std::
     if (!s.curves.back().from_sheet.empty()) sheet_index(s.curves.back().from_sheet, "curves[" + std::to_string(k) + "].from_surface.sheet");
     ++k;
   }
+  std::vector<std::pair<std::string, std::string>> curve_names;
+  for (std::size_t i = 0; i < s.curves.size(); ++i) curve_names.emplace_back("curves[" + std::to_string(i) + "].name", s.curves[i].name);
+  check_distinct_file_names(curve_names);
   k = 0;
   for (Config c : root.child_list("constraints", "[{type: point|tangent|normal|curve|curve_point|curve_tangent|tangent_continuity, sheet, uv, ...}]")) {
     const std::string label = "constraints[" + std::to_string(k++) + "]";

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "feature/perturbation.h"
+#include "feature/visible_profile.h"
 #include "subdivision/multires_surface.h"
 
 namespace fairshape::feature {
@@ -19,7 +20,8 @@ namespace fairshape::feature {
 class FeaturedSurface {
  public:
   //! \throw InvalidInput unless the hierarchy is Loop.
-  FeaturedSurface(MultiresSurface surface, Backend backend);
+  FeaturedSurface(MultiresSurface surface, Backend backend, ProfileTarget target = ProfileTarget::Limit);
+  ProfileTarget profile_target() const { return target_; }
 
   int add(FeatureCurve curve);  // returns the feature's id
   void replace(int id, FeatureCurve curve);
@@ -43,6 +45,11 @@ class FeaturedSurface {
   const LevelPerturbation& perturbation(int level);
   //! The base curves of the last evaluation (for output), per feature id.
   const std::map<int, BaseCurve>& base_curves();
+  //! The levels' operators of the last evaluation (coarse to fine) and the visible targets
+  //! they compose to (visible_profile.h; computed for every ProfileTarget, so that the
+  //! drawn-level semantics can be measured against them too).
+  const std::vector<LevelOperator>& operators();
+  const VisibleTargets& visible_targets();
 
  private:
   // The base curves of features `ids` on `mesh` (one level) and the perturbation they make.
@@ -55,6 +62,9 @@ class FeaturedSurface {
   std::vector<int> features_on(int level) const;
   MultiresSurface original_, result_;
   Backend backend_;
+  ProfileTarget target_;
+  std::vector<LevelOperator> operators_;
+  VisibleTargets visible_;
   std::map<int, FeatureCurve> features_;
   std::map<int, BaseCurve> base_curves_;
   std::vector<LevelPerturbation> perturbations_;

@@ -14,6 +14,16 @@ MatrixX3 LevelPerturbation::dense(int n_vertices) const {
   return d;
 }
 
+LevelPerturbation collect_moved(const std::vector<int>& ids, const std::vector<Vec3>& moved, const std::vector<char>& touched) {
+  LevelPerturbation out;
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    if (touched[i]) out.vertices.push_back(ids[i]);
+  out.displacement.resize(static_cast<Eigen::Index>(out.vertices.size()), 3);
+  for (std::size_t i = 0, row = 0; i < ids.size(); ++i)
+    if (touched[i]) out.displacement.row(static_cast<Eigen::Index>(row++)) = moved[i].transpose();
+  return out;
+}
+
 void OffsetCombiner::add(const SegmentOffset& o) {
   if (o.delta > raise.delta) raise = o;
   if (o.delta < cut.delta) cut = o;
@@ -29,24 +39,29 @@ double cubic_profile(double s, double length, double h0, double m0, double h1, d
 
 namespace {
 
-// Arc length along the unrolled path of the point closest to p; < 0 when that is the path's end
-// (p lies beyond the region of influence).
-double arc_of_closest(const UnrolledRay& ray, const Vec3& p) {
+// Arc length along the unrolled path of the point closest to p (< 0 when that is the path's end:
+// p lies beyond the region of influence) and that path point.
+struct ClosestOnPath {
+  double arc = -1;
+  Vec3 point = Vec3::Zero();
+};
+ClosestOnPath closest_on_path(const UnrolledRay& ray, const Vec3& p) {
   double best = std::numeric_limits<double>::infinity(), arc = 0;
+  Vec3 point = ray.path.front();
   for (std::size_t k = 1; k < ray.path.size(); ++k) {
     const Vec3 a = ray.path[k - 1], ab = ray.path[k] - a;
     const double len2 = ab.squaredNorm();
     const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
     const double d = (p - (a + t * ab)).squaredNorm();
-    if (d < best) best = d, arc = ray.arc[k - 1] + t * (ray.arc[k] - ray.arc[k - 1]);
+    if (d < best) best = d, arc = ray.arc[k - 1] + t * (ray.arc[k] - ray.arc[k - 1]), point = a + t * ab;
   }
-  return arc < ray.length() * (1 - 1e-12) ? arc : -1.0;
+  return {arc < ray.length() * (1 - 1e-12) ? arc : -1.0, point};
 }
 
 }  // namespace
 
 std::optional<SegmentOffset> segment_offset(const TriangleSurface& s, const BaseCurve& curve, int segment,
-                                            const Vec3& p) {
+                                            const Vec3& p, OffsetMeaning meaning) {
   const BaseSegment& seg = curve.segments[static_cast<std::size_t>(segment)];
   const FeatureParams& q = curve.params;
   const double t = seg.closest_parameter(p);
@@ -71,7 +86,8 @@ std::optional<SegmentOffset> segment_offset(const TriangleSurface& s, const Base
   const UnrolledRay ray = unroll_ray(s, base, dir, radius);
   const double length = ray.length();
   if (length <= 0) return std::nullopt;
-  const double arc = arc_of_closest(ray, p);
+  const ClosestOnPath on_path = closest_on_path(ray, p);
+  const double arc = on_path.arc;
   if (arc < 0) return std::nullopt;
   // One frame serves the whole cross-section (§1.4: the feature is small against the surface's
   // own scale); a surface that turns away within the radius breaks that, loudly.
@@ -86,7 +102,10 @@ std::optional<SegmentOffset> segment_offset(const TriangleSurface& s, const Base
   const double along_curve = (seg.arc_start + t * seg.length) / curve.total_length;
   const double height = q.height * (1 + (q.end_height_ratio - 1) * along_curve);
   const double target = cubic_profile(arc, length, height, q.crease, z_end, slope_end);
-  return SegmentOffset{target - (p - b).dot(n), n};
+  // Onto the profile: p's own height is replaced. As a displacement: the level's own section at
+  // that arc length is replaced, and p (a finer or limit point) moves by the same amount.
+  const double from = meaning == OffsetMeaning::OntoProfile ? (p - b).dot(n) : (on_path.point - b).dot(n);
+  return SegmentOffset{target - from, n};
 }
 
 }  // namespace fairshape::feature

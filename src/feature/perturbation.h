@@ -33,13 +33,25 @@ struct SegmentOffset {
   double delta = 0;        // along the normal at the base point
   Vec3 normal = Vec3::Zero();
 };
+//! OntoProfile (the paper's, for the level's own control points): p moves onto the profile.
+//! Displacement (for points of a finer level or of the limit surface near the level): p moves
+//! by the profile's height minus the level's own section at p's arc length, so a surface that
+//! is not the level's facets (finer, smoother) keeps its own shape and gains exactly the
+//! profile's cross-section as a displacement, which is 0 with slope 0 at the boundary.
+enum class OffsetMeaning { OntoProfile, Displacement };
 std::optional<SegmentOffset> segment_offset(const TriangleSurface& s, const BaseCurve& curve, int segment,
-                                            const Vec3& p);
+                                            const Vec3& p, OffsetMeaning meaning = OffsetMeaning::OntoProfile);
 
 //! The reference evaluates every segment at every vertex of the level, serially; the optimized
 //! one gathers each segment's neighbourhood by a walk over the mesh and evaluates in parallel.
 //! They agree exactly (same segments, same order). \throw FlatnessError (see ray_unrolling.h).
 LevelPerturbation compute_perturbation(const TriangleSurface& s, const std::vector<BaseCurve>& curves,
                                        Backend backend);
+
+//! The features' displacement (OffsetMeaning::Displacement, combined as on the level) of
+//! arbitrary points near the level: the vertices of a finer level or their limit points.
+//! `vertices` of the result index the rows of `points`. Same back ends, same exact agreement.
+LevelPerturbation displace_points(const TriangleSurface& s, const std::vector<BaseCurve>& curves,
+                                  const MatrixX3& points, Backend backend);
 
 }  // namespace fairshape::feature

@@ -39,23 +39,18 @@ double cubic_profile(double s, double length, double h0, double m0, double h1, d
 
 namespace {
 
-// Arc length along the unrolled path of the point closest to p (< 0 when that is the path's end:
-// p lies beyond the region of influence) and that path point.
-struct ClosestOnPath {
-  double arc = -1;
-  Vec3 point = Vec3::Zero();
-};
-ClosestOnPath closest_on_path(const UnrolledRay& ray, const Vec3& p) {
+// Arc length along the unrolled path of the point closest to p; < 0 when that is the path's end
+// (p lies beyond the region of influence).
+double arc_of_closest(const UnrolledRay& ray, const Vec3& p) {
   double best = std::numeric_limits<double>::infinity(), arc = 0;
-  Vec3 point = ray.path.front();
   for (std::size_t k = 1; k < ray.path.size(); ++k) {
     const Vec3 a = ray.path[k - 1], ab = ray.path[k] - a;
     const double len2 = ab.squaredNorm();
     const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
     const double d = (p - (a + t * ab)).squaredNorm();
-    if (d < best) best = d, arc = ray.arc[k - 1] + t * (ray.arc[k] - ray.arc[k - 1]), point = a + t * ab;
+    if (d < best) best = d, arc = ray.arc[k - 1] + t * (ray.arc[k] - ray.arc[k - 1]);
   }
-  return {arc < ray.length() * (1 - 1e-12) ? arc : -1.0, point};
+  return arc < ray.length() * (1 - 1e-12) ? arc : -1.0;
 }
 
 }  // namespace
@@ -86,8 +81,7 @@ std::optional<SegmentOffset> segment_offset(const TriangleSurface& s, const Base
   const UnrolledRay ray = unroll_ray(s, base, dir, radius);
   const double length = ray.length();
   if (length <= 0) return std::nullopt;
-  const ClosestOnPath on_path = closest_on_path(ray, p);
-  const double arc = on_path.arc;
+  const double arc = arc_of_closest(ray, p);
   if (arc < 0) return std::nullopt;
   // One frame serves the whole cross-section (§1.4: the feature is small against the surface's
   // own scale); a surface that turns away within the radius breaks that, loudly.
@@ -102,10 +96,9 @@ std::optional<SegmentOffset> segment_offset(const TriangleSurface& s, const Base
   const double along_curve = (seg.arc_start + t * seg.length) / curve.total_length;
   const double height = q.height * (1 + (q.end_height_ratio - 1) * along_curve);
   const double target = cubic_profile(arc, length, height, q.crease, z_end, slope_end);
-  // Onto the profile: p's own height is replaced. As a displacement: the level's own section at
-  // that arc length is replaced, and p (a finer or limit point) moves by the same amount.
-  const double from = meaning == OffsetMeaning::OntoProfile ? (p - b).dot(n) : (on_path.point - b).dot(n);
-  return SegmentOffset{target - from, n};
+  if (meaning == OffsetMeaning::Displacement)  // the cubic minus the cubic through the section's own
+    return SegmentOffset{cubic_profile(arc, length, height, q.crease, 0, 0), n};  // boundary values
+  return SegmentOffset{target - (p - b).dot(n), n};
 }
 
 }  // namespace fairshape::feature

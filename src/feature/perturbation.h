@@ -35,9 +35,11 @@ struct SegmentOffset {
 };
 //! OntoProfile (the paper's, for the level's own control points): p moves onto the profile.
 //! Displacement (for points of a finer level or of the limit surface near the level): p moves
-//! by the profile's height minus the level's own section at p's arc length, so a surface that
-//! is not the level's facets (finer, smoother) keeps its own shape and gains exactly the
-//! profile's cross-section as a displacement, which is 0 with slope 0 at the boundary.
+//! along the base normal by the cubic with value `height` and slope `crease` at the curve and
+//! value and slope 0 at the unrolled length — the paper's cubic less the cubic through the
+//! section's own boundary values. On a plane both are the same; elsewhere this one leaves the
+//! visible surface's own smooth shape under the feature instead of the level's flat facets
+//! (whose kinks a finer surface would show) and joins it C¹ at the boundary.
 enum class OffsetMeaning { OntoProfile, Displacement };
 std::optional<SegmentOffset> segment_offset(const TriangleSurface& s, const BaseCurve& curve, int segment,
                                             const Vec3& p, OffsetMeaning meaning = OffsetMeaning::OntoProfile);

@@ -67,7 +67,9 @@ ProfileMeasure measure_one(const SurfaceMesh& finest, const Surfaces& x, const T
   for (int v = 0; v < finest.n_vertices(); ++v) {
     const Vec3 p = x.reference.row(v).transpose();
     const NearCurve near = near_curve(curve, p);
-    if (near.distance >= reach + level.longest_edge() || near_other(others, p)) continue;
+    // Other features are tested where the requested surface is: a finer feature's curve lies
+    // on this feature's displaced surface, not on the surface it was applied to.
+    if (near.distance >= reach + level.longest_edge() || near_other(others, x.requested.row(v).transpose())) continue;
     const Vec3 achieved = (x.achieved.row(v) - x.reference.row(v)).transpose();
     const Vec3 requested = (x.requested.row(v) - x.reference.row(v)).transpose();
     m.profile_error = std::max(m.profile_error, (achieved - requested).norm() / scale);
@@ -104,7 +106,7 @@ ProfileMeasure measure_one(const SurfaceMesh& finest, const Surfaces& x, const T
   m.height_min = std::numeric_limits<double>::infinity(), m.height_max = -m.height_min;
   for (std::size_t i = 0; i < at.size(); ++i) {
     const Frame f = frame_at(level, curve, at[i].first, at[i].second);
-    if (near_other(others, f.b)) continue;
+    if (near_other(others, f.b) || near_other(others, f.b + requested_height(curve, at[i].first, at[i].second) * f.n)) continue;
     const int face = face_of[i];
     const Vec3 w = faces.barycentric(face, below.row(static_cast<Eigen::Index>(i)).transpose());
     double h = 0;

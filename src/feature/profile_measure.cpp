@@ -29,9 +29,26 @@ NearCurve near_curve(const BaseCurve& c, const Vec3& p) {
   return best;
 }
 
-bool near_other(const std::vector<const BaseCurve*>& others, const Vec3& p) {
-  for (const BaseCurve* c : others)
-    if (near_curve(*c, p).distance < reach_of(*c)) return true;
+// A curve's box widened by `pad`: most points of a fine level are far from a curve, and this
+// rejects them before the scan over its segments.
+struct Box {
+  Vec3 lo, hi;
+  Box(const BaseCurve& c, double pad) : lo(Vec3::Constant(1e300)), hi(Vec3::Constant(-1e300)) {
+    for (const BaseSegment& s : c.segments) lo = lo.cwiseMin(s.a.cwiseMin(s.b)), hi = hi.cwiseMax(s.a.cwiseMax(s.b));
+    lo.array() -= pad, hi.array() += pad;
+  }
+  bool contains(const Vec3& p) const { return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all(); }
+};
+
+struct Other {
+  const BaseCurve* curve;
+  Box box;
+};
+using Others = std::vector<Other>;
+
+bool near_other(const Others& others, const Vec3& p) {
+  for (const Other& o : others)
+    if (o.box.contains(p) && near_curve(*o.curve, p).distance < reach_of(*o.curve)) return true;
   return false;
 }
 
@@ -50,22 +67,39 @@ double requested_height(const BaseCurve& c, int segment, double t) {
   return c.params.height * (1 + (c.params.end_height_ratio - 1) * along);
 }
 
+// The finest faces of a reference surface, to find the face below a curve sample (one per
+// surface: an AABB tree of the finest level is the costly part of the measurement).
+struct FinestFaces {
+  SurfaceMesh mesh;
+  ClosestPointQuery locate;
+  TriangleSurface faces;
+  FinestFaces(const SurfaceMesh& finest, const MatrixX3& positions)
+      : mesh(with_positions(finest, positions)), locate(mesh), faces(mesh, MatrixX3::Zero(mesh.n_vertices(), 3)) {}
+  static SurfaceMesh with_positions(SurfaceMesh m, const MatrixX3& x) {
+    m.positions() = x;
+    return m;
+  }
+};
+
 // One surface (finest control points or limit points): where the feature was applied to, what
 // was asked of it, and what it is.
 struct Surfaces {
   const MatrixX3& reference;
   const MatrixX3& requested;
   const MatrixX3& achieved;
+  const FinestFaces& below;
 };
 
 ProfileMeasure measure_one(const SurfaceMesh& finest, const Surfaces& x, const TriangleSurface& level,
-                           const BaseCurve& curve, const std::vector<const BaseCurve*>& others, double scale) {
+                           const BaseCurve& curve, const Others& others, double scale) {
   ProfileMeasure m;
   const double reach = reach_of(curve);
   // Profile error and widths over the finest vertices near the curve.
   double sum_a[2] = {0, 0}, moment_a[2] = {0, 0}, sum_t[2] = {0, 0}, moment_t[2] = {0, 0};
+  const Box box(curve, reach + level.longest_edge());
   for (int v = 0; v < finest.n_vertices(); ++v) {
     const Vec3 p = x.reference.row(v).transpose();
+    if (!box.contains(p)) continue;
     const NearCurve near = near_curve(curve, p);
     // Other features are tested where the requested surface is: a finer feature's curve lies
     // on this feature's displaced surface, not on the surface it was applied to.
@@ -89,10 +123,7 @@ ProfileMeasure measure_one(const SurfaceMesh& finest, const Surfaces& x, const T
   }
   m.width_left = width[0], m.width_right = width[1];
   // Heights at samples of the base curve, about one per finest edge, in the finest face below.
-  SurfaceMesh surface = finest;
-  surface.positions() = x.reference;
-  const ClosestPointQuery locate(surface);
-  const TriangleSurface faces(surface, MatrixX3::Zero(surface.n_vertices(), 3));
+  const TriangleSurface& faces = x.below.faces;
   std::vector<std::pair<int, double>> at;
   for (int k = 0; k < static_cast<int>(curve.segments.size()); ++k) {
     const int n = std::max(1, static_cast<int>(std::ceil(curve.segments[static_cast<std::size_t>(k)].length / faces.longest_edge())));
@@ -102,7 +133,7 @@ ProfileMeasure measure_one(const SurfaceMesh& finest, const Surfaces& x, const T
   for (std::size_t i = 0; i < at.size(); ++i)
     samples.row(static_cast<Eigen::Index>(i)) = frame_at(level, curve, at[i].first, at[i].second).b.transpose();
   std::vector<int> face_of;
-  const MatrixX3 below = locate.closest_points(samples, &face_of);
+  const MatrixX3 below = x.below.locate.closest_points(samples, &face_of);
   m.height_min = std::numeric_limits<double>::infinity(), m.height_max = -m.height_min;
   for (std::size_t i = 0; i < at.size(); ++i) {
     const Frame f = frame_at(level, curve, at[i].first, at[i].second);
@@ -147,12 +178,13 @@ std::vector<FeatureMeasure> measure_features(FeaturedSurface& surface) {
   std::vector<const BaseCurve*> all;
   for (const LevelOperator& op : ops)
     for (const BaseCurve& c : op.curves) all.push_back(&c);
-  for (std::size_t k = 0; k < ops.size(); ++k)
+  for (std::size_t k = 0; k < ops.size(); ++k) {
+    const FinestFaces fine_below(finest, targets.fine[k]), limit_below(finest, targets.limit[k]);
     for (std::size_t j = 0; j < ops[k].curves.size(); ++j) {
       const BaseCurve& curve = ops[k].curves[j];
-      std::vector<const BaseCurve*> others;
+      Others others;
       for (const BaseCurve* c : all)
-        if (c != &curve) others.push_back(c);
+        if (c != &curve) others.push_back({c, Box(*c, reach_of(*c))});
       const FeatureParams& q = curve.params;
       double scale = std::max(std::abs(q.height), std::abs(q.height * q.end_height_ratio));
       if (scale <= 0) scale = q.radius;  // a crease alone: errors as fractions of the radius
@@ -160,13 +192,14 @@ std::vector<FeatureMeasure> measure_features(FeaturedSurface& surface) {
       f.id = ops[k].ids[j];
       f.name = curve.name;
       f.level = ops[k].level;
-      f.fine = measure_one(finest, {targets.fine[k], targets.fine.back(), achieved_fine}, *ops[k].surface, curve, others, scale);
-      f.limit = measure_one(finest, {targets.limit[k], targets.limit.back(), achieved_limit}, *ops[k].surface, curve, others, scale);
+      f.fine = measure_one(finest, {targets.fine[k], targets.fine.back(), achieved_fine, fine_below}, *ops[k].surface, curve, others, scale);
+      f.limit = measure_one(finest, {targets.limit[k], targets.limit.back(), achieved_limit, limit_below}, *ops[k].surface, curve, others, scale);
       f.why = miss("finest level", f.fine, q);
       if (f.why.empty()) f.why = miss("limit", f.limit, q);
       f.within_tolerance = f.why.empty();
       out.push_back(std::move(f));
     }
+  }
   std::sort(out.begin(), out.end(), [](const FeatureMeasure& a, const FeatureMeasure& b) { return a.id < b.id; });
   return out;
 }

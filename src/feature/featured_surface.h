@@ -5,7 +5,9 @@
 // frames, then perturbed by the features drawn on level l. So a feature can be edited, moved or
 // deleted without loss, finer features follow coarser ones, and an edit of the base surface
 // carries every feature with it (curves are attached to the surface by face and barycentric
-// coordinates).
+// coordinates). Finally the finest level is set so that the visible surface (the limit, or the
+// finest control points: ProfileTarget) carries every feature's profile exactly, whatever level it
+// was drawn on (visible_profile.h); ProfileTarget::DrawnLevel stops at the paper's step.
 #pragma once
 
 #include <map>

@@ -56,6 +56,8 @@ def main():
     p.add_argument("--ladder", metavar="RUN_ID", help="show this run's ladder levels instead of every run")
     p.add_argument("--steps", metavar="RUN_ID", help="show this run's drag steps instead of every run")
     p.add_argument("--rest", help="also show this mesh first, uncoloured")
+    p.add_argument("--allow-unmet", action="store_true",
+                   help="also show runs that finished as constraints_unmet (their misses are in the run's CSVs)")
     p.add_argument("--columns", type=int, default=0, help="panels per row (default: all in one row)")
     p.add_argument("--render", nargs=argparse.REMAINDER, default=[], help="arguments for fairshape render")
     a = p.parse_args()
@@ -97,7 +99,8 @@ def run_panels(a):
     if not a.label:
         sys.exit("panels: --label is required (or --ladder RUN_ID)")
     rows = list(csv.DictReader(open(os.path.join(a.run_dir, "runs.csv"))))
-    failed = [r["run_id"] for r in rows if r["termination"] not in ("converged", "energy_stalled", "schedule_completed")]
+    finished = ("converged", "energy_stalled", "schedule_completed") + (("constraints_unmet",) if a.allow_unmet else ())
+    failed = [r["run_id"] for r in rows if r["termination"] not in finished]
     if failed:
         sys.exit(f"panels: runs {failed} did not finish; see {a.run_dir}/runs.csv")
     inputs = [f"{a.run_dir}@{r['run_id']}" for r in rows]

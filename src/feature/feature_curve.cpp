@@ -17,6 +17,8 @@ void FeatureParams::validate(const std::string& where) const {
   require(end_height_ratio >= 0 && std::isfinite(end_height_ratio), "end_height_ratio", end_height_ratio, ">= 0");
   require(flatness_angle_deg > 0 && flatness_angle_deg < 90, "flatness_angle_deg", flatness_angle_deg, "(0, 90)");
   require(max_turn_deg > 0 && max_turn_deg < 180, "max_turn_deg", max_turn_deg, "(0, 180)");
+  require(profile_tolerance > 0 && profile_tolerance <= 1, "profile_tolerance", profile_tolerance, "(0, 1]");
+  require(width_tolerance > 0 && width_tolerance <= 1, "width_tolerance", width_tolerance, "(0, 1]");
   require(quadratic_samples >= 1 && quadratic_samples <= 256, "quadratic_samples", quadratic_samples, "1..256");
 }
 

@@ -23,6 +23,11 @@ struct FeatureParams {
   double max_turn_deg = 60.0;       // the surface may turn at most this much within the radius
   bool quadratic = false;          // frames on the quadratic spline of the polygon (§2.4)
   int quadratic_samples = 8;       // straight pieces per quadratic span
+  // How closely the visible surface (finest level, limit) must show the profile
+  // (profile_measure.h): height and profile errors as a fraction of |height|, widths as a
+  // fraction of the radius. A feature that misses them is reported, and its run not converged.
+  double profile_tolerance = 0.02;
+  double width_tolerance = 0.02;
   double right_radius() const { return radius / left_right_ratio; }
   //! \throw InvalidInput naming the parameter and its valid range.
   void validate(const std::string& where) const;

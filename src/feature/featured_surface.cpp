@@ -2,8 +2,8 @@
 
 namespace fairshape::feature {
 
-FeaturedSurface::FeaturedSurface(MultiresSurface surface, Backend backend)
-    : original_(std::move(surface)), result_(original_), backend_(backend) {
+FeaturedSurface::FeaturedSurface(MultiresSurface surface, Backend backend, ProfileTarget target)
+    : original_(std::move(surface)), result_(original_), backend_(backend), target_(target) {
   if (original_.options().scheme != SchemeType::Loop)
     throw InvalidInput("feature curves live on Loop hierarchies; this one is " +
                        std::string(to_string(original_.options().scheme)));
@@ -44,6 +44,16 @@ const std::map<int, BaseCurve>& FeaturedSurface::base_curves() {
   return base_curves_;
 }
 
+const std::vector<LevelOperator>& FeaturedSurface::operators() {
+  if (dirty_) evaluate();
+  return operators_;
+}
+
+const VisibleTargets& FeaturedSurface::visible_targets() {
+  if (dirty_) evaluate();
+  return visible_;
+}
+
 std::vector<int> FeaturedSurface::features_on(int level) const {
   std::vector<int> ids;
   for (const auto& [id, curve] : features_)
@@ -70,17 +80,35 @@ void FeaturedSurface::check_coarsest_features() const {
 void FeaturedSurface::evaluate() {
   result_ = original_;
   base_curves_.clear();
+  operators_.clear();
+  visible_ = {};
   perturbations_.assign(static_cast<std::size_t>(original_.levels() + 1), {});
   for (int level = 0; level <= original_.levels(); ++level) {
     const std::vector<int> ids = features_on(level);
     if (ids.empty()) continue;
-    const SurfaceMesh& mesh = result_.mesh(level);
-    LevelFeatures applied = apply_on(mesh, ids);
-    for (std::size_t k = 0; k < ids.size(); ++k) base_curves_[ids[k]] = std::move(applied.curves[k]);
+    // The level as the curves were drawn on it: kept, since the finest level's displacement is
+    // measured on it after the level itself has moved.
+    LevelOperator op;
+    op.level = level;
+    op.ids = ids;
+    op.mesh = std::make_shared<const SurfaceMesh>(result_.mesh(level));
+    op.surface = std::make_shared<const TriangleSurface>(*op.mesh, loop_limit_normals(*op.mesh));
+    for (int id : ids) op.curves.push_back(build_base_curve(*op.surface, features_.at(id)));
     LevelPerturbation& d = perturbations_[static_cast<std::size_t>(level)];
-    d = std::move(applied.perturbation);
-    result_.set_level_positions(level, mesh.positions() + d.dense(mesh.n_vertices()));
+    d = compute_perturbation(*op.surface, op.curves, backend_);
+    for (std::size_t k = 0; k < ids.size(); ++k) base_curves_[ids[k]] = op.curves[k];
+    result_.set_level_positions(level, op.mesh->positions() + d.dense(op.mesh->n_vertices()));
     if (level < result_.levels()) result_.synthesize_from(level, DetailSpace::Local);
+    operators_.push_back(std::move(op));
+  }
+  if (!operators_.empty()) {
+    const int finest = original_.levels();
+    visible_ = compose_visible_targets(original_.mesh(finest), original_.options(), operators_, backend_);
+    if (target_ == ProfileTarget::Finest) result_.set_level_positions(finest, visible_.fine.back());
+    if (target_ == ProfileTarget::Limit)
+      result_.set_level_positions(finest, control_points_for_limit(original_.mesh(finest), visible_.limit_matrix,
+                                                                   visible_.fine.front(),
+                                                                   visible_.limit.back() - visible_.limit.front()));
   }
   dirty_ = false;
 }

@@ -5,13 +5,16 @@
 // frames, then perturbed by the features drawn on level l. So a feature can be edited, moved or
 // deleted without loss, finer features follow coarser ones, and an edit of the base surface
 // carries every feature with it (curves are attached to the surface by face and barycentric
-// coordinates).
+// coordinates). Finally the finest level is set so that the visible surface (the limit, or the
+// finest control points: ProfileTarget) carries every feature's profile exactly, whatever level it
+// was drawn on (visible_profile.h); ProfileTarget::DrawnLevel stops at the paper's step.
 #pragma once
 
 #include <map>
 #include <vector>
 
 #include "feature/perturbation.h"
+#include "feature/visible_profile.h"
 #include "subdivision/multires_surface.h"
 
 namespace fairshape::feature {
@@ -19,7 +22,8 @@ namespace fairshape::feature {
 class FeaturedSurface {
  public:
   //! \throw InvalidInput unless the hierarchy is Loop.
-  FeaturedSurface(MultiresSurface surface, Backend backend);
+  FeaturedSurface(MultiresSurface surface, Backend backend, ProfileTarget target = ProfileTarget::Limit);
+  ProfileTarget profile_target() const { return target_; }
 
   int add(FeatureCurve curve);  // returns the feature's id
   void replace(int id, FeatureCurve curve);
@@ -43,6 +47,11 @@ class FeaturedSurface {
   const LevelPerturbation& perturbation(int level);
   //! The base curves of the last evaluation (for output), per feature id.
   const std::map<int, BaseCurve>& base_curves();
+  //! The levels' operators of the last evaluation (coarse to fine) and the visible targets
+  //! they compose to (visible_profile.h; computed for every ProfileTarget, so that the
+  //! drawn-level semantics can be measured against them too).
+  const std::vector<LevelOperator>& operators();
+  const VisibleTargets& visible_targets();
 
  private:
   // The base curves of features `ids` on `mesh` (one level) and the perturbation they make.
@@ -55,6 +64,9 @@ class FeaturedSurface {
   std::vector<int> features_on(int level) const;
   MultiresSurface original_, result_;
   Backend backend_;
+  ProfileTarget target_;
+  std::vector<LevelOperator> operators_;
+  VisibleTargets visible_;
   std::map<int, FeatureCurve> features_;
   std::map<int, BaseCurve> base_curves_;
   std::vector<LevelPerturbation> perturbations_;

@@ -14,6 +14,16 @@ MatrixX3 LevelPerturbation::dense(int n_vertices) const {
   return d;
 }
 
+LevelPerturbation collect_moved(const std::vector<int>& ids, const std::vector<Vec3>& moved, const std::vector<char>& touched) {
+  LevelPerturbation out;
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    if (touched[i]) out.vertices.push_back(ids[i]);
+  out.displacement.resize(static_cast<Eigen::Index>(out.vertices.size()), 3);
+  for (std::size_t i = 0, row = 0; i < ids.size(); ++i)
+    if (touched[i]) out.displacement.row(static_cast<Eigen::Index>(row++)) = moved[i].transpose();
+  return out;
+}
+
 void OffsetCombiner::add(const SegmentOffset& o) {
   if (o.delta > raise.delta) raise = o;
   if (o.delta < cut.delta) cut = o;
@@ -46,7 +56,7 @@ double arc_of_closest(const UnrolledRay& ray, const Vec3& p) {
 }  // namespace
 
 std::optional<SegmentOffset> segment_offset(const TriangleSurface& s, const BaseCurve& curve, int segment,
-                                            const Vec3& p) {
+                                            const Vec3& p, OffsetMeaning meaning) {
   const BaseSegment& seg = curve.segments[static_cast<std::size_t>(segment)];
   const FeatureParams& q = curve.params;
   const double t = seg.closest_parameter(p);
@@ -86,6 +96,8 @@ std::optional<SegmentOffset> segment_offset(const TriangleSurface& s, const Base
   const double along_curve = (seg.arc_start + t * seg.length) / curve.total_length;
   const double height = q.height * (1 + (q.end_height_ratio - 1) * along_curve);
   const double target = cubic_profile(arc, length, height, q.crease, z_end, slope_end);
+  if (meaning == OffsetMeaning::Displacement)  // the cubic minus the cubic through the section's own
+    return SegmentOffset{cubic_profile(arc, length, height, q.crease, 0, 0), n};  // boundary values
   return SegmentOffset{target - (p - b).dot(n), n};
 }
 

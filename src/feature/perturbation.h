@@ -33,13 +33,27 @@ struct SegmentOffset {
   double delta = 0;        // along the normal at the base point
   Vec3 normal = Vec3::Zero();
 };
+//! OntoProfile (the paper's, for the level's own control points): p moves onto the profile.
+//! Displacement (for points of a finer level or of the limit surface near the level): p moves
+//! along the base normal by the cubic with value `height` and slope `crease` at the curve and
+//! value and slope 0 at the unrolled length — the paper's cubic less the cubic through the
+//! section's own boundary values. On a plane both are the same; elsewhere this one leaves the
+//! visible surface's own smooth shape under the feature instead of the level's flat facets
+//! (whose kinks a finer surface would show) and joins it C¹ at the boundary.
+enum class OffsetMeaning { OntoProfile, Displacement };
 std::optional<SegmentOffset> segment_offset(const TriangleSurface& s, const BaseCurve& curve, int segment,
-                                            const Vec3& p);
+                                            const Vec3& p, OffsetMeaning meaning = OffsetMeaning::OntoProfile);
 
 //! The reference evaluates every segment at every vertex of the level, serially; the optimized
 //! one gathers each segment's neighbourhood by a walk over the mesh and evaluates in parallel.
 //! They agree exactly (same segments, same order). \throw FlatnessError (see ray_unrolling.h).
 LevelPerturbation compute_perturbation(const TriangleSurface& s, const std::vector<BaseCurve>& curves,
                                        Backend backend);
+
+//! The features' displacement (OffsetMeaning::Displacement, combined as on the level) of
+//! arbitrary points near the level: the vertices of a finer level or their limit points.
+//! `vertices` of the result index the rows of `points`. Same back ends, same exact agreement.
+LevelPerturbation displace_points(const TriangleSurface& s, const std::vector<BaseCurve>& curves,
+                                  const MatrixX3& points, Backend backend);
 
 }  // namespace fairshape::feature

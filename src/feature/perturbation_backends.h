@@ -14,5 +14,11 @@ struct OffsetCombiner {
 
 LevelPerturbation perturbation_reference(const TriangleSurface& s, const std::vector<BaseCurve>& curves);
 LevelPerturbation perturbation_tbb(const TriangleSurface& s, const std::vector<BaseCurve>& curves);
+LevelPerturbation displace_points_reference(const TriangleSurface& s, const std::vector<BaseCurve>& curves,
+                                            const MatrixX3& points);
+LevelPerturbation displace_points_tbb(const TriangleSurface& s, const std::vector<BaseCurve>& curves,
+                                      const MatrixX3& points);
+//! The rows of `moved` whose `touched` flag is set, as a LevelPerturbation.
+LevelPerturbation collect_moved(const std::vector<int>& ids, const std::vector<Vec3>& moved, const std::vector<char>& touched);
 
 }  // namespace fairshape::feature

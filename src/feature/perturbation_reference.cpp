@@ -25,4 +25,25 @@ LevelPerturbation perturbation_reference(const TriangleSurface& s, const std::ve
   return out;
 }
 
+LevelPerturbation displace_points_reference(const TriangleSurface& s, const std::vector<BaseCurve>& curves,
+                                            const MatrixX3& points) {
+  const auto n = static_cast<std::size_t>(points.rows());
+  std::vector<int> ids(n);
+  std::vector<Vec3> moved(n, Vec3::Zero());
+  std::vector<char> touched(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    ids[i] = static_cast<int>(i);
+    const Vec3 p = points.row(static_cast<Eigen::Index>(i)).transpose();
+    OffsetCombiner combined;
+    for (const BaseCurve& curve : curves)
+      for (int k = 0; k < static_cast<int>(curve.segments.size()); ++k)
+        if (const auto o = segment_offset(s, curve, k, p, OffsetMeaning::Displacement)) {
+          combined.add(*o);
+          touched[i] = 1;
+        }
+    moved[i] = combined.displacement();
+  }
+  return collect_moved(ids, moved, touched);
+}
+
 }  // namespace fairshape::feature

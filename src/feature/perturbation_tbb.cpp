@@ -129,18 +129,47 @@ LevelPerturbation perturbation_tbb(const TriangleSurface& s, const std::vector<B
       moved[i] = combined.displacement();
     }
   });
-  LevelPerturbation out;
-  for (std::size_t i = 0; i < n; ++i)
-    if (touched[i]) out.vertices.push_back(region[i]);
-  out.displacement.resize(static_cast<Eigen::Index>(out.vertices.size()), 3);
-  for (std::size_t i = 0, row = 0; i < n; ++i)
-    if (touched[i]) out.displacement.row(static_cast<Eigen::Index>(row++)) = moved[i].transpose();
-  return out;
+  return collect_moved(region, moved, touched);
+}
+
+// Points are not vertices of the level: no region walk, each point looks up its grid cell (the
+// cells list the segments in curve and segment order, as the reference scans them).
+LevelPerturbation displace_points_tbb(const TriangleSurface& s, const std::vector<BaseCurve>& curves,
+                                      const MatrixX3& points) {
+  const SegmentGrid grid(curves, s.longest_edge());
+  const auto n = static_cast<std::size_t>(points.rows());
+  std::vector<int> ids(n);
+  std::vector<Vec3> moved(n, Vec3::Zero());
+  std::vector<char> touched(n, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      ids[i] = static_cast<int>(i);
+      const Vec3 p = points.row(static_cast<Eigen::Index>(i)).transpose();
+      OffsetCombiner combined;
+      for (const SegmentRef& ref : grid.near(p)) {
+        const BaseCurve& curve = curves[static_cast<std::size_t>(ref.curve)];
+        const double reach = std::max(curve.params.radius, curve.params.right_radius());
+        if (curve.segments[static_cast<std::size_t>(ref.segment)].squared_distance(p) >= reach * reach) continue;
+        if (const auto o = segment_offset(s, curve, ref.segment, p, OffsetMeaning::Displacement)) {
+          combined.add(*o);
+          touched[i] = 1;
+        }
+      }
+      moved[i] = combined.displacement();
+    }
+  });
+  return collect_moved(ids, moved, touched);
 }
 
 LevelPerturbation compute_perturbation(const TriangleSurface& s, const std::vector<BaseCurve>& curves,
                                        Backend backend) {
   return backend == Backend::Reference ? perturbation_reference(s, curves) : perturbation_tbb(s, curves);
+}
+
+LevelPerturbation displace_points(const TriangleSurface& s, const std::vector<BaseCurve>& curves,
+                                  const MatrixX3& points, Backend backend) {
+  return backend == Backend::Reference ? displace_points_reference(s, curves, points)
+                                       : displace_points_tbb(s, curves, points);
 }
 
 }  // namespace fairshape::feature

@@ -2,7 +2,8 @@
 # reference back end, a coarse edit, and bad input.
 source "$(dirname "$0")/lib.sh"
 C=configs/khodakovsky-schroder/fig11.yaml
-"$FS" run $C --out "$SCRATCH/fig11" --set input.levels=3 2>/dev/null || fail "fig11 failed"
+# Three levels (one below the drawn level 2) are too coarse for the profile within 2 %: looser here.
+"$FS" run $C --out "$SCRATCH/fig11" --set input.levels=3 --set feature_defaults.profile_tolerance=0.1 2>/dev/null || fail "fig11 failed"
 for f in runs.csv final.obj run.json; do [ -s "$SCRATCH/fig11/$f" ] || fail "missing $f"; done
 for c in time_s vertices_moved max_displacement triangles_adaptive; do head -1 "$SCRATCH/fig11/runs.csv" | grep -q "$c" || fail "runs.csv lacks $c"; done
 [ "$(ls "$SCRATCH/fig11/vtk/"*.vtp | wc -l)" -eq 2 ] || fail "expected the result's VTK and its curves overlay"
@@ -11,11 +12,20 @@ grep -q "displacement_norm" "$SCRATCH/fig11/vtk/"*.vtp || fail "VTK lacks the di
 [ "$(ls "$SCRATCH/fig11/curves/"*.obj | wc -l)" -eq 3 ] || fail "expected one base curve per feature"
 [ -s "$SCRATCH/fig11/adaptive/"*.obj ] || fail "missing the adaptive mesh"
 # Reference and optimized write the same surface.
-"$FS" run $C --out "$SCRATCH/ref" --set input.levels=3 --set implementation=reference --set adaptive.enabled=false 2>/dev/null \
+"$FS" run $C --out "$SCRATCH/ref" --set input.levels=3 --set feature_defaults.profile_tolerance=0.1 --set implementation=reference --set adaptive.enabled=false 2>/dev/null \
   || fail "reference run failed"
 cmp -s "$SCRATCH/fig11/final.obj" "$SCRATCH/ref/final.obj" || fail "reference and optimized final.obj differ"
-# Figure 15: the coarse edit moves the surface, the features stay on it.
-"$FS" run configs/khodakovsky-schroder/fig15.yaml --out "$SCRATCH/fig15" --set input.levels=3 2>/dev/null || fail "fig15 failed"
+# The achieved profile per feature (issue 24); a feature outside its tolerance is no convergence.
+head -1 "$SCRATCH/fig11/features.csv" | grep -q "height_min_limit,.*profile_error_limit,within_tolerance" || fail "features.csv lacks the limit profile"
+[ "$(tail -n +2 "$SCRATCH/fig11/features.csv" | wc -l)" -eq 3 ] || fail "expected one features.csv row per feature"
+rc=0; "$FS" run $C --out "$SCRATCH/tight" --set input.levels=3 --set adaptive.enabled=false 2>/dev/null || rc=$?
+[ "$rc" -eq 3 ] || fail "a feature outside its tolerance must not converge (exit $rc)"
+grep -q "constraints_unmet,.*features miss their tolerance; first: feature 'ridge_a' (level 2), finest level: profile error" "$SCRATCH/tight/runs.csv" || fail "the miss is not named"
+expect_error 2 "features\[0\].profile_tolerance" -- "$FS" run $C --set features.0.profile_tolerance=2 --out "$SCRATCH/x"
+expect_error 2 "profile_on: unknown value 'coarse'" -- "$FS" run $C --set profile_on=coarse --out "$SCRATCH/x"
+# Figure 15: the coarse edit moves the surface, the features stay on it (at 3 levels the grooves,
+# drawn on the finest level with 3 edges per radius, miss 2 % by far: the tolerance is loosened).
+"$FS" run configs/khodakovsky-schroder/fig15.yaml --out "$SCRATCH/fig15" --set input.levels=3 --set feature_defaults.profile_tolerance=0.5 --set feature_defaults.width_tolerance=0.5 2>/dev/null || fail "fig15 failed"
 [ "$(grep -c ',converged,' "$SCRATCH/fig15/runs.csv")" -eq 2 ] || fail "fig15 runs did not finish"
 
 expect_error 2 "feature 'ridge_a': point 0 .* the curve leaves the surface" -- \

@@ -22,7 +22,7 @@ class FeatureKind final : public RunKind {
   }
   void validation_done() override { hierarchies_.clear(); }
   const std::vector<std::string>& metric_columns() const override { return feature_metric_columns(); }
-  std::vector<TableSchema> tables() const override { return {}; }
+  std::vector<TableSchema> tables() const override { return {feature_profile_table()}; }
   std::vector<std::string> identity_columns() const override { return {"implementation"}; }  // no solver
   MetricRow execute(const YAML::Node& c, const std::vector<std::string>& dirs, const RunOutputs& out) override {
     FeatureRunSpec spec = FeatureRunSpec::from_config(c, dirs);

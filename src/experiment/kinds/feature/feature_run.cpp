@@ -1,5 +1,6 @@
 #include "experiment/kinds/feature/feature_run.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -11,6 +12,7 @@
 #include "experiment/metric_format.h"
 #include "feature/adaptive_mesh.h"
 #include "feature/featured_surface.h"
+#include "feature/profile_measure.h"
 #include "io/constraint_overlay.h"
 #include "io/mesh_io.h"
 #include "experiment/vtk_policy.h"
@@ -36,6 +38,11 @@ feature::FeatureParams read_params(Config& c, const feature::FeatureParams& d) {
                                 "largest turn of the surface normal within the radius before the feature is refused");
   p.quadratic = c.get<bool>("quadratic", d.quadratic, "frames on the quadratic spline of the polygon (§2.4)");
   p.quadratic_samples = c.get_int("quadratic_samples", d.quadratic_samples, 1, 256, "straight pieces per quadratic span");
+  // Visible profile (issue 24): how closely the finest level and the limit must show it.
+  p.profile_tolerance = c.get_number("profile_tolerance", d.profile_tolerance, 1e-6, 1,
+                                     "largest height / profile error as a fraction of |height| (finest level and limit)");
+  p.width_tolerance = c.get_number("width_tolerance", d.width_tolerance, 1e-6, 1,
+                                   "largest width error as a fraction of the radius (finest level and limit)");
   return p;
 }
 
@@ -83,6 +90,9 @@ FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const s
   s.base_edit.edit.offset = read_vec3(ec, "offset", Vec3::Zero(), "displacement of the centre");
   s.base_edit.edit.radius = ec.get_number("radius", 0.3, 1e-6, 10, "falloff radius × bounding-box diagonal");
   ec.check_no_unknown_keys();
+  s.profile_target = root.get_enum("profile_on", feature::ProfileTarget::Limit, feature::profile_target_names(),
+                                   "where the profile is exact: limit (the limit surface at the finest vertices), "
+                                   "finest (the finest control points) or drawn_level (the paper: the drawn level's control points)");
   Config ac = root.child("adaptive", "adaptive output mesh (§2.5): {enabled}");
   s.adaptive = ac.get<bool>("enabled", true, "write adaptive/<run>.obj refined by the features' flatness thresholds");
   ac.check_no_unknown_keys();
@@ -95,9 +105,21 @@ FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const s
 
 const std::vector<std::string>& feature_metric_columns() {
   static const std::vector<std::string> cols{"features", "levels", "n_fine", "segments", "apply_s", "vertices_moved",
-                                             "max_displacement", "triangles_uniform", "triangles_adaptive", "time_s",
+                                             "max_displacement", "triangles_uniform", "triangles_adaptive",
+                                             "profile_on", "features_within_tolerance", "worst_profile_error_fine",
+                                             "worst_profile_error_limit", "worst_height_error", "worst_width_error", "time_s",
                                              "unused_keys", "termination", "message"};
   return cols;
+}
+
+const TableSchema& feature_profile_table() {
+  static const TableSchema t{"features",
+                             {"feature", "level", "height", "radius_left", "radius_right",
+                              "height_min_fine", "height_max_fine", "width_left_fine", "width_right_fine", "height_error_fine",
+                              "width_error_fine", "profile_error_fine", "height_min_limit", "height_max_limit",
+                              "width_left_limit", "width_right_limit", "height_error_limit", "width_error_limit",
+                              "profile_error_limit", "within_tolerance", "miss"}};
+  return t;
 }
 
 namespace {
@@ -116,7 +138,7 @@ MultiresSurface feature_hierarchy(const FeatureRunSpec& spec) {
 }
 
 feature::FeaturedSurface placed_features(FeatureRunSpec& spec, MultiresSurface original) {
-  feature::FeaturedSurface surface(std::move(original), spec.implementation);
+  feature::FeaturedSurface surface(std::move(original), spec.implementation, spec.profile_target);
   const double diag = bounding_diagonal(surface.original().mesh(spec.levels));
   std::map<int, feature::TriangleSurface> drawn_on;  // one per level: its normals and AABB tree
   for (FeatureSpec& f : spec.features) {
@@ -142,6 +164,44 @@ feature::FeaturedSurface placed_features(FeatureRunSpec& spec, MultiresSurface o
   return surface;
 }
 
+namespace {
+
+// The achieved profile of every feature (issue 24): a row of features.csv each, the worst of them
+// in runs.csv, and a feature outside its tolerance makes the run constraints_unmet, naming it.
+void report_profiles(feature::FeaturedSurface& surface, MetricRow& row, const RunOutputs& out) {
+  const std::vector<feature::FeatureMeasure> measured = feature::measure_features(surface);
+  int within = 0;
+  double fine = 0, limit = 0, height = 0, width = 0;
+  std::string first_miss;
+  for (const feature::FeatureMeasure& f : measured) {
+    const feature::FeatureParams& q = surface.features().at(f.id).params;
+    const auto& a = f.fine;
+    const auto& b = f.limit;
+    out.add_row("features", {f.name, std::to_string(f.level), num(q.height), num(q.radius), num(q.right_radius()),
+                             num(a.height_min), num(a.height_max), num(a.width_left), num(a.width_right), num(a.height_error),
+                             num(a.width_error), num(a.profile_error), num(b.height_min), num(b.height_max), num(b.width_left),
+                             num(b.width_right), num(b.height_error), num(b.width_error), num(b.profile_error),
+                             f.within_tolerance ? "1" : "0", f.why});
+    within += f.within_tolerance ? 1 : 0;
+    fine = std::max(fine, a.profile_error), limit = std::max(limit, b.profile_error);
+    height = std::max({height, a.height_error, b.height_error});
+    width = std::max({width, a.width_error, b.width_error});
+    if (!f.within_tolerance && first_miss.empty()) first_miss = "feature '" + f.name + "' (level " + std::to_string(f.level) + "), " + f.why;
+  }
+  row["features_within_tolerance"] = std::to_string(within);
+  row["worst_profile_error_fine"] = num(fine);
+  row["worst_profile_error_limit"] = num(limit);
+  row["worst_height_error"] = num(height);
+  row["worst_width_error"] = num(width);
+  if (!first_miss.empty()) {
+    row["termination"] = std::string(to_string(Termination::ConstraintsUnmet));
+    row["message"] = std::to_string(measured.size() - static_cast<std::size_t>(within)) + " of " +
+                     std::to_string(measured.size()) + " features miss their tolerance; first: " + first_miss;
+  }
+}
+
+}  // namespace
+
 MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
   MetricRow row;
   for (const auto& c : feature_metric_columns()) row[c] = "";
@@ -149,6 +209,7 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
   row["features"] = std::to_string(spec.features.size());
   row["unused_keys"] = spec.unused_keys_cell();
   row["levels"] = std::to_string(spec.levels);
+  row["profile_on"] = std::string(feature::profile_target_names().name(spec.profile_target));
   row["termination"] = std::string(to_string(Termination::Converged));
   const Timer wall;
   try {
@@ -199,6 +260,7 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
     }
     if (spec.vtk) write_vtp(fine, (fs::path(out.dir) / "vtk" / (out.run_id + ".vtp")).string());
     write_mesh(fine, out.final_path());
+    report_profiles(surface, row, out);
   } catch (const OutputError& e) {  // results incomplete: not a finished run
     row["termination"] = std::string(to_string(Termination::OutputFailed));
     row["message"] = e.what();

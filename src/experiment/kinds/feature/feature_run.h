@@ -38,6 +38,7 @@ struct FeatureRunSpec : RunBasics {
   std::vector<FeatureSpec> features;
   BaseEditSpec base_edit;
   bool adaptive = true;
+  feature::ProfileTarget profile_target = feature::ProfileTarget::Limit;  // `profile_on`
   bool vtk = true;
   //! \throw InvalidConfig naming the key.
   static FeatureRunSpec from_config(const YAML::Node& run_config, const std::vector<std::string>& search_dirs);
@@ -45,6 +46,9 @@ struct FeatureRunSpec : RunBasics {
 
 bool is_feature_config(const YAML::Node& run_config);
 const std::vector<std::string>& feature_metric_columns();
+//! features.csv beside runs.csv: one row per feature and run, the achieved profile
+//! (feature/profile_measure.h) on the finest level and at the limit.
+const TableSchema& feature_profile_table();
 
 //! The run's Loop hierarchy of input.mesh, without features. \throw Error for the input.
 MultiresSurface feature_hierarchy(const FeatureRunSpec& spec);

@@ -1,0 +1,45 @@
+// What a feature achieves where it is seen (issue 24): per feature, on the finest level's control
+// points and on the limit points of the finest vertices, the height at the curve, the width on
+// each side and the deviation from the requested cross-section. Definitions (all relative to the
+// surface the feature was applied to — the original, or the coarser features' visible target):
+//   height      the displacement along the curve's normal at samples of the base curve (about
+//               one per finest edge), interpolated linearly in the finest face below the sample;
+//               samples within another feature's reach are skipped (its height is theirs too);
+//   profile     max over the finest vertices within the feature's reach (outside every other
+//               feature's reach) of |achieved − requested position|; requested = the profile as
+//               a displacement (perturbation.h, OffsetMeaning::Displacement) of that surface;
+//   width       r × (displacement-weighted mean distance from the curve, achieved / requested),
+//               per side: the radius whose profile of the requested shape would spread its
+//               displacement as far as the achieved one does (a wider, flatter groove reads > r);
+// height and profile errors are fractions of |height| (the larger of start and end height),
+// widths of the radius on that side.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "feature/featured_surface.h"
+
+namespace fairshape::feature {
+
+struct ProfileMeasure {
+  double height_min = 0, height_max = 0;  // achieved, world units (NaN: every sample shared)
+  double height_error = 0;                // max |achieved − requested| at the curve / |h|
+  double width_left = 0, width_right = 0;  // world units (NaN: no displacement on that side)
+  double width_error = 0;                 // max over sides |width − r_side| / r_side
+  double profile_error = 0;               // max |achieved − requested| / |h| over its vertices
+};
+
+struct FeatureMeasure {
+  int id = -1;
+  std::string name;
+  int level = 0;
+  ProfileMeasure fine, limit;
+  bool within_tolerance = true;
+  std::string why;  // the first miss: "limit: profile error 0.063 > profile_tolerance 0.02"
+};
+
+//! One entry per feature, in id order. Evaluates the surface.
+std::vector<FeatureMeasure> measure_features(FeaturedSurface& surface);
+
+}  // namespace fairshape::feature

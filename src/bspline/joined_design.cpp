@@ -87,12 +87,30 @@ JoinedProgram assemble_joined(const JoinedDesign& design, Backend backend) {
     const CurveJoint &a = design.joints[tj.first], &b = design.joints[tj.second];
     if (a.curve != b.curve) throw InvalidInput(where + ": its two joints are on different curves");
     if (a.sheet == b.sheet) throw InvalidInput(where + ": its two joints are on the same sheet");
+    const VariationalSheet &sa = *design.sheets[a.sheet].sheet, &sb = *design.sheets[b.sheet].sheet;
+    const JointSide first{&sa.surface(), a.uv, tj.keep_left_first}, second{&sb.surface(), b.uv, tj.keep_left_second};
     try {
-      tangents.push_back(tangent_continuity_rows({&design.sheets[a.sheet].sheet->surface(), a.uv, tj.keep_left_first},
-                                                 {&design.sheets[b.sheet].sheet->surface(), b.uv, tj.keep_left_second}));
+      tangents.push_back(tangent_continuity_rows(first, second));
     } catch (const InvalidInput& e) {
       throw InvalidInput(where + ": " + e.what());
     }
+    // Crossing the curve must leave one kept side and enter the other: their outward directions
+    // (across the curve, in space) point away from each other. Both kept sides on one side of
+    // the curve (a wrong `keep`) would fold one sheet back over the other without a word.
+    const VariationalCurve& X = *design.curves[a.curve].curve;
+    double worst = -1;
+    for (double t : {0.25, 0.5, 0.75}) {
+      const Vec3 along = X.tangent(t).normalized();
+      Vec3 o1 = outward_derivative(first, sa.coefficients(), t), o2 = outward_derivative(second, sb.coefficients(), t);
+      o1 -= o1.dot(along) * along;
+      o2 -= o2.dot(along) * along;
+      if (o1.norm() == 0 || o2.norm() == 0) continue;
+      worst = std::max(worst, o1.normalized().dot(o2.normalized()));
+    }
+    if (worst > 0.5)
+      throw InvalidInput(where + ": the kept sides lie on the same side of the curve (their outward directions are " +
+                         std::to_string(static_cast<int>(std::lround(std::acos(std::min(worst, 1.0)) * 180 / 3.141592653589793))) +
+                         " degrees apart, expected near 180): swap one `keep` side");
   }
   for (std::size_t k = 0; k < tangents.size(); ++k) {
     const TangentJoint& tj = design.tangent_joints[k];

@@ -55,6 +55,16 @@ sheets = [r for r in last if not r["sheet"].startswith("curve:")]
 ok = int(curve["spans_refined"]) > 0 and int(curve["levels"]) > 1 and all(int(r["spans_refined"]) > 0 and float(r["max_constraint_error"]) <= 2e-5 for r in sheets)
 sys.exit(0 if ok else 1)
 PYEOF
+# A joined program that fails reports every sheet of its group (and the curve) in steps.csv and runs.csv.
+rc=0; "$FS" run $F --out "$SCRATCH/free_failed" --set solver.kkt.max_condition=1 --set output.vtk=none 2>/dev/null || rc=$?
+[ "$rc" -ne 0 ] || fail "fig2_free with max_condition 1 should fail"
+$PY - "$SCRATCH/free_failed/steps.csv" "$SCRATCH/free_failed/runs.csv" <<'PYEOF' || fail "a failed joint step lost a sheet's rows"
+import csv, sys
+steps = [r["sheet"] for r in csv.DictReader(open(sys.argv[1]))]
+run = next(csv.DictReader(open(sys.argv[2])))
+assert steps == ["floor", "wall", "curve:joint"], steps
+assert run["termination"] == "ill_conditioned" and int(run["dofs"]) == 121 + 121 + 19, (run["termination"], run["dofs"])
+PYEOF
 # Two sheets made tangent-continuous across a free curve: the achieved continuity is reported.
 "$FS" run configs/welch-witkin/smooth_joint.yaml --out "$SCRATCH/smooth" --set output.vtk=none 2>/dev/null || fail "smooth_joint failed"
 grep -q ",converged," "$SCRATCH/smooth/runs.csv" || fail "smooth_joint did not converge"

@@ -18,11 +18,13 @@
 #include "feature/plane_section.h"
 #include "feature/polyline_import.h"
 #include "io/mesh_io.h"
+#include "feature_test_meshes.h"
 #include "remesh/closest_point.h"
 #include "test_support.h"
 
 using namespace fairshape;
 using namespace fairshape::feature;
+using fairshape::test::cylinder;
 
 namespace {
 
@@ -49,24 +51,6 @@ SurfaceMesh plane_grid(int n, double size) {
   std::vector<Vec3> V;
   PolygonList faces;
   add_plane_grid(n, size, 0.0, V, faces);
-  return mesh_of(V, faces);
-}
-
-// An open cylinder of radius R around z: `around` vertices per ring, rings + 1 rings over height H.
-SurfaceMesh cylinder(int around, int rings, double R, double H) {
-  std::vector<Vec3> V;
-  for (int j = 0; j <= rings; ++j)
-    for (int i = 0; i < around; ++i) {
-      const double phi = 2 * std::numbers::pi * i / around;
-      V.emplace_back(R * std::cos(phi), R * std::sin(phi), H * j / rings);
-    }
-  PolygonList faces;
-  for (int j = 0; j < rings; ++j)
-    for (int i = 0; i < around; ++i) {
-      const int a = j * around + i, b = j * around + (i + 1) % around, c = a + around, d = b + around;
-      faces.push_back({a, b, d});
-      faces.push_back({a, d, c});
-    }
   return mesh_of(V, faces);
 }
 

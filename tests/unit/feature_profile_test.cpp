@@ -11,26 +11,15 @@
 #include "feature/featured_surface.h"
 #include "feature/profile_measure.h"
 #include "io/mesh_io.h"
+#include "feature_test_meshes.h"
 #include "test_support.h"
 
 using namespace fairshape;
 using namespace fairshape::feature;
+using fairshape::test::cylinder;
+using fairshape::test::plane_grid;
 
 namespace {
-
-SurfaceMesh plane_grid(int n, double size) {
-  MatrixX3 V((n + 1) * (n + 1), 3);
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) V.row(j * (n + 1) + i) << size * i / n, size * j / n, 0.0;
-  PolygonList faces;
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const int a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
-      if ((i + j) % 2 == 0) faces.push_back({a, b, d}), faces.push_back({a, d, c});
-      else faces.push_back({a, b, c}), faces.push_back({b, d, c});
-    }
-  return SurfaceMesh::from_polygons(V, faces);
-}
 
 // The icosahedron with every triangle split into `n`² and the vertices put on the unit sphere.
 SurfaceMesh sphere(int n) {

@@ -10,50 +10,15 @@
 #include "feature/adaptive_mesh.h"
 #include "feature/featured_surface.h"
 #include "io/mesh_io.h"
+#include "feature_test_meshes.h"
 #include "test_support.h"
 
 using namespace fairshape;
 using namespace fairshape::feature;
+using fairshape::test::cylinder;
+using fairshape::test::plane_grid;
 
 namespace {
-
-// A triangulated n × n grid on [0, size]² in the plane z = 0 (diagonals alternating).
-SurfaceMesh plane_grid(int n, double size) {
-  MatrixX3 V((n + 1) * (n + 1), 3);
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) V.row(j * (n + 1) + i) << size * i / n, size * j / n, 0.0;
-  PolygonList faces;
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const int a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
-      if ((i + j) % 2 == 0) {
-        faces.push_back({a, b, d});
-        faces.push_back({a, d, c});
-      } else {
-        faces.push_back({a, b, c});
-        faces.push_back({b, d, c});
-      }
-    }
-  return SurfaceMesh::from_polygons(V, faces);
-}
-
-// An open cylinder of radius R around z: `around` vertices per ring, `rings` + 1 rings over height H.
-SurfaceMesh cylinder(int around, int rings, double R, double H) {
-  MatrixX3 V(around * (rings + 1), 3);
-  for (int j = 0; j <= rings; ++j)
-    for (int i = 0; i < around; ++i) {
-      const double phi = 2 * std::numbers::pi * i / around;
-      V.row(j * around + i) << R * std::cos(phi), R * std::sin(phi), H * j / rings;
-    }
-  PolygonList faces;
-  for (int j = 0; j < rings; ++j)
-    for (int i = 0; i < around; ++i) {
-      const int a = j * around + i, b = j * around + (i + 1) % around, c = a + around, d = b + around;
-      faces.push_back({a, b, d});
-      faces.push_back({a, d, c});
-    }
-  return SurfaceMesh::from_polygons(V, faces);
-}
 
 MatrixX3 up_normals(const SurfaceMesh& m) {
   MatrixX3 n(m.n_vertices(), 3);

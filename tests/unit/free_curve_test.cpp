@@ -390,12 +390,18 @@ TEST_CASE("joined sheets: a tangent-continuous joint has no crease, and every so
   }
   CHECK(energies[1] == Approx(energies[0]).epsilon(1e-6));
   CHECK(energies[2] == Approx(energies[0]).epsilon(1e-6));
-  // Refused: both joints on one sheet, or on different curves.
+  // Refused: both joints on one sheet; both kept sides on one side of the curve (a wrong `keep`).
   SplitPlane f;
   JoinedDesign d = f.design(true);
   d.joints[1].sheet = 0;
   auto kkt = make_solver("kkt");
   CHECK_THROWS_WITH(solve_joined(d, *kkt, Backend::Optimized), Catch::Matchers::Contains("smooth: its two joints are on the same sheet"));
+  for (const bool left : {false, true}) {
+    JoinedDesign same_side = f.design(true);
+    same_side.tangent_joints[0].keep_left_first = same_side.tangent_joints[0].keep_left_second = left;
+    CHECK_THROWS_WITH(solve_joined(same_side, *kkt, Backend::Optimized),
+                      Catch::Matchers::Contains("smooth: the kept sides lie on the same side of the curve (their outward directions are 0 degrees apart"));
+  }
 }
 
 TEST_CASE("joined sheets: the rows a fine curve makes dependent are exactly so (the answer ignores rank_tolerance)", "[sheet][free_curve]") {

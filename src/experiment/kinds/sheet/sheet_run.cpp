@@ -500,6 +500,9 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
         const std::vector<SheetConstraint>& active = actives[k];
         const auto joint = joined.sheets.find(k);
         if (active.empty() && joint == joined.sheets.end()) continue;  // nothing acts on this sheet yet: it keeps its shape
+        // After a failure only the sheets solved with the failed group are still reported (they
+        // share its answer); nothing else is solved.
+        if (failed && joint == joined.sheets.end()) continue;
         add_to_overlay(active, initial_surfaces[k], initial_P[k], overlay);
         const bspline::DesignReport r = joint != joined.sheets.end()
                                             ? joint->second.report
@@ -510,17 +513,18 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
                       num(r.qp.constraint_residual), num(r.max_constraint_error), num(r.energy),
                       std::to_string(r.spans_refined), std::to_string(r.rounds), num(r.analyze_s), num(r.solve_s),
                       joint != joined.sheets.end() ? joint->second.factorization : qp::factorization_note(*spec.solver)});
-        failed = !is_success(r.qp.summary.termination);
-        if (failed) {
+        const bool this_failed = !is_success(r.qp.summary.termination);
+        if (this_failed && !failed) {  // the first failure names the row
           row["termination"] = std::string(to_string(r.qp.summary.termination));
           row["message"] = "step " + std::to_string(step) + ", sheet " + spec.sheets[k].name + ": " + r.message;
-        } else if (!r.message.empty()) {
+        } else if (!failed && !r.message.empty()) {
           row["message"] = spec.sheets[k].name + ": " + r.message;
         }
         if (spec.solver_type == "paper")  // a different answer, said where the numbers are
           row["message"] += std::string(row["message"].empty() ? "" : "; ") +
                             "paper split: the constrained control points are the minimum-norm least-squares solution of "
                             "their rows, not optimized (energy above the minimizer's)";
+        failed = failed || this_failed;
         cell_errors[k] = r.errors_per_round;  // the last step's solve wins (Figure 3: every refinement round)
         unrefined[k] = r.unrefined;
         analyze_s += r.analyze_s;
@@ -537,7 +541,6 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
           levels = std::max(levels, s.level_count());
           if (!std::isnan(r.qp.condition_estimate)) cond = std::max(cond, r.qp.condition_estimate);
         }
-        if (failed) break;
       }
       for (const FreeCurveStep& c : joined.curves) {  // a row per free curve (its group's termination)
         out.add_row("steps", free_curve_step_row(step, c));

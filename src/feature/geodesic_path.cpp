@@ -39,7 +39,10 @@ double edge_path_bound(const TriangleSurface& s, const SurfacePoint& from, const
   const auto& targets = s.corners(to.face);
   int settled = 0;
   while (!queue.empty() && settled < 3) {
-    const auto [d, v] = queue.top();
+    // Named copies, not a structured binding: the lambda below captures them (clang, used by
+    // the ASan build, refuses to capture structured bindings before C++20).
+    const double d = queue.top().first;
+    const int v = queue.top().second;
     queue.pop();
     if (d > dist[static_cast<std::size_t>(v)]) continue;
     settled += std::count(targets.begin(), targets.end(), v) > 0 ? 1 : 0;

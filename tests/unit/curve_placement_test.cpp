@@ -117,7 +117,8 @@ double edge_path_length(const SurfaceMesh& m, int from, int to) {
   dist[static_cast<std::size_t>(from)] = 0;
   queue.push({0, from});
   while (!queue.empty()) {
-    const auto [d, v] = queue.top();
+    const double d = queue.top().first;  // named copies: the lambda below captures them (clang)
+    const int v = queue.top().second;
     queue.pop();
     if (v == to) return d;
     if (d > dist[static_cast<std::size_t>(v)]) continue;

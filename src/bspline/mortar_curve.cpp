@@ -35,6 +35,18 @@ struct ArcLength {
   }
 };
 
+// Gauss rule g on every piece between consecutive breaks (arc length, clamped to [0, L]; pieces
+// shorter than rounding skipped): visit(s, weight) at each point. Both integrations along a curve
+// (the joint's rows, the tangent-continuity rows) run on it.
+template <class Visit>
+void for_each_gauss_point(const std::vector<double>& breaks, double L, const GaussRule& g, Visit visit) {
+  for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
+    const double s0 = std::clamp(breaks[k], 0.0, L), s1 = std::clamp(breaks[k + 1], 0.0, L);
+    if (s1 - s0 <= 1e-14 * L) continue;
+    for (std::size_t q = 0; q < g.nodes.size(); ++q) visit(s0 + g.nodes[q] * (s1 - s0), g.weights[q] * (s1 - s0));
+  }
+}
+
 // The finest level whose unknowns are nonzero at (u, v): the surface's resolution there.
 int resolution_at(const HierarchicalSurface& s, const Eigen::Vector2d& uv, BasisRow& row) {
   s.basis(uv.x(), uv.y(), row);
@@ -179,26 +191,21 @@ MortarRows mortar_rows(const HierarchicalSurface& s, const std::vector<Eigen::Ve
   BasisRow row;
   std::vector<double> psi, x;
   int first = 0, first_x = 0;
-  for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
-    const double s0 = std::clamp(breaks[k], 0.0, L), s1 = std::clamp(breaks[k + 1], 0.0, L);
-    if (s1 - s0 <= 1e-14 * L) continue;
-    for (std::size_t q = 0; q < g.nodes.size(); ++q) {
-      const double sq = s0 + g.nodes[q] * (s1 - s0), w = g.weights[q] * (s1 - s0);
-      const double tq = arc.t_of(sq);
-      const Eigen::Vector2d c = polyline_at(uv, tq);
-      s.basis(c.x(), c.y(), row);
-      target.evaluate(tq, first_x, x);
-      multipliers_at(sq, tq, first, psi);
-      for (std::size_t a = 0; a < psi.size(); ++a) {
-        const double wa = w * psi[a];
-        if (wa == 0) continue;
-        const int j = (first + static_cast<int>(a)) % m;  // a periodic W's functions wrap round
-        mass[j] += wa;
-        for (const BasisEntry& e : row) ta.emplace_back(j, e.dof, wa * e.value);
-        for (std::size_t i = 0; i < x.size(); ++i) tb.emplace_back(j, first_x + static_cast<int>(i), wa * x[i]);
-      }
+  for_each_gauss_point(breaks, L, g, [&](double sq, double w) {
+    const double tq = arc.t_of(sq);
+    const Eigen::Vector2d c = polyline_at(uv, tq);
+    s.basis(c.x(), c.y(), row);
+    target.evaluate(tq, first_x, x);
+    multipliers_at(sq, tq, first, psi);
+    for (std::size_t a = 0; a < psi.size(); ++a) {
+      const double wa = w * psi[a];
+      if (wa == 0) continue;
+      const int j = (first + static_cast<int>(a)) % m;  // a periodic W's functions wrap round
+      mass[j] += wa;
+      for (const BasisEntry& e : row) ta.emplace_back(j, e.dof, wa * e.value);
+      for (std::size_t i = 0; i < x.size(); ++i) tb.emplace_back(j, first_x + static_cast<int>(i), wa * x[i]);
     }
-  }
+  });
   MortarRows out;
   out.A.resize(m, s.dof_count());
   out.A.setFromTriplets(ta.begin(), ta.end());
@@ -300,22 +307,17 @@ TangentContinuityRows tangent_continuity_rows(const JointSide& first, const Join
     }
   };
   std::vector<double> weights;
-  for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
-    const double s0 = std::clamp(breaks[k], 0.0, L), s1 = std::clamp(breaks[k + 1], 0.0, L);
-    if (s1 - s0 <= 1e-14 * L) continue;
-    for (std::size_t q = 0; q < g.nodes.size(); ++q) {
-      const double sq = s0 + g.nodes[q] * (s1 - s0), w = g.weights[q] * (s1 - s0);
-      const double tq = arc.t_of(sq);
-      W.evaluate(sq, first_psi, psi);
-      weights.assign(psi.size(), 0.0);
-      for (std::size_t a = 0; a < psi.size(); ++a) {
-        weights[a] = w * psi[a];
-        mass[(first_psi + static_cast<int>(a)) % m] += weights[a];
-      }
-      add(lead, tq, weights, t_lead);
-      add(other, tq, weights, t_other);
+  for_each_gauss_point(breaks, L, g, [&](double sq, double w) {
+    const double tq = arc.t_of(sq);
+    W.evaluate(sq, first_psi, psi);
+    weights.assign(psi.size(), 0.0);
+    for (std::size_t a = 0; a < psi.size(); ++a) {
+      weights[a] = w * psi[a];
+      mass[(first_psi + static_cast<int>(a)) % m] += weights[a];
     }
-  }
+    add(lead, tq, weights, t_lead);
+    add(other, tq, weights, t_other);
+  });
   const Eigen::VectorXd inverse_mass = mass.cwiseInverse();
   SparseMatrix A_lead(m, lead.surface->dof_count()), A_other(m, other.surface->dof_count());
   A_lead.setFromTriplets(t_lead.begin(), t_lead.end());

@@ -154,18 +154,21 @@ TEST_CASE("variational curve alone: refinement by constraint error meets what a 
     CHECK(r.qp.summary.termination == Termination::ConstraintsUnmet);
     CHECK(r.curve_error[0] > 1e-3);
   }
+  // A fresh 4-span curve with those constraints, solved by `solver` refining to 1e-8 up to max_level.
+  const auto refined_solve = [&](VariationalCurve& fresh, const std::string& solver, int max_level) {
+    JoinedDesign d;
+    d.curves = {jc};
+    d.curves[0].curve = &fresh;
+    RefinementOptions refinement;
+    refinement.tolerance = 1e-8;
+    refinement.max_level = max_level;
+    return solve_joined(d, *make_solver(solver), Backend::Optimized, refinement);
+  };
   SECTION("with refinement every solver meets the points, refining only near them") {
     std::vector<double> energies;
     for (const std::string name : {"kkt", "range_space", "qr_penalty"}) {
       VariationalCurve fresh({4, 3}, std::vector<Vec3>{Vec3(0, 0, 0), Vec3(4, 0, 0)});
-      JoinedDesign d;
-      d.curves = {jc};
-      d.curves[0].curve = &fresh;
-      RefinementOptions refinement;
-      refinement.tolerance = 1e-8;
-      refinement.max_level = 6;
-      auto solver = make_solver(name);
-      const JoinedReport r = solve_joined(d, *solver, Backend::Optimized, refinement);
+      const JoinedReport r = refined_solve(fresh, name, 6);
       INFO(name << ": " << r.message);
       REQUIRE(r.qp.summary.termination == Termination::Converged);
       CHECK(r.rounds > 1);
@@ -185,14 +188,7 @@ TEST_CASE("variational curve alone: refinement by constraint error meets what a 
   }
   SECTION("a tolerance the depth cannot reach ends constraints_unmet, saying so") {
     VariationalCurve fresh({4, 3}, std::vector<Vec3>{Vec3(0, 0, 0), Vec3(4, 0, 0)});
-    JoinedDesign d;
-    d.curves = {jc};
-    d.curves[0].curve = &fresh;
-    RefinementOptions refinement;
-    refinement.tolerance = 1e-8;
-    refinement.max_level = 1;
-    auto kkt = make_solver("kkt");
-    const JoinedReport r = solve_joined(d, *kkt, Backend::Optimized, refinement);
+    const JoinedReport r = refined_solve(fresh, "kkt", 1);
     CHECK(r.qp.summary.termination == Termination::ConstraintsUnmet);
     CHECK_THAT(r.message, Catch::Matchers::Contains("above the refinement tolerance 1.00e-08 at the maximum depth 1"));
   }

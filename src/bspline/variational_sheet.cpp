@@ -1,10 +1,13 @@
 #include "bspline/variational_sheet.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 #include <tuple>
 
+#include "bspline/curve_fidelity.h"
 #include "bspline/mortar_curve.h"
 #include "core/error.h"
 #include "core/message_format.h"
@@ -156,9 +159,7 @@ std::vector<CellError> constraint_errors(const VariationalSheet& sheet, const st
     if (c.kind == SheetConstraint::Kind::Point) record(c.u, c.v, (s.position(P, c.u, c.v) - c.target).norm());
     if (c.kind != SheetConstraint::Kind::Curve) continue;
     // Samples dense enough to see every finest cell the curve crosses several times.
-    double length = 0;
-    for (std::size_t k = 0; k + 1 < c.curve.uv.size(); ++k) length += (c.curve.uv[k + 1] - c.curve.uv[k]).norm();
-    const int samples = std::max(64, static_cast<int>(8 * length * std::ldexp(1.0, s.level_count())));
+    const int samples = curve_samples(s, c.curve.uv);
     for (int k = 0; k <= samples; ++k) {
       const double t = static_cast<double>(k) / samples;
       const Eigen::Vector2d uv = polyline_at(c.curve.uv, t);
@@ -192,6 +193,34 @@ std::vector<SpanId> spans_to_refine(const HierarchicalSurface& s, const std::vec
   }
   return spans;
 }
+
+namespace {
+// A weak curve constraint met row by row can still be held off its curve by another constraint
+// (bspline/curve_fidelity.h).
+void check_curve_convergence(const VariationalSheet& sheet, const SheetEnergy& energy, const std::vector<SheetConstraint>& constraints,
+                             const RefinementOptions& options, Backend backend, DesignReport& report) {
+  if (options.curve_limit_share <= 0) return;
+  // A curve met to the requested refinement tolerance is what was asked.
+  if (options.tolerance > 0 && report.max_constraint_error <= options.tolerance) return;
+  const CurveConvergence c =
+      curve_convergence(sheet, energy, constraints, backend, options.curve_error_factor, options.curve_limit_share,
+                        options.curve_conflict_tolerance);
+  report.curve_error = c.error;
+  report.curve_alone_error = c.alone_error;
+  report.curve_error_refined = c.refined_error;
+  report.curve_error_limit = c.limit;
+  if (!c.conflict) return;
+  report.qp.summary.termination = Termination::ConstraintsUnmet;
+  const std::string& label = constraints[c.constraint].label;
+  report.message = (label.empty() ? std::string("a curve constraint") : label) + ": its pointwise error " + sci(c.error) + " is " +
+                   sci(c.error / c.alone_error) + " times its error alone on the sheet (" + sci(c.alone_error) +
+                   ") and does not vanish under refinement (" + sci(c.refined_error) + " and " + sci(c.twice_refined_error) +
+                   " with the spans along the curve one and two levels finer, tending to " + sci(c.limit) +
+                   "; refinement.curve_error_factor " + sci(options.curve_error_factor) + ", curve_limit_share " +
+                   sci(options.curve_limit_share) + ", curve_conflict_tolerance " + sci(options.curve_conflict_tolerance) +
+                   " of the sheet's size): another constraint holds the surface off the curve";
+}
+}  // namespace
 
 DesignReport solve_sheet(VariationalSheet& sheet, const SheetEnergy& energy, const std::vector<SheetConstraint>& constraints,
                          qp::QpSolver& solver, const RefinementOptions& refinement, Backend backend) {
@@ -237,6 +266,17 @@ DesignReport solve_sheet(VariationalSheet& sheet, const SheetEnergy& energy, con
     if (!report.unrefined) report.unrefined = std::make_shared<const VariationalSheet>(sheet);
     report.spans_refined += sheet.refine(spans);
   }
+  // Point derivative constraints have no continuum limit (H² in two variables does not bound a
+  // derivative at a point): refined around them the energy keeps falling and the surface turns
+  // sharper there, so a refined answer is a resolution's, not the problem's.
+  const bool point_derivatives = std::any_of(constraints.begin(), constraints.end(), [](const SheetConstraint& c) {
+    return c.kind == SheetConstraint::Kind::Tangent || c.kind == SheetConstraint::Kind::Normal;
+  });
+  if (report.spans_refined > 0 && point_derivatives)
+    report.message += std::string(report.message.empty() ? "" : "; ") +
+                      "refined under a point tangent or normal constraint, which has no continuum limit: the energy keeps "
+                      "falling with refinement (papers/welch-witkin/README.md)";
+  if (report.qp.summary.termination == Termination::Converged) check_curve_convergence(sheet, energy, constraints, refinement, backend, report);
   if (!report.qp.summary.message.empty()) report.message = report.message.empty() ? report.qp.summary.message : report.qp.summary.message + "; " + report.message;
   return report;
 }

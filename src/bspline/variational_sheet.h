@@ -92,6 +92,15 @@ struct RefinementOptions {
   double tolerance = 0;  // 0: no refinement
   int max_level = 4;
   int max_rounds = 8;
+  //! After the solve (and any refinement, unless it met its tolerance): a weak curve constraint
+  //! whose worst pointwise error is above curve_error_factor × its error alone on the sheet and
+  //! whose error under refinement tends to a limit above curve_limit_share of what is left and
+  //! above curve_conflict_tolerance × the sheet's size (bspline/curve_fidelity.h) ends
+  //! constraints_unmet: another constraint holds the surface off the curve. curve_limit_share 0:
+  //! no check.
+  double curve_error_factor = 10;
+  double curve_limit_share = 0.5;
+  double curve_conflict_tolerance = 1e-3;
 };
 
 //! The spans whose refinement §4.4 asks for: those holding a cell with error above the
@@ -101,6 +110,10 @@ std::vector<SpanId> spans_to_refine(const HierarchicalSurface& s, const std::vec
 struct DesignReport {
   qp::QpReport qp;
   double energy = 0, analyze_s = 0, solve_s = 0, max_constraint_error = 0;
+  //! The weak curve constraint with the worst pointwise error: that error, the constraint's error
+  //! alone on the sheet, its error with the spans along the curve one level finer and the
+  //! extrapolated limit under refinement (bspline/curve_fidelity.h; 0 where not computed).
+  double curve_error = 0, curve_alone_error = 0, curve_error_refined = 0, curve_error_limit = 0;
   int rounds = 0, spans_refined = 0;
   Eigen::Index constraint_rows = 0;                     // of the last solve's program
   std::vector<std::vector<CellError>> errors_per_round;  // every solve with an answer, in order

@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <string>
 
 #include "core/error.h"
@@ -37,6 +39,13 @@ QrPenaltySolver::QrPenaltySolver(Backend backend, QrPenaltyOptions options) : ba
 QrPenaltySolver::~QrPenaltySolver() = default;
 
 namespace {
+// max |after − before| / max |after|: how far one refinement step moved the answer.
+double relative_change(const Eigen::MatrixXd& before, const Eigen::MatrixXd& after) {
+  const double size = after.cwiseAbs().maxCoeff();
+  const double moved = (after - before).cwiseAbs().maxCoeff();
+  return size > 0 ? moved / size : moved;
+}
+
 template <class QR>
 void factor_r(QR& qr, const SparseMatrix& M, SparseMatrix& R, Eigen::VectorXi& permutation, int& rank) {
   qr.compute(M);
@@ -133,41 +142,74 @@ QpReport QrPenaltySolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd&
   const Eigen::MatrixXd b = scaling_.d.asDiagonal() * b_original;
   const double tolerance = options_.policy.constraint_tolerance;
   // Van Loan's weighting method: the targets shifted by the accumulated residual, until the
-  // residual meets the tolerance; when a step no longer halves it (the penalty's fixed point
-  // is too far for this μ, or the rows are inconsistent), μ grows tenfold, up to max_mu.
+  // residual meets the tolerance and the answer has stopped moving; when a step halves neither
+  // (the penalty's fixed point is too far for this μ, or the rows are inconsistent), μ grows
+  // tenfold, up to max_mu. The residual alone is not enough: in the constraints' weak directions
+  // (a condition estimate of 1e10) a residual of 1e-10 still leaves the answer 1e-4 off, and
+  // each step's change is what is left of that error.
   int steps = 0;
+  double change = std::numeric_limits<double>::infinity();
+  // With no refinement steps (the paper's plain penalty) there is no change to measure: the
+  // residual alone decides, as the option asks.
+  const bool track_change = options_.refinement_steps > 0;
+  const auto settled = [&](double c) { return !track_change || !(c > options_.solution_tolerance); };
+  // The best answer over the μ tried: met rows first, then the smallest last change. A larger μ
+  // resolves weak directions faster but squares into the semi-normal solve's rounding; once it
+  // moves the answer more than a smaller μ did, the smaller μ's answer is kept.
+  struct Round {
+    Eigen::MatrixXd p;
+    double residual, change, mu;
+  };
+  std::optional<Round> best;
+  const auto better = [&](const Round& r) {
+    const bool met = !(r.residual > tolerance), best_met = !(best->residual > tolerance);
+    return met != best_met ? met : met ? r.change < best->change : r.residual < best->residual;
+  };
   for (;;) {
     Eigen::MatrixXd shifted = b;
-    double previous = std::numeric_limits<double>::infinity();
-    bool stalled = false;
+    double previous = std::numeric_limits<double>::infinity(), previous_change = previous;
     for (int step = 0; step <= options_.refinement_steps; ++step) {
+      const Eigen::MatrixXd before = out.p;
       out.p = penalty_solve(f, shifted);
       const Eigen::MatrixXd Ap = A_ * out.p;
       const double now = relative_unit_residual(Ap, b);
+      change = before.size() ? relative_change(before, out.p) : std::numeric_limits<double>::infinity();
       out.residual_history.push_back(now);
       ++steps;
-      if (!(now > tolerance)) break;
-      if (now > 0.5 * previous) {
-        stalled = true;
-        break;
-      }
+      if (!(now > tolerance) && settled(change)) break;
+      if (now > 0.5 * previous && change > 0.5 * previous_change) break;  // stalled at this μ
       previous = now;
+      previous_change = change;
       shifted += b - Ap;
     }
-    const bool met = !(out.residual_history.back() > tolerance);
-    if (met || !stalled || mu_ * 10 > options_.max_mu * (1 + 1e-12) || condition_ > 1e12) break;
+    const Round round{out.p, out.residual_history.back(), change, mu_};
+    const bool improved = !best || better(round);
+    if (improved) best = round;
+    const bool met = !(round.residual > tolerance) && settled(round.change);
+    // Not met, whether the steps stalled or ran out (too slow at this μ): a larger μ, while it
+    // helps. Without refinement steps μ stays as given (the plain penalty, as asked).
+    if (met || !track_change || !improved || mu_ * 10 > options_.max_mu * (1 + 1e-12) || condition_ > 1e12) break;
     factor(mu_ * 10);
   }
+  out.p = best->p;
+  change = best->change;
+  const double best_mu = best->mu;
   out.summary.termination = out.p.allFinite() ? Termination::Converged : Termination::NumericalFailure;
   out.summary.iterations = steps;  // penalty solves with the factorization(s)
-  if (mu_ != options_.mu) out.summary.message = "mu raised to " + sci(mu_) + " (stalled refinement)";
-  if (out.residual_history.back() > tolerance)
-    out.summary.message += std::string(out.summary.message.empty() ? "" : "; ") + "qr_penalty stopped after " +
-                           std::to_string(steps) + " penalty solves at mu " + sci(mu_) + " (refinement_steps " +
-                           std::to_string(options_.refinement_steps) + ", max_mu " + sci(options_.max_mu) + ")";
-  if (condition_ > 1e12)
-    out.summary.message += std::string(out.summary.message.empty() ? "" : "; ") + "[mu A; K] is badly conditioned (estimate " +
-                           sci(condition_) + "): mu is too large for double precision";
+  const auto note = [&](const std::string& text) { out.summary.message += (out.summary.message.empty() ? "" : "; ") + text; };
+  if (best_mu != options_.mu) note("mu raised to " + sci(best_mu) + " (refinement stalled or too slow)");
+  const std::string where = std::to_string(steps) + " penalty solves, the best at mu " + sci(best_mu) + " (refinement_steps " +
+                            std::to_string(options_.refinement_steps) + ", max_mu " + sci(options_.max_mu) + ")";
+  if (best->residual > tolerance) {
+    note("qr_penalty stopped after " + where);
+  } else if (!settled(change) && out.summary.termination == Termination::Converged) {
+    // Every row met, but the answer still moves: it is uncertain by about that much.
+    out.summary.termination = Termination::IllConditioned;
+    note("the constraints are met but the answer still moved by " + sci(change) + " (relative) in its last step; " + where +
+         ", above solution_tolerance " + sci(options_.solution_tolerance) +
+         ": the rows have weak directions the penalty resolves slowly (a direct solver, kkt or range_space, does not)");
+  }
+  if (condition_ > 1e12) note("[mu A; K] is badly conditioned (estimate " + sci(condition_) + "): mu is too large for double precision");
   assess(out, {H_, f, A_original_, b_original, scaling_, conditioning_}, options_.policy);
   return out;
 }

@@ -5,10 +5,11 @@
 // constraint targets go through Q as a true least-squares solve.
 // Van Loan's weighting method then refines the constraint residual with the same R: the
 // target b is shifted by the remaining residual until the residual meets the policy's
-// constraint_tolerance (qp/constraint_policy.h), at most `refinement_steps` times per μ; each
-// step shrinks ‖A p − b‖ by roughly 1/(1 + μ²σ²) (σ the constraint-energy scale ratio). When a
-// step no longer halves it, μ grows tenfold (a new factorization), up to max_mu; a residual
-// still above the tolerance is reported as constraints_unmet, never as converged.
+// constraint_tolerance (qp/constraint_policy.h) and a step moves the answer by less than
+// solution_tolerance, at most `refinement_steps` times per μ; each step shrinks ‖A p − b‖ by
+// roughly 1/(1 + μ²σ²) (σ the constraint-energy scale ratio). When a step halves neither, μ
+// grows tenfold (a new factorization), up to max_mu; a residual still above the tolerance is
+// reported as constraints_unmet, an answer still moving as ill_conditioned, never as converged.
 // Rows are scaled to unit norm and μ is relative: they are weighted μ·√(max diag H)/max|Â_ij|,
 // so μ = 1 puts them on the energy's scale whatever the units.
 #pragma once
@@ -26,6 +27,9 @@ struct QrPenaltyOptions {
   double mu = 1e3;
   int refinement_steps = 10;  // at most, per μ
   double max_mu = 1e8;
+  //! A refinement step that still moves the answer by more than this (max-norm, relative) is
+  //! not the last: the residual alone can be met while weak directions are far off.
+  double solution_tolerance = 1e-5;
   //! true: keep Q and solve through it (accurate to cond·ε, slow: Q of the tall [μA; K] is
   //! large); false: R alone, corrected semi-normal equations (fast, cond²·ε before correction).
   bool orthogonal = false;

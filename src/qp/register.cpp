@@ -17,7 +17,10 @@ QrPenaltyOptions read_penalty(Config& cfg) {
                                    "Van Loan weighting-method steps refining the constraint residual with one factorization, at most "
                                    "(fewer once constraint_tolerance is met)");
   o.max_mu = cfg.get_number("max_mu", std::max(o.max_mu, o.mu), o.mu, 1e12,
-                            "mu grows tenfold up to this while refinement stalls above constraint_tolerance (max_mu = mu: never)");
+                            "mu grows tenfold up to this while refinement stalls (max_mu = mu: never)");
+  o.solution_tolerance = cfg.get_number("solution_tolerance", o.solution_tolerance, 1e-15, 1,
+                                        "refinement continues while a step moves the answer by more than this (relative, max-norm); "
+                                        "still moving at max_mu: ill_conditioned");
   static const NameTable<bool> solves{{false, "semi_normal"}, {true, "orthogonal"}};
   o.orthogonal = cfg.get_enum("solve", false, solves,
                               "semi_normal: R only (corrected semi-normal equations, fast); orthogonal: through Q (slow, accurate)");

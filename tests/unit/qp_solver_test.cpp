@@ -241,6 +241,17 @@ TEST_CASE("every constrained solver calls nearly coincident points pulled apart 
     CHECK(ok.summary.termination == Termination::Converged);
     CHECK(ok.condition_estimate < 1e5);
   }
+  // 8e-4 spans apart: badly conditioned but below max_condition, solved by every solver to the
+  // same answer (QR-penalty used to run out of refinement steps at its first mu and give up).
+  const QuadraticProgram close = pulled_apart(4.0008);
+  const QpReport kkt = solved("kkt", close);
+  REQUIRE(kkt.summary.termination == Termination::Converged);
+  for (const std::string name : {"range_space", "qr_penalty"}) {
+    const QpReport r = solved(name, close);
+    INFO(name << ": " << r.summary.message);
+    CHECK(r.summary.termination == Termination::Converged);
+    CHECK((r.p - kkt.p).cwiseAbs().maxCoeff() <= 1e-5 * kkt.p.cwiseAbs().maxCoeff());
+  }
 }
 
 TEST_CASE("QR-penalty says when it could not meet the constraints: no refinement and no room for mu", "[qp]") {

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <optional>
 
 #include <Eigen/Geometry>
 
+#include "core/message_format.h"
 #include "core/types.h"
 #include "curves/curve_sampling.h"
 
@@ -114,8 +116,47 @@ void read_space_arc_axes(Config& a, CircleArc& arc) {
   arc.e2 = u.cross(e1);
 }
 
+// The largest distance between a sampling's chords and the exact curve at their middles: a
+// sampler equally spaced in t gives the middles of n samples as the odd rows of 2n − 1.
+double chord_error(const std::function<Eigen::MatrixXd(int)>& sample, int n) {
+  const Eigen::MatrixXd X = sample(n), fine = sample(2 * n - 1);
+  double worst = 0;
+  for (Eigen::Index k = 0; k + 1 < X.rows(); ++k)
+    worst = std::max(worst, (fine.row(2 * k + 1) - 0.5 * (X.row(k) + X.row(k + 1))).norm());
+  return worst;
+}
+
+// The sample count of an analytic form (arc, B-spline). Without a chord tolerance: the given
+// count or the default. With one (refinement.tolerance): a given count whose chord error exceeds
+// it is refused (refinement could never go below it), and the default count is doubled until the
+// chord error is a quarter of it.
+int analytic_samples(Config& c, const std::optional<int>& given, double chord_tolerance,
+                     const std::function<Eigen::MatrixXd(int)>& sample) {
+  if (!(chord_tolerance > 0)) return given.value_or(kDefaultCurveSamples);
+  if (given) {
+    const double e = chord_error(sample, *given);
+    if (e > chord_tolerance) {
+      int enough = *given;
+      while (enough < kMaxCurveSamples && chord_error(sample, enough) > 0.25 * chord_tolerance) enough = 2 * enough - 1;
+      throw InvalidConfig(c.key_path("samples") + ": " + std::to_string(*given) + " samples leave a chord error of " +
+                          sci(e) + ", above refinement.tolerance " + sci(chord_tolerance) +
+                          " (refinement could never meet it): give about " + std::to_string(enough) +
+                          ", or leave samples out to have them chosen");
+    }
+    return *given;
+  }
+  int n = kDefaultCurveSamples;
+  while (chord_error(sample, n) > 0.25 * chord_tolerance) {
+    if (2 * n - 1 > kMaxCurveSamples)
+      throw InvalidConfig(where(c) + ": even " + std::to_string(n) + " samples leave a chord error above a quarter of "
+                          "refinement.tolerance " + sci(chord_tolerance));
+    n = 2 * n - 1;
+  }
+  return n;
+}
+
 template <int D>
-Samples read_arc(Config& c) {
+Samples read_arc(Config& c, double chord_tolerance) {
   if (c.has("closed"))
     throw InvalidConfig(c.key_path("closed") + ": not for an arc (an arc is closed when to_angle - from_angle = ±360)");
   Config a = c.child("arc", std::string("circle arc {center, radius, from_angle, to_angle") + (D == 3 ? ", normal | axes}" : "}"));
@@ -139,11 +180,12 @@ Samples read_arc(Config& c) {
   a.check_no_unknown_keys();
   const std::optional<int> samples = read_samples(c, arc.full_circle());
   if (a.documenting()) return {Eigen::MatrixXd(0, D), false};
-  return {sample_arc(arc, samples.value_or(kDefaultCurveSamples)), arc.full_circle()};
+  const auto sample = [&](int n) { return sample_arc(arc, n); };
+  return {sample(analytic_samples(c, samples, chord_tolerance, sample)), arc.full_circle()};
 }
 
 template <int D>
-Samples read_bspline(Config& c) {
+Samples read_bspline(Config& c, double chord_tolerance) {
   const bool closed = c.get<bool>("closed", false, "the curve returns to its first point (points and bspline)");
   Config b = c.child("bspline", "B-spline {degree, control_points, knots}");
   const int degree = b.get_int("degree", 3, 1, kMaxCurveDegree, "polynomial degree");
@@ -172,7 +214,8 @@ Samples read_bspline(Config& c) {
     curve.control = P;
     if (curve.knots.empty()) curve.knots = uniform_clamped_knots(static_cast<int>(P.rows()), degree);
   }
-  return {sample_bspline(curve, samples.value_or(kDefaultCurveSamples)), closed};
+  const auto sample = [&](int n) { return sample_bspline(curve, n); };
+  return {sample(analytic_samples(c, samples, chord_tolerance, sample)), closed};
 }
 
 const std::vector<std::string> kForms{"points", "arc", "bspline"};
@@ -186,7 +229,7 @@ bool has_curve_form_key(const Config& c) {
 }
 
 template <int D>
-SampledCurve<D> read_curve_form(Config& c) {
+SampledCurve<D> read_curve_form(Config& c, double chord_tolerance) {
   std::vector<std::string> given;
   for (const std::string& f : kForms)
     if (c.has(f)) given.push_back(f);
@@ -194,17 +237,18 @@ SampledCurve<D> read_curve_form(Config& c) {
     throw InvalidConfig(c.key_path(given[1]) + ": give one of points, arc, bspline (" + given[0] + " is given too)");
   if (given.empty() && !c.documenting()) throw InvalidConfig(where(c) + ": a curve needs one of points, arc, bspline");
   const std::string form = given.empty() ? "points" : given[0];
-  const Samples s = form == "points" ? read_polyline<D>(c) : form == "arc" ? read_arc<D>(c) : read_bspline<D>(c);
+  const Samples s = form == "points" ? read_polyline<D>(c) : form == "arc" ? read_arc<D>(c, chord_tolerance)
+                                                                                 : read_bspline<D>(c, chord_tolerance);
   SampledCurve<D> out;
   for (Eigen::Index i = 0; i < s.X.rows(); ++i) out.points.push_back(s.X.row(i).transpose());
   out.closed = s.closed;
   return out;
 }
 
-template SampledCurve<2> read_curve_form<2>(Config& c);
-template SampledCurve<3> read_curve_form<3>(Config& c);
+template SampledCurve<2> read_curve_form<2>(Config& c, double chord_tolerance);
+template SampledCurve<3> read_curve_form<3>(Config& c, double chord_tolerance);
 
-SampledCurve<2> read_uv_curve(Config& c, const std::string& key, const std::string& doc) {
+SampledCurve<2> read_uv_curve(Config& c, const std::string& key, const std::string& doc, double chord_tolerance) {
   const YAML::Node n = c.node()[key];
   if (!c.has(key) || n.IsSequence()) {  // a plain list: the polyline's vertices, as they are
     (void)c.get<std::vector<std::vector<double>>>(key, {}, doc + ": [[u, v], ...] or {points | arc | bspline, closed, samples}");
@@ -218,7 +262,7 @@ SampledCurve<2> read_uv_curve(Config& c, const std::string& key, const std::stri
     throw InvalidConfig(c.key_path(key) + ": expected [[u, v], ...] or a curve {points | arc | bspline, closed, samples}, got '" +
                         yaml_to_string(n) + "'");
   Config sub = c.child(key, doc);
-  SampledCurve<2> out = read_curve_form<2>(sub);
+  SampledCurve<2> out = read_curve_form<2>(sub, chord_tolerance);
   sub.check_no_unknown_keys();
   return out;
 }

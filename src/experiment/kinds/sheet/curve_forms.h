@@ -17,6 +17,10 @@
 // equally in angle, a B-spline equally in its knot parameter. Closed curves' last point repeats
 // their first, and `samples` counts it. Values pass through unchanged: the module does not
 // know (u, v) units.
+// With a chord tolerance (a sheet run's refinement.tolerance: what the curve must be met to),
+// arcs and B-splines without `samples` are sampled until their chords are within a quarter of
+// it of the exact curve, and a `samples` that leaves more than the tolerance is refused: the
+// sampled polyline is the target, so refinement could never get below its chord error.
 #pragma once
 
 #include <string>
@@ -46,12 +50,13 @@ bool has_curve_form_key(const Config& c);
 //! its reader checks for unknown keys; the arc and bspline maps are checked here.
 //! \throw InvalidConfig naming the key path: no form or two, a point of the wrong dimension,
 //! too few points, radius ≤ 0, an arc of 0° or more than 360°, a degree out of range, too few
-//! control points, knots of the wrong count or order, samples out of range.
+//! control points, knots of the wrong count or order, samples out of range or too few for
+//! chord_tolerance (see above).
 template <int D>
-SampledCurve<D> read_curve_form(Config& c);
+SampledCurve<D> read_curve_form(Config& c, double chord_tolerance = 0);
 
 //! The (u, v) curve under `key`: a plain list [[u, v], ...] (a polyline keeping its vertices,
 //! as before) or a map of form keys ({arc: {...}, samples: 33}). Empty when the key is absent.
-SampledCurve<2> read_uv_curve(Config& c, const std::string& key, const std::string& doc);
+SampledCurve<2> read_uv_curve(Config& c, const std::string& key, const std::string& doc, double chord_tolerance = 0);
 
 }  // namespace fairshape

@@ -100,7 +100,7 @@ SheetSpec read_sheet(Config& c, const std::vector<std::string>& search_dirs) {
   return s;
 }
 
-SpaceCurveSpec read_curve(Config& c) {
+SpaceCurveSpec read_curve(Config& c, double chord_tolerance) {
   SpaceCurveSpec s;
   s.name = c.require<std::string>("name", "name curve constraints refer to");
   if (c.has("from_surface")) {
@@ -112,14 +112,14 @@ SpaceCurveSpec read_curve(Config& c) {
     s.samples = c.get_int("samples", s.samples, 2, kMaxCurveSamples, "points of the space curve (equally spaced in t)");
     Config fs_ = c.child("from_surface", "trace the curve on a sheet's initial surface: {sheet, uv}");
     s.from_sheet = fs_.require<std::string>("sheet", "sheet name");
-    const SampledCurve<2> uv = read_uv_curve(fs_, "uv", "(u, v) curve on that sheet");
+    const SampledCurve<2> uv = read_uv_curve(fs_, "uv", "(u, v) curve on that sheet", chord_tolerance);
     if (uv.points.empty()) throw InvalidConfig(fs_.key_path("uv") + ": required key is missing");
     s.uv = uv.points;
     s.closed = uv.closed;
     fs_.check_no_unknown_keys();
   } else if (!c.documenting()) {  // points, arc or bspline (curve_forms.h), sampled already
     if (!has_curve_form_key(c)) throw InvalidConfig(c.path() + ": give from_surface or a curve: points, arc or bspline");
-    const SampledCurve<3> curve = read_curve_form<3>(c);
+    const SampledCurve<3> curve = read_curve_form<3>(c, chord_tolerance);
     s.points = curve.points;
     s.closed = curve.closed;
     s.samples = static_cast<int>(s.points.size());
@@ -140,7 +140,7 @@ SpaceCurveSpec read_curve(Config& c) {
 
 const std::vector<std::string> kConstraintTypes{"point", "tangent", "normal", "curve", "curve_point", "curve_tangent"};
 
-SheetConstraintSpec read_constraint(Config& c, const std::string& label, const std::string& first_sheet) {
+SheetConstraintSpec read_constraint(Config& c, const std::string& label, const std::string& first_sheet, double chord_tolerance) {
   SheetConstraintSpec s;
   s.label = label;
   s.constraint.label = label;
@@ -151,7 +151,7 @@ SheetConstraintSpec read_constraint(Config& c, const std::string& label, const s
   if (type == "curve") {
     k.kind = SheetConstraint::Kind::Curve;
     s.curve = c.require<std::string>("curve", "space curve name");
-    k.curve.uv = read_uv_curve(c, "uv", "(u, v) curve on the sheet (default: the curve's from_surface uv)").points;
+    k.curve.uv = read_uv_curve(c, "uv", "(u, v) curve on the sheet (default: the curve's from_surface uv)", chord_tolerance).points;
     static const NameTable<bspline::CurveFormulation> formulations{{bspline::CurveFormulation::Mortar, "mortar"},
                                                                    {bspline::CurveFormulation::Paper, "paper"}};
     k.formulation = c.get_enum("formulation", bspline::CurveFormulation::Mortar, formulations,
@@ -215,6 +215,24 @@ SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config, const std::
   static_cast<RunBasics&>(s) = read_run_basics(root);
   for (Config c : root.child_list("sheets", "hierarchical B-spline sheets")) s.sheets.push_back(read_sheet(c, search_dirs));
   if (s.sheets.empty()) throw InvalidConfig("sheets: at least one sheet");
+  // Before the curves: arcs and B-splines are sampled finely enough for the tolerance (curve_forms.h).
+  Config rc = root.child("refinement", "automatic refinement (§4.4) and the curve check: {tolerance, max_level, max_rounds, curve_error_factor, curve_limit_share, curve_conflict_tolerance, estimate_objective_error}");
+  s.refinement.tolerance = rc.get_number("tolerance", 0, 0, 1e12, "constraint error per leaf cell above which it is refined (0: off)");
+  s.refinement.max_level = rc.get_int("max_level", 4, 1, bspline::HierarchicalSurface::kMaxLevel, "deepest layer");
+  s.refinement.max_rounds = rc.get_int("max_rounds", 8, 1, 100, "refine-and-solve rounds at most");
+  s.refinement.curve_error_factor = rc.get_number(
+      "curve_error_factor", 10, 1, 1e12,
+      "a curve constraint whose pointwise error is above this multiple of its error alone on the sheet is checked under refinement");
+  s.refinement.curve_limit_share = rc.get_number(
+      "curve_limit_share", 0.5, 0, 1,
+      "such a curve constraint whose error, refined twice along the curve, tends to a limit above this share of what is left "
+      "ends constraints_unmet (another constraint holds the surface off the curve); 0: no check");
+  s.refinement.curve_conflict_tolerance = rc.get_number(
+      "curve_conflict_tolerance", 1e-3, 0, 1,
+      "and only when that limit is above this share of the sheet's size (bounding-box diagonal of its control points)");
+  s.estimate_objective_error = rc.get<bool>("estimate_objective_error", false,
+                                            "after the last step, solve once more with every cell refined and report the change");
+  rc.check_no_unknown_keys();
   std::vector<std::pair<std::string, std::string>> sheet_names;
   for (std::size_t k = 0; k < s.sheets.size(); ++k) sheet_names.emplace_back("sheets[" + std::to_string(k) + "].name", s.sheets[k].name);
   check_distinct_file_names(sheet_names);
@@ -227,7 +245,7 @@ SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config, const std::
   };
   int k = 0;
   for (Config c : root.child_list("curves", "space curves [{name, from_surface | points | arc | bspline, closed, samples, edits}]")) {
-    s.curves.push_back(read_curve(c));
+    s.curves.push_back(read_curve(c, s.refinement.tolerance));
     if (!s.curves.back().from_sheet.empty()) sheet_index(s.curves.back().from_sheet, "curves[" + std::to_string(k) + "].from_surface.sheet");
     ++k;
   }
@@ -246,7 +264,7 @@ SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config, const std::
       for (int side = 0; side < 2; ++side) sheet_index(s.tangent_continuity.back().sheets[side], label + ".sheets");
       continue;
     }
-    SheetConstraintSpec cs = read_constraint(c, label, s.sheets.front().name);
+    SheetConstraintSpec cs = read_constraint(c, label, s.sheets.front().name, s.refinement.tolerance);
     sheet_index(cs.sheet, label + ".sheet");
     if (!cs.curve.empty()) {
       const auto it = std::find_if(s.curves.begin(), s.curves.end(), [&](const auto& cv) { return cv.name == cs.curve; });
@@ -339,13 +357,6 @@ SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config, const std::
     sub.check_no_unknown_keys();
   }
   sc.check_no_unknown_keys();
-  Config rc = root.child("refinement", "automatic refinement (§4.4): {tolerance, max_level, max_rounds}");
-  s.refinement.tolerance = rc.get_number("tolerance", 0, 0, 1e12, "constraint error per leaf cell above which it is refined (0: off)");
-  s.refinement.max_level = rc.get_int("max_level", 4, 1, bspline::HierarchicalSurface::kMaxLevel, "deepest layer");
-  s.refinement.max_rounds = rc.get_int("max_rounds", 8, 1, 100, "refine-and-solve rounds at most");
-  s.estimate_objective_error = rc.get<bool>("estimate_objective_error", false,
-                                            "after the last step, solve once more with every cell refined and report the change");
-  rc.check_no_unknown_keys();
   Config oc = root.child("output", "what each run writes");
   s.samples_per_span = oc.get_int("samples_per_span", 6, 1, 64, "tessellation of final.obj and the VTK per base span");
   s.vtk = read_vtk_policy(oc, "vtk/<run>_step<k>.vtp of all sheets after every step");
@@ -371,7 +382,8 @@ const std::vector<std::string>& sheet_cell_columns() {
 const std::vector<std::string>& sheet_step_columns() {
   static const std::vector<std::string> cols{"step", "sheet", "dofs", "levels", "constraint_rows", "dropped_rows",
                                              "constraint_residual", "max_constraint_error", "energy", "spans_refined",
-                                             "refinement_rounds", "analyze_s", "solve_s", "factorization"};
+                                             "refinement_rounds", "analyze_s", "solve_s", "factorization", "curve_error",
+                                             "curve_alone_error", "curve_error_refined", "curve_error_limit"};
   return cols;
 }
 
@@ -472,6 +484,7 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
     std::map<std::string, std::vector<Vec3>> final_curves;  // the space curves at the last step
     double analyze_s = 0, solve_s = 0, energy = 0, residual = 0, max_err = 0, cond = 0;
     int dofs = 0, rows = 0, dropped = 0, refined = 0, rounds = 0, levels = 0;
+    bool solved_any = false;  // a sheet or a free curve had something acting on it
     // Per sheet, the last step's constraint error per leaf cell after every solve (Figure 3).
     std::vector<std::vector<std::vector<bspline::CellError>>> cell_errors(sheets.size());
     bool failed = false;
@@ -512,7 +525,9 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
                       std::to_string(s.level_count()), std::to_string(r.constraint_rows), std::to_string(r.qp.dropped_rows),
                       num(r.qp.constraint_residual), num(r.max_constraint_error), num(r.energy),
                       std::to_string(r.spans_refined), std::to_string(r.rounds), num(r.analyze_s), num(r.solve_s),
-                      joint != joined.sheets.end() ? joint->second.factorization : qp::factorization_note(*spec.solver)});
+                      joint != joined.sheets.end() ? joint->second.factorization : qp::factorization_note(*spec.solver),
+                      num(r.curve_error), num(r.curve_alone_error), num(r.curve_error_refined),
+                      num(r.curve_error_limit)});
         const bool this_failed = !is_success(r.qp.summary.termination);
         if (this_failed && !failed) {  // the first failure names the row
           row["termination"] = std::string(to_string(r.qp.summary.termination));
@@ -531,18 +546,18 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
         solve_s += r.solve_s;
         refined += r.spans_refined;
         rounds += r.rounds;
+        solved_any = true;
         if (step + 1 == spec.steps() || failed) {  // the row: the last step, or the one that failed
           energy += r.energy;
           residual = std::hypot(residual, r.qp.constraint_residual);
           max_err = std::max(max_err, r.max_constraint_error);
-          dofs += s.dof_count();
           rows += static_cast<int>(r.constraint_rows);
           dropped += r.qp.dropped_rows;
-          levels = std::max(levels, s.level_count());
           if (!std::isnan(r.qp.condition_estimate)) cond = std::max(cond, r.qp.condition_estimate);
         }
       }
       for (const FreeCurveStep& c : joined.curves) {  // a row per free curve (its group's termination)
+        solved_any = true;
         out.add_row("steps", free_curve_step_row(step, c));
         if (!failed && !is_success(c.termination)) {
           failed = true;
@@ -614,6 +629,10 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
       }
     write_mesh(sheets_mesh(sheets, spec.samples_per_span, initial_surfaces, initial_P), out.final_path());
     write_sheet_files(out, spec.sheets, sheets, -1);
+    // Every sheet's unknowns and layers, whether or not something acted on it.
+    for (const bspline::VariationalSheet& sh : sheets) dofs += sh.surface().dof_count(), levels = std::max(levels, sh.surface().level_count());
+    if (!solved_any && !failed && row["message"].empty())
+      row["message"] = "no constraint acts on any sheet at any step: nothing was solved (the sheets keep their shapes)";
     row["dofs"] = std::to_string(dofs);
     row["levels"] = std::to_string(levels);
     row["constraint_rows"] = std::to_string(rows);

@@ -1,0 +1,52 @@
+// Is a curve constraint's pointwise error the discretization's, or is something holding the
+// surface off the curve? The weak (mortar) curve rows of bspline/mortar_curve.h tie only
+// weighted means of w − D along the curve, one per multiplier. Where the curve runs diagonally
+// or bends across cells, the trace has modes those means do not see, and another constraint (a
+// point on the path 0.2 off the curve) can move them freely: every row is met, the surface
+// spikes and the pointwise error is as large as the conflict. Two yardsticks, both needed:
+//  - the same curve constraint alone on the sheet (same energy, nothing else acting): its error
+//    is what the weak form leaves on this path and target. A conflict is far above it; so is a
+//    consistent design that bends the sheet hard across the curve (a lifted circle with pinned
+//    corners: 100x), which is why this alone does not decide;
+//  - refinement: a discretization error goes to 0 when the spans along the curve are refined,
+//    a conflict's does not (the point still sits on the path, 0.2 off): two refinements and
+//    Aitken's extrapolation estimate the error's limit. Neither does the error a kinked polyline
+//    target leaves converge (Figure 2's: 0.92x per level), which the first yardstick passes, nor
+//    quite the error a 48-gon path leaves where the sheet bends across it (a lifted circle with
+//    pinned corners: 2e-4, 1.2e-4, 1.15e-4, 100x its error alone): the limit must also exceed a
+//    stated share of the sheet's size to count as a conflict.
+// A conflict fails both (papers/welch-witkin/README.md, "Curve constraints that conflict").
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "bspline/variational_sheet.h"
+
+namespace fairshape::bspline {
+
+//! How many samples the pointwise curve errors take along a uv polyline: enough to see every
+//! leaf cell it crosses several times.
+int curve_samples(const HierarchicalSurface& s, const std::vector<Eigen::Vector2d>& uv);
+
+struct CurveConvergence {
+  int constraint = -1;        // index of the curve constraint with the worst pointwise error; −1: none
+  double error = 0;           // its largest |w(c(t)) − D(t)| over the samples
+  double alone_error = 0;     // the same with that constraint alone on the sheet (0: not computed)
+  double refined_error = 0;   // the same with every span the curve crosses one level finer (0: not computed)
+  double twice_refined_error = 0;  // and two levels finer
+  double limit = 0;           // the error's limit under refinement, extrapolated from the three
+  bool conflict = false;      // above both yardsticks
+};
+
+//! Judges the weak (mortar) curve constraints of a solved sheet: the worst pointwise error
+//! against the same constraint alone (a conflict needs error > alone_factor × alone_error) and,
+//! only then, against solves with every span the curve crosses one and two levels finer (a
+//! conflict's extrapolated limit is more than limit_share of the last error and more than
+//! conflict_tolerance × the diagonal of the sheet's control points' bounding box). Both extra solves are direct KKT solves on copies.
+//! \pre the sheet holds the solution of `constraints`.
+CurveConvergence curve_convergence(const VariationalSheet& sheet, const SheetEnergy& energy,
+                                   const std::vector<SheetConstraint>& constraints, Backend backend, double alone_factor,
+                                   double limit_share, double conflict_tolerance);
+
+}  // namespace fairshape::bspline

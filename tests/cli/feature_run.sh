@@ -11,6 +11,21 @@ for c in time_s vertices_moved max_displacement triangles_adaptive; do head -1 "
 grep -q "displacement_norm" "$SCRATCH/fig11/vtk/"*.vtp || fail "VTK lacks the displacement array"
 [ "$(ls "$SCRATCH/fig11/curves/"*.obj | wc -l)" -eq 3 ] || fail "expected one base curve per feature"
 [ -s "$SCRATCH/fig11/adaptive/"*.obj ] || fail "missing the adaptive mesh"
+# Exports (issue 24 part 5): per-level VTPs with the feature displacements, the limit surface,
+# every curve's attachment on its drawn level and each finer one.
+RUN=$(sed -n 2p "$SCRATCH/fig11/runs.csv" | cut -d, -f1)
+[ "$(ls "$SCRATCH/fig11/levels/${RUN}_level"*.vtp | wc -l)" -eq 4 ] || fail "expected levels/<run>_level0..3.vtp"
+grep -q "feature_displacement" "$SCRATCH/fig11/levels/${RUN}_level2.vtp" || fail "level VTP lacks feature_displacement"
+grep -q "limit_normal" "$SCRATCH/fig11/limit/${RUN}.vtp" || fail "limit VTP lacks limit_normal"
+grep -q "limit_position" "$SCRATCH/fig11/vtk/${RUN}.vtp" || fail "the result VTP lacks limit_position"
+$PY - "$SCRATCH/fig11/attachments.csv" <<'PYEOF' || fail "attachments.csv: expected every feature on levels 2 and 3 with as many points on each"
+import csv, sys, collections
+rows = list(csv.DictReader(open(sys.argv[1])))
+count = collections.Counter((r["feature"], r["level"]) for r in rows)
+ok = len({f for f, _ in count}) == 3 and all(count[(f, "2")] == count[(f, "3")] > 0 for f, _ in count)
+ok = ok and all(abs(float(r["b0"]) + float(r["b1"]) + float(r["b2"]) - 1) < 1e-9 and min(float(r["b0"]), float(r["b1"]), float(r["b2"])) >= -1e-12 for r in rows)
+sys.exit(0 if ok else 1)
+PYEOF
 # Reference and optimized write the same surface.
 "$FS" run $C --out "$SCRATCH/ref" --set input.levels=3 --set feature_defaults.profile_tolerance=0.1 --set implementation=reference --set adaptive.enabled=false 2>/dev/null \
   || fail "reference run failed"

@@ -1,5 +1,7 @@
 #include "experiment/kinds/feature/feature_run.h"
 
+#include "experiment/kinds/feature/feature_exports.h"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -9,6 +11,7 @@
 #include "core/config.h"
 #include "core/timer.h"
 #include "experiment/kinds/feature/curve_placement_config.h"
+#include "experiment/kinds/feature/feature_exports.h"
 #include "experiment/metric_format.h"
 #include "feature/adaptive_mesh.h"
 #include "feature/featured_surface.h"
@@ -258,7 +261,13 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
       fs::create_directories(fs::path(out.dir) / "adaptive");
       write_mesh(a.mesh, (fs::path(out.dir) / "adaptive" / (out.run_id + ".obj")).string());
     }
-    if (spec.vtk) write_vtp(fine, (fs::path(out.dir) / "vtk" / (out.run_id + ".vtp")).string());
+    export_attachments(surface, out);
+    if (spec.vtk) {
+      const LimitSurface limit = export_levels_and_limit(surface, out);
+      fine.vertex_data["limit_position"] = limit.positions;
+      fine.vertex_data["limit_normal"] = limit.normals;
+      write_vtp(fine, (fs::path(out.dir) / "vtk" / (out.run_id + ".vtp")).string());
+    }
     write_mesh(fine, out.final_path());
     report_profiles(surface, row, out);
   } catch (const OutputError& e) {  // results incomplete: not a finished run

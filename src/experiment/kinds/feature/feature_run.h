@@ -56,8 +56,10 @@ MultiresSurface feature_hierarchy(const FeatureRunSpec& spec);
 //! the base edit applied: what the run evaluates. \throw InvalidInput naming the feature.
 feature::FeaturedSurface placed_features(FeatureRunSpec& spec, MultiresSurface original);
 
-//! Writes final.obj (finest level), vtk/<run>.vtp (point arrays displacement, displacement_norm),
-//! adaptive/<run>.obj and curves/<run>_<feature>.obj; never throws for problems of the input.
+//! Writes final.obj (finest level), vtk/<run>.vtp (point arrays displacement, displacement_norm,
+//! limit_position, limit_normal), adaptive/<run>.obj, curves/<run>_<feature>.obj, features.csv,
+//! attachments.csv and (with VTK output) levels/<run>_level<k>.vtp and limit/<run>.vtp
+//! (feature_exports.h); never throws for problems of the input.
 MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out);
 
 }  // namespace fairshape

@@ -1,0 +1,30 @@
+// What a feature run exports beside final.obj (issue 24 part 5): the result's limit surface, the
+// per-level feature displacements the paper keeps apart from the surface (Khodakovsky &
+// Schröder, §1.4: features live in the hierarchy as offsets of the level they are drawn on),
+// and each curve's attachment (face, barycentric coordinates) on its drawn level and every
+// finer one.
+#pragma once
+
+#include "experiment/run_outputs.h"
+#include "feature/featured_surface.h"
+
+namespace fairshape {
+
+//! attachments.csv's columns: feature, level, point, face, b0, b1, b2, x, y, z (the point on that
+//! level of the result, piecewise linearly).
+const TableSchema& feature_attachment_table();
+
+//! Adds a row per curve point and level to attachments.csv.
+void export_attachments(feature::FeaturedSurface& surface, const RunOutputs& out);
+
+//! levels/<run>_level<k>.vtp for every level k: the result there, with point arrays
+//! feature_displacement (the offsets the features put on that level's control points; 0 where
+//! none) and displacement (result − surface without features); and limit/<run>.vtp: the finest
+//! level's vertices moved to the limit surface, with limit_normal. Returns the finest level's
+//! limit positions and normals for the caller's own VTP.
+struct LimitSurface {
+  MatrixX3 positions, normals;
+};
+LimitSurface export_levels_and_limit(feature::FeaturedSurface& surface, const RunOutputs& out);
+
+}  // namespace fairshape

@@ -1,4 +1,5 @@
 // Khodakovsky & Schröder's feature curves on Loop hierarchies as a run kind.
+#include <filesystem>
 #include <map>
 
 #include "core/error.h"
@@ -17,7 +18,8 @@ class FeatureKind final : public RunKind {
   bool owns(const YAML::Node& c) const override { return is_feature_config(c); }
   ValidatedRun validate(const YAML::Node& c, const std::vector<std::string>& dirs) override {
     FeatureRunSpec spec = FeatureRunSpec::from_config(c, dirs);
-    require_readable_mesh(spec.mesh_path, "input.mesh");
+    // A saved hierarchy (.vtm) is read whole by check_on_hierarchy.
+    if (std::filesystem::path(spec.mesh_path).extension() != ".vtm") require_readable_mesh(spec.mesh_path, "input.mesh");
     check_on_hierarchy(spec);
     return {spec.name, {spec.mesh_path}};
   }
@@ -36,7 +38,7 @@ class FeatureKind final : public RunKind {
   // (a point off the surface, a curve that leaves it, too curved a surface): the sweep is
   // refused before its first run. Finer features need the perturbed surface: the run checks them.
   void check_on_hierarchy(FeatureRunSpec& spec) {
-    const std::string key = spec.mesh_path + "|" + std::to_string(spec.levels) + "|" +
+    const std::string key = spec.mesh_path + "|" + std::to_string(spec.levels) + "|" + std::to_string(spec.remesh_base_faces) + "|" +
                             std::string(to_string(spec.loop_weights)) + "|" + std::string(to_string(spec.implementation));
     auto it = hierarchies_.find(key);
     try {

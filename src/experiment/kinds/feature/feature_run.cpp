@@ -12,6 +12,9 @@
 #include "core/timer.h"
 #include "experiment/kinds/feature/curve_placement_config.h"
 #include "experiment/kinds/feature/feature_exports.h"
+#include "experiment/components.h"
+#include "experiment/kinds/surface_edit/edited_hierarchy.h"
+#include "experiment/kinds/surface_edit/run_one.h"
 #include "experiment/metric_format.h"
 #include "feature/adaptive_mesh.h"
 #include "feature/featured_surface.h"
@@ -49,6 +52,46 @@ feature::FeatureParams read_params(Config& c, const feature::FeatureParams& d) {
   return p;
 }
 
+// The surface-edit keys an `edit` block passes through (experiment/kinds/surface_edit).
+const std::vector<std::string> kEditKeys{"energy", "constraints", "problem", "solver"};
+
+// The hierarchy and the edit through the surface-edit kind's reader, when the input is remeshed
+// or saved or an `edit` is given: the same keys, the same checks, the same hierarchy (its
+// remesher, its saved files). Its messages name the keys inside `edit`.
+void read_editor(Config& root, const std::vector<std::string>& dirs, FeatureRunSpec& s) {
+  const YAML::Node& config = root.node();
+  const bool saved = std::filesystem::path(s.mesh_path).extension() == ".vtm";
+  s.has_edit = root.has("edit");
+  Config ec = root.child("edit", "a detail-preserving edit (Boier-Martin et al.) of the surface without features, in the "
+                                 "surface-edit keys {energy, constraints, problem, solver}; features ride on it");
+  for (const std::string& k : kEditKeys) (void)ec.get<YAML::Node>(k, YAML::Node(), "as in a surface-edit config");
+  ec.check_no_unknown_keys();
+  if (!s.has_edit && !saved && s.remesh_base_faces == 0) return;
+  YAML::Node edit_config;
+  edit_config["name"] = s.name;
+  edit_config["implementation"] = std::string(to_string(s.implementation));
+  YAML::Node input = YAML::Clone(config["input"]);
+  if (!saved) input["representation"] = "loop";
+  edit_config["input"] = input;
+  if (s.has_edit)
+    for (const std::string& k : kEditKeys)
+      if (config["edit"][k]) edit_config[k] = YAML::Clone(config["edit"][k]);
+  // Without an edit the reader builds only the hierarchy: an energy it requires, never used.
+  if (!s.has_edit) edit_config["energy"] = YAML::Load("[{type: detail_preserving}]");
+  if (!edit_config["constraints"]) edit_config["constraints"] = YAML::Load("[]");
+  edit_config["output"] = YAML::Load("{vtk: none, iterations: false, final_mesh: false, reference_solution: false}");
+  try {
+    s.editor = std::make_shared<SurfaceEditSpec>(SurfaceEditSpec::from_config(edit_config, components(), dirs));
+  } catch (const InvalidConfig& e) {
+    const std::string what = e.what();
+    const bool inside = std::any_of(kEditKeys.begin(), kEditKeys.end(), [&](const std::string& k) { return what.rfind(k, 0) == 0; });
+    throw InvalidConfig(inside ? "edit." + what : what);
+  }
+  if (s.editor->representation != Representation::Loop)
+    throw InvalidConfig("input.mesh: " + s.mesh_path + " is not a Loop hierarchy: features need triangles (Loop)");
+  s.levels = s.editor->levels;
+}
+
 }  // namespace
 
 bool is_feature_config(const YAML::Node& c) { return c.IsMap() && c["features"].IsDefined(); }
@@ -57,11 +100,16 @@ FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const s
   Config root(run_config, "");
   FeatureRunSpec s;
   static_cast<RunBasics&>(s) = read_run_basics(root);
-  Config in = root.child("input", "the base mesh: {mesh, levels, weights}");
-  s.mesh_path = resolve_input(in.require<std::string>("mesh", "a triangle mesh (OFF/OBJ/PLY)"), dirs, in.key_path("mesh"));
+  Config in = root.child("input", "the base mesh: {mesh, levels, weights, remesh_base_faces}");
+  s.mesh_path = resolve_input(in.require<std::string>("mesh", "a triangle mesh (OFF/OBJ/PLY), or a saved Loop hierarchy (.vtm)"), dirs,
+                              in.key_path("mesh"));
   s.levels = in.get_int("levels", 3, 0, 8, "uniform Loop subdivision steps");
   s.loop_weights = in.get_enum("weights", LoopWeights::Loop, loop_weight_names(), "Loop vertex weights (warren: 3/8k, the paper's)");
+  s.remesh_base_faces = in.get_int("remesh_base_faces", 0, 0, 10000000,
+                                   "remesh the input into a Loop hierarchy with details from about this many base faces (0: the "
+                                   "input mesh is the base)");
   in.check_no_unknown_keys();
+  read_editor(root, dirs, s);
   Config dc = root.child("feature_defaults", "parameters every feature starts from (sweepable: feature_defaults.height)");
   const feature::FeatureParams defaults = read_params(dc, feature::FeatureParams{});
   dc.check_no_unknown_keys();
@@ -73,6 +121,8 @@ FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const s
     f.curve.level = c.get_int("level", 0, 0, s.levels, "the hierarchy level the curve is drawn on");
     f.curve.params = read_params(c, defaults);
     f.max_distance = c.get_number("max_distance", 0.02, 0, 1, "× bounding-box diagonal: farther points leave the surface");
+    f.after_edit = c.get<bool>("after_edit", false, "drawn on the surface the edit made (default: before it, carried by it)");
+    if (f.after_edit && !s.has_edit) throw InvalidConfig(c.key_path("after_edit") + ": there is no edit (give an `edit` block)");
     f.key = where;
     read_curve_source(c, where, dirs, f);
     try {
@@ -93,6 +143,8 @@ FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const s
   s.base_edit.edit.offset = read_vec3(ec, "offset", Vec3::Zero(), "displacement of the centre");
   s.base_edit.edit.radius = ec.get_number("radius", 0.3, 1e-6, 10, "falloff radius × bounding-box diagonal");
   ec.check_no_unknown_keys();
+  if (s.base_edit.enabled && s.has_edit)
+    throw InvalidConfig("base_edit: give the radial bump or a detail-preserving `edit`, not both");
   s.profile_target = root.get_enum("profile_on", feature::ProfileTarget::Limit, feature::profile_target_names(),
                                    "where the profile is exact: limit (the limit surface at the finest vertices), "
                                    "finest (the finest control points) or drawn_level (the paper: the drawn level's control points)");
@@ -107,7 +159,7 @@ FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const s
 }
 
 const std::vector<std::string>& feature_metric_columns() {
-  static const std::vector<std::string> cols{"features", "levels", "n_fine", "segments", "apply_s", "vertices_moved",
+  static const std::vector<std::string> cols{"features", "levels", "n_fine", "segments", "edit_s", "apply_s", "vertices_moved",
                                              "max_displacement", "triangles_uniform", "triangles_adaptive",
                                              "profile_on", "features_within_tolerance", "worst_profile_error_fine",
                                              "worst_profile_error_limit", "worst_height_error", "worst_width_error", "time_s",
@@ -134,17 +186,24 @@ double bounding_diagonal(const SurfaceMesh& m) {
 }  // namespace
 
 MultiresSurface feature_hierarchy(const FeatureRunSpec& spec) {
+  if (spec.editor) {  // remeshed, saved or edited: the surface-edit kind's hierarchy
+    RunCache cache;
+    double build_s = 0;
+    return cache.hierarchy(*spec.editor, &build_s);
+  }
   SubdivisionOptions opt;
   opt.scheme = SchemeType::Loop;
   opt.weights = spec.loop_weights;
   return MultiresSurface(read_mesh(spec.mesh_path), opt, spec.levels, spec.implementation);
 }
 
-feature::FeaturedSurface placed_features(FeatureRunSpec& spec, MultiresSurface original) {
-  feature::FeaturedSurface surface(std::move(original), spec.implementation, spec.profile_target);
+namespace {
+// Adds the features drawn before or after the edit, placed on the surface's current original.
+void place_features(FeatureRunSpec& spec, feature::FeaturedSurface& surface, bool after_edit) {
   const double diag = bounding_diagonal(surface.original().mesh(spec.levels));
   std::map<int, feature::TriangleSurface> drawn_on;  // one per level: its normals and AABB tree
   for (FeatureSpec& f : spec.features) {
+    if (f.after_edit != after_edit) continue;
     if (!f.world_points.empty() || f.placement) {
       const SurfaceMesh& level = surface.original().mesh(f.curve.level);
       const feature::TriangleSurface& s =
@@ -157,6 +216,13 @@ feature::FeaturedSurface placed_features(FeatureRunSpec& spec, MultiresSurface o
                            std::to_string(f.curve.level));
     surface.add(f.curve);
   }
+}
+}  // namespace
+
+feature::FeaturedSurface placed_features(FeatureRunSpec& spec, MultiresSurface original) {
+  feature::FeaturedSurface surface(std::move(original), spec.implementation, spec.profile_target);
+  const double diag = bounding_diagonal(surface.original().mesh(spec.levels));
+  place_features(spec, surface, false);
   // The curves are attached to the unedited levels (face, barycentric coordinates), so a base
   // edit carries them.
   if (spec.base_edit.enabled) {
@@ -166,6 +232,9 @@ feature::FeaturedSurface placed_features(FeatureRunSpec& spec, MultiresSurface o
   }
   return surface;
 }
+
+void place_features_after_edit(FeatureRunSpec& spec, feature::FeaturedSurface& surface) { place_features(spec, surface, true); }
+
 
 namespace {
 
@@ -205,6 +274,25 @@ void report_profiles(feature::FeaturedSurface& surface, MetricRow& row, const Ru
 
 }  // namespace
 
+namespace {
+// The detail-preserving edit of the surface without features (Boier-Martin et al.); the features
+// drawn before it are attached by face and barycentric coordinates and ride on it, those drawn
+// after it are placed on the edited surface. False (and the row says why) when the edit failed.
+bool apply_edit(FeatureRunSpec& spec, feature::FeaturedSurface& surface, MetricRow& row) {
+  const Timer timer;
+  EditedHierarchy e = edited_hierarchy(*spec.editor, surface.original());
+  row["edit_s"] = num(timer.seconds());
+  if (!is_success(e.summary.termination)) {
+    row["termination"] = std::string(to_string(e.summary.termination));
+    row["message"] = "the edit: " + e.summary.message;
+    return false;
+  }
+  surface.original() = std::move(e.edited);
+  place_features_after_edit(spec, surface);
+  return true;
+}
+}  // namespace
+
 MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
   MetricRow row;
   for (const auto& c : feature_metric_columns()) row[c] = "";
@@ -219,6 +307,10 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
     MultiresSurface original = feature_hierarchy(spec);
     const double diag = bounding_diagonal(original.mesh(spec.levels));
     feature::FeaturedSurface surface = placed_features(spec, std::move(original));
+    if (spec.has_edit && !apply_edit(spec, surface, row)) {
+      row["time_s"] = num(wall.seconds());
+      return row;
+    }
     const Timer apply;
     (void)surface.result();
     row["apply_s"] = num(apply.seconds());

@@ -3,6 +3,7 @@
 // adaptive mesh of the result. A config is a feature run when it has `features:`.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -18,8 +19,11 @@
 
 namespace fairshape {
 
+struct SurfaceEditSpec;  // experiment/kinds/surface_edit/surface_edit_spec.h
+
 struct FeatureSpec {
   feature::FeatureCurve curve;       // points filled in when the run projects `world_points`
+  bool after_edit = false;           // drawn on the surface the `edit` made (else before it, carried by it)
   std::vector<Vec3> world_points;    // or given as surface points (curve.points)
   double max_distance = 0.02;        // × bounding-box diagonal: farther points leave the surface
   std::optional<feature::CurvePlacement> placement;  // or placed by a tool (geodesic, section, file)
@@ -32,9 +36,15 @@ struct BaseEditSpec {
 };
 
 struct FeatureRunSpec : RunBasics {
-  std::string mesh_path;
+  std::string mesh_path;             // a triangle mesh, or a saved Loop hierarchy (.vtm, with its details)
   LoopWeights loop_weights = LoopWeights::Loop;
   int levels = 3;
+  int remesh_base_faces = 0;         // > 0: the input remeshed into a Loop hierarchy with details
+  //! The hierarchy and the `edit` as the surface-edit kind reads them (Boier-Martin et al.'s
+  //! detail-preserving editor, on the surface without features): set when the input is
+  //! remeshed or saved, or an edit is given.
+  std::shared_ptr<SurfaceEditSpec> editor;
+  bool has_edit = false;
   std::vector<FeatureSpec> features;
   BaseEditSpec base_edit;
   bool adaptive = true;
@@ -52,9 +62,12 @@ const TableSchema& feature_profile_table();
 
 //! The run's Loop hierarchy of input.mesh, without features. \throw Error for the input.
 MultiresSurface feature_hierarchy(const FeatureRunSpec& spec);
-//! `original` with the run's features placed on it (world points projected, faces checked) and
-//! the base edit applied: what the run evaluates. \throw InvalidInput naming the feature.
+//! `original` with the run's features drawn before the edit placed on it (world points
+//! projected, faces checked) and the base edit applied. \throw InvalidInput naming the feature.
 feature::FeaturedSurface placed_features(FeatureRunSpec& spec, MultiresSurface original);
+//! Places the features drawn after the edit on the surface's current original (the edited one).
+//! \throw InvalidInput naming the feature.
+void place_features_after_edit(FeatureRunSpec& spec, feature::FeaturedSurface& surface);
 
 //! Writes final.obj (finest level), vtk/<run>.vtp (point arrays displacement, displacement_norm,
 //! limit_position, limit_normal), adaptive/<run>.obj, curves/<run>_<feature>.obj, features.csv,

@@ -33,8 +33,8 @@ run fig14
   --label "{features:.0f} features on levels 1 and 3" --render "${patch_view[@]}"
 run fig15
 /usr/bin/python3 scripts/panels.py --allow-unmet $out-fig15 $figs/fig15.png \
-  --title "Figure 15: a coarse (level 0) edit of the surface carries the features along" \
-  --label "base edit: {base_edit_enabled}" --render "${patch_view[@]}"
+  --title "Figure 15: a detail-preserving level-0 edit carries the features; a groove drawn after it sits on the edited surface" \
+  --label "handle offset {edit_constraints_2_offset}, edit {edit_s:.2f} s" --render "${patch_view[@]}"
 run fig17
 # The helmet is z-up with its face opening towards −x: seen from behind its left side.
 /usr/bin/python3 scripts/panels.py --allow-unmet $out-fig17 $figs/fig17.png --rest data/helmet.off \

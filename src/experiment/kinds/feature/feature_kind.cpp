@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "experiment/kinds/feature/feature_exports.h"
 #include "experiment/kinds/feature/feature_run.h"
+#include "experiment/kinds/feature/feature_steps.h"
 #include "experiment/kinds/kinds.h"
 #include "experiment/kinds/thread_limit.h"
 
@@ -25,7 +26,7 @@ class FeatureKind final : public RunKind {
   }
   void validation_done() override { hierarchies_.clear(); }
   const std::vector<std::string>& metric_columns() const override { return feature_metric_columns(); }
-  std::vector<TableSchema> tables() const override { return {feature_profile_table(), feature_attachment_table()}; }
+  std::vector<TableSchema> tables() const override { return {feature_profile_table(), feature_attachment_table(), feature_step_table()}; }
   std::vector<std::string> identity_columns() const override { return {"implementation"}; }  // no solver
   MetricRow execute(const YAML::Node& c, const std::vector<std::string>& dirs, const RunOutputs& out) override {
     FeatureRunSpec spec = FeatureRunSpec::from_config(c, dirs);

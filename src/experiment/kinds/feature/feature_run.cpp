@@ -13,6 +13,8 @@
 #include "experiment/kinds/feature/curve_placement_config.h"
 #include "experiment/kinds/feature/feature_exports.h"
 #include "experiment/components.h"
+#include "experiment/kinds/feature/feature_steps.h"
+#include "experiment/kinds/sheet/constraint_schedule.h"
 #include "experiment/kinds/surface_edit/edited_hierarchy.h"
 #include "experiment/kinds/surface_edit/run_one.h"
 #include "experiment/metric_format.h"
@@ -122,6 +124,26 @@ FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const s
     f.curve.params = read_params(c, defaults);
     f.max_distance = c.get_number("max_distance", 0.02, 0, 1, "× bounding-box diagonal: farther points leave the surface");
     f.after_edit = c.get<bool>("after_edit", false, "drawn on the surface the edit made (default: before it, carried by it)");
+    read_schedule(c, f.step, f.until);
+    f.moves = read_moves(c, f.step);
+    if (!f.moves.empty() && !c.has("points"))
+      throw InvalidConfig(c.key_path("moves") + ": only a feature given by world `points` is moved (its points are translated "
+                          "and placed again)");
+    for (Config ch : c.child_list("changes", "its parameters from a later step on: [{step, height, radius, crease, ...}]")) {
+      FeatureChange change;
+      change.step = ch.get_int("step", 1, 1, 1000, "design step from which the parameters apply");
+      change.params = read_params(ch, f.changes.empty() ? f.curve.params : f.changes.back().params);
+      ch.check_no_unknown_keys();
+      if (change.step <= f.step || (!f.changes.empty() && change.step <= f.changes.back().step))
+        throw InvalidConfig(ch.key_path("step") + ": " + std::to_string(change.step) +
+                            " must come after the feature's step and its earlier changes");
+      try {
+        change.params.validate(ch.path());
+      } catch (const InvalidInput& e) {
+        throw InvalidConfig(e.what());
+      }
+      f.changes.push_back(change);
+    }
     if (f.after_edit && !s.has_edit) throw InvalidConfig(c.key_path("after_edit") + ": there is no edit (give an `edit` block)");
     f.key = where;
     read_curve_source(c, where, dirs, f);
@@ -152,7 +174,9 @@ FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const s
   s.adaptive = ac.get<bool>("enabled", true, "write adaptive/<run>.obj refined by the features' flatness thresholds");
   ac.check_no_unknown_keys();
   Config oc = root.child("output", "what each run writes");
-  s.vtk = read_vtk_policy(oc, "the same as final: a feature run has one state") != VtkPolicy::None;
+  const VtkPolicy vtk = read_vtk_policy(oc, "vtk/<run>_step<k>.vtp after every design step as well");
+  s.vtk = vtk != VtkPolicy::None;
+  s.vtk_every_step = vtk == VtkPolicy::All;
   oc.check_no_unknown_keys();
   root.check_no_unknown_keys();
   return s;
@@ -197,24 +221,31 @@ MultiresSurface feature_hierarchy(const FeatureRunSpec& spec) {
   return MultiresSurface(read_mesh(spec.mesh_path), opt, spec.levels, spec.implementation);
 }
 
-namespace {
-// Adds the features drawn before or after the edit, placed on the surface's current original.
-void place_features(FeatureRunSpec& spec, feature::FeaturedSurface& surface, bool after_edit) {
+void place_feature(FeatureRunSpec& spec, const feature::FeaturedSurface& surface, FeatureSpec& f,
+                   std::map<int, feature::TriangleSurface>* drawn_on) {
   const double diag = bounding_diagonal(surface.original().mesh(spec.levels));
+  if (!f.world_points.empty() || f.placement) {
+    const SurfaceMesh& level = surface.original().mesh(f.curve.level);
+    std::map<int, feature::TriangleSurface> own;
+    std::map<int, feature::TriangleSurface>& cache = drawn_on ? *drawn_on : own;
+    const feature::TriangleSurface& s = cache.try_emplace(f.curve.level, level, feature::loop_limit_normals(level)).first->second;
+    place_on_level(s, diag, f);
+  }
+  for (const auto& p : f.curve.points)
+    if (p.face < 0 || p.face >= surface.original().mesh(f.curve.level).n_faces())
+      throw InvalidInput("feature '" + f.curve.name + "': face " + std::to_string(p.face) + " is not a face of level " +
+                         std::to_string(f.curve.level));
+}
+
+namespace {
+// Adds the features of the first step drawn before or after the edit, placed on the surface's
+// current original.
+void place_features(FeatureRunSpec& spec, feature::FeaturedSurface& surface, bool after_edit) {
   std::map<int, feature::TriangleSurface> drawn_on;  // one per level: its normals and AABB tree
   for (FeatureSpec& f : spec.features) {
-    if (f.after_edit != after_edit) continue;
-    if (!f.world_points.empty() || f.placement) {
-      const SurfaceMesh& level = surface.original().mesh(f.curve.level);
-      const feature::TriangleSurface& s =
-          drawn_on.try_emplace(f.curve.level, level, feature::loop_limit_normals(level)).first->second;
-      place_on_level(s, diag, f);
-    }
-    for (const auto& p : f.curve.points)
-      if (p.face < 0 || p.face >= surface.original().mesh(f.curve.level).n_faces())
-        throw InvalidInput("feature '" + f.curve.name + "': face " + std::to_string(p.face) + " is not a face of level " +
-                           std::to_string(f.curve.level));
-    surface.add(f.curve);
+    if (f.after_edit != after_edit || f.step > 0) continue;  // later steps add theirs (feature_steps.h)
+    place_feature(spec, surface, f, &drawn_on);
+    f.id = surface.add(f.curve);
   }
 }
 }  // namespace
@@ -311,9 +342,8 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
       row["time_s"] = num(wall.seconds());
       return row;
     }
-    const Timer apply;
-    (void)surface.result();
-    row["apply_s"] = num(apply.seconds());
+    // Every design step evaluated (one when nothing is scheduled): the last one's time is apply_s.
+    row["apply_s"] = num(run_feature_steps(spec, surface, out));
     const MultiresSurface& result = surface.result();
     SurfaceMesh fine = result.mesh(spec.levels);
     const MatrixX3 d = fine.positions() - surface.original().mesh(spec.levels).positions();

@@ -3,6 +3,7 @@
 // adaptive mesh of the result. A config is a feature run when it has `features:`.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 
 #include "experiment/run_outputs.h"
 #include "experiment/run_basics.h"
+#include "experiment/kinds/sheet/sheet_run.h"
 #include "feature/base_edit.h"
 #include "feature/curve_placement.h"
 #include "feature/feature_curve.h"
@@ -21,9 +23,21 @@ namespace fairshape {
 
 struct SurfaceEditSpec;  // experiment/kinds/surface_edit/surface_edit_spec.h
 
+//! A feature's parameters from a design step on (`changes: [{step, height, radius, ...}]`).
+struct FeatureChange {
+  int step = 1;
+  feature::FeatureParams params;
+};
+
 struct FeatureSpec {
   feature::FeatureCurve curve;       // points filled in when the run projects `world_points`
   bool after_edit = false;           // drawn on the surface the `edit` made (else before it, carried by it)
+  // Over the design steps (feature_steps.h): added at `step`, removed from `until` (−1: never),
+  // moved as a whole by `moves` (world points only; they add up), re-parameterized by `changes`.
+  int step = 0, until = -1;
+  std::vector<PointMove> moves;
+  std::vector<FeatureChange> changes;
+  int id = -1;                       // its id in the run's FeaturedSurface while it is there
   std::vector<Vec3> world_points;    // or given as surface points (curve.points)
   double max_distance = 0.02;        // × bounding-box diagonal: farther points leave the surface
   std::optional<feature::CurvePlacement> placement;  // or placed by a tool (geodesic, section, file)
@@ -50,6 +64,7 @@ struct FeatureRunSpec : RunBasics {
   bool adaptive = true;
   feature::ProfileTarget profile_target = feature::ProfileTarget::Limit;  // `profile_on`
   bool vtk = true;
+  bool vtk_every_step = false;       // output.vtk: all — vtk/<run>_step<k>.vtp after every design step
   //! \throw InvalidConfig naming the key.
   static FeatureRunSpec from_config(const YAML::Node& run_config, const std::vector<std::string>& search_dirs);
 };
@@ -65,6 +80,11 @@ MultiresSurface feature_hierarchy(const FeatureRunSpec& spec);
 //! `original` with the run's features drawn before the edit placed on it (world points
 //! projected, faces checked) and the base edit applied. \throw InvalidInput naming the feature.
 feature::FeaturedSurface placed_features(FeatureRunSpec& spec, MultiresSurface original);
+//! f.curve.points on the surface's current original at the feature's level: world points
+//! projected, a placement tool run, faces checked (`drawn_on`: the levels' surfaces made so far,
+//! reused). \throw InvalidInput naming the feature.
+void place_feature(FeatureRunSpec& spec, const feature::FeaturedSurface& surface, FeatureSpec& f,
+                   std::map<int, feature::TriangleSurface>* drawn_on = nullptr);
 //! Places the features drawn after the edit on the surface's current original (the edited one).
 //! \throw InvalidInput naming the feature.
 void place_features_after_edit(FeatureRunSpec& spec, feature::FeaturedSurface& surface);

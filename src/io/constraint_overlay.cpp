@@ -11,15 +11,19 @@ void ConstraintOverlay::add(const Vec3& at, OverlayKind kind, const Vec3& offset
   normals_.push_back(normal);
 }
 
-void ConstraintOverlay::add_curve(const std::vector<Vec3>& points, bool closed) {
+void ConstraintOverlay::add_line(const std::vector<Vec3>& points, bool closed, OverlayKind kind) {
   std::vector<int> line;
   for (const Vec3& p : points) {
     line.push_back(static_cast<int>(points_.size()));
-    add(p, OverlayKind::CurvePoint, Vec3::Zero(), Vec3::Zero());  // a curve's point, not a constraint of its own
+    add(p, kind, Vec3::Zero(), Vec3::Zero());  // a line's point, not a constraint of its own
   }
   if (closed && !line.empty()) line.push_back(line.front());
   lines_.push_back(std::move(line));
 }
+
+void ConstraintOverlay::add_curve(const std::vector<Vec3>& points, bool closed) { add_line(points, closed, OverlayKind::CurvePoint); }
+
+void ConstraintOverlay::add_outline(const std::vector<Vec3>& points) { add_line(points, false, OverlayKind::OutlinePoint); }
 
 void ConstraintOverlay::write(const std::string& path) const {
   const auto n = static_cast<Eigen::Index>(points_.size());

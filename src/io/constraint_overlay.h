@@ -12,7 +12,9 @@
 namespace fairshape {
 
 //! Values of the overlay's `kind` point array.
-enum class OverlayKind : int { CurvePoint = -1, Fixed = 0, Handle = 1, Normal = 2 };
+//! OutlinePoint: a point of an outline (a region's boundary, e.g. a feature's neighbourhood), drawn
+//! thinner and darker than a curve.
+enum class OverlayKind : int { OutlinePoint = -2, CurvePoint = -1, Fixed = 0, Handle = 1, Normal = 2 };
 inline constexpr const char* kOverlayKind = "kind";            // OverlayKind per point
 inline constexpr const char* kOverlayOffset = "offset";        // a handle's displacement (it started at point − offset)
 inline constexpr const char* kOverlayNormal = "target_normal";  // a normal target's unit normal
@@ -24,11 +26,14 @@ class ConstraintOverlay {
   void add_normal(const Vec3& at, const Vec3& normal) { add(at, OverlayKind::Normal, Vec3::Zero(), normal.normalized()); }
   //! A polyline through `points` (closed: back to the first).
   void add_curve(const std::vector<Vec3>& points, bool closed = false);
+  //! A region's outline through `points`.
+  void add_outline(const std::vector<Vec3>& points);
   //! \throw OutputError as write_vtp.
   void write(const std::string& path) const;
 
  private:
   void add(const Vec3& at, OverlayKind kind, const Vec3& offset, const Vec3& normal);
+  void add_line(const std::vector<Vec3>& points, bool closed, OverlayKind kind);
   std::vector<Vec3> points_, offsets_, normals_;
   std::vector<OverlayKind> kinds_;
   std::vector<std::vector<int>> lines_;

@@ -3,6 +3,7 @@
 #include <vtkActor.h>
 #include <vtkArrowSource.h>
 #include <vtkCellArray.h>
+#include <vtkIdList.h>
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkGlyph3DMapper.h>
@@ -22,7 +23,8 @@ namespace fairshape::render {
 namespace {
 
 using Colour = std::array<double, 3>;
-constexpr Colour kFixed{0.35, 0.35, 0.38}, kHandle{0.85, 0.1, 0.1}, kNormal{0.8, 0.1, 0.75}, kCurve{1.0, 0.55, 0.0};
+constexpr Colour kFixed{0.35, 0.35, 0.38}, kHandle{0.85, 0.1, 0.1}, kNormal{0.8, 0.1, 0.75}, kCurve{1.0, 0.55, 0.0},
+                 kOutline{0.15, 0.15, 0.2};
 
 vtkSmartPointer<vtkActor> coloured(vtkMapper* m, const Colour& c) {
   auto a = vtkSmartPointer<vtkActor>::New();
@@ -78,13 +80,27 @@ vtkSmartPointer<vtkActor> tubes(vtkPolyData* lines, double radius, const Colour&
 
 std::vector<vtkSmartPointer<vtkProp>> overlay_props(vtkPolyData* overlay, double d) {
   std::vector<vtkSmartPointer<vtkProp>> props;
-  if (overlay->GetNumberOfLines() > 0) {
-    vtkNew<vtkPolyData> lines;
-    lines->SetPoints(overlay->GetPoints());
-    lines->SetLines(overlay->GetLines());
-    props.push_back(tubes(lines, 0.0018 * d, kCurve));  // thin: fine features stay visible beside it
-  }
   vtkDataArray* kind = overlay->GetPointData()->GetArray(kOverlayKind);
+  if (overlay->GetNumberOfLines() > 0) {
+    // Curves and outlines apart: a line is an outline when its first point is one.
+    vtkNew<vtkCellArray> curve_lines, outline_lines;
+    vtkCellArray* all = overlay->GetLines();
+    vtkNew<vtkIdList> ids;
+    for (all->InitTraversal(); all->GetNextCell(ids);) {
+      const bool outline = kind && ids->GetNumberOfIds() > 0 &&
+                           static_cast<int>(kind->GetComponent(ids->GetId(0), 0)) == static_cast<int>(OverlayKind::OutlinePoint);
+      (outline ? outline_lines : curve_lines)->InsertNextCell(ids);
+    }
+    const auto draw = [&](vtkCellArray* cells, double radius, const Colour& c) {
+      if (cells->GetNumberOfCells() == 0) return;
+      vtkNew<vtkPolyData> lines;
+      lines->SetPoints(overlay->GetPoints());
+      lines->SetLines(cells);
+      props.push_back(tubes(lines, radius * d, c));
+    };
+    draw(curve_lines, 0.0018, kCurve);  // thin: fine features stay visible beside it
+    draw(outline_lines, 0.0009, kOutline);
+  }
   vtkDataArray* offset = overlay->GetPointData()->GetArray(kOverlayOffset);
   vtkDataArray* normal = overlay->GetPointData()->GetArray(kOverlayNormal);
   if (!kind) {

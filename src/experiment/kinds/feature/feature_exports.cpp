@@ -15,6 +15,26 @@ const TableSchema& feature_attachment_table() {
   return t;
 }
 
+namespace {
+// A parameter point of a level on that level's mesh (the face's corners as
+// feature::TriangleSurface reads them: from face_halfedge on).
+Vec3 point_on(const SurfaceMesh& mesh, const feature::SurfacePoint& p) {
+  Vec3 x = Vec3::Zero();
+  int h = mesh.face_halfedge(p.face);
+  for (int c = 0; c < 3; ++c, h = mesh.next(h)) x += p.bary[c] * mesh.position(mesh.from_vertex(h));
+  return x;
+}
+}  // namespace
+
+std::vector<Vec3> curve_on_finest_result(feature::FeaturedSurface& surface, int id) {
+  const MultiresSurface& result = surface.result();
+  const feature::BaseCurve& base = surface.base_curves().at(id);
+  const auto per_level = feature::attachments_per_level(base, surface.features().at(id).level, result.levels());
+  std::vector<Vec3> out;
+  for (const feature::SurfacePoint& p : per_level.back()) out.push_back(point_on(result.mesh(result.levels()), p));
+  return out;
+}
+
 void export_attachments(feature::FeaturedSurface& surface, const RunOutputs& out) {
   const MultiresSurface& result = surface.result();
   const int finest = result.levels();
@@ -26,10 +46,7 @@ void export_attachments(feature::FeaturedSurface& surface, const RunOutputs& out
       const SurfaceMesh& mesh = result.mesh(level);
       for (std::size_t i = 0; i < per_level[k].size(); ++i) {
         const feature::SurfacePoint& p = per_level[k][i];
-        // The face's corners as feature::TriangleSurface reads them: from face_halfedge on.
-        Vec3 x = Vec3::Zero();
-        int h = mesh.face_halfedge(p.face);
-        for (int c = 0; c < 3; ++c, h = mesh.next(h)) x += p.bary[c] * mesh.position(mesh.from_vertex(h));
+        const Vec3 x = point_on(mesh, p);
         out.add_row("attachments", {curve.name, std::to_string(level), std::to_string(i), std::to_string(p.face), num(p.bary[0]),
                                     num(p.bary[1]), num(p.bary[2]), num(x.x()), num(x.y()), num(x.z())});
       }

@@ -14,6 +14,10 @@ namespace fairshape {
 //! level of the result, piecewise linearly).
 const TableSchema& feature_attachment_table();
 
+//! Feature `id`'s base curve followed to the finest level, on the result there (for drawing the
+//! curve on the surface it made).
+std::vector<Vec3> curve_on_finest_result(feature::FeaturedSurface& surface, int id);
+
 //! Adds a row per curve point and level to attachments.csv.
 void export_attachments(feature::FeaturedSurface& surface, const RunOutputs& out);
 

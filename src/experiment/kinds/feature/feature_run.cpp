@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
 
 #include "core/summary.h"
@@ -22,6 +23,7 @@
 #include "feature/featured_surface.h"
 #include "feature/profile_measure.h"
 #include "io/constraint_overlay.h"
+#include "io/contour_lines.h"
 #include "io/mesh_io.h"
 #include "experiment/vtk_policy.h"
 #include "io/vtk_io.h"
@@ -356,7 +358,14 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
     row["triangles_uniform"] = std::to_string(fine.n_faces());
     int segments = 0;
     fs::create_directories(fs::path(out.dir) / "curves");
-    ConstraintOverlay drawn;  // vtk/<run>_constraints.vtp: the base curves, where the designer drew them
+    // vtk/<run>_constraints.vtp: each curve on the surface it made (its finest-level attachment on
+    // the result) and the outline of the features' neighbourhoods (where the displacement falls
+    // to 1 % of the smallest requested height).
+    ConstraintOverlay drawn;
+    double smallest = std::numeric_limits<double>::infinity();
+    for (const auto& [id, f] : surface.features()) smallest = std::min(smallest, std::abs(f.params.height));
+    if (std::isfinite(smallest) && smallest > 0)
+      for (const std::vector<Vec3>& line : contour_lines(fine, norms, 0.01 * smallest)) drawn.add_outline(line);
     for (const auto& [id, bc] : surface.base_curves()) {
       segments += static_cast<int>(bc.segments.size());
       // A closed curve's last segment ends at the first one's start: written once, as a loop.
@@ -365,9 +374,7 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
       if (!bc.closed) X.row(X.rows() - 1) = bc.segments.back().b.transpose();
       write_polyline(Polyline{X, bc.closed}, (fs::path(out.dir) / "curves" /
                                           (out.run_id + "_" + file_name_part(surface.features().at(id).name) + ".obj")).string());
-      std::vector<Vec3> points;
-      for (Eigen::Index i = 0; i < X.rows(); ++i) points.push_back(X.row(i).transpose());
-      drawn.add_curve(points, bc.closed);
+      drawn.add_curve(curve_on_finest_result(surface, id), bc.closed);
     }
     if (spec.vtk) drawn.write((fs::path(out.dir) / "vtk" / (out.run_id + "_constraints.vtp")).string());
     row["segments"] = std::to_string(segments);

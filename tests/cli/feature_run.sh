@@ -73,11 +73,9 @@ expect_error 2 "edit.constraints\[2\]" -- "$FS" run configs/khodakovsky-schroder
 expect_error 2 "edit.spam: unknown key" -- "$FS" run configs/khodakovsky-schroder/fig15.yaml --set edit.spam=1 --out "$SCRATCH/x"
 # Design steps (issue 24 part 4): a feature moved as a whole, one re-parameterized, one added and
 # one removed between steps; the session ends where the same features placed at once end.
-cat > "$SCRATCH/steps.yaml" <<YAML
-defaults: [$PWD/$C]
-input: {mesh: $PWD/data/ks_patch.off, levels: 3}
-feature_defaults: {profile_tolerance: 0.5, width_tolerance: 0.5}
-adaptive: {enabled: false}
+# Both configs: the patch at 3 levels, loose tolerances, no adaptive mesh; then their features.
+patch_config() { printf 'defaults: [%s]\ninput: {mesh: %s, levels: 3}\nfeature_defaults: {profile_tolerance: 0.5, width_tolerance: 0.5}\nadaptive: {enabled: false}\n' "$PWD/$C" "$PWD/data/ks_patch.off"; }
+{ patch_config; cat <<YAML
 features:
   - { name: ridge_a, level: 2, until: 3, points: [[-0.8, -0.55, 0.0587], [-0.2, 0.1, 0.0042], [0.4, 0.25, 0.0155], [0.8, 0.7, 0.0474]] }
   - { name: ridge_b, level: 2, changes: [{step: 2, height: 0.1}], points: [[-0.75, 0.6, 0.0459], [0.0, 0.35, -0.0073], [0.7, -0.6, 0.0372]] }
@@ -85,16 +83,14 @@ features:
   - { name: late, level: 2, step: 2, height: -0.03, radius: 0.1, points: [[-0.5, 0.8, -0.0084], [0.5, 0.8, -0.0084]] }
 output: {vtk: all}
 YAML
-cat > "$SCRATCH/at_once.yaml" <<YAML
-defaults: [$PWD/$C]
-input: {mesh: $PWD/data/ks_patch.off, levels: 3}
-feature_defaults: {profile_tolerance: 0.5, width_tolerance: 0.5}
-adaptive: {enabled: false}
+} > "$SCRATCH/steps.yaml"
+{ patch_config; cat <<YAML
 features:
   - { name: ridge_b, level: 2, height: 0.1, points: [[-0.75, 0.6, 0.0459], [0.0, 0.35, -0.0073], [0.7, -0.6, 0.0372]] }
   - { name: groove, level: 2, height: -0.04, radius: 0.12, points: [[-0.6, -0.3, 0.0426], [0.1, -0.65, -0.0109], [0.75, -0.15, 0.0674]] }
   - { name: late, level: 2, height: -0.03, radius: 0.1, points: [[-0.5, 0.8, -0.0084], [0.5, 0.8, -0.0084]] }
 YAML
+} > "$SCRATCH/at_once.yaml"
 "$FS" run "$SCRATCH/steps.yaml" --out "$SCRATCH/steps" 2>/dev/null || fail "the stepped feature session failed"
 "$FS" run "$SCRATCH/at_once.yaml" --out "$SCRATCH/at_once" 2>/dev/null || fail "the same features at once failed"
 [ "$(ls "$SCRATCH/steps/vtk/"*_step*.vtp | wc -l)" -eq 4 ] || fail "expected a VTK per design step"

@@ -7,6 +7,7 @@
 #include "core/config.h"
 #include "core/timer.h"
 #include "curve_design/curve_metrics.h"
+#include "curve_design/wrinkle_scale.h"
 #include "curves/multires_polyline.h"
 #include "experiment/metric_format.h"
 #include "io/constraint_overlay.h"
@@ -147,7 +148,8 @@ CurveRunSpec CurveRunSpec::from_config(const YAML::Node& run_config, const std::
 const std::vector<std::string>& curve_metric_columns() {
   static const std::vector<std::string> cols{
       "n_points", "edits", "length_error_max", "length_error_rms", "total_length_change", "bending_energy",
-      "distance_to_attractor", "wrinkles", "attractor_length_error", "solves", "outer_iterations", "stationarity",
+      "distance_to_attractor", "wrinkles", "wrinkle_amplitude", "wrinkle_wavelength", "wrinkle_wavelength_segments",
+      "attractor_length_error", "solves", "outer_iterations", "stationarity",
       "explicit_s", "solve_s", "time_s", "unused_keys", "termination", "message"};
   return cols;
 }
@@ -237,6 +239,12 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
     row["bending_energy"] = num(m.bending_energy);
     row["distance_to_attractor"] = num(m.distance_to_attractor);
     row["wrinkles"] = std::to_string(m.wrinkles);
+    if (done > 0) {  // what length preservation added to the last edit's attracting curve
+      const WrinkleScale w = wrinkle_scale(current.points, last.attracting, current.closed);
+      row["wrinkle_amplitude"] = num(w.amplitude);
+      row["wrinkle_wavelength"] = num(w.wavelength);
+      row["wrinkle_wavelength_segments"] = num(w.wavelength_segments);
+    }
     row["attractor_length_error"] =
         num(measure_curve(last.attracting, current.closed, segment_lengths(last.reference, current.closed), last.attracting)
                 .length_error_max);

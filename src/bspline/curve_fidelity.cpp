@@ -72,36 +72,49 @@ bool refine_along(VariationalSheet& sheet, const std::vector<Eigen::Vector2d>& u
   return true;
 }
 
-// L of e_k = L + C q^k through three errors (Aitken's Δ²); an error that stops falling is its
-// own limit.
+// L of e_k = L + C q^k through three errors (Aitken's Δ²). An error that does not fall at each
+// refinement has shown no convergence and is its own limit; one that falls faster and faster
+// (d2 ≥ d1 > 0: a refinement resolving what the coarser one could not) is taken to fall at least
+// once more by as much.
 double error_limit(double e0, double e1, double e2) {
   const double d1 = e0 - e1, d2 = e1 - e2;
-  if (!(d2 > 0) || !(d1 > d2)) return e2;
+  if (!(d1 > 0) || !(d2 > 0)) return e2;
+  if (!(d1 > d2)) return std::max(0.0, e2 - d2);
   const double q = d2 / d1;
   return std::max(0.0, e2 - d2 * q / (1 - q));
 }
-}  // namespace
 
-CurveConvergence curve_convergence(const VariationalSheet& sheet, const SheetEnergy& energy,
-                                   const std::vector<SheetConstraint>& constraints, Backend backend, double alone_factor,
-                                   double limit_share, double conflict_tolerance) {
+// The surface's extent: the diagonal of its points on a grid over the domain (its control
+// points can lie far outside it: ±23,000 for a degree-5 sheet whose surface spans 2.5).
+double surface_size(const VariationalSheet& sheet) {
   const HierarchicalSurface& s = sheet.surface();
+  const int n = 16;
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) {
+      const double u = s.shape().spans_u * (s.shape().periodic_u ? static_cast<double>(i) / (n + 1) : static_cast<double>(i) / n);
+      const Vec3 x = s.position(sheet.coefficients(), u, s.shape().spans_v * static_cast<double>(j) / n);
+      lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+    }
+  return (hi - lo).norm();
+}
+
+// The verdict on one curve constraint (see curve_convergence).
+CurveConvergence judge_curve(const VariationalSheet& sheet, const SheetEnergy& energy, const std::vector<SheetConstraint>& constraints,
+                             std::size_t index, Backend backend, double alone_factor, double limit_share, double tolerance) {
+  const HierarchicalSurface& s = sheet.surface();
+  const SheetConstraint& c = constraints[index];
   CurveConvergence out;
-  for (std::size_t i = 0; i < constraints.size(); ++i) {
-    if (!judged(constraints[i])) continue;
-    const double e = worst_error(s, sheet.coefficients(), constraints[i], curve_samples(s, constraints[i].curve.uv));
-    if (out.constraint < 0 || e > out.error) out.error = e, out.constraint = static_cast<int>(i);
-  }
-  if (out.constraint < 0) return out;
-  // An error at rounding has nothing to converge to.
-  if (out.error <= 1e-9 * std::max(1.0, sheet.coefficients().cwiseAbs().maxCoeff())) return out;
-  const SheetConstraint& c = constraints[out.constraint];
+  out.constraint = static_cast<int>(index);
+  out.error = worst_error(s, sheet.coefficients(), c, curve_samples(s, c.curve.uv));
+  // An error below the tolerance is not a conflict worth the name (and rounding has nothing to
+  // converge to).
+  if (!(out.error > tolerance)) return out;
   out.alone_error = alone_error(sheet, energy, c, backend);
   if (!(out.error > alone_factor * out.alone_error)) return out;  // NaN: not judged
-
   // Twice, every span the curve crosses one level finer (a discretization error along the curve
   // is set by the cells on both sides of it all along, not by the worst sample's alone), and
-  // the error's limit extrapolated from the three: e_k = L + C q^k.
+  // the error's limit extrapolated from the three.
   VariationalSheet finer = sheet;
   double errors[3] = {out.error, 0, 0};
   for (int round = 1; round <= 2; ++round) {
@@ -114,10 +127,24 @@ CurveConvergence curve_convergence(const VariationalSheet& sheet, const SheetEne
   out.refined_error = errors[1];
   out.twice_refined_error = errors[2];
   out.limit = error_limit(errors[0], errors[1], errors[2]);
-  const Eigen::MatrixXd& P = sheet.coefficients();
-  const double size = (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm();
-  out.conflict = out.limit > limit_share * errors[2] && out.limit > conflict_tolerance * size;
+  out.conflict = out.limit > limit_share * errors[2] && out.limit > tolerance;
   return out;
+}
+}  // namespace
+
+CurveConvergence curve_convergence(const VariationalSheet& sheet, const SheetEnergy& energy,
+                                   const std::vector<SheetConstraint>& constraints, Backend backend, double alone_factor,
+                                   double limit_share, double conflict_tolerance) {
+  // Every curve on its own: one with a large error of its own must not hide another's conflict.
+  const double tolerance = conflict_tolerance * surface_size(sheet);
+  CurveConvergence worst;
+  for (std::size_t i = 0; i < constraints.size(); ++i) {
+    if (!judged(constraints[i])) continue;
+    const CurveConvergence c = judge_curve(sheet, energy, constraints, i, backend, alone_factor, limit_share, tolerance);
+    if (c.conflict) return c;
+    if (worst.constraint < 0 || c.error > worst.error) worst = c;
+  }
+  return worst;
 }
 
 }  // namespace fairshape::bspline

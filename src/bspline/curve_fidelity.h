@@ -14,7 +14,10 @@
 //    target leaves converge (Figure 2's: 0.92x per level), which the first yardstick passes, nor
 //    quite the error a 48-gon path leaves where the sheet bends across it (a lifted circle with
 //    pinned corners: 2e-4, 1.2e-4, 1.15e-4, 100x its error alone): the limit must also exceed a
-//    stated share of the sheet's size to count as a conflict.
+//    stated share of the surface's size (its extent over the domain, not its control points',
+//    which a degree-5 sheet spreads a thousand times wider) to count as a conflict.
+// Every weak curve constraint is judged on its own: one with a large error of its own must not
+// hide another's conflict.
 // A conflict fails both (papers/welch-witkin/README.md, "Curve constraints that conflict").
 #pragma once
 
@@ -30,7 +33,7 @@ namespace fairshape::bspline {
 int curve_samples(const HierarchicalSurface& s, const std::vector<Eigen::Vector2d>& uv);
 
 struct CurveConvergence {
-  int constraint = -1;        // index of the curve constraint with the worst pointwise error; −1: none
+  int constraint = -1;        // index of the curve constraint judged (a conflict, or the largest error); −1: none
   double error = 0;           // its largest |w(c(t)) − D(t)| over the samples
   double alone_error = 0;     // the same with that constraint alone on the sheet (0: not computed)
   double refined_error = 0;   // the same with every span the curve crosses one level finer (0: not computed)
@@ -39,11 +42,12 @@ struct CurveConvergence {
   bool conflict = false;      // above both yardsticks
 };
 
-//! Judges the weak (mortar) curve constraints of a solved sheet: the worst pointwise error
-//! against the same constraint alone (a conflict needs error > alone_factor × alone_error) and,
-//! only then, against solves with every span the curve crosses one and two levels finer (a
-//! conflict's extrapolated limit is more than limit_share of the last error and more than
-//! conflict_tolerance × the diagonal of the sheet's control points' bounding box). Both extra solves are direct KKT solves on copies.
+//! Judges each weak (mortar) curve constraint of a solved sheet: its worst pointwise error
+//! against the same constraint alone (a conflict needs error > alone_factor × alone_error and >
+//! conflict_tolerance × the surface's extent) and, only then, against solves with every span the
+//! curve crosses one and two levels finer (a conflict's extrapolated limit is more than
+//! limit_share of the last error and more than that tolerance). Returns the first conflict, or
+//! the curve with the largest error. Both extra solves are direct KKT solves on copies.
 //! \pre the sheet holds the solution of `constraints`.
 CurveConvergence curve_convergence(const VariationalSheet& sheet, const SheetEnergy& energy,
                                    const std::vector<SheetConstraint>& constraints, Backend backend, double alone_factor,

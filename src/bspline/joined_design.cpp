@@ -1,5 +1,7 @@
 #include "bspline/joined_design.h"
 
+#include "bspline/curve_fidelity.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -286,7 +288,40 @@ std::vector<CurveSpan> leaves_to_refine(const VariationalCurve& c, const std::ve
 
 }  // namespace
 
+namespace {
+JoinedReport solve_and_refine(JoinedDesign& design, qp::QpSolver& solver, Backend backend, const RefinementOptions& refinement);
+
+// A sheet's own fixed curve constraints judged as on a single sheet (bspline/curve_fidelity.h):
+// a point of the sheet held off one of them is a conflict between that sheet's own constraints,
+// whatever the joints do.
+void check_sheet_curves(const JoinedDesign& design, const RefinementOptions& refinement, Backend backend, JoinedReport& report) {
+  if (refinement.curve_limit_share <= 0 || report.qp.summary.termination != Termination::Converged) return;
+  for (std::size_t k = 0; k < design.sheets.size(); ++k) {
+    const JoinedSheet& s = design.sheets[k];
+    const CurveConvergence c = curve_convergence(*s.sheet, s.energy, s.constraints, backend, refinement.curve_error_factor,
+                                                 refinement.curve_limit_share, refinement.curve_conflict_tolerance);
+    if (!c.conflict) continue;
+    const std::string& label = s.constraints[c.constraint].label;
+    report.qp.summary.termination = Termination::ConstraintsUnmet;
+    report.message = (report.message.empty() ? "" : report.message + "; ") + "sheet " + std::to_string(k) + ", " +
+                     (label.empty() ? std::string("a curve constraint") : label) + ": its pointwise error " + sci(c.error) +
+                     " does not vanish under refinement (" + sci(c.refined_error) + ", " + sci(c.twice_refined_error) +
+                     ", tending to " + sci(c.limit) + "; its error alone on the sheet " + sci(c.alone_error) +
+                     "): another constraint holds the surface off the curve";
+    report.qp.summary.message = report.message;
+    return;
+  }
+}
+}  // namespace
+
 JoinedReport solve_joined(JoinedDesign& design, qp::QpSolver& solver, Backend backend, const RefinementOptions& refinement) {
+  JoinedReport report = solve_and_refine(design, solver, backend, refinement);
+  check_sheet_curves(design, refinement, backend, report);
+  return report;
+}
+
+namespace {
+JoinedReport solve_and_refine(JoinedDesign& design, qp::QpSolver& solver, Backend backend, const RefinementOptions& refinement) {
   const std::size_t S = design.sheets.size(), C = design.curves.size();
   std::vector<int> sheet_refined(S, 0), curve_refined(C, 0);
   double analyze_s = 0, solve_s = 0;
@@ -321,5 +356,6 @@ JoinedReport solve_joined(JoinedDesign& design, qp::QpSolver& solver, Backend ba
     if (!refined) return unmet("at the maximum depth " + std::to_string(refinement.max_level));
   }
 }
+}  // namespace
 
 }  // namespace fairshape::bspline

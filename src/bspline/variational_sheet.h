@@ -95,10 +95,10 @@ struct RefinementOptions {
   //! After the solve (and any refinement, unless it met its tolerance): a weak curve constraint
   //! whose worst pointwise error is above curve_error_factor × its error alone on the sheet and
   //! whose error under refinement tends to a limit above curve_limit_share of what is left and
-  //! above curve_conflict_tolerance × the sheet's size (bspline/curve_fidelity.h) ends
+  //! above curve_conflict_tolerance × the surface's size (bspline/curve_fidelity.h) ends
   //! constraints_unmet: another constraint holds the surface off the curve. curve_limit_share 0:
   //! no check.
-  double curve_error_factor = 10;
+  double curve_error_factor = 2;
   double curve_limit_share = 0.5;
   double curve_conflict_tolerance = 1e-3;
 };

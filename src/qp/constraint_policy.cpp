@@ -155,10 +155,19 @@ void assess(QpReport& out, const AssessedProgram& program, const ConstraintPolic
                           sci(relative) + notes;
   } else if (!(relative <= policy.constraint_tolerance)) {
     out.summary.termination = Termination::ConstraintsUnmet;
+    // Nearly dependent rows make a consistent set look inconsistent: the rank decision drops rows
+    // whose targets the kept ones only nearly imply (40 points on a bilinear surface the sheet
+    // represents exactly: condition 1e16). Say which it may be.
+    const bool nearly_dependent = out.condition_estimate > policy.max_condition;
     out.summary.message = "constraints not met: relative residual " + sci(relative) + " (largest row " + sci(worst) +
                           ") above constraint_tolerance " + sci(policy.constraint_tolerance) +
-                          " (inconsistent constraints, fitted in the least-squares sense, or a solver stopped short of "
-                          "them); condition estimate " + cond + notes;
+                          (nearly_dependent ? " with nearly dependent rows (condition estimate " + cond + " above max_condition " +
+                                                  sci(policy.max_condition) +
+                                                  "): the targets may be consistent but not resolvable at this resolution "
+                                                  "(points closer than the spans), or inconsistent"
+                                            : " (inconsistent constraints, fitted in the least-squares sense, or a solver stopped "
+                                              "short of them); condition estimate " + cond) +
+                          notes;
   }
 }
 

@@ -247,9 +247,14 @@ TEST_CASE("curve forms: a chord tolerance samples arcs and B-splines finely enou
   Config few(YAML::Load("{arc: {center: [1, 1], radius: 0.5}, samples: 48}"), "curves[0]");
   CHECK_THROWS_WITH(read_curve_form<2>(few, tolerance), Contains("curves[0].samples: 48 samples leave a chord error") &&
                                                               Contains("refinement.tolerance"));
-  // Polylines are exact as given: no tolerance applies to them.
+  // Polylines are exact as given: no tolerance applies to their vertices; resampled (`samples`)
+  // they lose their corners, so too few samples are refused as for arcs.
   Config poly(YAML::Load("{points: [[0, 0], [1, 0.3], [2, 0]]}"), "curves[0]");
   CHECK(read_curve_form<2>(poly, tolerance).points.size() == 3);
+  Config cut(YAML::Load("{points: [[0, 0], [1, 0.3], [2, 0]], samples: 4}"), "curves[0]");
+  CHECK_THROWS_WITH(read_curve_form<2>(cut, tolerance), Contains("curves[0].samples: 4 samples cut a corner of the polyline by"));
+  Config through(YAML::Load("{points: [[0, 0], [1, 0.3], [2, 0]], samples: 5}"), "curves[0]");
+  CHECK(read_curve_form<2>(through, tolerance).points.size() == 5);  // a sample lands on the corner
 }
 
 TEST_CASE("curve forms in sheet configs: space curves and constraint (u, v) curves in every form", "[curve_forms]") {

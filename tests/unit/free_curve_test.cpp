@@ -584,3 +584,38 @@ output: {vtk: none}
     }
   }
 }
+
+TEST_CASE("a sheet joined to a free curve: its own fixed curve held off by a point is caught, as on a single sheet", "[sheet][free_curve]") {
+  const auto design = [](double point_height) {
+    return YAML::Load(R"(
+name: joined_conflict
+sheets:
+  - {name: floor, spans: [8, 8], size: [2, 2]}
+  - {name: wall, spans: [8, 8], size: [2.8284271247461903, 2], origin: [0, 0, -1], u_axis: [0.7071067811865476, 0.7071067811865476, 0], v_axis: [0, 0, 1]}
+energy: {alpha: 0.01, beta: 1}
+curves:
+  - {name: joint, points: [[0.25, 0.25, 0], [1.75, 1.75, 0]], variational: {spans: 16, degree: 3, alpha: 0, beta: 1.0e-3}}
+  - {name: fx, points: [[0.3, 1.2, 0.2], [0.8, 1.7, 0.2]], samples: 33}
+constraints:
+  - {type: curve, sheet: floor, curve: fx, uv: [[0.3, 1.2], [0.8, 1.7]]}
+  - {type: point, sheet: floor, uv: [0.55, 1.45], by: [0, 0, )" + std::to_string(point_height) + R"(]}
+  - {type: curve, sheet: floor, curve: joint, uv: [[0.25, 0.25], [1.75, 1.75]]}
+  - {type: curve, sheet: wall, curve: joint, uv: [[0.3535533905932738, 1], [2.4748737341529163, 1]]}
+  - {type: curve_point, curve: joint, t: 0, by: [0, 0, 0]}
+  - {type: curve_point, curve: joint, t: 1, by: [0, 0, 0]}
+  - {type: point, sheet: floor, uv: [1.875, 0.125], by: [0, 0, 0]}
+  - {type: point, sheet: floor, uv: [0.125, 1.875], by: [0, 0, 0]}
+  - {type: point, sheet: wall, uv: [0.125, 0.125], by: [0, 0, 0]}
+  - {type: point, sheet: wall, uv: [2.7, 0.125], by: [0, 0, 0]}
+output: {vtk: none}
+)");
+  };
+  MetricRow off, on;
+  test::run_sheet_steps(design(0.1), "joined_conflict_off", "off", off);
+  INFO(off.at("message"));
+  CHECK(off.at("termination") == "constraints_unmet");
+  CHECK(off.at("message").find("does not vanish under refinement") != std::string::npos);
+  test::run_sheet_steps(design(0.2), "joined_conflict_on", "on", on);
+  INFO(on.at("message"));
+  CHECK(on.at("termination") == "converged");
+}

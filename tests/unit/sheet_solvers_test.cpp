@@ -176,6 +176,50 @@ constraints:
   }
 }
 
+TEST_CASE("the curve check on the review's second round: degree 5, a curve hiding another, a steep legal point", "[sheet][qp_agreement]") {
+  const std::string base = R"(
+name: round2
+sheets: [{name: s, spans: [8, 8], size: [2, 2]}]
+energy: {alpha: 0.01, beta: 1}
+output: {vtk: none}
+curves:
+  - {name: c, points: [[0.25, 0.25, 0.3], [1.75, 1.75, 0.3]], samples: 33}
+constraints:
+  - {type: point, uv: [0.125, 0.125], by: [0, 0, 0]}
+  - {type: point, uv: [1.875, 0.125], by: [0, 0, 0]}
+  - {type: point, uv: [0.125, 1.875], by: [0, 0, 0]}
+  - {type: point, uv: [1.875, 1.875], by: [0, 0, 0]}
+  - {type: curve, curve: c, uv: [[0.25, 0.25], [1.75, 1.75]]}
+)";
+  // Degree 5: the control points outside the domain reach ±23,000 while the surface spans 2.5; the
+  // size the check compares with is the surface's.
+  YAML::Node d5 = YAML::Load(base + "  - {type: point, uv: [1, 1], by: [0, 0, 1.0]}\n");
+  d5["sheets"][0]["degree"] = 5;
+  const SheetResult r5 = run_sheet(d5, "round2_degree5");
+  INFO(r5.row.at("message"));
+  CHECK(r5.row.at("termination") == "constraints_unmet");
+  // A wavy curve with a large error of its own beside the diagonal one and a point 0.02 off the
+  // latter: every curve is judged on its own.
+  YAML::Node two = YAML::Load(base + R"(  - {type: point, uv: [1.1, 1.1], by: [0, 0, 0.32]}
+)");
+  std::string wave = "[";
+  for (int k = 0; k <= 64; ++k) {
+    const double u = 0.25 + 1.5 * k / 64.0;
+    wave += (k ? ", [" : "[") + std::to_string(u) + ", 0.3, " + std::to_string(0.15 * std::sin(8 * 3.141592653589793 * k / 64.0)) + "]";
+  }
+  two["curves"].push_back(YAML::Load("{name: wave, points: " + wave + "]}"));
+  two["constraints"].push_back(YAML::Load("{type: curve, curve: wave, uv: [[0.25, 0.3], [1.75, 0.3]]}"));
+  const SheetResult r2 = run_sheet(two, "round2_two_curves");
+  INFO(r2.row.at("message"));
+  CHECK(r2.row.at("termination") == "constraints_unmet");
+  CHECK(r2.row.at("message").find("constraints[4]") != std::string::npos);
+  // A point 0.01 off the path at height 0: steep but legal; its error falls faster with each
+  // refinement (0.233, 0.160, 0.052), which is convergence, not a conflict.
+  const SheetResult steep = run_sheet(YAML::Load(base + "  - {type: point, uv: [1.00707, 0.99293], by: [0, 0, 0]}\n"), "round2_steep");
+  INFO(steep.row.at("message"));
+  CHECK(steep.row.at("termination") == "converged");
+}
+
 TEST_CASE("refinement along a lifted circle meets a tolerance below the default sampling's chord error", "[sheet][qp_agreement]") {
   // 65 samples of a circle of radius 0.5 have a chord error of 3e-4: refinement used to stop
   // there (constraints_unmet); the arcs are now sampled for the tolerance.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <optional>
 
 #include <Eigen/Geometry>
@@ -66,7 +67,7 @@ std::optional<int> read_samples(Config& c, bool closed) {
 }
 
 template <int D>
-Samples read_polyline(Config& c) {
+Samples read_polyline(Config& c, double chord_tolerance) {
   const bool closed = c.get<bool>("closed", false, "the curve returns to its first point (points and bspline)");
   const Eigen::MatrixXd V = read_point_list<D>(c, "points", closed ? 3 : 2, closed ? " (closed)" : "",
                                                std::string("polyline ") + "[" + point_spelling(D) + ", ...]");
@@ -86,7 +87,26 @@ Samples read_polyline(Config& c) {
   if (!(length > 0))
     throw InvalidConfig(c.key_path("points") + ": all points coincide: a curve of zero length has no arc length to resample by "
                         "(samples)");
-  return {resample_polyline(V, closed, *samples), closed};
+  const Eigen::MatrixXd resampled = resample_polyline(V, closed, *samples);
+  // Resampling in arc length cuts the given corners; with a chord tolerance (what the curve must
+  // be met to) a count that cuts one by more is refused, as for arcs.
+  if (chord_tolerance > 0) {
+    double worst = 0;
+    for (Eigen::Index i = 0; i < V.rows(); ++i) {
+      double nearest = std::numeric_limits<double>::infinity();
+      for (Eigen::Index k = 0; k + 1 < resampled.rows(); ++k) {
+        const Eigen::RowVectorXd a = resampled.row(k), ab = resampled.row(k + 1) - a;
+        const double t = ab.squaredNorm() > 0 ? std::clamp((V.row(i) - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+        nearest = std::min(nearest, (V.row(i) - (a + t * ab)).norm());
+      }
+      worst = std::max(worst, nearest);
+    }
+    if (worst > chord_tolerance)
+      throw InvalidConfig(c.key_path("samples") + ": " + std::to_string(*samples) + " samples cut a corner of the polyline by " +
+                          sci(worst) + ", above refinement.tolerance " + sci(chord_tolerance) +
+                          " (refinement could never meet it): give more, or leave samples out to keep the vertices");
+  }
+  return {resampled, closed};
 }
 
 // Orthonormal axes of a space arc's plane: `axes` (the second made orthogonal to the first) or
@@ -237,7 +257,7 @@ SampledCurve<D> read_curve_form(Config& c, double chord_tolerance) {
     throw InvalidConfig(c.key_path(given[1]) + ": give one of points, arc, bspline (" + given[0] + " is given too)");
   if (given.empty() && !c.documenting()) throw InvalidConfig(where(c) + ": a curve needs one of points, arc, bspline");
   const std::string form = given.empty() ? "points" : given[0];
-  const Samples s = form == "points" ? read_polyline<D>(c) : form == "arc" ? read_arc<D>(c, chord_tolerance)
+  const Samples s = form == "points" ? read_polyline<D>(c, chord_tolerance) : form == "arc" ? read_arc<D>(c, chord_tolerance)
                                                                                  : read_bspline<D>(c, chord_tolerance);
   SampledCurve<D> out;
   for (Eigen::Index i = 0; i < s.X.rows(); ++i) out.points.push_back(s.X.row(i).transpose());

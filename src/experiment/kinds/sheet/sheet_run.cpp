@@ -221,7 +221,7 @@ SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config, const std::
   s.refinement.max_level = rc.get_int("max_level", 4, 1, bspline::HierarchicalSurface::kMaxLevel, "deepest layer");
   s.refinement.max_rounds = rc.get_int("max_rounds", 8, 1, 100, "refine-and-solve rounds at most");
   s.refinement.curve_error_factor = rc.get_number(
-      "curve_error_factor", 10, 1, 1e12,
+      "curve_error_factor", 2, 1, 1e12,
       "a curve constraint whose pointwise error is above this multiple of its error alone on the sheet is checked under refinement");
   s.refinement.curve_limit_share = rc.get_number(
       "curve_limit_share", 0.5, 0, 1,
@@ -229,7 +229,7 @@ SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config, const std::
       "ends constraints_unmet (another constraint holds the surface off the curve); 0: no check");
   s.refinement.curve_conflict_tolerance = rc.get_number(
       "curve_conflict_tolerance", 1e-3, 0, 1,
-      "and only when that limit is above this share of the sheet's size (bounding-box diagonal of its control points)");
+      "and only when that limit is above this share of the surface's size (the diagonal of its extent over the domain)");
   s.estimate_objective_error = rc.get<bool>("estimate_objective_error", false,
                                             "after the last step, solve once more with every cell refined and report the change");
   rc.check_no_unknown_keys();

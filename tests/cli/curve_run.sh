@@ -48,4 +48,22 @@ rc=0; "$FS" run configs/sauvage/fig1.yaml --set 'sweep={}' --set "$PINS" --out "
 [ "$rc" -eq 3 ] || fail "infeasible second edit: exit $rc, expected 3"
 grep -q "edit 1: infeasible edit: points 0 and 128" "$SCRATCH/far_later/runs.csv" || fail "infeasible edit not reported"
 ! grep -qi "nan" "$SCRATCH/far_later/runs.csv" || fail "NaN written"
+# A point count with no coarser level (300 points: 299 segments) is refused, naming counts that
+# have levels; input.resample gives it them (issue 25: it silently got 0 levels).
+$PY - "$SCRATCH/c300.obj" <<'PYEOF'
+import math, sys
+with open(sys.argv[1], "w") as f:
+    for i in range(300):
+        f.write(f"v {2 * i / 299} {0.1 * math.sin(20 * i / 299)} 0\n")
+    f.write("l " + " ".join(str(i + 1) for i in range(300)) + "\n")
+PYEOF
+C300="$SCRATCH/c300.yaml"
+printf 'name: c300\ninput: {curve: %s}\nedits: [{level: 0, wrinkle_level: -1, moves: [{index: -1, chord_scale: 0.8}]}]\noptimization: {beta: 0.01, smoothness: bending, solver: {type: linearized, max_solves: 2000}}\noutput: {vtk: none}\n' "$SCRATCH/c300.obj" > "$C300"
+expect_error 2 "input.curve: .*has 300 points, which allow no coarser level .*input.resample: 289 or 305 for 4 levels" -- "$FS" run "$C300" --out "$SCRATCH/x"
+"$FS" run "$C300" --set input.resample=289 --out "$SCRATCH/c300" 2>/dev/null || fail "the resampled 300-point curve failed"
+$PY - "$SCRATCH/c300/runs.csv" <<'PYEOF' || fail "the resampled curve should have 289 points and converge"
+import csv, sys
+r = next(csv.DictReader(open(sys.argv[1])))
+sys.exit(0 if r["n_points"] == "289" and r["termination"] == "converged" else 1)
+PYEOF
 echo "curve_run: ok"

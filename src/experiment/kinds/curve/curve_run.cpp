@@ -7,6 +7,7 @@
 #include "core/config.h"
 #include "core/timer.h"
 #include "curve_design/curve_metrics.h"
+#include "curves/curve_sampling.h"
 #include "curve_design/wrinkle_scale.h"
 #include "curves/multires_polyline.h"
 #include "experiment/metric_format.h"
@@ -114,6 +115,15 @@ CurveObjective CurveRunSpec::objective() const {
   return o;
 }
 
+namespace {
+// The point counts nearest n (below and above) that allow 4 levels, for messages.
+std::string nearest_level_counts(int n, bool closed) {
+  const int step = 16, extra = closed ? 0 : 1;  // 2^4·k (+ 1)
+  const int below = std::max(closed ? 3 * step : step, (n - extra) / step * step) + extra, above = below + step;
+  return std::to_string(below) + " or " + std::to_string(above) + " for 4 levels";
+}
+}  // namespace
+
 CurveRunSpec CurveRunSpec::from_config(const YAML::Node& run_config, const std::vector<std::string>& dirs) {
   Config root(run_config, "");
   CurveRunSpec s;
@@ -121,13 +131,24 @@ CurveRunSpec CurveRunSpec::from_config(const YAML::Node& run_config, const std::
   Config in = root.child("input", "input curve");
   s.curve_path = resolve_input(in.require<std::string>("curve", "polyline OBJ (v and l lines)"), dirs, in.key_path("curve"));
   const int levels = in.get_int("levels", -1, -1, 62, "hierarchy depth (-1: as many as the point count allows)");
+  const int resample = in.get_int("resample", 0, 0, 1 << 24,
+                                  "resample the curve to this many points, equally spaced in arc length (0: as read); "
+                                  "2^L·k + 1 points (closed: 2^L·k) give L levels");
   in.check_no_unknown_keys();
   try {
     s.curve = read_polyline(s.curve_path);
+    if (resample > 0) s.curve.points = resample_polyline(s.curve.points, s.curve.closed, resample + (s.curve.closed ? 1 : 0))
+                                           .topRows(resample);
   } catch (const Error& e) {
-    throw InvalidConfig(in.key_path("curve") + ": " + e.what());
+    throw InvalidConfig(in.key_path(resample > 0 ? "resample" : "curve") + ": " + e.what());
   }
   const int most = max_polyline_levels(s.curve.n_points(), s.curve.closed);
+  // A point count with no coarser level leaves the multiresolution out: never silently.
+  if (levels < 0 && most == 0)
+    throw InvalidConfig(in.key_path("curve") + ": " + s.curve_path + " has " + std::to_string(s.curve.n_points()) +
+                        " points, which allow no coarser level (" + (s.curve.closed ? "2^L·k points, k ≥ 3" : "2^L·k + 1 points") +
+                        " give L levels): resample it (input.resample: " + nearest_level_counts(s.curve.n_points(), s.curve.closed) +
+                        ") or ask input.levels: 0 to edit it as it is");
   s.levels = levels < 0 ? most : levels;
   if (s.levels > most)
     throw InvalidConfig(in.key_path("levels") + ": " + std::to_string(s.levels) + " levels need " +

@@ -10,6 +10,7 @@
 
 #include <tbb/global_control.h>
 
+#include "feature/featured_surface.h"
 #include "feature/perturbation.h"
 #include "subdivision/multires_surface.h"
 #include "subdivision/subdivider.h"
@@ -112,8 +113,39 @@ void BM_UniformLoopRefinement(benchmark::State& state) {
   }
 }
 
+// The visible-profile step (issue 24 part 1) against the paper's drawn-level semantics, same run:
+// a whole hierarchy evaluated (every level's perturbation, the finer levels re-synthesized) with
+// a feature drawn on level 2 of a curved 32 × 32 sheet refined 4 times (263,169 finest vertices),
+// its profile made exact on the drawn level (the paper), the finest level, or the limit.
+// Arg: 0 drawn_level, 1 finest, 2 limit.
+void BM_EvaluateHierarchy(benchmark::State& state) {
+  static const MultiresSurface h(curved_sheet(32), loop(), 4, Backend::Optimized);
+  const ProfileTarget targets[] = {ProfileTarget::DrawnLevel, ProfileTarget::Finest, ProfileTarget::Limit};
+  FeaturedSurface surface(h, Backend::Optimized, targets[state.range(0)]);
+  const SurfaceMesh& level = h.mesh(2);
+  const TriangleSurface s(level, loop_limit_normals(level));
+  MatrixX3 P(21, 3);
+  for (int k = 0; k <= 20; ++k) {
+    const double x = -0.8 + 1.6 * k / 20.0, y = 0.3 * std::sin(3 * x);
+    P.row(k) << x, y, 0.12 * (x * x - 0.5 * y * y);
+  }
+  FeatureCurve curve;
+  curve.name = "wave";
+  curve.level = 2;
+  curve.points = project_to_surface(s, P, 0.01, "benchmark curve");
+  curve.params.radius = 4 * 2.0 / (32 << 2);  // 4 edge lengths of level 2
+  curve.params.height = 0.004;
+  surface.add(curve);
+  for (auto _ : state) {
+    (void)surface.original();  // marks the surface for a new evaluation
+    benchmark::DoNotOptimize(surface.result().mesh(4).positions().data());
+  }
+  state.counters["finest_vertices"] = static_cast<double>(h.mesh(4).n_vertices());
+}
+
 }  // namespace
 
+BENCHMARK(BM_EvaluateHierarchy)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_ApplyFeature_Optimized)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_ApplyFeature_Reference)->Arg(1)->Iterations(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_LevelNormals)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -3,6 +3,7 @@
 // name, each with reference and optimized back ends where they differ.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -23,13 +24,18 @@ struct LengthSolveStep {
 struct LengthSolveReport {
   MatrixX3 points;
   //! The outcome in every solver's vocabulary (core/summary.h): converged, max_iterations (the
-  //! solve budget before the tolerances) or numerical_failure (a KKT system that cannot be
-  //! factored, non-finite values, Ceres failing); iterations = solves; message says why.
+  //! solve budget before the tolerances), not_a_minimum (a constrained saddle: stationary, but
+  //! the reduced Hessian has a negative eigenvalue) or numerical_failure (a KKT system that
+  //! cannot be factored, non-finite values, Ceres failing); iterations = solves; message says why.
   SolveSummary summary;
   bool converged() const { return summary.termination == Termination::Converged; }
   int solves = 0;            // linear systems solved (Ceres: its inner Gauss-Newton steps)
   int outer_iterations = 0;  // linearizations, or augmented-Lagrangian rounds
   double length_error = 0, pin_error = 0;
+  //! The smallest eigenvalue of the reduced Hessian at the answer (curve_design/second_order.h;
+  //! NaN when not checked: not converged, or more points than the dense check takes).
+  double min_reduced_hessian_eig = std::numeric_limits<double>::quiet_NaN();
+  int saddle_escapes = 0;  // negative-curvature steps taken away from saddles found on the way
   std::vector<LengthSolveStep> history;
 };
 

@@ -28,7 +28,7 @@ struct LinearizedOptions {
   // 0 by default: the paper's method is judged as published (a saddle ends not_a_minimum).
   int saddle_escapes = 0;
   // Solves within which the distance to the tolerances must fall by a tenth; else `stalled`.
-  int stall_window = 500;
+  int stall_window = 1000;
   KktMethod kkt = KktMethod::Direct;
   double minres_tolerance = 1e-13;
   Backend backend = Backend::Optimized;

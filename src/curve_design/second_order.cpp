@@ -2,8 +2,10 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
+#include <algorithm>
 
 #include "core/message_format.h"
+#include "curve_design/kkt_factor.h"
 #include "curve_design/length_manifold.h"
 
 namespace fairshape {
@@ -49,10 +51,31 @@ SecondOrderCheck check_second_order(const LengthProblem& p, const MatrixX3& X) {
   return out;
 }
 
+int reduced_hessian_negative_count(const LengthProblem& p, const MatrixX3& X) {
+  const Eigen::VectorXd lambda = least_squares_multipliers(p, X);
+  if (!lambda.allFinite()) return -1;
+  const auto kkt = make_kkt_factor(p, Backend::Optimized, KktMethod::Direct, 1e-13);
+  const double tolerance = kSecondOrderTolerance * p.objective_hessian().diagonal().cwiseAbs().maxCoeff();
+  if (!kkt->factor(p.rows(X), &lambda, tolerance)) return -1;
+  const int negative = kkt->negative_pivots();
+  return negative < 0 ? -1 : std::max(negative - p.n_constraint_rows(), 0);
+}
+
 SecondOrderCheck judge_second_order(const LengthProblem& p, LengthSolveReport& rep, bool stationarity_asked) {
   SecondOrderCheck so = check_second_order(p, rep.points);
   if (!so.checked) {
-    rep.summary.message += "; " + so.message;
+    // Too large for the dense eigenvalues: the inertia says whether, not how negative.
+    const int negative = stationarity_asked ? reduced_hessian_negative_count(p, rep.points) : -1;
+    if (negative > 0) {
+      rep.summary.termination = Termination::NotAMinimum;
+      rep.summary.message = "stationary but not a minimum: the reduced Hessian has " + std::to_string(negative) +
+                            " negative eigenvalue(s) (LDLT inertia of the KKT matrix; smallest not estimated above " +
+                            std::to_string(kSecondOrderDenseLimit) + " points), a constrained saddle";
+    } else {
+      rep.summary.message += negative == 0 ? "; reduced Hessian positive semidefinite by LDLT inertia (smallest eigenvalue not estimated above " +
+                                                 std::to_string(kSecondOrderDenseLimit) + " points)"
+                                           : "; " + so.message;
+    }
     return so;
   }
   rep.min_reduced_hessian_eig = so.min_eigenvalue;

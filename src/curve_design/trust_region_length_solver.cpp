@@ -157,16 +157,14 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
       if (checked) {
         rep.min_reduced_hessian_eig = so.min_eigenvalue;
         how = "reduced Hessian's smallest eigenvalue " + sci(so.min_eigenvalue);
-      } else if (kkt->factor(rows, &lambda, 0) && kkt->negative_pivots() >= 0) {
-        ++rep.solves;
-        // Inertia of the unshifted KKT: m negative pivots ⇔ Zᵀ W Z positive definite.
-        if (kkt->negative_pivots() > m)
-          return finish(Termination::NotAMinimum, "stationary but not a minimum: the KKT matrix has " +
-                                                      std::to_string(kkt->negative_pivots() - m) +
-                                                      " negative eigenvalue(s) beyond the constraints' (LDLT inertia), a constrained saddle");
-        how = "inertia checked by LDLT (smallest eigenvalue not estimated above " + std::to_string(o_.dense_limit) + " points)";
       } else {
-        how = "second order not checked (" + std::to_string(N) + " points, no inertia from this back end)";
+        const int downhill = reduced_hessian_negative_count(p, X);
+        if (downhill > 0)
+          return finish(Termination::NotAMinimum, "stationary but not a minimum: the reduced Hessian has " + std::to_string(downhill) +
+                                                      " negative eigenvalue(s) (LDLT inertia), a constrained saddle");
+        how = downhill == 0 ? "reduced Hessian positive semidefinite by LDLT inertia (smallest eigenvalue not estimated above " +
+                                  std::to_string(o_.dense_limit) + " points)"
+                            : "second order not checked (the inertia check failed)";
       }
       return finish(Termination::Converged, "converged after " + std::to_string(rep.solves) + " solve(s), " +
                                                 std::to_string(iterations) + " trust-region iteration(s): " + how +

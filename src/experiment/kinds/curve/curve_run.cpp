@@ -244,7 +244,10 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
                 .length_error_max);
     if (!last.solve.history.empty()) row["stationarity"] = num(last.solve.history.back().stationarity);
     // Second order (curve_design/second_order.h): ≥ 0 (to rounding) at a true local minimum.
+    // Empty when the solve did not end at a judged point; not_estimated above the dense limit
+    // (the inertia was checked instead: the message says so).
     if (!std::isnan(last.solve.min_reduced_hessian_eig)) row["min_reduced_hessian_eig"] = num(last.solve.min_reduced_hessian_eig);
+    else if (last.solve.converged()) row["min_reduced_hessian_eig"] = "not_estimated";
     row["saddle_escapes"] = std::to_string(last.solve.saddle_escapes);
     if (row["message"].empty()) row["message"] = last.solve.summary.message;
     if (spec.final_curve) write_polyline(current, out.final_path());

@@ -106,8 +106,9 @@ LengthSolveReport LinearizedLengthSolver::solve(const LengthProblem& p, const Ma
     const std::vector<ConstraintRow> rows = p.rows(X);
     const bool newton = o_.newton && rep.solves > 0 && rep.length_error < o_.newton_switch;
     // One linearized step: W = Q (the paper), or Newton's W = Q + Σλ∇²f + δI, δ raised from 0
-    // until the step descends on the merit (an indefinite W on the tangent space of the
-    // lengths gives steps towards saddles); past kMaxShifts, the paper's step.
+    // until the KKT inertia is right (optimized back end) and the step descends on the ℓ1
+    // merit (an indefinite W on the tangent space of the lengths gives steps towards saddles);
+    // past kMaxShifts, the paper's step.
     const Eigen::VectorXd previous_lambda = lambda;
     double shift = 0;
     MatrixX3 next;
@@ -117,6 +118,13 @@ LengthSolveReport LinearizedLengthSolver::solve(const LengthProblem& p, const Ma
         rep.summary.message = "the KKT system could not be factored at solve " + std::to_string(rep.solves + 1) +
                               " (singular: dependent constraints?) " + kkt->last_error();
         return rep;
+      }
+      // Inertia control (where the LDLᵀ gives it): W + δI must be positive definite on the
+      // tangent space — exactly m negative pivots — or the step heads for a saddle; raising δ
+      // before solving saves a solve and a line search per refused shift.
+      if (use_newton && kkt->negative_pivots() > m) {
+        shift = shift == 0 ? 1e-4 * q_scale : 10 * shift;
+        continue;
       }
       // Right-hand side: W X_k − ∇F(X_k) (= b when W = Q) and the linearized rows
       // ∇f_r(X_k)·X = ∇f_r(X_k)·X_k − f_r(X_k).

@@ -34,12 +34,12 @@ SecondOrderCheck check_second_order(const LengthProblem& p, const MatrixX3& X);
 //! The default tolerance of is_minimum: eigenvalues that are rounding of the largest.
 inline constexpr double kSecondOrderTolerance = 1e-8;
 
-//! Above the dense limit: how many eigenvalues of Zᵀ W Z lie below −kSecondOrderTolerance ·
-//! (Q's largest diagonal entry), from the inertia of the LDLᵀ factor of the KKT matrix with W
-//! shifted by that much (kkt_factor.h: negative pivots beyond one per constraint row). The
-//! optimized banded factor is used whatever the solver's back end (a check, not a solve).
-//! −1 when the factorization fails or gives no inertia.
-int reduced_hessian_negative_count(const LengthProblem& p, const MatrixX3& X);
+//! How many eigenvalues of Zᵀ W Z lie below −shift (default: kSecondOrderTolerance · Q's
+//! largest diagonal entry), from the inertia of the LDLᵀ factor of the KKT matrix with W + shift·I
+//! (kkt_factor.h: negative pivots beyond one per constraint row). O(n) on the banded order, so
+//! it works at any size. The optimized banded factor is used whatever the solver's back end (a
+//! check, not a solve). −1 when the factorization fails or gives no inertia.
+int reduced_hessian_negative_count(const LengthProblem& p, const MatrixX3& X, double shift = -1);
 
 //! A converged report judged at second order: its min_reduced_hessian_eig set, and at a saddle
 //! its termination not_a_minimum with the eigenvalue in the message. Without a stationarity

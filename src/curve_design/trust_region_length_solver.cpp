@@ -115,15 +115,16 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
   MatrixX3 X = rep.points;
   double F = p.objective(X);
   double best_F = F, best_stat = INFINITY, last_min_eig = std::nan("");
-  int since_progress = 0, iterations = 0;
-  bool weak_inertia = false;  // the reference back end above dense_limit: curvature along the step only
+  // solves: KKT systems solved (restoration and steps); inertia checks are factorizations
+  // without a solve, counted apart (the message gives them).
+  int since_progress = 0, iterations = 0, inertia_checks = 0;
 
   const auto finish = [&](Termination t, const std::string& why) {
     rep.points = X;
     rep.summary.termination = t;
     rep.summary.iterations = rep.solves;
     rep.outer_iterations = iterations;
-    rep.summary.message = why + tol_note;
+    rep.summary.message = why + " [" + std::to_string(inertia_checks) + " inertia checks]" + tol_note;
     return rep;
   };
 
@@ -142,63 +143,75 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
     rep.summary.residual = rep.length_error;
     rep.history.push_back({rep.solves, rep.length_error, stat, timer.seconds()});
 
-    // Curvature on the tangent space at this point (same least-squares λ as the step's W).
-    SecondOrderCheck so;
-    if (dense) so = check_second_order(p, X);
-    const bool checked = dense && so.checked;
-    const double eig_tol = kSecondOrderTolerance * so.max_abs_eigenvalue;
-    const bool negative = checked && so.min_eigenvalue < -eig_tol;
-    if (checked) last_min_eig = so.min_eigenvalue;
-
+    // Curvature on the tangent space (same least-squares λ as the step's W): the LDLᵀ inertia
+    // first (one banded factorization, second_order.h), the dense eigenpair only where that
+    // finds negative curvature (for σ and the direction) or to report the answer's eigenvalue.
     const bool first_order = rep.length_error <= tol && rep.pin_error <= tol && stat <= stat_tol;
+    // One factorization at the check's shift serves twice: its inertia is the second-order
+    // test, and its solve is the step whenever no larger shift is needed (1e-8 of Q's scale
+    // leaves Newton's convergence intact to that level). Back ends without inertia (SparseLU)
+    // ask the shared banded check, so both back ends decide alike.
+    const double base_shift = kSecondOrderTolerance * q_scale;
+    if (!kkt->factor(rows, &lambda, base_shift))
+      return finish(Termination::NumericalFailure, "the KKT system could not be factored at solve " +
+                                                       std::to_string(rep.solves + 1) + " " + kkt->last_error());
+    const auto negative_count = [&](double shift) {
+      const int pivots = kkt->negative_pivots();
+      return pivots >= 0 ? std::max(pivots - m, 0) : reduced_hessian_negative_count(p, X, shift);
+    };
+    const int inertia = negative_count(base_shift);
+    ++inertia_checks;
+    bool negative = inertia > 0;
+    SecondOrderCheck so;
+    if (dense && (negative || first_order)) {
+      so = check_second_order(p, X);
+      if (so.checked) {
+        negative = so.min_eigenvalue < -kSecondOrderTolerance * so.max_abs_eigenvalue;
+        last_min_eig = so.min_eigenvalue;
+      }
+    }
+    const bool have_direction = negative && so.checked;
+
     if (first_order && !negative) {
       rep.points = X;
       std::string how;
-      if (checked) {
+      if (so.checked) {
         rep.min_reduced_hessian_eig = so.min_eigenvalue;
         how = "reduced Hessian's smallest eigenvalue " + sci(so.min_eigenvalue);
       } else {
-        const int downhill = reduced_hessian_negative_count(p, X);
-        if (downhill > 0)
-          return finish(Termination::NotAMinimum, "stationary but not a minimum: the reduced Hessian has " + std::to_string(downhill) +
-                                                      " negative eigenvalue(s) (LDLT inertia), a constrained saddle");
-        how = downhill == 0 ? "reduced Hessian positive semidefinite by LDLT inertia (smallest eigenvalue not estimated above " +
-                                  std::to_string(o_.dense_limit) + " points)"
-                            : "second order not checked (the inertia check failed)";
+        how = inertia == 0 ? "reduced Hessian positive semidefinite by LDLT inertia (smallest eigenvalue not estimated above " +
+                                 std::to_string(o_.dense_limit) + " points)"
+                           : "second order not checked (the inertia check failed)";
       }
       return finish(Termination::Converged, "converged after " + std::to_string(rep.solves) + " solve(s), " +
                                                 std::to_string(iterations) + " trust-region iteration(s): " + how +
                                                 (rep.saddle_escapes ? ", " + std::to_string(rep.saddle_escapes) + " negative-curvature step(s)" : ""));
     }
 
-    // 2. The shifted Newton step: σ from the dense eigenvalue, or raised until the inertia is right.
-    double sigma = negative ? 2 * -so.min_eigenvalue : 0;
+    // 2. The shifted Newton step: σ = 2|λ_min| from the dense eigenvalue, or (above the dense
+    // limit) raised until the inertia is right — the same check for both back ends.
+    double sigma = have_direction ? 2 * -so.min_eigenvalue : base_shift;
+    if (have_direction && !kkt->factor(rows, &lambda, sigma))
+      return finish(Termination::NumericalFailure, "the shifted KKT system could not be factored at solve " + std::to_string(rep.solves + 1));
+    if (negative && !have_direction) {
+      sigma = kFirstShift * q_scale;
+      for (int attempt = 0;; ++attempt, sigma *= kShiftGrowth) {
+        if (!kkt->factor(rows, &lambda, sigma))
+          return finish(Termination::NumericalFailure, "the shifted KKT system could not be factored at solve " + std::to_string(rep.solves + 1));
+        const int left = negative_count(sigma);
+        ++inertia_checks;
+        if (left == 0) break;
+        if (left < 0 || attempt >= kMaxShiftTries)
+          return finish(Termination::NumericalFailure, "no shift up to " + sci(sigma) +
+                                                           " made the reduced Hessian positive definite at iteration " +
+                                                           std::to_string(iterations));
+      }
+    }
     Eigen::VectorXd rhs(n + m);
     rhs.head(n) = -g;
     for (int r = 0; r < m; ++r) rhs[n + r] = -rows[r].value;  // also removes the retraction's residual
-    Eigen::VectorXd s;
-    for (int attempt = 0;; ++attempt) {
-      if (!kkt->factor(rows, &lambda, sigma))
-        return finish(Termination::NumericalFailure, "the KKT system could not be factored at solve " +
-                                                         std::to_string(rep.solves + 1) + " " + kkt->last_error());
-      ++rep.solves;
-      const int neg = dense ? m : kkt->negative_pivots();
-      bool ok = true;
-      if (neg >= 0) {
-        ok = neg == m;
-      } else {
-        s = kkt->solve(rhs).head(n);
-        ok = s.allFinite() && -g.dot(s) > 0;
-        weak_inertia = true;
-      }
-      if (ok) break;
-      if (attempt >= kMaxShiftTries || rep.solves >= o_.tolerances.max_solves)
-        return finish(Termination::NumericalFailure, "no shift up to " + sci(sigma) +
-                                                         " made the reduced Hessian positive definite at iteration " +
-                                                         std::to_string(iterations));
-      sigma = sigma == 0 ? kFirstShift * q_scale : kShiftGrowth * sigma;
-    }
-    if (s.size() == 0) s = kkt->solve(rhs).head(n);
+    ++rep.solves;
+    Eigen::VectorXd s = kkt->solve(rhs).head(n);
     if (!s.allFinite()) return finish(Termination::NumericalFailure, "solve " + std::to_string(rep.solves) + " produced NaN or infinite values");
     ++iterations;
 
@@ -206,7 +219,7 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
     bool escape = false;
     if (s.norm() > radius) {
       s *= radius / s.norm();
-    } else if (negative) {
+    } else if (have_direction) {
       // Downhill to first order; where ∇F·d is rounding (a planar curve's out-of-plane mode,
       // which leaves the plane to either side at the same cost) the sign is fixed by d's
       // largest entry, so both back ends and every run take the same side.
@@ -251,10 +264,10 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
       const std::string where = "max relative length error " + format_default(rep.length_error) + ", stationarity " +
                                 sci(stat) + " (tolerance " + sci(stat_tol) + ")";
       if (negative) {
-        rep.min_reduced_hessian_eig = so.min_eigenvalue;
+        if (so.checked) rep.min_reduced_hessian_eig = so.min_eigenvalue;
         return finish(Termination::NotAMinimum, "not a minimum: no step along the negative curvature (reduced Hessian's smallest eigenvalue " +
-                                                    sci(so.min_eigenvalue) + ") decreased F within " +
-                                                    std::to_string(since_progress) + " iterations; " + where);
+                                                    (so.checked ? sci(so.min_eigenvalue) : "not estimated, LDLT inertia") +
+                                                    ") decreased F within " + std::to_string(since_progress) + " iterations; " + where);
       }
       return finish(Termination::Stalled, std::string("stalled: ") +
                                               (radius < min_radius ? "the trust region shrank to rounding"
@@ -265,8 +278,7 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
   rep.min_reduced_hessian_eig = last_min_eig;
   return finish(Termination::MaxIterations,
                 "not converged after " + std::to_string(rep.solves) + " solves (" + std::to_string(iterations) +
-                    " trust-region iterations): max relative length error " + format_default(rep.length_error) +
-                    (weak_inertia ? "; reference back end above dense_limit: curvature checked along each step only" : ""));
+                    " trust-region iterations): max relative length error " + format_default(rep.length_error));
 }
 
 }  // namespace fairshape

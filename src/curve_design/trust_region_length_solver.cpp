@@ -21,6 +21,7 @@ constexpr double kAccept = 0.1, kShrink = 0.25, kGrow = 0.75;
 constexpr double kShiftGrowth = 10, kFirstShift = 1e-6;
 constexpr int kMaxShiftTries = 12;
 constexpr double kDefaultStationarity = 1e-8;
+constexpr int kInverseIterations = 20;
 
 // Gauss–Newton corrections δ minimizing ½ δᵀ(Q + εI)δ subject to J δ = −f: the least-*bending*
 // correction (the normal step of Byrd and Omojokun's composite-step SQP, in the objective's
@@ -163,14 +164,15 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
     ++inertia_checks;
     bool negative = inertia > 0;
     SecondOrderCheck so;
-    if (dense && (negative || first_order)) {
+    // At a candidate answer the dense check (up to its limit) also gives the eigenvalue reported.
+    if ((dense && negative) || (first_order && N <= kSecondOrderDenseLimit)) {
       so = check_second_order(p, X);
       if (so.checked) {
         negative = so.min_eigenvalue < -kSecondOrderTolerance * so.max_abs_eigenvalue;
         last_min_eig = so.min_eigenvalue;
       }
     }
-    const bool have_direction = negative && so.checked;
+    bool have_direction = negative && so.checked;
 
     if (first_order && !negative) {
       rep.points = X;
@@ -207,6 +209,33 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
                                                            std::to_string(iterations));
       }
     }
+    const SparseMatrix W = lagrangian_hessian(p, lambda);
+    if (negative && !have_direction) {
+      // Above the dense limit: the direction by inverse iteration on the tangent space with the
+      // factor just made, W + σI = W − μI with μ = −σ ≤ λ_min (σ is the first shift with the
+      // right inertia), each iteration one solve [W + σI, Jᵀ; J, 0][w; ·] = [v; 0], so w =
+      // Z (Zᵀ(W + σI)Z)⁻¹ Zᵀ v converges to λ_min's eigenvector (Golub & Van Loan §8.2.2);
+      // its Rayleigh quotient estimates λ_min.
+      Eigen::VectorXd v(n), rhs_v = Eigen::VectorXd::Zero(n + m);
+      for (int i = 0; i < n; ++i) v[i] = std::sin(1.7 * i + 0.3) + 0.5 * std::cos(0.37 * i);  // deterministic start
+      for (int k = 0; k < kInverseIterations; ++k) {
+        rhs_v.head(n) = v / v.norm();
+        v = kkt->solve(rhs_v).head(n);
+        ++rep.solves;
+        if (!v.allFinite() || v.norm() == 0) break;
+      }
+      if (v.allFinite() && v.norm() > 0) {
+        v /= v.norm();
+        const double rayleigh = v.dot(W * v);
+        if (rayleigh < 0) {
+          so.checked = true;
+          so.min_eigenvalue = rayleigh;
+          so.direction = Eigen::Map<const MatrixX3>(v.data(), N, 3);
+          last_min_eig = rayleigh;
+          have_direction = true;
+        }
+      }
+    }
     Eigen::VectorXd rhs(n + m);
     rhs.head(n) = -g;
     for (int r = 0; r < m; ++r) rhs[n + r] = -rows[r].value;  // also removes the retraction's residual
@@ -232,7 +261,6 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
       s += tau * d;
       escape = tau > 0;
     }
-    const SparseMatrix W = lagrangian_hessian(p, lambda);
     const double predicted = -(g.dot(s) + 0.5 * s.dot(W * s));
 
     // 4. Retract and compare the decrease with the model's.

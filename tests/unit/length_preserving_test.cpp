@@ -384,6 +384,24 @@ TEST_CASE("the trust region: reference and optimized back ends agree, and both r
   CHECK(r[0].solves == r[1].solves);
 }
 
+TEST_CASE("the trust region without the dense eigenpair (the large-curve path): inertia and inverse iteration reach minima",
+          "[sauvage]") {
+  // dense_limit 0: the shift from the LDLT inertia, the negative-curvature direction by inverse
+  // iteration on the shifted factor — what a 131k-point curve gets. Judged densely afterwards.
+  const Polyline wave = bundled("wave129.obj");
+  for (double beta : {1e-4, 0.5}) {
+    const Recipe recipe(beta);
+    const PreparedCurveEdit prepared = prepare_editing_loop(wave, 7, compress(0.7), recipe.objective, Backend::Optimized);
+    for (Backend b : {Backend::Reference, Backend::Optimized}) {
+      const LengthSolveReport r = make_solver("trust_region", b, "{length_tolerance: 1e-12, max_solves: 2000, trust_region: {dense_limit: 0}}")
+                                      ->solve(*prepared.problem, prepared.stages.attracting);
+      INFO("beta " << beta << ": " << r.summary.message);
+      CHECK(judge_independently(*prepared.problem, r) == Outcome::Minimum);
+      CHECK(r.saddle_escapes > 0);  // it did leave saddles on the way
+    }
+  }
+}
+
 TEST_CASE("a 3-D curve (a helix): every solver ends at a minimum or says it did not, the trust region reaches one", "[sauvage]") {
   // A helix of 65 points compressed along its axis; out-of-plane directions are free.
   Polyline helix;

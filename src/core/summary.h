@@ -18,6 +18,13 @@ namespace fairshape {
 //   max_iterations     — a tolerance was asked and the iteration cap came first;
 //   constraints_unmet  — the solve ended, but the result misses its constraints by more than
 //                        the tolerance asked (measured on the result, not on the linear rows);
+//   not_a_minimum      — constraints and stationarity met, but the point is a constrained saddle:
+//                        the Lagrangian's Hessian has negative curvature on the constraints'
+//                        tangent space (a step along it, projected back, lowers the objective);
+//   stalled            — an iterative solve stopped making progress (no decrease of its measure
+//                        over the stall window) before its tolerance: more iterations would not help;
+//   infeasible         — no point satisfying the constraints was found from the start (the
+//                        constraints' residual could not be driven to the tolerance);
 //   ill_conditioned    — the constraints are met, but they are nearly dependent with
 //                        conflicting targets, so the answer is dominated by the conflict
 //                        (an exact solve moving a vertex far beyond every handle);
@@ -33,6 +40,9 @@ enum class Termination {
   ConstraintsUnmet,
   IllConditioned,
   NumericalFailure,
+  NotAMinimum,
+  Stalled,
+  Infeasible,
   InvalidInput,
   OutputFailed,
   Crashed

@@ -1,5 +1,8 @@
 #include "curve_design/ceres_length_solver.h"
 
+#include "curve_design/length_manifold.h"
+#include "curve_design/second_order.h"
+
 #include <ceres/ceres.h>
 
 #include <cmath>
@@ -116,6 +119,8 @@ LengthSolveReport CeresLengthSolver::solve(const LengthProblem& p, const MatrixX
   so.parameter_tolerance = 1e-14;
   so.max_num_iterations = 50;
 
+  // The tolerance asked, or this curve's rounding floor when larger (length_manifold.h).
+  const double tol = attainable_length_tolerance(p, start, o_.tolerances.length);
   double previous_violation = INFINITY;
   for (int round = 0; round < o_.max_rounds && rep.solves < o_.tolerances.max_solves; ++round) {
     ceres::Solver::Summary summary;
@@ -136,11 +141,11 @@ LengthSolveReport CeresLengthSolver::solve(const LengthProblem& p, const MatrixX
     rep.pin_error = p.max_relative_pin_error(X);
     const double stat = o_.tolerances.stationarity > 0 ? p.stationarity(X) : 0.0;
     rep.history.push_back({rep.solves, rep.length_error, stat, timer.seconds()});
-    if (rep.length_error <= o_.tolerances.length && rep.pin_error <= o_.tolerances.length &&
-        stat <= o_.tolerances.stationarity) {
+    if (rep.length_error <= tol && rep.pin_error <= tol && stat <= o_.tolerances.stationarity) {
       rep.points = X;
       rep.summary.termination = Termination::Converged;
       rep.summary.message = "converged after " + std::to_string(round + 1) + " augmented-Lagrangian round(s)";
+      judge_second_order(p, rep, o_.tolerances.stationarity > 0);  // a saddle is reported, not converged (no escape here)
       return rep;
     }
     for (int r = 0; r < m; ++r) lambda[r] += mu * rows[r].value / p.row_scale(r);

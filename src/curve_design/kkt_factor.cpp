@@ -18,9 +18,11 @@ class BlockKkt final : public KktFactor {
  public:
   BlockKkt(const LengthProblem& p, KktMethod method, double tol) : p_(p), method_(method), tol_(tol) {}
 
-  bool factor(const std::vector<ConstraintRow>& rows, const Eigen::VectorXd* newton) override {
+  bool factor(const std::vector<ConstraintRow>& rows, const Eigen::VectorXd* newton, double shift) override {
     const int n = 3 * p_.n_points(), m = static_cast<int>(rows.size());
     Triplets t;
+    if (shift != 0)
+      for (int i = 0; i < n; ++i) t.emplace_back(i, i, shift);
     const SparseMatrix& Q = p_.objective_hessian();
     for (int j = 0; j < Q.outerSize(); ++j)
       for (SparseMatrix::InnerIterator it(Q, j); it; ++it)
@@ -67,7 +69,7 @@ class BandedKkt final : public KktFactor {
  public:
   BandedKkt(const LengthProblem& p, KktMethod method, double tol) : p_(p), method_(method), tol_(tol) {}
 
-  bool factor(const std::vector<ConstraintRow>& rows, const Eigen::VectorXd* newton) override {
+  bool factor(const std::vector<ConstraintRow>& rows, const Eigen::VectorXd* newton, double shift) override {
     if (K_.rows() == 0 || !same_structure(rows)) build_pattern(rows);
     double* v = K_.valuePtr();
     std::copy(base_.begin(), base_.end(), v);
@@ -78,6 +80,8 @@ class BandedKkt final : public KktFactor {
     });
     if (newton)
       for (const auto& h : hessian_slots_) v[h.slot] += (*newton)[h.row] * h.coefficient;
+    if (shift != 0)
+      for (int slot : point_diagonal_slot_) v[slot] += shift;
     if (method_ == KktMethod::Minres) {
       minres_.setTolerance(tol_);
       minres_.setMaxIterations(20 * static_cast<int>(K_.rows()));
@@ -108,6 +112,11 @@ class BandedKkt final : public KktFactor {
     Eigen::VectorXd x(rhs.size());
     for (Eigen::Index i = 0; i < rhs.size(); ++i) x[i] = y[position_[i]];
     return x;
+  }
+
+  int negative_pivots() const override {
+    if (method_ != KktMethod::Direct || !analyzed_ || ldlt_.info() != Eigen::Success) return -1;
+    return static_cast<int>((ldlt_.vectorD().array() < 0).count());
   }
 
  private:
@@ -177,6 +186,8 @@ class BandedKkt final : public KktFactor {
     for (int r = 0; r < m; ++r)
       for (int k = 0; k < rows[r].size; ++k)
         for (int c = 0; c < 3; ++c) jacobian_slot_[6 * r + 3 * k + c] = slot(n + r, 3 * rows[r].points[k] + c);
+    point_diagonal_slot_.clear();
+    for (int i = 0; i < n; ++i) point_diagonal_slot_.push_back(slot(i, i));
     for (int r = 0; r < m; ++r) {
       Triplets one;
       p_.add_row_hessian(r, 1.0, one);
@@ -199,7 +210,7 @@ class BandedKkt final : public KktFactor {
   double tol_, delta_ = 0;
   SparseMatrix K_;  // lower triangle, banded order
   std::vector<double> base_;
-  std::vector<int> position_, jacobian_slot_, multiplier_position_;
+  std::vector<int> position_, jacobian_slot_, multiplier_position_, point_diagonal_slot_;
   std::vector<HessianSlot> hessian_slots_;
   std::vector<int> structure_;  // structure_of the rows the pattern was built for
   bool analyzed_ = false;

@@ -18,11 +18,20 @@ class KktFactor {
  public:
   virtual ~KktFactor() = default;
   //! Factors (or, for the iterative method, stores) the system for rows evaluated at the
-  //! current iterate; `newton_multipliers` (may be null) adds their constraint Hessians to W.
+  //! current iterate; `newton_multipliers` (may be null) adds their constraint Hessians to W,
+  //! `curvature_shift` ≥ 0 adds δ I to W (the modified Newton step of an indefinite W).
   //! \return false when the factorization failed (singular system).
-  virtual bool factor(const std::vector<ConstraintRow>& rows, const Eigen::VectorXd* newton_multipliers) = 0;
+  virtual bool factor(const std::vector<ConstraintRow>& rows, const Eigen::VectorXd* newton_multipliers,
+                      double curvature_shift = 0) = 0;
   virtual Eigen::VectorXd solve(const Eigen::VectorXd& rhs) = 0;
   virtual std::string last_error() const { return {}; }
+  //! Negative pivots of the last LDLᵀ factorization, −1 when the factorization does not give
+  //! them (SparseLU, MINRES). By Sylvester's law of inertia they are the KKT matrix's negative
+  //! eigenvalues: m (one per independent constraint row) plus those of the reduced Hessian
+  //! Zᵀ W Z (Gould, "On practical conditions for the existence and uniqueness of solutions to
+  //! the general equality quadratic programming problem", 1985) — so m means W is positive
+  //! definite on the constraints' tangent space.
+  virtual int negative_pivots() const { return -1; }
 };
 
 enum class KktMethod { Direct, Minres };

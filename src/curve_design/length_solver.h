@@ -1,8 +1,10 @@
 // Solvers of the length-constrained problem (length_problem.h): the linearized Lagrange loop
-// of Sauvage et al. §3 and an exact augmented-Lagrangian solve over Ceres. Registered by
+// of Sauvage et al. §3, an exact augmented-Lagrangian solve over Ceres and a globalized trust
+// region that ends at local minima (issue 25). Registered by
 // name, each with reference and optimized back ends where they differ.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -23,13 +25,20 @@ struct LengthSolveStep {
 struct LengthSolveReport {
   MatrixX3 points;
   //! The outcome in every solver's vocabulary (core/summary.h): converged, max_iterations (the
-  //! solve budget before the tolerances) or numerical_failure (a KKT system that cannot be
-  //! factored, non-finite values, Ceres failing); iterations = solves; message says why.
+  //! solve budget before the tolerances), not_a_minimum (a constrained saddle: stationary, but
+  //! the reduced Hessian has a negative eigenvalue), stalled (no progress over the stall
+  //! window), infeasible (the lengths could not be restored from the start) or
+  //! numerical_failure (a KKT system that cannot be factored, non-finite values, Ceres
+  //! failing); iterations = solves; message says why.
   SolveSummary summary;
   bool converged() const { return summary.termination == Termination::Converged; }
   int solves = 0;            // linear systems solved (Ceres: its inner Gauss-Newton steps)
   int outer_iterations = 0;  // linearizations, or augmented-Lagrangian rounds
   double length_error = 0, pin_error = 0;
+  //! The smallest eigenvalue of the reduced Hessian at the answer (curve_design/second_order.h;
+  //! NaN when not checked: not converged, or more points than the dense check takes).
+  double min_reduced_hessian_eig = std::numeric_limits<double>::quiet_NaN();
+  int saddle_escapes = 0;  // negative-curvature steps taken away from saddles found on the way (trust_region: accepted ones)
   std::vector<LengthSolveStep> history;
 };
 
@@ -50,7 +59,8 @@ class LengthSolver {
 
 using LengthSolverRegistry = Registry<LengthSolver>;
 //! linearized (reference: block KKT + SparseLU each solve; optimized: per-point ordering,
-//! one symbolic analysis, banded LDLᵀ, TBB-parallel value updates) and ceres.
+//! one symbolic analysis, banded LDLᵀ, TBB-parallel value updates), ceres and trust_region
+//! (globalized; trust_region_length_solver.h).
 void register_length_solvers(LengthSolverRegistry& r);
 
 }  // namespace fairshape

@@ -22,6 +22,13 @@ struct LinearizedOptions {
   // settles into a 2-cycle at 4.2% length error), so by default a step is shortened until
   // the ℓ1 merit F + ν Σ|f_r| decreases (Armijo backtracking, Nocedal & Wright §18.3).
   bool line_search = true;
+  // Stationary is not minimal: a converged point whose reduced Hessian has a negative
+  // eigenvalue (curve_design/second_order.h) is left along that direction this many times at
+  // most before the solve reports not_a_minimum.
+  // 0 by default: the paper's method is judged as published (a saddle ends not_a_minimum).
+  int saddle_escapes = 0;
+  // Solves within which the distance to the tolerances must fall by a tenth; else `stalled`.
+  int stall_window = 1000;
   KktMethod kkt = KktMethod::Direct;
   double minres_tolerance = 1e-13;
   Backend backend = Backend::Optimized;

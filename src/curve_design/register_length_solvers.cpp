@@ -1,6 +1,7 @@
 #include "core/config.h"
 #include "curve_design/ceres_length_solver.h"
 #include "curve_design/linearized_length_solver.h"
+#include "curve_design/trust_region_length_solver.h"
 
 namespace fairshape {
 namespace {
@@ -30,8 +31,30 @@ LengthSolverRegistry::Factory linearized(Backend backend) {
     static const NameTable<KktMethod> kkt_methods{{KktMethod::Direct, "direct"}, {KktMethod::Minres, "minres"}};
     o.kkt = own.get_enum("kkt", KktMethod::Direct, kkt_methods, "KKT solve: sparse direct or MINRES");
     o.minres_tolerance = own.get_number("minres_tolerance", o.minres_tolerance, 1e-16, 1e-2, "MINRES relative residual");
+    o.saddle_escapes = own.get_int("saddle_escapes", o.saddle_escapes, 0, 100,
+                                   "at a stationary point with negative reduced curvature (a saddle), step off it along that "
+                                   "direction and go on, at most this many times; then report not_a_minimum");
+    o.stall_window = own.get_int("stall_window", o.stall_window, 1, 1000000,
+                                 "solves within which the distance to the tolerances must fall by a tenth, else 'stalled'");
     own.check_no_unknown_keys();
     return std::make_unique<LinearizedLengthSolver>(o);
+  };
+}
+
+LengthSolverRegistry::Factory trust_region(Backend backend) {
+  return [backend](Config& c) {
+    TrustRegionOptions o;
+    o.backend = backend;
+    o.tolerances = read_tolerances(c);
+    Config own = c.child("trust_region", "options of the globalized (trust-region Newton) solve");
+    o.initial_radius = own.get_number("initial_radius", o.initial_radius, 1e-6, 1e6,
+                                      "first trust radius, in mean segment lengths times sqrt(points)");
+    o.stall_window = own.get_int("stall_window", o.stall_window, 1, 1000000,
+                                 "iterations without a decrease of the objective (or stationarity) before 'stalled'");
+    o.dense_limit = own.get_int("dense_limit", o.dense_limit, 0, 5000,
+                                "up to this many points the reduced Hessian is formed densely every iteration");
+    own.check_no_unknown_keys();
+    return std::make_unique<TrustRegionLengthSolver>(o);
   };
 }
 
@@ -43,6 +66,12 @@ void register_length_solvers(LengthSolverRegistry& r) {
   r.add("linearized", Backend::Optimized,
         "Sauvage et al. §3: linearized Lagrange loop, banded KKT order, one analysis, LDL^T + refinement",
         linearized(Backend::Optimized));
+  r.add("trust_region", Backend::Reference,
+        "globalized (not in the paper): trust-region Newton on the lengths, inertia-controlled, negative-curvature steps; block KKT + SparseLU",
+        trust_region(Backend::Reference));
+  r.add("trust_region", Backend::Optimized,
+        "globalized (not in the paper): trust-region Newton on the lengths, inertia-controlled, negative-curvature steps; banded LDL^T",
+        trust_region(Backend::Optimized));
   const auto ceres = [](Config& c) {
     CeresOptions o;
     o.tolerances = read_tolerances(c);

@@ -1,6 +1,7 @@
 #include "experiment/kinds/curve/curve_run.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "core/summary.h"
@@ -170,7 +171,7 @@ const std::vector<std::string>& curve_metric_columns() {
   static const std::vector<std::string> cols{
       "n_points", "edits", "length_error_max", "length_error_rms", "total_length_change", "bending_energy",
       "distance_to_attractor", "wrinkles", "wrinkle_amplitude", "wrinkle_wavelength", "wrinkle_wavelength_segments",
-      "attractor_length_error", "solves", "outer_iterations", "stationarity",
+      "attractor_length_error", "solves", "outer_iterations", "stationarity", "min_reduced_hessian_eig", "saddle_escapes",
       "explicit_s", "solve_s", "time_s", "unused_keys", "termination", "message"};
   return cols;
 }
@@ -270,6 +271,12 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
         num(measure_curve(last.attracting, current.closed, segment_lengths(last.reference, current.closed), last.attracting)
                 .length_error_max);
     if (!last.solve.history.empty()) row["stationarity"] = num(last.solve.history.back().stationarity);
+    // Second order (curve_design/second_order.h): ≥ 0 (to rounding) at a true local minimum.
+    // Empty when the solve did not end at a judged point; not_estimated above the dense limit
+    // (the inertia was checked instead: the message says so).
+    if (!std::isnan(last.solve.min_reduced_hessian_eig)) row["min_reduced_hessian_eig"] = num(last.solve.min_reduced_hessian_eig);
+    else if (last.solve.converged()) row["min_reduced_hessian_eig"] = "not_estimated";
+    row["saddle_escapes"] = std::to_string(last.solve.saddle_escapes);
     if (row["message"].empty()) row["message"] = last.solve.summary.message;
     if (spec.final_curve) write_polyline(current, out.final_path());
   } catch (const OutputError& e) {  // results incomplete: not a finished run

@@ -1,0 +1,97 @@
+#include "curve_design/second_order.h"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/QR>
+#include <algorithm>
+
+#include "core/message_format.h"
+#include "curve_design/kkt_factor.h"
+#include "curve_design/length_manifold.h"
+
+namespace fairshape {
+
+SecondOrderCheck check_second_order(const LengthProblem& p, const MatrixX3& X) {
+  SecondOrderCheck out;
+  const int N = p.n_points(), n = 3 * N;
+  if (N > kSecondOrderDenseLimit) {
+    out.message = "second-order check skipped: " + std::to_string(N) + " points (dense limit " +
+                  std::to_string(kSecondOrderDenseLimit) + ")";
+    return out;
+  }
+  const std::vector<ConstraintRow> rows = p.rows(X);
+  const Eigen::MatrixXd J = Eigen::MatrixXd(constraint_jacobian(rows, N));  // m × 3N, interleaved
+  // λ: least squares of ∇F + Jᵀλ = 0 (interleaved like J's columns).
+  const MatrixX3 G = p.objective_gradient(X);
+  Eigen::VectorXd g(n);
+  for (int i = 0; i < N; ++i)
+    for (int c = 0; c < 3; ++c) g[3 * i + c] = G(i, c);
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr_jt(J.transpose());
+  const Eigen::VectorXd lambda = qr_jt.solve(-g);
+  const SparseMatrix W = lagrangian_hessian(p, lambda);
+  // Z: the last n − rank columns of the full Q factor of Jᵀ.
+  const Eigen::Index rank = qr_jt.rank();
+  const Eigen::MatrixXd Qfull = qr_jt.householderQ();
+  const Eigen::MatrixXd Z = Qfull.rightCols(n - rank);
+  if (Z.cols() == 0) {
+    out.checked = true;
+    out.message = "no free directions: the constraints determine the curve";
+    return out;
+  }
+  const Eigen::MatrixXd reduced = Z.transpose() * (W * Z);
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (reduced + reduced.transpose()));
+  out.checked = true;
+  out.min_eigenvalue = eig.eigenvalues()(0);
+  out.max_abs_eigenvalue = eig.eigenvalues().cwiseAbs().maxCoeff();
+  const Eigen::VectorXd d = Z * eig.eigenvectors().col(0);
+  out.direction.resize(N, 3);
+  for (int i = 0; i < N; ++i)
+    for (int c = 0; c < 3; ++c) out.direction(i, c) = d[3 * i + c];
+  out.message = "reduced Hessian eigenvalues in [" + sci(out.min_eigenvalue) + ", " + sci(eig.eigenvalues()(eig.eigenvalues().size() - 1)) +
+                "] on " + std::to_string(Z.cols()) + " free directions";
+  return out;
+}
+
+int reduced_hessian_negative_count(const LengthProblem& p, const MatrixX3& X, double shift) {
+  const Eigen::VectorXd lambda = least_squares_multipliers(p, X);
+  if (!lambda.allFinite()) return -1;
+  const auto kkt = make_kkt_factor(p, Backend::Optimized, KktMethod::Direct, 1e-13);
+  if (shift < 0) shift = kSecondOrderTolerance * p.objective_hessian().diagonal().cwiseAbs().maxCoeff();
+  if (!kkt->factor(p.rows(X), &lambda, shift)) return -1;
+  const int negative = kkt->negative_pivots();
+  return negative < 0 ? -1 : std::max(negative - p.n_constraint_rows(), 0);
+}
+
+SecondOrderCheck judge_second_order(const LengthProblem& p, LengthSolveReport& rep, bool stationarity_asked) {
+  SecondOrderCheck so = check_second_order(p, rep.points);
+  if (!so.checked) {
+    // Too large for the dense eigenvalues: the inertia says whether, not how negative.
+    const int negative = stationarity_asked ? reduced_hessian_negative_count(p, rep.points) : -1;
+    if (negative > 0) {
+      rep.summary.termination = Termination::NotAMinimum;
+      rep.summary.message = "stationary but not a minimum: the reduced Hessian has " + std::to_string(negative) +
+                            " negative eigenvalue(s) (LDLT inertia of the KKT matrix; smallest not estimated above " +
+                            std::to_string(kSecondOrderDenseLimit) + " points), a constrained saddle";
+    } else {
+      rep.summary.message += negative == 0 ? "; reduced Hessian positive semidefinite by LDLT inertia (smallest eigenvalue not estimated above " +
+                                                 std::to_string(kSecondOrderDenseLimit) + " points)"
+                                           : "; " + so.message;
+    }
+    return so;
+  }
+  rep.min_reduced_hessian_eig = so.min_eigenvalue;
+  if (!stationarity_asked) {
+    // Lengths alone (the paper's rule): the point claims no optimality, so its curvature is
+    // reported, not judged — least-squares λ away from a stationary point say little.
+    rep.summary.message += "; lengths alone (stationarity_tolerance 0): reduced Hessian's smallest eigenvalue " +
+                           sci(so.min_eigenvalue) + " reported, not judged";
+    return so;
+  }
+  if (!so.is_minimum(kSecondOrderTolerance)) {
+    rep.summary.termination = Termination::NotAMinimum;
+    rep.summary.message = "stationary but not a minimum: the reduced Hessian's smallest eigenvalue is " + sci(so.min_eigenvalue) +
+                          " (largest |eigenvalue| " + sci(so.max_abs_eigenvalue) + "), a constrained saddle";
+  }
+  return so;
+}
+
+}  // namespace fairshape

@@ -1,0 +1,49 @@
+// Second-order optimality of a length-constrained solve (issue 25, part 1). A point where the
+// lengths hold and ∇F + Jᵀλ = 0 may still be a constrained saddle: Sauvage, Hahmann and
+// Bonneau's linearization and its Newton variant only look for stationary points. At a local
+// minimum the Lagrangian's Hessian W = Q ⊗ I₃ + Σ_r λ_r ∇²f_r is positive semidefinite on the
+// tangent space of the constraints, null(J): the reduced Hessian Zᵀ W Z (Z an orthonormal basis
+// of null(J)) has no negative eigenvalue (Nocedal & Wright, Theorem 12.5). λ is the
+// least-squares multiplier of the point itself, so every solver's answer is judged the same way.
+#pragma once
+
+#include <string>
+
+#include "core/types.h"
+#include "curve_design/length_problem.h"
+#include "curve_design/length_solver.h"
+
+namespace fairshape {
+
+struct SecondOrderCheck {
+  bool checked = false;          // false: too large for the dense eigen-solve (see message)
+  double min_eigenvalue = 0;     // of Zᵀ W Z
+  double max_abs_eigenvalue = 0;
+  MatrixX3 direction;            // Z times its eigenvector (unit norm): the negative-curvature direction
+  std::string message;
+  //! No eigenvalue below −tolerance · max |eigenvalue| (relative: Q's scale is the user's weights).
+  bool is_minimum(double tolerance) const { return !checked || min_eigenvalue >= -tolerance * max_abs_eigenvalue; }
+};
+
+//! Points up to this many are checked densely (3N unknowns: an O((3N)³) eigen-solve, about a
+//! second at the limit).
+inline constexpr int kSecondOrderDenseLimit = 600;
+
+SecondOrderCheck check_second_order(const LengthProblem& p, const MatrixX3& X);
+
+//! The default tolerance of is_minimum: eigenvalues that are rounding of the largest.
+inline constexpr double kSecondOrderTolerance = 1e-8;
+
+//! How many eigenvalues of Zᵀ W Z lie below −shift (default: kSecondOrderTolerance · Q's
+//! largest diagonal entry), from the inertia of the LDLᵀ factor of the KKT matrix with W + shift·I
+//! (kkt_factor.h: negative pivots beyond one per constraint row). O(n) on the banded order, so
+//! it works at any size. The optimized banded factor is used whatever the solver's back end (a
+//! check, not a solve). −1 when the factorization fails or gives no inertia.
+int reduced_hessian_negative_count(const LengthProblem& p, const MatrixX3& X, double shift = -1);
+
+//! A converged report judged at second order: its min_reduced_hessian_eig set, and at a saddle
+//! its termination not_a_minimum with the eigenvalue in the message. Without a stationarity
+//! tolerance (lengths alone) the eigenvalue is only reported. Returns the check.
+SecondOrderCheck judge_second_order(const LengthProblem& p, LengthSolveReport& rep, bool stationarity_asked = true);
+
+}  // namespace fairshape

@@ -1,0 +1,57 @@
+// A globalized solver of the length problem of Sauvage, Hahmann and Bonneau, "Length preserving
+// multiresolution editing of curves" (eq. 2), not in the paper: a trust-region Newton method on
+// the set of curves with the reference lengths (issue 25, parts 1 and 2). The paper's
+// linearization and its Newton variant look for stationary points and, on Figure 1's edit,
+// stop at constrained saddles at every β; this solver
+//   1. retracts the start onto the lengths (Gauss–Newton, length_manifold.h) — a start that
+//      cannot be retracted ends `infeasible`;
+//   2. each iteration solves the KKT system of the Lagrangian's Hessian W = Q ⊗ I₃ + Σλ_r∇²f_r
+//      (λ least squares) shifted by σI, σ ≥ 0 the smallest shift that makes the reduced
+//      Hessian Zᵀ(W + σI)Z positive definite (inertia control: the dense reduced Hessian up to
+//      `dense_limit` points, the LDLᵀ pivots' inertia of the optimized KKT factor above), so
+//      the step s (tangent: J s = 0) minimizes a convex model and never heads for a saddle;
+//   3. at negative curvature adds the eigenvector d of the smallest eigenvalue (the "hard case"
+//      of Moré and Sorensen, "Computing a trust region step", 1983) to fill the radius Δ, so a
+//      saddle is left even where the gradient vanishes (a planar curve's out-of-plane modes);
+//   4. retracts X + s and accepts by ρ = actual / predicted decrease of F (Nocedal & Wright,
+//      Algorithm 4.1; on the manifold: Absil, Baker and Gallivan, "Trust-region methods on
+//      Riemannian manifolds", 2007), shrinking or growing Δ;
+//   5. stops `converged` when the lengths, the stationarity and the second-order check hold,
+//      `stalled` when the objective stopped decreasing over `stall_window` iterations or Δ
+//      shrank to rounding, `max_iterations` at the budget.
+// Feasible iterates mean the merit is F itself: the lengths hold to the retraction's tolerance
+// at every accepted point.
+#pragma once
+
+#include "curve_design/kkt_factor.h"
+#include "curve_design/length_solver.h"
+
+namespace fairshape {
+
+struct TrustRegionOptions {
+  LengthTolerances tolerances;
+  //! Initial radius in mean segment lengths per √(points): scale-free.
+  double initial_radius = 1.0;
+  //! Iterations without a decrease of F by more than rounding (or of the stationarity) before
+  //! the solve stops `stalled`.
+  int stall_window = 50;
+  //! Up to this many points the reduced Hessian is formed densely each iteration (its smallest
+  //! eigenvalue sets the shift, its eigenvector gives the negative-curvature step); above, the
+  //! shift is raised until the optimized LDLᵀ's inertia is right (reference: until the step
+  //! has positive curvature, which is weaker; the message says which).
+  int dense_limit = 300;
+  KktMethod kkt = KktMethod::Direct;
+  Backend backend = Backend::Optimized;
+};
+
+class TrustRegionLengthSolver final : public LengthSolver {
+ public:
+  explicit TrustRegionLengthSolver(TrustRegionOptions o) : o_(o) {}
+  LengthSolveReport solve(const LengthProblem& problem, const MatrixX3& start) const override;
+  const LengthTolerances& tolerances() const override { return o_.tolerances; }
+
+ private:
+  TrustRegionOptions o_;
+};
+
+}  // namespace fairshape

@@ -58,7 +58,7 @@ with open(sys.argv[1], "w") as f:
     f.write("l " + " ".join(str(i + 1) for i in range(300)) + "\n")
 PYEOF
 C300="$SCRATCH/c300.yaml"
-printf 'name: c300\ninput: {curve: %s}\nedits: [{level: 0, wrinkle_level: -1, moves: [{index: -1, chord_scale: 0.8}]}]\noptimization: {beta: 0.01, smoothness: bending, solver: {type: linearized, max_solves: 2000}}\noutput: {vtk: none}\n' "$SCRATCH/c300.obj" > "$C300"
+printf 'name: c300\ninput: {curve: %s}\nedits: [{level: 0, wrinkle_level: -1, moves: [{index: -1, chord_scale: 0.8}]}]\noptimization: {beta: 0.01, smoothness: bending, solver: {type: trust_region, max_solves: 2000}}\noutput: {vtk: none}\n' "$SCRATCH/c300.obj" > "$C300"
 expect_error 2 "input.curve: .*has 300 points, which allow no coarser level .*input.resample: 289 or 305 for 4 levels" -- "$FS" run "$C300" --out "$SCRATCH/x"
 "$FS" run "$C300" --set input.resample=289 --out "$SCRATCH/c300" 2>/dev/null || fail "the resampled 300-point curve failed"
 $PY - "$SCRATCH/c300/runs.csv" <<'PYEOF' || fail "the resampled curve should have 289 points and converge"

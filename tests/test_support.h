@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -14,9 +15,17 @@ namespace fairshape::test {
 inline std::string source_path(const std::string& rel) { return std::string(FAIRSHAPE_SOURCE_DIR) + "/" + rel; }
 inline std::string data_path(const std::string& name) { return source_path("data/" + name); }
 
-// A fresh, empty folder under the build tree, unique per test name.
+// The scratch folder for `name` under the build tree, unique per name and per test case: ctest
+// runs test cases as parallel processes, and a helper shared by several cases (one fixed name)
+// would otherwise let one case wipe or overwrite the files another is reading.
+inline std::filesystem::path scratch_path(const std::string& name) {
+  const std::string test_case = Catch::getResultCapture().getCurrentTestName();
+  return std::filesystem::path(FAIRSHAPE_BINARY_DIR) / "test-scratch" / name /
+         std::to_string(std::hash<std::string>{}(test_case));
+}
+// scratch_path(name), emptied.
 inline std::filesystem::path scratch_dir(const std::string& name) {
-  const auto dir = std::filesystem::path(FAIRSHAPE_BINARY_DIR) / "test-scratch" / name;
+  const auto dir = scratch_path(name);
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

@@ -471,7 +471,7 @@ TEST_CASE("fig2_free: the joint is dragged, both sheets follow, the curve has it
   CHECK(std::stod(row.at("energy")) == Approx(energy(3) + energy(4) + energy(5)).epsilon(1e-9));
   CHECK(row.at("dofs") == "261");  // 2 x 121 + 19
   // The solved curve, written per step, ends where the drag put its middle.
-  std::ifstream obj(std::filesystem::path(FAIRSHAPE_BINARY_DIR) / "test-scratch" / "free_curve_fig2" / "curves" / "fig2_step1_joint.obj");
+  std::ifstream obj(test::scratch_path("free_curve_fig2") / "curves" / "fig2_step1_joint.obj");
   REQUIRE(obj.good());
   std::vector<Vec3> v;
   std::string line;

@@ -8,6 +8,9 @@
 // structure); refinement stops at its finest level. Every vertex takes its finest-level position.
 #pragma once
 
+#include <array>
+#include <vector>
+
 #include "subdivision/multires_surface.h"
 
 namespace fairshape::feature {
@@ -17,6 +20,11 @@ struct AdaptiveMesh {
   std::vector<int> finest_vertex;   // each vertex's id on the finest level
   std::vector<int> triangles_per_level;  // leaves by level (green triangles count on their level)
 };
+
+//! The triangles of a leaf with corners `corner` and, on its edge i (corner i → i + 1), the
+//! midpoint mid[i] of a finer neighbour or −1: the leaf itself, or two or three green triangles.
+//! \pre at most two midpoints (a leaf with three is split by the balancing).
+std::vector<std::array<int, 3>> green_closure(const std::array<int, 3>& corner, const std::array<int, 3>& mid);
 
 //! \throw InvalidInput for a non-Loop hierarchy, a level outside it or an angle outside (0, 90).
 AdaptiveMesh adaptive_mesh(const MultiresSurface& surface, int from_level, double flatness_angle_deg);

@@ -6,17 +6,19 @@
 //             did before;
 //   adaptive: the sparse hierarchy refined only where the feature needs it (evaluate_adaptive),
 //             and with the flatness test on the whole surface as well (surface_angle_deg 2).
-// Time: medians of the repetitions. Peak memory: each variant once in a forked child (the
-// child's ru_maxrss, which starts from the parent's resident set: `rss_baseline_MiB` is a child
-// that does nothing). Triangles: of the output mesh. Model and depth: FAIRSHAPE_ADAPTIVE_BENCH_MESH
+// Time: medians of the repetitions. Peak memory: each variant once in a forked child, the peak
+// resident set it adds to what it started with (`peak_added_MiB`; `idle_added_MiB` is a child
+// that does nothing, forked just before). Triangles: of the output mesh. Model and depth: FAIRSHAPE_ADAPTIVE_BENCH_MESH
 // (default data/homer.off) and FAIRSHAPE_ADAPTIVE_BENCH_LEVELS (default 4: 1,261,570 vertices).
 #include <benchmark/benchmark.h>
 
-#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <functional>
 #include <string>
 
@@ -47,18 +49,36 @@ const Problem& problem() {
     q.base = read_mesh(mesh ? std::string(mesh) : std::string(FAIRSHAPE_SOURCE_DIR) + "/data/homer.off");
     q.levels = levels ? std::atoi(levels) : 4;
     q.opt.scheme = SchemeType::Loop;
-    // A curve from the centre of face 0 to the centre of a face two rings away, attached on the
-    // finest level by following the parameter points down (level_attachment.h).
+    // A curve between the centres of two faces two rings apart where the model is flattest
+    // (the face whose two-ring normals turn least), attached on the finest level by following
+    // the parameter points down (level_attachment.h).
     const SurfaceMesh& m = q.base;
-    int far = -1;
-    for (int h : m.outgoing_halfedges(m.face_vertices(0)[0])) {
-      const int v = m.to_vertex(h);
-      for (int g : m.vertex_faces(v))
-        if (g != 0 && far < 0 && m.face_vertices(g)[0] != m.face_vertices(0)[0] &&
-            m.face_vertices(g)[1] != m.face_vertices(0)[0] && m.face_vertices(g)[2] != m.face_vertices(0)[0])
-          far = g;
+    const auto normal = [&](int f) {
+      const auto v = m.face_vertices(f);
+      return Vec3((m.position(v[1]) - m.position(v[0])).cross(m.position(v[2]) - m.position(v[0])).normalized());
+    };
+    const auto two_ring = [&](int f) {
+      std::vector<int> out;
+      for (int v : m.face_vertices(f))
+        for (int w : m.vertex_neighbors(v))
+          for (int g : m.vertex_faces(w)) out.push_back(g);
+      return out;
+    };
+    int start = 0, far = -1;
+    double best = 1e9;
+    for (int f = 0; f < m.n_faces(); ++f) {
+      double turn = 0;
+      for (int g : two_ring(f)) turn = std::max(turn, std::acos(std::clamp(normal(f).dot(normal(g)), -1.0, 1.0)));
+      if (turn < best) best = turn, start = f;
     }
-    std::vector<SurfacePoint> points{{0, Vec3::Constant(1.0 / 3)}, {far, Vec3::Constant(1.0 / 3)}};
+    double far_distance = 0;
+    const auto centre = [&](int f) {
+      const auto v = m.face_vertices(f);
+      return Vec3((m.position(v[0]) + m.position(v[1]) + m.position(v[2])) / 3);
+    };
+    for (int g : two_ring(start))
+      if (const double d = (centre(g) - centre(start)).norm(); d > far_distance) far_distance = d, far = g;
+    std::vector<SurfacePoint> points{{start, Vec3::Constant(1.0 / 3)}, {far, Vec3::Constant(1.0 / 3)}};
     for (int k = 0; k < q.levels; ++k)
       for (SurfacePoint& p : points) p = child_point(p);
     double edge = 0;
@@ -99,48 +119,90 @@ Outcome adaptive_evaluation(double surface_angle) {
   return {a.mesh.n_faces(), a.mesh.n_vertices(), a.faces_computed()};
 }
 
-// Peak resident set (MiB) of `work` run once in a child process.
-double child_peak_rss_mib(const std::function<void()>& work) {
-  const pid_t pid = fork();
-  if (pid == 0) {
-    work();
-    _exit(0);
-  }
-  int status = 0;
-  rusage ru{};
-  wait4(pid, &status, 0, &ru);
-  return ru.ru_maxrss / 1024.0;  // KiB on Linux
+// Resident set figures of this process from /proc/self/status (kB), −1 if absent.
+long status_kib(const char* field) {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  const std::string key = std::string(field) + ":";
+  while (std::getline(in, line))
+    if (line.rfind(key, 0) == 0) return std::atol(line.c_str() + key.size());
+  return -1;
 }
 
-void report(benchmark::State& state, const Outcome& o, double rss) {
+// The peak memory `work` adds (MiB), run once in a forked child: the child resets its peak
+// resident set to the current one (writing 5 to /proc/self/clear_refs), runs the work and
+// reports VmHWM − VmRSS at the start through a pipe. (ru_maxrss would count the parent's
+// resident pages the child shares, and keeps them across exec.)
+double child_peak_rss_mib(const std::function<void()>& work) {
+  int fd[2];
+  if (pipe(fd) != 0) return -1;
+  const pid_t pid = fork();
+  if (pid == 0) {
+    close(fd[0]);
+    { std::ofstream("/proc/self/clear_refs") << "5"; }
+    const long start = status_kib("VmRSS");
+    work();
+    const long peak = status_kib("VmHWM");
+    const double mib = start >= 0 && peak >= 0 ? (peak - start) / 1024.0 : -1;
+    (void)!write(fd[1], &mib, sizeof mib);
+    _exit(0);
+  }
+  close(fd[1]);
+  double mib = -1;
+  (void)!read(fd[0], &mib, sizeof mib);
+  close(fd[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return mib;
+}
+
+void report(benchmark::State& state, const Outcome& o, double rss, double baseline) {
   const Problem& p = problem();
   state.counters["triangles"] = o.triangles;
   state.counters["vertices"] = o.vertices;
   state.counters["faces_computed"] = static_cast<double>(o.faces_computed);
-  state.counters["peak_rss_MiB"] = rss;
-  state.counters["rss_baseline_MiB"] = child_peak_rss_mib([] {});
+  state.counters["peak_added_MiB"] = rss;
+  state.counters["idle_added_MiB"] = baseline;
   state.counters["uniform_finest_faces"] = static_cast<double>(p.base.n_faces()) * (1 << (2 * p.levels));
 }
 
+// Peak memory of each variant, measured in main() before any benchmark has run: a child forked
+// later would reuse the parent's freed (still resident) heap and show less than it needs.
+struct Memory {
+  double idle = -1, uniform = -1, adaptive0 = -1, adaptive2 = -1;
+};
+Memory& memory() {
+  static Memory m;
+  return m;
+}
+
 void BM_UniformEvaluation(benchmark::State& state) {
-  problem();
-  const double rss = child_peak_rss_mib([] { uniform_evaluation(); });
   Outcome o;
   for (auto _ : state) o = uniform_evaluation();
-  report(state, o, rss);
+  report(state, o, memory().uniform, memory().idle);
 }
 
 void BM_AdaptiveEvaluation(benchmark::State& state) {
-  problem();
   const double angle = static_cast<double>(state.range(0));
-  const double rss = child_peak_rss_mib([angle] { adaptive_evaluation(angle); });
   Outcome o;
   for (auto _ : state) o = adaptive_evaluation(angle);
-  report(state, o, rss);
+  report(state, o, angle > 0 ? memory().adaptive2 : memory().adaptive0, memory().idle);
 }
 
 }  // namespace
 
 BENCHMARK(BM_UniformEvaluation)->Iterations(1)->Repetitions(3)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_AdaptiveEvaluation)->Arg(0)->Arg(2)->Iterations(1)->Repetitions(3)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  problem();
+  Memory& m = memory();
+  m.idle = child_peak_rss_mib([] {});
+  m.uniform = child_peak_rss_mib([] { uniform_evaluation(); });
+  m.adaptive0 = child_peak_rss_mib([] { adaptive_evaluation(0); });
+  m.adaptive2 = child_peak_rss_mib([] { adaptive_evaluation(2); });
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

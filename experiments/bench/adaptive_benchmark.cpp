@@ -98,6 +98,7 @@ const Problem& problem() {
 struct Outcome {
   int triangles = 0, vertices = 0;
   long long faces_computed = 0;
+  int passes = 1;
 };
 
 Outcome uniform_evaluation() {
@@ -116,7 +117,7 @@ Outcome adaptive_evaluation(double surface_angle) {
   AdaptiveEvaluationOptions o;
   o.surface_angle_deg = surface_angle;
   const AdaptiveEvaluation a = evaluate_adaptive(p.base, p.opt, p.levels, {p.feature}, o);
-  return {a.mesh.n_faces(), a.mesh.n_vertices(), a.faces_computed()};
+  return {a.mesh.n_faces(), a.mesh.n_vertices(), a.faces_computed(), a.passes};
 }
 
 // Resident set figures of this process from /proc/self/status (kB), −1 if absent.
@@ -161,6 +162,7 @@ void report(benchmark::State& state, const Outcome& o, double rss, double baseli
   state.counters["triangles"] = o.triangles;
   state.counters["vertices"] = o.vertices;
   state.counters["faces_computed"] = static_cast<double>(o.faces_computed);
+  state.counters["passes"] = o.passes;
   state.counters["peak_added_MiB"] = rss;
   state.counters["idle_added_MiB"] = baseline;
   state.counters["uniform_finest_faces"] = static_cast<double>(p.base.n_faces()) * (1 << (2 * p.levels));

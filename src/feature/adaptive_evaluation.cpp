@@ -7,8 +7,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <limits>
 #include <numbers>
 #include <unordered_set>
@@ -158,7 +156,6 @@ class Evaluator {
       std::vector<int> refine;
       for (int f = 0; f < S.n_local_faces(); ++f)
         if (split[f]) refine.push_back(f);
-      if (std::getenv("FS_DEBUG")) std::fprintf(stderr, "pass %d level %d: %d faces, %zu split\n", out_.passes, k, S.n_local_faces(), refine.size());
       out_.levels.push_back(refine_sparse(S, patch, Y, refine));
       out_.split.push_back(std::move(split));
     }

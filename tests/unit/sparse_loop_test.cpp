@@ -104,6 +104,30 @@ TEST_CASE("sparse Loop levels equal the uniform hierarchy on every kept vertex",
   CHECK(whole.mesh.n_vertices() == u.mesh(L).n_vertices());
 }
 
+TEST_CASE("sparse Loop levels on a mesh with a boundary, and bad input", "[feature][sparse]") {
+  const SurfaceMesh patch = read_mesh(test::data_path("ks_patch.off"));
+  const int L = 3;
+  const MultiresSurface u(patch, loop_options(), L, Backend::Optimized);
+  AdaptiveEvaluationOptions o;
+  o.surface_angle_deg = 1;
+  const AdaptiveEvaluation a = evaluate_adaptive(patch, loop_options(), L, {}, o);
+  check_against_uniform(a, u, 1e-12 * diagonal(patch));
+  check_crack_free(a, u, patch, 1e-12 * diagonal(patch));
+  CHECK(a.mesh.n_faces() < u.mesh(L).n_faces());
+  o.from_level = 4;
+  CHECK_THROWS_WITH(evaluate_adaptive(patch, loop_options(), L, {}, o), Catch::Contains("from_level 4 outside 0..3"));
+  o.from_level = 0;
+  o.surface_angle_deg = 90;
+  CHECK_THROWS_WITH(evaluate_adaptive(patch, loop_options(), L, {}, o), Catch::Contains("surface_angle_deg"));
+  SubdivisionOptions cc;
+  CHECK_THROWS_WITH(evaluate_adaptive(patch, cc, L, {}, {}), Catch::Contains("Loop"));
+  SurfaceMesh creased = patch;
+  creased.set_edge_sharpness(creased.from_vertex(0), creased.to_vertex(0), 2.0);
+  CHECK_THROWS_WITH(evaluate_adaptive(creased, loop_options(), L, {}, {}), Catch::Contains("crease"));
+  FeatureCurve deep{"deep", L + 1, {}, {}};
+  CHECK_THROWS_WITH(evaluate_adaptive(patch, loop_options(), L, {deep}, {}), Catch::Contains("feature 'deep': level 4"));
+}
+
 TEST_CASE("sparse Loop levels with features equal the uniform evaluation (drawn-level profile)", "[feature][sparse]") {
   const SurfaceMesh helmet = read_mesh(test::data_path("helmet.off"));
   const int L = 3;

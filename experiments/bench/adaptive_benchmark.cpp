@@ -97,7 +97,7 @@ const Problem& problem() {
 
 struct Outcome {
   int triangles = 0, vertices = 0;
-  long long faces_computed = 0;
+  long long faces_computed = 0, finest_faces_computed = 0;
   int passes = 1;
 };
 
@@ -109,7 +109,7 @@ Outcome uniform_evaluation() {
   const AdaptiveMesh a = adaptive_mesh(fs.result(), 0, p.feature.params.flatness_angle_deg);
   long long faces = 0;
   for (int k = 0; k <= p.levels; ++k) faces += fs.result().mesh(k).n_faces();
-  return {a.mesh.n_faces(), a.mesh.n_vertices(), faces};
+  return {a.mesh.n_faces(), a.mesh.n_vertices(), faces, fs.result().mesh(p.levels).n_faces()};
 }
 
 Outcome adaptive_evaluation(double surface_angle) {
@@ -117,7 +117,7 @@ Outcome adaptive_evaluation(double surface_angle) {
   AdaptiveEvaluationOptions o;
   o.surface_angle_deg = surface_angle;
   const AdaptiveEvaluation a = evaluate_adaptive(p.base, p.opt, p.levels, {p.feature}, o);
-  return {a.mesh.n_faces(), a.mesh.n_vertices(), a.faces_computed(), a.passes};
+  return {a.mesh.n_faces(), a.mesh.n_vertices(), a.faces_computed(), a.levels.back().n_local_faces(), a.passes};
 }
 
 // Resident set figures of this process from /proc/self/status (kB), −1 if absent.
@@ -162,6 +162,7 @@ void report(benchmark::State& state, const Outcome& o, double rss, double baseli
   state.counters["triangles"] = o.triangles;
   state.counters["vertices"] = o.vertices;
   state.counters["faces_computed"] = static_cast<double>(o.faces_computed);
+  state.counters["finest_faces_computed"] = static_cast<double>(o.finest_faces_computed);
   state.counters["passes"] = o.passes;
   state.counters["peak_added_MiB"] = rss;
   state.counters["idle_added_MiB"] = baseline;

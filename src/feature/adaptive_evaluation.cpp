@@ -177,9 +177,11 @@ class Evaluator {
     return added;
   }
   // Every face around local vertex v of level k refinable next pass (so v's ring is complete).
-  void need_ring(int k, int v) {
+  bool need_ring(int k, int v) {
     const SparseLevel& S = out_.levels[k];
-    S.for_faces_around(v, [&](int f) { need_refinable(k, S.face[f]); });
+    bool added = false;
+    S.for_faces_around(v, [&](int f) { added |= need_refinable(k, S.face[f]); });
+    return added;
   }
 
   double support_radius(const FeatureCurve& c) const {
@@ -292,6 +294,36 @@ class Evaluator {
     }
   }
 
+  // Asks for the rings of the incomplete vertices of level k within a feature's reach (plus
+  // three of the level's longest edges) of its control polygon. Whether anything new was asked.
+  bool widen_near(int k, const std::vector<FeatureCurve>& local) {
+    const SparseLevel& S = out_.levels[k];
+    double h = 0;
+    for (const auto& c : S.corners)
+      for (int i = 0; i < 3; ++i) h = std::max(h, (S.positions.row(c[i]) - S.positions.row(c[(i + 1) % 3])).norm());
+    std::vector<int> incomplete;
+    for (int v = 0; v < S.n_local_vertices(); ++v)
+      if (!S.complete[v]) incomplete.push_back(v);
+    bool added = false;
+    for (const FeatureCurve& c : local) {
+      std::vector<Vec3> p;
+      for (const SurfacePoint& q : c.points) {
+        const auto& f = S.corners[q.face];
+        p.push_back(q.bary[0] * S.positions.row(f[0]).transpose() + q.bary[1] * S.positions.row(f[1]).transpose() +
+                    q.bary[2] * S.positions.row(f[2]).transpose());
+      }
+      if (c.closed) p.push_back(p.front());
+      const double reach = support_radius(c) + 3 * h;
+      for (int v : incomplete) {
+        const Vec3 x = S.positions.row(v).transpose();
+        double d = p.size() == 1 ? (x - p[0]).norm() : std::numeric_limits<double>::infinity();
+        for (std::size_t j = 0; j + 1 < p.size(); ++j) d = std::min(d, segment_distance(x, p[j], p[j + 1]));
+        if (d <= reach) added |= need_ring(k, v);
+      }
+    }
+    return added;
+  }
+
   // The features drawn on level k, applied to its control points as FeaturedSurface does with
   // ProfileTarget::DrawnLevel. False when the level lacks faces they need (asked for).
   bool apply_features(int k) {
@@ -321,8 +353,17 @@ class Evaluator {
     const SparsePatch patch = make_patch(S);
     const TriangleSurface surface(patch.mesh, loop_limit_normals(patch.mesh));
     std::vector<BaseCurve> curves;
-    for (const FeatureCurve& c : local) curves.push_back(build_base_curve(surface, c));
-    const LevelPerturbation d = compute_perturbation(surface, curves, options_.backend);
+    LevelPerturbation d;
+    try {
+      for (const FeatureCurve& c : local) curves.push_back(build_base_curve(surface, c));
+      d = compute_perturbation(surface, curves, options_.backend);
+    } catch (const InvalidInput&) {
+      // A walk may have met the edge of the computed region rather than of the surface: widen
+      // the region around every incomplete vertex near a curve and try again; the error stands
+      // when there is none (the feature is wrong on the whole surface too).
+      if (!widen_near(k, local)) throw;
+      return false;
+    }
     // Exact only if the moved vertices and two rings around them are complete (their limit
     // normals, the rays' faces): else the region is widened and the pass repeated.
     std::vector<char> checked(S.vertex.size(), 0);

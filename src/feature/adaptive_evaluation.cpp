@@ -88,28 +88,43 @@ class Evaluator {
       : base_(base), opt_(opt), L_(levels), features_(features), options_(options),
         wants_(static_cast<std::size_t>(levels + 1)) {}
 
+  // Passes until every mark is refinable. A pass that asked for new faces is re-run from the
+  // lowest level that got one: the levels up to it keep their faces and positions (a level's
+  // faces depend only on the marks of the levels above it).
   AdaptiveEvaluation run() {
-    const int max_passes = 4 * L_ + 8;
-    for (int pass = 1; pass <= max_passes; ++pass) {
-      out_ = {};
+    out_.levels.push_back(sparse_base_level(base_));
+    curves_.assign(features_.size(), {});
+    applied_.assign(static_cast<std::size_t>(L_ + 1), 0);
+    moved_.assign(static_cast<std::size_t>(L_ + 1), 0);
+    for (int pass = 1, start = 0;; ++pass) {
       out_.passes = pass;
-      curves_.assign(features_.size(), {});
-      if (evaluate_pass()) {
+      out_.levels.resize(static_cast<std::size_t>(start + 1));
+      out_.split.resize(static_cast<std::size_t>(start));
+      for (int k = start + 1; k <= L_; ++k) applied_[k] = 0, moved_[k] = 0;
+      for (std::size_t i = 0; i < features_.size(); ++i)
+        if (features_[i].level > start) curves_[i] = {};
+      lowest_new_ = L_ + 1;
+      if (evaluate_pass(start)) {
+        for (int m : moved_) out_.vertices_moved += m;
         build_output();
         return std::move(out_);
       }
+      if (lowest_new_ > L_)  // nothing new asked for: the next pass would fail the same way
+        throw std::logic_error("adaptive evaluation: a needed face could not be asked for (pass " +
+                               std::to_string(pass) + ")");
+      start = lowest_new_;
     }
-    throw std::logic_error("adaptive evaluation: the refined region did not settle in " + std::to_string(max_passes) +
-                           " passes");
   }
 
  private:
-  // One evaluation of every level; false when a needed face was missing (its parents are then
-  // marked in wants_ and the caller runs again).
-  bool evaluate_pass() {
-    out_.levels.push_back(sparse_base_level(base_));
-    for (int k = 0; k <= L_; ++k) {
-      if (!apply_features(k)) return false;
+  // One evaluation of levels start..L; false when a needed face was missing (its parents are
+  // then marked in wants_ and the caller runs again).
+  bool evaluate_pass(int start) {
+    for (int k = start; k <= L_; ++k) {
+      if (!applied_[k]) {
+        if (!apply_features(k)) return false;
+        applied_[k] = 1;
+      }
       if (k == L_) {
         out_.split.emplace_back(out_.levels[k].face.size(), 0);
         return true;
@@ -162,18 +177,26 @@ class Evaluator {
     return true;
   }
 
+  // Marks face `id` of level k for quadrisection; whether it is new (then the next pass starts
+  // at this level or above).
+  bool ask(int k, UniformId id) {
+    if (!wants_[k].insert(id).second) return false;
+    lowest_new_ = std::min(lowest_new_, k);
+    return true;
+  }
+
   // Face `id` of level k must be refinable on the next pass: it is wanted there, and its parent
   // and the faces around the parent's corners are wanted on level k − 1 (their children hold
   // the one-rings of its corners); a parent that is itself missing or not refinable is asked
   // for one level up. Returns whether anything new was asked for.
   bool need_refinable(int k, UniformId id) {
-    bool added = wants_[k].insert(id).second;
+    bool added = ask(k, id);
     if (k == 0) return added;
     const UniformId P = id >> 2;
     const SparseLevel& C = out_.levels[k - 1];
     const int p = C.face_of(P);
     if (p < 0 || !C.refinable(p)) return need_refinable(k - 1, P) || added;
-    for (int v : C.corners[p]) C.for_faces_around(v, [&](int g) { added |= wants_[k - 1].insert(C.face[g]).second; });
+    for (int v : C.corners[p]) C.for_faces_around(v, [&](int g) { added |= ask(k - 1, C.face[g]); });
     return added;
   }
   // Every face around local vertex v of level k refinable next pass (so v's ring is complete).
@@ -388,7 +411,7 @@ class Evaluator {
     if (missing) return false;
     for (std::size_t r = 0; r < d.vertices.size(); ++r)
       S.positions.row(patch.local[d.vertices[r]]) += d.displacement.row(static_cast<Eigen::Index>(r));
-    out_.vertices_moved += static_cast<int>(d.vertices.size());
+    moved_[k] = static_cast<int>(d.vertices.size());
     for (std::size_t j = 0; j < on_level.size(); ++j) curves_[on_level[j]] = std::move(curves[j]);
     return true;
   }
@@ -438,6 +461,9 @@ class Evaluator {
   const AdaptiveEvaluationOptions& options_;
   std::vector<std::unordered_set<UniformId>> wants_;  // per level: faces to quadrisect
   std::vector<BaseCurve> curves_;                      // per feature, once applied
+  std::vector<char> applied_;                          // per level: its features are applied
+  std::vector<int> moved_;                             // per level: vertices its features moved
+  int lowest_new_ = 0;                                 // lowest level given a new mark this pass
   AdaptiveEvaluation out_;
 };
 

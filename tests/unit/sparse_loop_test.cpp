@@ -170,8 +170,8 @@ TEST_CASE("each feature's flatness threshold holds inside its support", "[featur
   const MultiresSurface plain(helmet, loop_options(), L, Backend::Optimized);
   const double diag = diagonal(helmet);
   std::vector<FeatureCurve> features{
-      feature_between(plain, 1, Vec3(-0.05, 0.0, 0.332), Vec3(0.0, 0.0, 0.335), 0.03, 0.01, 1.0, "fine"),
-      feature_between(plain, 1, Vec3(0.11, 0.0, 0.336), Vec3(0.16, 0.0, 0.334), 0.03, 0.01, 15.0, "coarse")};
+      feature_between(plain, 1, Vec3(-0.05, 0.0, 0.332), Vec3(0.0, 0.0, 0.335), 0.03, 0.01, 0.5, "fine"),
+      feature_between(plain, 1, Vec3(0.11, 0.0, 0.336), Vec3(0.16, 0.0, 0.334), 0.03, 0.01, 20.0, "coarse")};
   FeaturedSurface fs(plain, Backend::Optimized, ProfileTarget::DrawnLevel);
   for (const auto& f : features) fs.add(f);
   const MultiresSurface& u = fs.result();

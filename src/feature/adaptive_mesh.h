@@ -3,9 +3,10 @@
 // (its level k + 1 vertex) leaves the plane of one of the two triangles sharing the edge by more
 // than an angle, measured on the line from the midpoint to the triangle's opposite corner.
 // Neighbouring triangles differ by at most one level, and a triangle next to finer ones is split
-// into two or three (green closure), so the mesh is crack free. The levels come from the
-// hierarchy (computed uniformly, which our subdivision does faster than walking an adaptive
-// structure); refinement stops at its finest level. Every vertex takes its finest-level position.
+// into two or three (green closure), so the mesh is crack free. The levels come from a uniformly
+// computed hierarchy (adaptive_evaluation.h computes only the refined region instead: far
+// cheaper for local features on a fine level); refinement stops at its finest level. Every vertex
+// takes its finest-level position.
 #pragma once
 
 #include <array>

@@ -219,3 +219,34 @@ TEST_CASE("each feature's flatness threshold holds inside its support", "[featur
   // The smaller threshold refines more (leaves of every level near the curve).
   CHECK(leaves_near[0] + finest_near[0] > leaves_near[1] + finest_near[1]);
 }
+
+TEST_CASE("sparse Loop levels on the knot and the cow, flatness everywhere", "[feature][sparse]") {
+  for (const char* name : {"knot.off", "cow.off"}) {
+    INFO(name);
+    const SurfaceMesh m = read_mesh(test::data_path(name));
+    const int L = 3;
+    const MultiresSurface u(m, loop_options(), L, Backend::Optimized);
+    AdaptiveEvaluationOptions o;
+    o.surface_angle_deg = 3;
+    o.from_level = 1;
+    const AdaptiveEvaluation a = evaluate_adaptive(m, loop_options(), L, {}, o);
+    check_against_uniform(a, u, 1e-12 * diagonal(m));
+    check_crack_free(a, u, m, 1e-12 * diagonal(m));
+    CHECK(a.mesh.n_faces() < u.mesh(L).n_faces());
+    // With a ridge on level 2 from base vertex 0 to a vertex two edges away, both together.
+    const int v1 = m.to_vertex(m.halfedge(0));
+    int v2 = v1;
+    for (int w : m.vertex_neighbors(v1))
+      if ((m.position(w) - m.position(0)).norm() > (m.position(v2) - m.position(0)).norm()) v2 = w;
+    double edge = 0;
+    for (int e = 0; e < m.n_edges(); ++e) edge += (m.position(m.from_vertex(2 * e)) - m.position(m.to_vertex(2 * e))).norm();
+    edge /= m.n_edges();
+    const FeatureCurve c = feature_between(u, 2, m.position(0), m.position(v2), 0.5 * edge, 0.1 * edge, 1.0, "ridge");
+    FeaturedSurface fs(u, Backend::Optimized, ProfileTarget::DrawnLevel);
+    fs.add(c);
+    const AdaptiveEvaluation b = evaluate_adaptive(m, loop_options(), L, {c}, o);
+    CHECK(b.vertices_moved == static_cast<int>(fs.perturbation(2).vertices.size()));
+    check_against_uniform(b, fs.result(), 1e-12 * diagonal(m));
+    check_crack_free(b, fs.result(), m, 1e-12 * diagonal(m));
+  }
+}

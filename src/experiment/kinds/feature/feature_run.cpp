@@ -412,7 +412,7 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
         std::vector<feature::FeatureCurve> curves;
         for (const auto& [id, c] : surface.features()) curves.push_back(c);
         feature::AdaptiveEvaluationOptions o;
-        o.from_level = from;
+        o.from_level = 0;  // from the base mesh: the features' supports are refined to their levels
         o.surface_angle_deg = spec.adaptive_surface_angle_deg;
         o.backend = spec.implementation;
         const feature::AdaptiveEvaluation a =

@@ -1,8 +1,5 @@
 #include "feature/adaptive_evaluation.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -145,7 +142,8 @@ class Evaluator {
         if (S.refinable(f)) split[f] = 1;
         else need_refinable(k, S.face[f]), missing = true;
       };
-      for (UniformId id : wants_[k]) {
+      const std::vector<UniformId> wanted(wants_[k].begin(), wants_[k].end());  // want() may add to it
+      for (UniformId id : wanted) {
         const int f = S.face_of(id);
         if (f >= 0) want(f);
         else need_refinable(k, id), missing = true;
@@ -164,7 +162,10 @@ class Evaluator {
             const int g = S.across(f, i);
             n += g >= 0 && split[g];
           }
-          if (n == 3) want(f), changed = true;
+          if (n == 3) {
+            want(f);  // refinable: each corner is shared by two split faces (so complete)
+            changed = changed || split[f];
+          }
         }
       }
       if (missing) return false;

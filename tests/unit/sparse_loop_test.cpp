@@ -133,14 +133,17 @@ TEST_CASE("sparse Loop levels with features equal the uniform evaluation (drawn-
   const int L = 3;
   const MultiresSurface plain(helmet, loop_options(), L, Backend::Optimized);
   const double diag = diagonal(helmet);
-  for (int level : {1, L}) {
-    INFO("feature drawn on level " << level);
+  for (const auto& [level, backend] : {std::pair{1, Backend::Optimized}, std::pair{L, Backend::Optimized},
+                                       std::pair{2, Backend::Reference}}) {
+    INFO("feature drawn on level " << level << ", " << to_string(backend));
     const FeatureCurve c =
         feature_between(plain, level, Vec3(-0.05, 0.0, 0.332), Vec3(0.06, 0.0026, 0.3437), 0.04, -0.008, 3.0, "groove");
-    FeaturedSurface fs(plain, Backend::Optimized, ProfileTarget::DrawnLevel);
+    FeaturedSurface fs(plain, backend, ProfileTarget::DrawnLevel);
     fs.add(c);
     const MultiresSurface& u = fs.result();
-    const AdaptiveEvaluation e = evaluate_adaptive(helmet, loop_options(), L, {c}, {});
+    AdaptiveEvaluationOptions o;
+    o.backend = backend;
+    const AdaptiveEvaluation e = evaluate_adaptive(helmet, loop_options(), L, {c}, o);
     CHECK(e.vertices_moved == static_cast<int>(fs.perturbation(level).vertices.size()));
     CHECK(e.vertices_moved > 0);
     check_against_uniform(e, u, 1e-12 * diag);

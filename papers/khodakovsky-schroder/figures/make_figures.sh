@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Figures 11, 14, 15, 16 and 17 of Khodakovsky & Schröder: runs each config under
+# Figures 11, 14, 15, 16 and 17 of Khodakovsky & Schröder and the sparse adaptive helmet: runs each config under
 # configs/khodakovsky-schroder/, renders it (scripts/panels.py, VTK offscreen, coloured by the
 # signed normal displacement) into papers/khodakovsky-schroder/figures/ and keeps its runs.csv in
 # papers/khodakovsky-schroder/data/.
@@ -42,3 +42,12 @@ run fig17
   --label "{features:.0f} features, {segments:.0f} segments, {vertices_moved:.0f} vertices moved, max {max_displacement:.4f}" \
   --render --view front --up z --elevation 20 --azimuth 35 --zoom 1.3 --width 900 --height 700 --component normal \
   --colour-label "normal displacement"
+# Truly adaptive evaluation (issue 24 part 3): the helmet's groove on level 4 evaluated on a sparse
+# hierarchy; the adaptive mesh with its edges, whole and around the groove (the curve drawn).
+run adaptive_helmet
+sparse="$out-adaptive_helmet/adaptive/$(tail -1 $out-adaptive_helmet/runs.csv | cut -d, -f1).obj"
+groove=$(ls "$out-adaptive_helmet"/curves/*_groove.obj)
+build/bin/fairshape render "$sparse" $figs/adaptive_helmet.png --edges --flat --view front --width 900 --height 700 \
+  --overlay "$groove" --title "Sparse adaptive evaluation: a groove on level 4 of the helmet (14,568 triangles; uniform: 256,000)"
+build/bin/fairshape render "$sparse" $figs/adaptive_helmet_zoom.png --edges --flat --view front --focus 0.06 0.0 0.34 \
+  --radius 0.12 --width 900 --height 700 --overlay "$groove" --title "Around the groove: finest level, then one level per ring outwards"

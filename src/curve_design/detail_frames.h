@@ -13,7 +13,9 @@
 // taking one segment direction to the next), started from the first bend (the part of the
 // first non-parallel segment direction normal to t_0), so the coordinates are invariant under
 // rigid motions; in the plane n is the in-plane normal, b = ±z. A straight polygon has no
-// bend: its first normal is taken from the world axis least aligned with t_0.
+// bend: its first normal is taken from the world axis least aligned with t_0, so the
+// coordinates of a straight polygon's details are not rigid-invariant (nothing in it fixes a
+// turn about its line; reconstruction is exact all the same).
 // For an edit the frame of segment i is the reference frame turned by the least rotation that
 // takes the reference direction to the edited one (`turn_details`), not the edited polygon's
 // own transported frame: in 3-D a transported frame picks up a twist (holonomy) across an

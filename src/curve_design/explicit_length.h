@@ -33,6 +33,9 @@ struct ExplicitLengthReport {
   // relative excess chord / length − 1 among them; those chains are left straight.
   int unreachable_chains = 0;
   double worst_excess = 0;
+  // `local` only: how far moved control points had to be pulled back towards their fixed
+  // neighbours because the edit asked for more length than the curve has there (0: none).
+  double worst_pull_back = 0;
 };
 
 //! \param coarse level-w points; moved in the stretching case.

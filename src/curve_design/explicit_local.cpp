@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <set>
 
 #include "core/error.h"
@@ -69,6 +70,54 @@ ChainResult fix_chain(MatrixX3& c, const Eigen::VectorXd& target, int first, int
   return out;
 }
 
+// A level-e segment's chain can reach only if its ends are at most Σr apart. When the edit put
+// moved control points farther, they are pulled back along the chord (both halves when both
+// ends moved), alternating over the chains until every chain reaches: each step projects onto
+// one ball |P_a − P_b| ≤ R, and the balls of an edit that started from a curve of these lengths
+// intersect, so the projections converge. Returns the largest pull-back.
+double pull_back_moved(MatrixX3& c, const Eigen::VectorXd& target, const std::set<int>& chains, const std::set<int>& moved,
+                       int stride, int segments_e, bool closed, int& unresolved) {
+  const int m = static_cast<int>(c.rows());
+  std::map<int, Vec3> start;
+  for (int i : moved) start[i] = c.row((i * stride) % m).transpose();
+  const auto reach = [&](int j) {
+    double r = 0;
+    for (int k = 0; k < stride; ++k) r += target[2 * (j * stride + k)] + target[2 * (j * stride + k) + 1];
+    return r;
+  };
+  const auto end_of = [&](int j) { return closed ? (j + 1) % segments_e : j + 1; };
+  for (int round = 0; round < 10000; ++round) {
+    bool changed = false;
+    for (int j : chains) {
+      const int a = j, b = end_of(j), pa = (a * stride) % m, pb = (b * stride) % m;
+      const Vec3 d = (c.row(pb) - c.row(pa)).transpose();
+      const double R = reach(j), len = d.norm();
+      if (len <= R * (1 + kStretchSlack)) continue;
+      const bool ma = moved.count(a) > 0, mb = moved.count(b) > 0;
+      const Vec3 u = d / len;
+      const double excess = len - R;
+      if (ma && mb) {
+        c.row(pa) += (0.5 * excess * u).transpose();
+        c.row(pb) -= (0.5 * excess * u).transpose();
+      } else if (mb) {
+        c.row(pb) -= (excess * u).transpose();
+      } else if (ma) {
+        c.row(pa) += (excess * u).transpose();
+      }
+      changed = true;
+    }
+    if (!changed) break;
+  }
+  unresolved = 0;
+  for (int j : chains) {
+    const int pa = (j * stride) % m, pb = (end_of(j) * stride) % m;
+    unresolved += (c.row(pb) - c.row(pa)).norm() > reach(j) * (1 + kStretchSlack);
+  }
+  double worst = 0;
+  for (const auto& [i, x] : start) worst = std::max(worst, (c.row((i * stride) % m).transpose() - x).norm());
+  return worst;
+}
+
 }  // namespace
 
 ExplicitLengthReport preserve_lengths_locally(MatrixX3& coarse, MatrixX3& detail, const Eigen::VectorXd& target,
@@ -84,6 +133,11 @@ ExplicitLengthReport preserve_lengths_locally(MatrixX3& coarse, MatrixX3& detail
       else if (j >= 0 && j < segments_e) chains.insert(j);
     }
   ExplicitLengthReport rep;
+  std::set<int> moved;
+  for (int i : moved_e) moved.insert(i);
+  int unresolved = 0;
+  rep.worst_pull_back = pull_back_moved(coarse, target, chains, moved, stride, segments_e, closed, unresolved);
+  (void)unresolved;  // fix_chain counts what is left, with the excess
   for (int j : chains) {
     const ChainResult r = fix_chain(coarse, target, j * stride, stride);
     rep.shortened_segments += r.stretched ? stride : 0;

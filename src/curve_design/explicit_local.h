@@ -12,9 +12,13 @@
 // proportion to the r_k, on which every segment is r_k·|chord| / Σr ≤ r_k) by the least
 // t ∈ (0, 1] that makes every segment short enough — a closed-form root per segment, since
 // |(1−t)d + t·e| is convex in t. The excess is thereby spread over the chain's segments and
-// nothing outside the support moves. A chain whose chord exceeds Σr cannot be fixed inside
-// the support: it is left straight (every segment equally too long, by chord/Σr − 1) and the
-// report says so; the optimization has to find the length elsewhere.
+// nothing outside the support moves. A chain whose chord exceeds Σr cannot reach with the
+// control points where the edit put them (the edit asks for more length than the curve has
+// there, e.g. a drag beyond the curve's length): the moved control points are first pulled
+// back along their chords just enough (alternating projections over the chains; the report's
+// worst_pull_back, said in runs.csv) — the alternative, moving unedited points, is what made
+// the sweep global. A chain still too long after that (not reached from a valid reference) is
+// left straight, every segment equally too long, and counted in unreachable_chains.
 // Midpoints are then placed (place_midpoint) on the support's level-w segments only, so
 // every detail outside keeps its value bit for bit.
 #pragma once

@@ -264,6 +264,11 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
       const double tol = rounding_tolerance(last.reference);
       outside_final = std::max(outside_final, moved_outside_support(last.reference, last.final, last.support, tol));
       outside_attracting = std::max(outside_attracting, moved_outside_support(last.reference, last.attracting, last.support, tol));
+      if (last.explicit_step.worst_pull_back > 0)
+        explicit_note += "edit " + std::to_string(k) + ": the edit asks for more length than the curve has inside its support: "
+                         "moved control point(s) pulled back by up to " + num(last.explicit_step.worst_pull_back) +
+                         " (" + num(100 * last.explicit_step.worst_pull_back / (tol * 1e12)) + " % of the curve's size) so the "
+                         "explicit step keeps the lengths locally; ";
       if (last.explicit_step.unreachable_chains > 0)
         explicit_note += "edit " + std::to_string(k) + ": explicit step could not keep the lengths inside the support (" +
                          std::to_string(last.explicit_step.unreachable_chains) +

@@ -33,7 +33,7 @@ enum class DetailFrames { Global, LocalFrames };  // the paper's world-coordinat
 enum class SolveRegion { Support, Curve };       // edit_window.h | the paper's whole-curve eq. 2
 struct EditingOptions {
   ExplicitStep explicit_step = ExplicitStep::Local;
-  DetailFrames details = DetailFrames::Global;
+  DetailFrames details = DetailFrames::LocalFrames;
   SolveRegion solve_region = SolveRegion::Support;
 };
 

@@ -112,7 +112,7 @@ EditingOptions read_editing(Config& root) {
   const std::string step = c.get_choice("explicit_step", "local", {"local", "sweep"},
                                         "stretched level-w segments: local (only the edit's support moves) or sweep "
                                         "(the first implementation: the rest follows the dragged point like a rope)");
-  const std::string details = c.get_choice("details", "global", {"global", "local_frames"},
+  const std::string details = c.get_choice("details", "local_frames", {"global", "local_frames"},
                                            "details in world coordinates (the paper) or in their coarse segment's frame");
   const std::string region = c.get_choice("solve_region", "support", {"support", "curve"},
                                           "the §3 optimization over the edit's support (the rest held) or the whole curve");

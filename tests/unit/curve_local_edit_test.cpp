@@ -76,7 +76,8 @@ void check_local(const EditStages& s, const char* what) {
 
 EditingOptions sweep_whole() {
   EditingOptions o;
-  o.explicit_step = ExplicitStep::Sweep;
+  o.explicit_step = ExplicitStep::Sweep;  // the loop before issue 25 parts 3-4
+  o.details = DetailFrames::Global;
   o.solve_region = SolveRegion::Curve;
   return o;
 }
@@ -251,6 +252,7 @@ TEST_CASE("local frames: the attracting curve stays nearer the lengths on a rota
   const CurveMove swing = by(-1, -0.15 * chord + 0.5 * up);
   for (int w : {0, 1, 2}) {
     EditingOptions global, local;
+    global.details = DetailFrames::Global;
     local.details = DetailFrames::LocalFrames;
     const EditStages g = run_editing_loop(wave, 7, make_edit(0, w, {swing}, global), recipe.objective, *solver, Backend::Optimized);
     const EditStages f = run_editing_loop(wave, 7, make_edit(0, w, {swing}, local), recipe.objective, *solver, Backend::Optimized);

@@ -313,9 +313,9 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
     if (!std::isnan(last.solve.min_reduced_hessian_eig)) row["min_reduced_hessian_eig"] = num(last.solve.min_reduced_hessian_eig);
     else if (last.solve.converged()) row["min_reduced_hessian_eig"] = "not_estimated";
     row["saddle_escapes"] = std::to_string(last.solve.saddle_escapes);
-    if (row["message"].empty()) row["message"] = last.solve.summary.message;
-    if (spec.edits.size() > 1 && done == static_cast<int>(spec.edits.size()))
-      row["message"] = "edit " + std::to_string(done - 1) + ": " + row["message"];
+    if (row["message"].empty())  // the last edit's solve (a multi-edit run names which edit)
+      row["message"] = (spec.edits.size() > 1 ? "edit " + std::to_string(done - 1) + ": " : std::string()) +
+                       last.solve.summary.message;
     row["message"] = explicit_note + row["message"];
     if (spec.final_curve) write_polyline(current, out.final_path());
   } catch (const OutputError& e) {  // results incomplete: not a finished run

@@ -306,8 +306,8 @@ void check_sheet_curves(const JoinedDesign& design, const RefinementOptions& ref
     report.message = (report.message.empty() ? "" : report.message + "; ") + "sheet " + std::to_string(k) + ", " +
                      (label.empty() ? std::string("a curve constraint") : label) + ": its pointwise error " + sci(c.error) +
                      " does not vanish under refinement (" + sci(c.refined_error) + ", " + sci(c.twice_refined_error) +
-                     ", tending to " + sci(c.limit) + "; its error alone on the sheet " + sci(c.alone_error) +
-                     "): another constraint holds the surface off the curve";
+                     ", tending to " + sci(c.limit) + "; " + sci(c.excess_error) + " at t = " + sci(c.excess_t) +
+                     " where its error alone on the sheet is " + sci(c.excess_alone_error) + "): another constraint holds the surface off the curve";
     report.qp.summary.message = report.message;
     return;
   }

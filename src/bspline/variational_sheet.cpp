@@ -212,9 +212,10 @@ void check_curve_convergence(const VariationalSheet& sheet, const SheetEnergy& e
   if (!c.conflict) return;
   report.qp.summary.termination = Termination::ConstraintsUnmet;
   const std::string& label = constraints[c.constraint].label;
-  report.message = (label.empty() ? std::string("a curve constraint") : label) + ": its pointwise error " + sci(c.error) + " is " +
-                   sci(c.error / c.alone_error) + " times its error alone on the sheet (" + sci(c.alone_error) +
-                   ") and does not vanish under refinement (" + sci(c.refined_error) + " and " + sci(c.twice_refined_error) +
+  report.message = (label.empty() ? std::string("a curve constraint") : label) + ": its pointwise error " + sci(c.excess_error) + " at t = " +
+                   sci(c.excess_t) + " is " + sci(c.excess_error / c.excess_alone_error) + " times its error alone on the sheet there (" +
+                   sci(c.excess_alone_error) + "; worst " + sci(c.error) + " against " + sci(c.alone_error) +
+                   " alone) and does not vanish under refinement (" + sci(c.refined_error) + " and " + sci(c.twice_refined_error) +
                    " with the spans along the curve one and two levels finer, tending to " + sci(c.limit) +
                    "; refinement.curve_error_factor " + sci(options.curve_error_factor) + ", curve_limit_share " +
                    sci(options.curve_limit_share) + ", curve_conflict_tolerance " + sci(options.curve_conflict_tolerance) +

@@ -93,7 +93,7 @@ struct RefinementOptions {
   int max_level = 4;
   int max_rounds = 8;
   //! After the solve (and any refinement, unless it met its tolerance): a weak curve constraint
-  //! whose worst pointwise error is above curve_error_factor × its error alone on the sheet and
+  //! with a pointwise error above curve_error_factor × its error alone on the sheet there and
   //! whose error under refinement tends to a limit above curve_limit_share of what is left and
   //! above curve_conflict_tolerance × the surface's size (bspline/curve_fidelity.h) ends
   //! constraints_unmet: another constraint holds the surface off the curve. curve_limit_share 0:

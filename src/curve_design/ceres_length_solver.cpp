@@ -141,7 +141,7 @@ LengthSolveReport CeresLengthSolver::solve(const LengthProblem& p, const MatrixX
     rep.summary.residual = rep.length_error;
     rep.pin_error = p.max_relative_pin_error(X);
     const double stat = o_.tolerances.stationarity > 0 ? p.stationarity(X) : 0.0;
-    rep.history.push_back({rep.solves, rep.length_error, stat, timer.seconds()});
+    rep.history.push_back({rep.solves, rep.length_error, stat, timer.seconds(), p.objective(X)});
     if (rep.length_error <= tol && rep.pin_error <= tol && stat <= o_.tolerances.stationarity) {
       rep.points = X;
       rep.summary.termination = Termination::Converged;

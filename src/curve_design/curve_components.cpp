@@ -14,10 +14,11 @@ class SegmentLengthsKind final : public CurveConstraintKind {
   }
 };
 
-// Points held where the edit put them (C_D's positions).
-class PinKind final : public CurveConstraintKind {
+// Which points a pin or tangent constraint holds: the edit's moved control points, the
+// endpoints or a list of fine-level indices (sorted, without repeats).
+class PointSelection {
  public:
-  explicit PinKind(Config& c) {
+  PointSelection(Config& c, const std::string& kind) : kind_(kind) {
     const std::string doc = "edited (the moved control points) | endpoints | [fine-level indices]";
     if (c.node()["points"] && c.node()["points"].IsSequence()) {
       indices_ = c.get<std::vector<int>>("points", {}, doc);
@@ -28,28 +29,83 @@ class PinKind final : public CurveConstraintKind {
     if (mode_ != "edited" && mode_ != "endpoints")
       throw InvalidConfig(c.key_path("points") + ": '" + mode_ + "' is not one of edited, endpoints, [indices]");
   }
-  std::unique_ptr<CurveConstraint> build(const CurveEditContext& e) const override {
+  std::vector<int> points(const CurveEditContext& e) const {
     const int n = e.reference.n_points();
     std::vector<int> pts = indices_;
     if (mode_ == "edited") pts = e.moved_points;
     if (mode_ == "endpoints") {
-      if (e.reference.closed) throw InvalidInput("pin: a closed curve has no endpoints");
+      if (e.reference.closed) throw InvalidInput(kind_ + ": a closed curve has no endpoints");
       pts = {0, n - 1};
     }
     std::sort(pts.begin(), pts.end());
     pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
+    for (int p : pts)
+      if (p < 0 || p >= n) throw InvalidInput(kind_ + ": point " + std::to_string(p) + " is not on the curve (0.." + std::to_string(n - 1) + ")");
+    return pts;
+  }
+
+ private:
+  std::string kind_, mode_ = "edited";
+  std::vector<int> indices_;
+};
+
+// `at: edited` (C_D, where the edit put the point, the default) or `reference` (C_R, where it was).
+const MatrixX3& held_curve(const std::string& at, const CurveEditContext& e) { return at == "reference" ? e.reference.points : e.edited; }
+
+// Points held where the edit put them (C_D's positions), or where they were (C_R's).
+class PinKind final : public CurveConstraintKind {
+ public:
+  explicit PinKind(Config& c) : points_(c, "pin") {
+    at_ = c.get_choice("at", "edited", {"edited", "reference"}, "hold the points where the edit put them, or where they were");
+  }
+  std::unique_ptr<CurveConstraint> build(const CurveEditContext& e) const override {
+    std::vector<int> pts = points_.points(e);
+    const MatrixX3& from = held_curve(at_, e);
     MatrixX3 targets(static_cast<Eigen::Index>(pts.size()), 3);
-    for (std::size_t k = 0; k < pts.size(); ++k) {
-      if (pts[k] < 0 || pts[k] >= n)
-        throw InvalidInput("pin: point " + std::to_string(pts[k]) + " is not on the curve (0.." + std::to_string(n - 1) + ")");
-      targets.row(static_cast<Eigen::Index>(k)) = e.edited.row(pts[k]);
-    }
+    for (std::size_t k = 0; k < pts.size(); ++k) targets.row(static_cast<Eigen::Index>(k)) = from.row(pts[k]);
     return std::make_unique<PinnedPoints>(std::move(pts), std::move(targets));
   }
 
  private:
-  std::string mode_ = "edited";
-  std::vector<int> indices_;
+  PointSelection points_;
+  std::string at_;
+};
+
+// Tangents held along their direction on C_D (`direction: edited`), on C_R (`reference`) or
+// along a given [x, y, z].
+class TangentKind final : public CurveConstraintKind {
+ public:
+  explicit TangentKind(Config& c) : points_(c, "tangent") {
+    const std::string doc = "edited (the tangent where the edit put it) | reference (as it was) | [x, y, z]";
+    if (c.node()["direction"] && c.node()["direction"].IsSequence()) {
+      const auto d = c.get<std::vector<double>>("direction", {}, doc);
+      if (d.size() != 3 || !(Vec3(d[0], d[1], d[2]).norm() > 0))
+        throw InvalidConfig(c.key_path("direction") + ": expected a nonzero [x, y, z]");
+      direction_ = Vec3(d[0], d[1], d[2]);
+      mode_ = "given";
+      return;
+    }
+    mode_ = c.get_choice("direction", "edited", {"edited", "reference"}, doc);
+  }
+  std::unique_ptr<CurveConstraint> build(const CurveEditContext& e) const override {
+    std::vector<int> pts = points_.points(e);
+    const int n = e.reference.n_points();
+    const bool closed = e.reference.closed;
+    MatrixX3 directions(static_cast<Eigen::Index>(pts.size()), 3);
+    for (std::size_t k = 0; k < pts.size(); ++k) {
+      const auto [a, b] = FixedTangents::chord(pts[k], n, closed);
+      const MatrixX3& from = held_curve(mode_ == "reference" ? "reference" : "edited", e);
+      directions.row(static_cast<Eigen::Index>(k)) = mode_ == "given" ? direction_.transpose() : Eigen::RowVector3d(from.row(b) - from.row(a));
+    }
+    auto c = std::make_unique<FixedTangents>(std::move(pts), std::move(directions), n, closed);
+    c->set_scales(e.reference.points);
+    return c;
+  }
+
+ private:
+  PointSelection points_;
+  std::string mode_;
+  Vec3 direction_ = Vec3::Zero();
 };
 
 }  // namespace
@@ -58,8 +114,10 @@ void register_curve_constraints(CurveConstraintRegistry& r) {
   for (Backend b : {Backend::Reference, Backend::Optimized}) {
     r.add("segment_lengths", b, "Sauvage et al. §2: |c[i+1] - c[i]|² = l[i]² for every segment of the reference",
           [](Config&) { return std::make_unique<SegmentLengthsKind>(); });
-    r.add("pin", b, "points held where the edit put them",
+    r.add("pin", b, "points held where the edit put them (at: edited) or where they were (at: reference)",
           [](Config& c) { return std::make_unique<PinKind>(c); });
+    r.add("tangent", b, "tangents (the chord through a point's neighbours) held along a direction: edited | reference | [x, y, z]",
+          [](Config& c) { return std::make_unique<TangentKind>(c); });
   }
 }
 

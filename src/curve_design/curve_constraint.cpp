@@ -1,6 +1,10 @@
 #include "curve_design/curve_constraint.h"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
+
+#include <Eigen/Geometry>
 
 #include "core/error.h"
 
@@ -68,6 +72,71 @@ void PinnedPoints::evaluate_at(ConstraintRow& r, const Vec3* x) const {
   const int k = r.row / 3, c = r.row % 3;
   r.value = x[0][c] - targets_(k, c);
   r.gradient[0] = Vec3::Unit(c);
+}
+
+double PinnedPoints::relative_error(const MatrixX3& X, double curve_length) const {
+  double worst = 0;
+  for (std::size_t k = 0; k < points_.size(); ++k)
+    worst = std::max(worst, (X.row(points_[k]) - targets_.row(static_cast<Eigen::Index>(k))).norm());
+  return worst / curve_length;
+}
+
+std::pair<int, int> FixedTangents::chord(int p, int n, bool closed) {
+  if (closed) return {(p + n - 1) % n, (p + 1) % n};
+  return {std::max(p - 1, 0), std::min(p + 1, n - 1)};
+}
+
+FixedTangents::FixedTangents(std::vector<int> points, MatrixX3 directions, int n_points, bool closed)
+    : points_(std::move(points)), directions_(std::move(directions)), scales_(points_.size(), 1.0) {
+  FAIRSHAPE_ASSERT(directions_.rows() == static_cast<Eigen::Index>(points_.size()), "one direction per point");
+  const Eigen::Index m = directions_.rows();
+  normals_[0].resize(m, 3);
+  normals_[1].resize(m, 3);
+  for (Eigen::Index k = 0; k < m; ++k) {
+    const int p = points_[static_cast<std::size_t>(k)];
+    if (p < 0 || p >= n_points)
+      throw InvalidInput("tangent: point " + std::to_string(p) + " is not on the curve (0.." + std::to_string(n_points - 1) + ")");
+    const double len = directions_.row(k).norm();
+    if (!(len > 0) || !std::isfinite(len)) throw InvalidInput("tangent: the direction at point " + std::to_string(p) + " is zero or not finite");
+    const Vec3 t = directions_.row(k).transpose() / len;
+    directions_.row(k) = t.transpose();
+    // Two unit normals of t: the axis least aligned with t, made orthogonal, and t × that.
+    Eigen::Index axis = 0;
+    t.cwiseAbs().minCoeff(&axis);
+    const Vec3 n0 = (Vec3::Unit(axis) - t[axis] * t).normalized();
+    normals_[0].row(k) = n0.transpose();
+    normals_[1].row(k) = t.cross(n0).transpose();
+    chords_.push_back(chord(p, n_points, closed));
+  }
+}
+
+void FixedTangents::set_scales(const MatrixX3& X) {
+  for (std::size_t k = 0; k < chords_.size(); ++k) scales_[k] = std::max((X.row(chords_[k].second) - X.row(chords_[k].first)).norm(), 1e-300);
+}
+
+// Rows 2k and 2k + 1: normal 0 and 1 of point k's direction against its chord.
+ConstraintRow FixedTangents::touched(int row) const {
+  ConstraintRow r;
+  r.row = row;
+  r.size = 2;
+  r.points = {chords_[row / 2].first, chords_[row / 2].second};
+  return r;
+}
+
+void FixedTangents::evaluate_at(ConstraintRow& r, const Vec3* x) const {
+  const Vec3 n = normals_[r.row % 2].row(r.row / 2).transpose();
+  r.value = n.dot(x[1] - x[0]);
+  r.gradient = {-n, n};
+}
+
+double FixedTangents::relative_error(const MatrixX3& X, double /*curve_length*/) const {
+  double worst = 0;
+  for (std::size_t k = 0; k < chords_.size(); ++k) {
+    const Vec3 d = (X.row(chords_[k].second) - X.row(chords_[k].first)).transpose();
+    const Vec3 t = directions_.row(static_cast<Eigen::Index>(k)).transpose();
+    worst = std::max(worst, std::atan2(d.cross(t).norm(), d.dot(t)));
+  }
+  return worst;
 }
 
 }  // namespace fairshape

@@ -42,6 +42,9 @@ class CurveConstraint {
   virtual void add_row_hessian(int /*row*/, double /*scale*/, Triplets& /*out*/) const {}
   //! A typical |f_row| (so scaled rows are dimensionless: Ceres's penalty uses f/scale).
   virtual double row_scale(int /*row*/) const { return 1.0; }
+  //! How far X is from meeting this constraint, dimensionless (pins: distance over the curve's
+  //! length; tangents: the angle in radians). Segment lengths have their own measure.
+  virtual double relative_error(const MatrixX3& /*X*/, double /*curve_length*/) const { return 0; }
 };
 
 // f_i = |X_{i+1} − X_i|² − l_i² for every segment (closed curves wrap).
@@ -70,12 +73,38 @@ class PinnedPoints final : public CurveConstraint {
   int rows() const override { return 3 * static_cast<int>(points_.size()); }
   ConstraintRow touched(int row) const override;
   void evaluate_at(ConstraintRow& r, const Vec3* x) const override;
+  double relative_error(const MatrixX3& X, double curve_length) const override;
   const std::vector<int>& points() const { return points_; }
   const MatrixX3& targets() const { return targets_; }
 
  private:
   std::vector<int> points_;
   MatrixX3 targets_;
+};
+
+// The tangent at a point held along a direction t: the chord through its neighbours
+// d = X_b − X_a (a = p − 1, b = p + 1; one-sided at an open curve's ends) is kept ⟂ to two
+// unit normals of t, two linear rows n·d = 0 that leave its length to the other constraints.
+// With the segment lengths kept, a tangent that starts within 90° of t cannot flip to −t
+// without passing through a zero-length chord; relative_error reports the angle to t.
+class FixedTangents final : public CurveConstraint {
+ public:
+  //! 	hrow InvalidInput for a point off the curve or a zero direction.
+  FixedTangents(std::vector<int> points, MatrixX3 directions, int n_points, bool closed);
+  int rows() const override { return 2 * static_cast<int>(points_.size()); }
+  ConstraintRow touched(int row) const override;
+  void evaluate_at(ConstraintRow& r, const Vec3* x) const override;
+  double row_scale(int row) const override { return scales_[row / 2]; }
+  double relative_error(const MatrixX3& X, double curve_length) const override;
+  //! The chord (a, b) whose direction stands for point p's tangent.
+  static std::pair<int, int> chord(int p, int n_points, bool closed);
+  void set_scales(const MatrixX3& X);  // typical |d| per point, from a curve of the right lengths
+
+ private:
+  std::vector<int> points_;
+  std::vector<std::pair<int, int>> chords_;
+  MatrixX3 directions_, normals_[2];
+  std::vector<double> scales_;
 };
 
 //! The lengths of a polyline's segments (closed curves include the closing one).

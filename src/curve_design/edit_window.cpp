@@ -89,6 +89,10 @@ std::vector<EditWindow> edit_windows(const LengthProblem& whole, const std::vect
   const int n = whole.n_points();
   const bool closed = whole.closed();
   if (std::all_of(support.begin(), support.end(), [](char s) { return s != 0; })) return {};
+  for (const auto& c : whole.constraints())  // a window rebuilds lengths and pins; others would be dropped
+    if (!dynamic_cast<const SegmentLengths*>(c.get()) && !dynamic_cast<const PinnedPoints*>(c.get()))
+      throw InvalidInput("solve_region support: only segment lengths and pins are solved on the edit's support; "
+                         "use solve_region: curve for other constraints (tangent)");
   const auto fixed = [&](int i) {
     if (closed) i = ((i % n) + n) % n;
     return i >= 0 && i < n && !support[static_cast<std::size_t>(i)];

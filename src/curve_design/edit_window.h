@@ -29,7 +29,8 @@ struct EditWindow {
 
 //! The windows of `whole` (the whole-curve problem of the edit) for a fine-level support mask.
 //! Empty when every point is free and no pin is needed: solve `whole` itself.
-//! \throw InvalidInput as LengthProblem (pins farther apart than the curve between them).
+//! \throw InvalidInput as LengthProblem (pins farther apart than the curve between them), and
+//! for constraints other than segment lengths and pins (tangents are not mapped onto windows).
 std::vector<EditWindow> edit_windows(const LengthProblem& whole, const std::vector<char>& support);
 
 //! Solves every window from C_A (`whole.attractor()`) and puts the pieces back into one curve;

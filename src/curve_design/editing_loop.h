@@ -42,6 +42,7 @@ struct CurveEdit {
   int wrinkle_level = -1;  // w in [e, levels − 1]; −1: no explicit step (§3's method alone)
   std::vector<CurveMove> moves;
   EditingOptions options;
+  int drag_step = 1, drag_steps = 1;  // this loop's place in a drag split into drag_steps loops
 };
 
 struct CurveObjective {

@@ -83,11 +83,8 @@ double LengthProblem::max_relative_length_error(const MatrixX3& X) const {
 
 double LengthProblem::max_relative_pin_error(const MatrixX3& X) const {
   double worst = 0;
-  for (const auto& c : constraints_)
-    if (const auto* pins = dynamic_cast<const PinnedPoints*>(c.get()))
-      for (std::size_t k = 0; k < pins->points().size(); ++k)
-        worst = std::max(worst, (X.row(pins->points()[k]) - pins->targets().row(k)).norm());
-  return worst / lengths_->lengths().sum();
+  for (const auto& c : constraints_) worst = std::max(worst, c->relative_error(X, lengths_->lengths().sum()));
+  return worst;
 }
 
 SparseMatrix constraint_jacobian(const std::vector<ConstraintRow>& rows, int n_points) {

@@ -55,7 +55,8 @@ class LengthProblem {
 
   //! max_i | |X_{i+1} − X_i| − l_i | / l_i
   double max_relative_length_error(const MatrixX3& X) const;
-  //! Largest pin violation relative to the curve's length (0 without pins).
+  //! The largest relative error of the constraints other than the lengths: pins (distance
+  //! over the curve's length), tangents (angle); 0 without them.
   double max_relative_pin_error(const MatrixX3& X) const;
   //! How far X is from a constrained stationary point: min_λ |∇F + Jᵀλ| (least squares)
   //! over |QX| + |b|. Zero exactly at a KKT point.

@@ -20,6 +20,7 @@ struct LengthSolveStep {
   double length_error = 0;   // max relative segment-length error after them
   double stationarity = 0;   // LengthProblem::stationarity-style measure (solver's estimate)
   double seconds = 0;
+  double objective = 0;      // the §3 objective F at the iterate
 };
 
 struct LengthSolveReport {

@@ -169,7 +169,7 @@ LengthSolveReport LinearizedLengthSolver::solve(const LengthProblem& p, const Ma
     rep.summary.residual = rep.length_error;
     rep.pin_error = p.max_relative_pin_error(rep.points);
     const double stat = o_.tolerances.stationarity > 0 ? stationarity_estimate(p, rep.points, lambda) : 0.0;
-    rep.history.push_back({rep.solves, rep.length_error, stat, timer.seconds()});
+    rep.history.push_back({rep.solves, rep.length_error, stat, timer.seconds(), p.objective(rep.points)});
     if (rep.length_error <= tol && rep.pin_error <= tol && stat <= o_.tolerances.stationarity) {
       rep.summary.termination = Termination::Converged;
       rep.summary.message = "converged after " + std::to_string(rep.solves) + " solve(s)" + tol_note;

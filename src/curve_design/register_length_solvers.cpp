@@ -1,6 +1,7 @@
 #include "core/config.h"
 #include "curve_design/ceres_length_solver.h"
 #include "curve_design/linearized_length_solver.h"
+#include "curve_design/projection_length_solver.h"
 #include "curve_design/trust_region_length_solver.h"
 
 namespace fairshape {
@@ -84,6 +85,18 @@ void register_length_solvers(LengthSolverRegistry& r) {
   };
   for (Backend b : {Backend::Reference, Backend::Optimized})
     r.add("ceres", b, "exact: augmented Lagrangian over Ceres (SPARSE_NORMAL_CHOLESKY, SuiteSparse)", ceres);
+  const auto projection = [](Config& c) {
+    ProjectionOptions o;
+    o.tolerances = read_tolerances(c);
+    Config own = c.child("projection", "options of the local-global projection baseline");
+    o.weight = own.get_number("weight", o.weight, 1e-6, 1e12, "penalty weight of every projection, relative to Q's largest diagonal entry");
+    o.stall_window = own.get_int("stall_window", o.stall_window, 1, 1000000,
+                                 "iterations without the constraint error falling by 0.1 % before 'stalled'");
+    own.check_no_unknown_keys();
+    return std::make_unique<ProjectionLengthSolver>(o);
+  };
+  for (Backend b : {Backend::Reference, Backend::Optimized})
+    r.add("projection", b, "baseline, not the paper's: ShapeOp-style local-global projection with penalty weights", projection);
 }
 
 }  // namespace fairshape

@@ -142,7 +142,7 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
     rep.length_error = p.max_relative_length_error(X);
     rep.pin_error = p.max_relative_pin_error(X);
     rep.summary.residual = rep.length_error;
-    rep.history.push_back({rep.solves, rep.length_error, stat, timer.seconds()});
+    rep.history.push_back({rep.solves, rep.length_error, stat, timer.seconds(), p.objective(X)});
 
     // Curvature on the tangent space (same least-squares λ as the step's W): the LDLᵀ inertia
     // first (one banded factorization, second_order.h), the dense eigenpair only where that

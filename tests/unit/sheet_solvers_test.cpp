@@ -220,6 +220,28 @@ constraints:
   CHECK(steep.row.at("termination") == "converged");
 }
 
+TEST_CASE("a conflict of 1 % of the sheet beside a larger error elsewhere on the curve is caught: errors compared piece by piece", "[sheet][qp_agreement]") {
+  // Figure 1 with a point 0.02 below the arc's start (the cosine bump lifts it to
+  // 0.3·(1 + cos(5π/6)) = 0.0402): the arc's worst error, 0.030, is only 1.4 times its worst
+  // error alone (0.021, at the lifted middle), which hid the conflict; where the point acts,
+  // the arc alone leaves 7e-3 and refinement leaves the 0.02.
+  for (const std::string solver : {"kkt", "range_space", "qr_penalty"}) {
+    INFO(solver);
+    YAML::Node cfg = fig1(8, solver);
+    cfg["constraints"].push_back(YAML::Load("{type: point, uv: [0.375, 0.5], by: [0, 0, 0.02], step: 1}"));
+    const SheetResult r = run_sheet(cfg, "small_conflict_" + solver);
+    INFO(r.row.at("message"));
+    CHECK(r.row.at("termination") == "constraints_unmet");
+    CHECK(r.row.at("message").find("constraints[4]") != std::string::npos);
+    // The same point asking the arc's own height there: no alarm.
+    YAML::Node on = fig1(8, solver);
+    on["constraints"].push_back(YAML::Load("{type: point, uv: [0.375, 0.5], by: [0, 0, 0.04019237886466838], step: 1}"));
+    const SheetResult ok = run_sheet(on, "small_consistent_" + solver);
+    INFO(ok.row.at("message"));
+    CHECK(ok.row.at("termination") == "converged");
+  }
+}
+
 TEST_CASE("refinement along a lifted circle meets a tolerance below the default sampling's chord error", "[sheet][qp_agreement]") {
   // 65 samples of a circle of radius 0.5 have a chord error of 3e-4: refinement used to stop
   // there (constraints_unmet); the arcs are now sampled for the tolerance.

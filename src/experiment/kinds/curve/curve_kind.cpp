@@ -26,7 +26,7 @@ class CurveKind final : public RunKind {
     return {spec.name, {spec.curve_path}};
   }
   const std::vector<std::string>& metric_columns() const override { return curve_metric_columns(); }
-  std::vector<TableSchema> tables() const override { return {{"steps", curve_step_columns()}}; }
+  std::vector<TableSchema> tables() const override { return {{"steps", curve_step_columns()}, {"iterations", curve_iteration_columns()}}; }
   MetricRow execute(const YAML::Node& c, const std::vector<std::string>& dirs, const RunOutputs& out) override {
     CurveRunSpec spec = CurveRunSpec::from_config(c, dirs);
     const auto threads = limit_threads(spec.threads);

@@ -27,7 +27,26 @@ int polygon_points(int n_points, bool closed, int levels, int level) {
   return closed ? segments : segments + 1;
 }
 
-CurveEdit read_edit(Config& ec, const CurveRunSpec& s) {
+// One edit of the config as `drag_steps` editing loops, each moving its handles by an equal
+// share of the whole move from the curve the previous one left (a designer's drag): offsets
+// divided, chord scales so the chord grows by equal amounts.
+std::vector<CurveEdit> drag(const CurveEdit& whole, int steps) {
+  std::vector<CurveEdit> out;
+  for (int i = 1; i <= steps; ++i) {
+    CurveEdit e = whole;
+    e.drag_step = i;
+    e.drag_steps = steps;
+    for (CurveMove& m : e.moves) {
+      m.offset /= steps;
+      if (m.chord_scale > 0)
+        m.chord_scale = (1 + (m.chord_scale - 1) * i / steps) / (1 + (m.chord_scale - 1) * (i - 1) / steps);
+    }
+    out.push_back(std::move(e));
+  }
+  return out;
+}
+
+std::vector<CurveEdit> read_edit(Config& ec, const CurveRunSpec& s) {
   CurveEdit e;
   const std::string counts = "an open curve of 2^L·k + 1 points (a closed one of 2^L·k, k ≥ 3) has levels 0..L; " +
                              s.curve_path + " has " + std::to_string(s.curve.n_points()) + " points and " +
@@ -59,8 +78,10 @@ CurveEdit read_edit(Config& ec, const CurveRunSpec& s) {
     for (std::size_t c = 0; c < by.size(); ++c) mv.offset[static_cast<int>(c)] = by[c];
     e.moves.push_back(mv);
   }
+  const int steps = ec.get_int("drag_steps", 1, 1, 100000,
+                               "editing loops the moves are split into, each from the curve the previous one left");
   ec.check_no_unknown_keys();
-  return e;
+  return drag(e, steps);
 }
 
 // The solver block: common tolerances, then one sub-block per solver name; every present
@@ -94,6 +115,9 @@ void read_optimization(Config& root, CurveRunSpec& s) {
     s.constraints.push_back(cc.constraints.create(type, s.implementation, k));
     k.check_no_unknown_keys();
     has_lengths |= type == "segment_lengths";
+    if (type == "tangent" && s.editing.solve_region == SolveRegion::Support)
+      throw InvalidConfig(k.key_path("type") + ": tangent constraints are not solved on the edit's support yet "
+                          "(src/curve_design/edit_window.h); set editing.solve_region: curve");
   }
   if (s.constraints.empty()) {
     s.constraints.push_back(cc.constraints.create("segment_lengths", s.implementation, none));
@@ -174,8 +198,8 @@ CurveRunSpec CurveRunSpec::from_config(const YAML::Node& run_config, const std::
     throw InvalidConfig(in.key_path("levels") + ": " + std::to_string(s.levels) + " levels need " +
                         (s.curve.closed ? "2^L·k points (k ≥ 3)" : "2^L·k + 1 points") + "; " + s.curve_path + " has " +
                         std::to_string(s.curve.n_points()) + " points, which allow " + std::to_string(most));
-  for (Config ec : root.child_list("edits", "editing loops applied in order: [{level, wrinkle_level, moves}]"))
-    s.edits.push_back(read_edit(ec, s));
+  for (Config ec : root.child_list("edits", "editing loops applied in order: [{level, wrinkle_level, moves, drag_steps}]"))
+    for (CurveEdit& e : read_edit(ec, s)) s.edits.push_back(std::move(e));
   if (s.edits.empty()) throw InvalidConfig("edits: at least one edit is required");
   s.editing = read_editing(root);
   for (auto& e : s.edits) e.options = s.editing;
@@ -200,7 +224,12 @@ const std::vector<std::string>& curve_metric_columns() {
 const std::vector<std::string>& curve_step_columns() {
   static const std::vector<std::string> cols{
       "edit", "stage", "length_error_max", "length_error_rms", "total_length_change", "bending_energy",
-      "distance_to_attractor", "wrinkles", "solves", "time_s"};
+      "distance_to_attractor", "wrinkles", "solves", "time_s", "drag_step"};
+  return cols;
+}
+
+const std::vector<std::string>& curve_iteration_columns() {
+  static const std::vector<std::string> cols{"edit", "solve", "length_error", "stationarity", "objective", "seconds"};
   return cols;
 }
 
@@ -227,11 +256,11 @@ void write_stage(const CurveRunSpec& spec, const RunOutputs& out, int edit, cons
   }
 }
 
-std::vector<std::string> step_row(int edit, const char* stage, const CurveMetrics& m, const std::string& solves,
+std::vector<std::string> step_row(int edit, const CurveEdit& e, const char* stage, const CurveMetrics& m, const std::string& solves,
                                   const std::string& time) {
   return {std::to_string(edit), stage, num(m.length_error_max), num(m.length_error_rms),
           num(m.total_length_change), num(m.bending_energy), num(m.distance_to_attractor), std::to_string(m.wrinkles),
-          solves, time};
+          solves, time, std::to_string(e.drag_step) + "/" + std::to_string(e.drag_steps)};
 }
 }  // namespace
 
@@ -279,10 +308,13 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
       for (int st = 0; st < 4; ++st) {
         const CurveMetrics m = measure_curve(*stage_points[st], current.closed, lengths, last.attracting);
         const bool fin = st == 3;
-        out.add_row("steps", step_row(edit, kStages[st], m, fin ? std::to_string(last.solve.solves) : "",
-                              fin ? num(last.total_s) : ""));
+        out.add_row("steps", step_row(edit, spec.edits[k], kStages[st], m, fin ? std::to_string(last.solve.solves) : "",
+                                      fin ? num(last.total_s) : ""));
         if (spec.vtk != VtkPolicy::None) write_stage(spec, out, edit, kStages[st], *stage_points[st], last.reference, last);
       }
+      for (const LengthSolveStep& h : last.solve.history)
+        out.add_row("iterations", {std::to_string(edit), std::to_string(h.solves), num(h.length_error), num(h.stationarity),
+                                   num(h.objective), num(h.seconds)});
       current.points = last.final;
       if (!last.solve.converged()) {  // the budget ran out, or the numerics failed: the solver says which
         row["termination"] = std::string(to_string(last.solve.summary.termination));

@@ -39,6 +39,7 @@ bool is_curve_config(const YAML::Node& run_config);
 
 const std::vector<std::string>& curve_metric_columns();  // runs.csv
 const std::vector<std::string>& curve_step_columns();    // steps.csv: one row per edit and stage
+const std::vector<std::string>& curve_iteration_columns();  // iterations.csv: one row per solve of each edit
 
 //! Runs every edit in order (each on the previous result), writes the stages' curves (VTK
 //! polylines and OBJ under curves/), steps.csv rows and final.obj. Never throws for problems

@@ -222,7 +222,7 @@ SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config, const std::
   s.refinement.max_rounds = rc.get_int("max_rounds", 8, 1, 100, "refine-and-solve rounds at most");
   s.refinement.curve_error_factor = rc.get_number(
       "curve_error_factor", 2, 1, 1e12,
-      "a curve constraint whose pointwise error is above this multiple of its error alone on the sheet is checked under refinement");
+      "a curve constraint whose pointwise error somewhere is above this multiple of its error alone on the sheet at that place is checked under refinement");
   s.refinement.curve_limit_share = rc.get_number(
       "curve_limit_share", 0.5, 0, 1,
       "such a curve constraint whose error, refined twice along the curve, tends to a limit above this share of what is left "

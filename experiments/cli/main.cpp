@@ -9,6 +9,7 @@
 
 #include "commands.h"
 #include "core/error.h"
+#include "experiment/run_metadata.h"
 
 namespace {
 // CLI11's NonNegativeNumber and PositiveNumber let "nan" and "inf" through: every number a
@@ -39,6 +40,7 @@ int main(int argc, char** argv) {
   CLI::App app{"fairshape: variational multiresolution shape design"};
   app.require_subcommand(1);
   app.set_help_all_flag("--help-all", "help for every subcommand");
+  app.set_version_flag("--version", fairshape::version_string(), "the project version and the commit it was built from");
 
   InfoArgs info;
   auto* c_info = app.add_subcommand("info", "counts, polygon sizes, boundary loops, Euler characteristic, genus, "

@@ -68,8 +68,13 @@ std::string utc_timestamp(const char* format) {
   return buf;
 }
 
+std::string version_string() {
+  return std::string("fairshape ") + FAIRSHAPE_VERSION + " (commit " + FAIRSHAPE_GIT_COMMIT + (FAIRSHAPE_GIT_DIRTY ? ", modified" : "") + ")";
+}
+
 nlohmann::json build_and_machine_info() {
   nlohmann::json j;
+  j["fairshape_version"] = FAIRSHAPE_VERSION;
   j["git_commit"] = FAIRSHAPE_GIT_COMMIT;  // as built, not as checked out now
   j["git_dirty"] = FAIRSHAPE_GIT_DIRTY;
   j["compiler"] = std::string(FAIRSHAPE_COMPILER_ID) + " " + __VERSION__;

@@ -13,7 +13,9 @@
 namespace fairshape {
 
 nlohmann::json yaml_to_json(const YAML::Node& n);
-nlohmann::json build_and_machine_info();  // git, compiler, flags, libraries, CPU, threads
+nlohmann::json build_and_machine_info();  // version, git, compiler, flags, libraries, CPU, threads
+//! "fairshape 0.1.0 (commit <sha>[, modified])": the project version and the commit as built.
+std::string version_string();
 std::string git_short_sha();             // 7 hex digits, or "nogit"
 std::string utc_timestamp(const char* format = "%Y-%m-%dT%H:%M:%SZ");
 

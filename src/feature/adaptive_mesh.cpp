@@ -24,6 +24,21 @@ double midpoint_angle(const SurfaceMesh& m, int h, const Vec3& mid) {
 
 }  // namespace
 
+std::vector<std::array<int, 3>> green_closure(const std::array<int, 3>& corner, const std::array<int, 3>& mid) {
+  const int n_mid = (mid[0] >= 0) + (mid[1] >= 0) + (mid[2] >= 0);
+  if (n_mid == 0) return {corner};
+  if (n_mid == 1) {
+    const int i = mid[0] >= 0 ? 0 : mid[1] >= 0 ? 1 : 2;  // edge i: corner i → i + 1
+    return {{corner[i], mid[i], corner[(i + 2) % 3]}, {mid[i], corner[(i + 1) % 3], corner[(i + 2) % 3]}};
+  }
+  if (n_mid == 3) throw std::logic_error("green_closure: a leaf with three midpoints must be split");
+  // Two midpoints: the corner between them gets a triangle, the rest a quad cut in two.
+  const int j = mid[0] < 0 ? 0 : mid[1] < 0 ? 1 : 2;  // the unsplit edge j: corner j → j + 1
+  const int a = corner[j], b = corner[(j + 1) % 3], c = corner[(j + 2) % 3];
+  const int mb = mid[(j + 1) % 3], mc = mid[(j + 2) % 3];  // on b→c and c→a
+  return {{mb, c, mc}, {a, b, mb}, {a, mb, mc}};
+}
+
 AdaptiveMesh adaptive_mesh(const MultiresSurface& s, int from_level, double angle_deg) {
   if (s.options().scheme != SchemeType::Loop) throw InvalidInput("adaptive refinement: the hierarchy is not Loop");
   if (from_level < 0 || from_level > s.levels())
@@ -109,24 +124,9 @@ AdaptiveMesh adaptive_mesh(const MultiresSurface& s, int from_level, double angl
         const int g = m.face(m.twin(h));
         if (k < L && g >= 0 && present[k][g] && split[k][g]) mid[i] = m.n_vertices() + SurfaceMesh::edge(h);
       }
-      const int n_mid = (mid[0] >= 0) + (mid[1] >= 0) + (mid[2] >= 0);
-      const auto tri = [&](int a, int b, int c) {
-        faces.push_back({id(a), id(b), id(c)});
+      for (const auto& t : green_closure(corner, mid)) {
+        faces.push_back({id(t[0]), id(t[1]), id(t[2])});
         ++out.triangles_per_level[static_cast<std::size_t>(k)];
-      };
-      if (n_mid == 0) {
-        tri(corner[0], corner[1], corner[2]);
-      } else if (n_mid == 1) {
-        const int i = mid[0] >= 0 ? 0 : mid[1] >= 0 ? 1 : 2;  // edge i: corner i → i + 1
-        tri(corner[i], mid[i], corner[(i + 2) % 3]);
-        tri(mid[i], corner[(i + 1) % 3], corner[(i + 2) % 3]);
-      } else {  // two midpoints: the corner between them gets a triangle, the rest a quad cut in two
-        const int j = mid[0] < 0 ? 0 : mid[1] < 0 ? 1 : 2;  // the unsplit edge j: corner j → j + 1
-        const int a = corner[j], b = corner[(j + 1) % 3], c = corner[(j + 2) % 3];
-        const int mb = mid[(j + 1) % 3], mc = mid[(j + 2) % 3];  // on b→c and c→a
-        tri(mb, c, mc);
-        tri(a, b, mb);
-        tri(a, mb, mc);
       }
     }
   }

@@ -126,4 +126,17 @@ expect_error 2 "feature 'crest': the surface turns by [0-9]* degrees within radi
   "$FS" run configs/khodakovsky-schroder/fig17.yaml --set feature_defaults.radius=0.6 --set 'features.0.level=0' \
   --out "$SCRATCH/wide"
 [ ! -e "$SCRATCH/wide/runs.csv" ] || fail "a run with too wide a feature was started"
+# Truly adaptive evaluation (issue 24 part 3): the sparse hierarchy writes the adaptive mesh and
+# says how many faces it computed; it needs the drawn-level profile; bad values name the choices.
+"$FS" run $C --out "$SCRATCH/sparse" --set input.levels=3 --set profile_on=drawn_level --set adaptive.evaluation=sparse \
+  --set feature_defaults.profile_tolerance=0.5 --set feature_defaults.width_tolerance=0.5 2>/dev/null || fail "sparse run failed"
+$PY - "$SCRATCH/sparse/runs.csv" <<'PYEOF' || fail "sparse run: expected adaptive_evaluation sparse, fewer faces computed than the uniform levels"
+import csv, sys
+r = list(csv.DictReader(open(sys.argv[1])))[0]
+uniform_faces = 288 * (1 + 4 + 16 + 64)
+sys.exit(0 if r["adaptive_evaluation"] == "sparse" and 0 < int(r["adaptive_faces_computed"]) < uniform_faces and int(r["triangles_adaptive"]) > 0 else 1)
+PYEOF
+expect_error 2 "adaptive.evaluation: sparse needs profile_on: drawn_level" -- "$FS" run $C --set adaptive.evaluation=sparse --out "$SCRATCH/x"
+expect_error 2 "adaptive.evaluation: unknown value 'dense' (valid: uniform, sparse)" -- "$FS" run $C --set adaptive.evaluation=dense --out "$SCRATCH/x"
+expect_error 2 "adaptive.surface_angle_deg: only with adaptive.evaluation: sparse" -- "$FS" run $C --set adaptive.surface_angle_deg=3 --out "$SCRATCH/x"
 echo "feature_run: ok"

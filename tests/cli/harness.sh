@@ -9,6 +9,7 @@ SMOKE=configs/smoke/cow_nose_pull.yaml
 [ "$(data_rows "$SCRATCH/full/runs.csv")" -eq 6 ] || fail "six points, six rows"
 [ "$(cut -d, -f1 "$SCRATCH/full/runs.csv" | sort -u | wc -l)" -eq 7 ] || fail "run ids collide"
 [ "$(ls "$SCRATCH"/full/final/*.obj | wc -l)" -eq 6 ] || fail "final meshes overwrite each other"
+"$FS" --version > "$SCRATCH/version.txt" || fail "--version failed"
 $PY - "$SCRATCH/full" <<'PYEOF'
 import csv, json, sys
 d = sys.argv[1]
@@ -30,6 +31,9 @@ import os
 assert not os.path.exists(f"{d}/steps.csv")
 meta = json.load(open(f"{d}/run.json"))
 assert len(meta["git_commit"]) in (40, 7) or meta["git_commit"] == "unknown"
+version = open(f"{d}/../version.txt").read().split()
+assert version[0] == "fairshape" and version[1] == meta["fairshape_version"], (version, meta["fairshape_version"])
+assert meta["fairshape_version"].count(".") == 2, meta["fairshape_version"]
 s = meta["sessions"][0]
 for k in ["argv", "shard", "filter", "input_sha256", "started", "ended", "exit_status"]:
     assert k in s, k

@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
-# Figures 1, 3 and 4 of Sauvage, Hahmann and Bonneau: runs each config under configs/sauvage/,
+# Figures 1, 3 and 4 of Sauvage, Hahmann and Bonneau and a 3-D helix: runs each config under configs/sauvage/,
 # plots it (scripts/plot_curves.py) into papers/sauvage/figures/figN.png and keeps its CSVs in
 # papers/sauvage/data/. `wrinkle_scale`: the w × e × β sweep of §4's claims, plotted with
 # scripts/plot.py (wavelength and amplitude of C_F − C_A against w, one line per β, e = 0 and 1).
-#   bash papers/sauvage/figures/make_figures.sh [fig1 fig3 fig4 wrinkle_scale]   (after `make build`)
+#   bash papers/sauvage/figures/make_figures.sh [fig1 fig3 fig4 helix wrinkle_scale]   (after `make build`)
 set -euo pipefail
 cd "$(dirname "$0")/../../.."
 figures=("$@")
-[ ${#figures[@]} -gt 0 ] || figures=(fig1 fig3 fig4 wrinkle_scale)
+[ ${#figures[@]} -gt 0 ] || figures=(fig1 fig3 fig4 helix wrinkle_scale)
 for f in "${figures[@]}"; do
   out=results/figures/sauvage-$f
   # Exit 3: a run of the sweep ended short of its tolerance (max_iterations, not_a_minimum); it

@@ -19,6 +19,7 @@
 #include "experiment/kinds/surface_edit/edited_hierarchy.h"
 #include "experiment/kinds/surface_edit/run_one.h"
 #include "experiment/metric_format.h"
+#include "feature/adaptive_evaluation.h"
 #include "feature/adaptive_mesh.h"
 #include "feature/featured_surface.h"
 #include "feature/profile_measure.h"
@@ -172,9 +173,29 @@ FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const s
   s.profile_target = root.get_enum("profile_on", feature::ProfileTarget::Limit, feature::profile_target_names(),
                                    "where the profile is exact: limit (the limit surface at the finest vertices), "
                                    "finest (the finest control points) or drawn_level (the paper: the drawn level's control points)");
-  Config ac = root.child("adaptive", "adaptive output mesh (§2.5): {enabled}");
+  Config ac = root.child("adaptive", "adaptive output mesh (§2.5): {enabled, evaluation, surface_angle_deg}");
   s.adaptive = ac.get<bool>("enabled", true, "write adaptive/<run>.obj refined by the features' flatness thresholds");
+  static const NameTable<bool> evaluations{{false, "uniform"}, {true, "sparse"}};
+  s.adaptive_sparse = ac.get_enum("evaluation", false, evaluations,
+                                  "uniform (thinned from the uniform hierarchy by the smallest flatness_angle_deg) or "
+                                  "sparse (computed only where a feature or the flatness test refines, each feature's "
+                                  "own threshold)");
+  s.adaptive_surface_angle_deg =
+      ac.get_number("surface_angle_deg", 0.0, 0.0, 89.9,
+                    "sparse: flatness threshold of the surface away from the features (0: not refined there)");
   ac.check_no_unknown_keys();
+  if (s.adaptive_sparse) {
+    // The sparse levels are the plain mesh's Loop levels with the paper's drawn-level features:
+    // anything else would make adaptive/<run>.obj a different surface from final.obj.
+    if (s.profile_target != feature::ProfileTarget::DrawnLevel)
+      throw InvalidConfig("adaptive.evaluation: sparse needs profile_on: drawn_level (the finest and limit targets "
+                          "solve on the whole finest level)");
+    if (s.editor) throw InvalidConfig("adaptive.evaluation: sparse needs a plain triangle mesh: no remesh_base_faces, "
+                                      "saved hierarchy or edit (their details are not evaluated sparsely)");
+    if (s.base_edit.enabled) throw InvalidConfig("adaptive.evaluation: sparse cannot be combined with base_edit");
+  } else if (ac.has("surface_angle_deg")) {
+    throw InvalidConfig("adaptive.surface_angle_deg: only with adaptive.evaluation: sparse");
+  }
   Config oc = root.child("output", "what each run writes");
   const VtkPolicy vtk = read_vtk_policy(oc, "vtk/<run>_step<k>.vtp after every design step as well");
   s.vtk = vtk != VtkPolicy::None;
@@ -187,6 +208,7 @@ FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const s
 const std::vector<std::string>& feature_metric_columns() {
   static const std::vector<std::string> cols{"features", "levels", "n_fine", "segments", "edit_s", "apply_s", "vertices_moved",
                                              "max_displacement", "triangles_uniform", "triangles_adaptive",
+                                             "adaptive_evaluation", "adaptive_faces_computed",
                                              "profile_on", "features_within_tolerance", "worst_profile_error_fine",
                                              "worst_profile_error_limit", "worst_height_error", "worst_width_error", "time_s",
                                              "unused_keys", "termination", "message"};
@@ -385,10 +407,28 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
         from = std::min(from, f.curve.level);
         angle = std::min(angle, f.curve.params.flatness_angle_deg);
       }
-      const feature::AdaptiveMesh a = feature::adaptive_mesh(result, from, angle);
-      row["triangles_adaptive"] = std::to_string(a.mesh.n_faces());
+      SurfaceMesh adaptive;
+      if (spec.adaptive_sparse) {
+        std::vector<feature::FeatureCurve> curves;
+        for (const auto& [id, c] : surface.features()) curves.push_back(c);
+        feature::AdaptiveEvaluationOptions o;
+        o.from_level = 0;  // from the base mesh: the features' supports are refined to their levels
+        o.surface_angle_deg = spec.adaptive_surface_angle_deg;
+        o.backend = spec.implementation;
+        const feature::AdaptiveEvaluation a =
+            feature::evaluate_adaptive(surface.original().mesh(0), surface.original().options(), spec.levels, curves, o);
+        adaptive = a.mesh;
+        row["adaptive_faces_computed"] = std::to_string(a.faces_computed());
+      } else {
+        adaptive = feature::adaptive_mesh(result, from, angle).mesh;
+        long long faces = 0;
+        for (int k = 0; k <= spec.levels; ++k) faces += result.mesh(k).n_faces();
+        row["adaptive_faces_computed"] = std::to_string(faces);
+      }
+      row["adaptive_evaluation"] = spec.adaptive_sparse ? "sparse" : "uniform";
+      row["triangles_adaptive"] = std::to_string(adaptive.n_faces());
       fs::create_directories(fs::path(out.dir) / "adaptive");
-      write_mesh(a.mesh, (fs::path(out.dir) / "adaptive" / (out.run_id + ".obj")).string());
+      write_mesh(adaptive, (fs::path(out.dir) / "adaptive" / (out.run_id + ".obj")).string());
     }
     export_attachments(surface, out);
     if (spec.vtk) {

@@ -62,6 +62,11 @@ struct FeatureRunSpec : RunBasics {
   std::vector<FeatureSpec> features;
   BaseEditSpec base_edit;
   bool adaptive = true;
+  //! adaptive.evaluation: uniform (thinned from the uniform hierarchy by the smallest threshold)
+  //! or sparse (feature/adaptive_evaluation.h: computed only where refined, each feature's own
+  //! threshold, `adaptive.surface_angle_deg` elsewhere).
+  bool adaptive_sparse = false;
+  double adaptive_surface_angle_deg = 0;
   feature::ProfileTarget profile_target = feature::ProfileTarget::Limit;  // `profile_on`
   bool vtk = true;
   bool vtk_every_step = false;       // output.vtk: all — vtk/<run>_step<k>.vtp after every design step

@@ -135,7 +135,7 @@ def fig3(result, out):
     draw_polygon(axes[2], att, w + 1, color="tab:blue")
     panel(axes[2], f"(c) level w = {w} of C_D (gray); explicit step: level-{w + 1} polygon with reference edge lengths (blue)")
     draw(axes[3], att, color="k", lw=1)
-    panel(axes[3], f"(d) reconstruction: attracting curve C_A, max length error {float(main['attractor_length_error']):.2f}")
+    panel(axes[3], f"(d) reconstruction: attracting curve C_A, max length error {float(main['attractor_length_error']):.2g}")
     draw(axes[4], att, color="0.7", lw=1)
     draw(axes[4], fin, color="k", lw=1)
     extra = f" (without the explicit step: {plain['solves']})" if plain else ""

@@ -43,9 +43,20 @@ struct Setup {
   }
 };
 
+// The loop papers/sauvage/README.md's Performance tables were measured with (before issue 25
+// parts 3-4 made the editing local by default): whole-curve solve, world-coordinate details.
+EditingOptions paper_loop() {
+  EditingOptions o;
+  o.explicit_step = ExplicitStep::Sweep;
+  o.details = DetailFrames::Global;
+  o.solve_region = SolveRegion::Curve;
+  return o;
+}
+
 // Figure 3's edit (configs/sauvage/fig3.yaml): e = 2, w = 3, the right part pinched.
 CurveEdit pinch() {
   CurveEdit e;
+  e.options = paper_loop();
   e.edit_level = 2;
   e.wrinkle_level = 3;
   CurveMove a, b;
@@ -89,6 +100,7 @@ void BM_EditScaling(benchmark::State& state) {
   // in coordinates of size 1): measured 7.5e-10 at 2^19, so 1e-9 is out of reach at 2^20.
   Setup s("linearized", b, "{linearized: {linearization: newton}, length_tolerance: 1.0e-8, stationarity_tolerance: 0}");
   CurveEdit e;
+  e.options = paper_loop();
   e.edit_level = 0;
   e.wrinkle_level = k - 3;
   CurveMove mv;
@@ -109,6 +121,7 @@ BENCHMARK(BM_EditScaling)->ArgNames({"log2_segments", "optimized"})
 // (computed once by the trust region at 1e-13) and its length error.
 CurveEdit compress95() {
   CurveEdit e;
+  e.options = paper_loop();
   CurveMove mv;
   mv.index = -1;
   mv.chord_scale = 0.95;

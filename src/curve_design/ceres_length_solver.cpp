@@ -92,7 +92,8 @@ LengthSolveReport CeresLengthSolver::solve(const LengthProblem& p, const MatrixX
     if (e.weight <= 0) continue;
     for (const auto& s : e.stencils) {
       const Eigen::RowVector3d offset =
-          s.attractor_point >= 0 ? Eigen::RowVector3d(p.attractor().row(s.attractor_point)) : Eigen::RowVector3d::Zero();
+          (s.attractor_point >= 0 ? Eigen::RowVector3d(p.attractor().row(s.attractor_point)) : Eigen::RowVector3d::Zero()) +
+          s.constant.transpose();
       std::vector<double*> blocks;
       for (int j = 0; j < s.size; ++j) blocks.push_back(X.data() + 3 * s.points[j]);
       problem.AddResidualBlock(new StencilCost(s, offset, e.weight), nullptr, blocks);

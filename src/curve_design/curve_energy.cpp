@@ -61,7 +61,7 @@ Eigen::RowVector3d stencil_value(const CurveStencil& s, const MatrixX3& X, const
   Eigen::RowVector3d r = Eigen::RowVector3d::Zero();
   for (int j = 0; j < s.size; ++j) r += s.coeffs[j] * X.row(s.points[j]);
   if (s.attractor_point >= 0) r -= A.row(s.attractor_point);
-  return r;
+  return r - s.constant.transpose();
 }
 }  // namespace
 
@@ -83,9 +83,12 @@ SparseMatrix stencil_hessian(const std::vector<CurveStencil>& stencils, int n) {
 
 MatrixX3 stencil_linear_term(const std::vector<CurveStencil>& stencils, const MatrixX3& A) {
   MatrixX3 b = MatrixX3::Zero(A.rows(), 3);
-  for (const auto& s : stencils)
-    if (s.attractor_point >= 0)
-      for (int j = 0; j < s.size; ++j) b.row(s.points[j]) += 2 * s.coeffs[j] * A.row(s.attractor_point);
+  for (const auto& s : stencils) {
+    Eigen::RowVector3d o = s.constant.transpose();
+    if (s.attractor_point >= 0) o += A.row(s.attractor_point);
+    if (o.isZero(0)) continue;
+    for (int j = 0; j < s.size; ++j) b.row(s.points[j]) += 2 * s.coeffs[j] * o;
+  }
   return b;
 }
 

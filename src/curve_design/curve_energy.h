@@ -3,7 +3,7 @@
 //
 // Every energy here is a sum of squared linear stencils, E(X) = Σ_k |Σ_j c_kj X_{p_kj} − o_k|²,
 // where X is the N×3 point matrix and the offset o_k is zero or a point of the attracting
-// curve. One description serves both solvers: the linearized Lagrange loop assembles
+// curve (plus a constant, see CurveStencil). One description serves both solvers: the linearized Lagrange loop assembles
 // H = 2 Σ c cᵀ and b = 2 Σ c o (so E = ½ XᵀHX − bᵀX + const per coordinate), and Ceres
 // takes each stencil as a residual block.
 #pragma once
@@ -23,6 +23,9 @@ struct CurveStencil {
   std::array<int, 3> points{};       // indices into the curve
   std::array<double, 3> coeffs{};
   int attractor_point = -1;          // offset o = A[attractor_point], or zero when −1
+  // Added to the offset: the share of points held fixed outside a solve window (edit_window.h),
+  // so a stencil that straddles the window's edge keeps its full value.
+  Vec3 constant = Vec3::Zero();
 };
 
 class CurveEnergy {

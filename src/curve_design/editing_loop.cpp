@@ -1,13 +1,27 @@
 #include "curve_design/editing_loop.h"
 
 #include "core/timer.h"
+#include "curve_design/detail_frames.h"
+#include "curve_design/edit_support.h"
+#include "curve_design/explicit_local.h"
 #include "curves/multires_polyline.h"
 
 namespace fairshape {
 namespace {
 
-MatrixX3 synthesize(MatrixX3 c, const PolylineHierarchy& h, int from, int to, Backend backend) {
-  for (int j = from; j < to; ++j) c = synthesis_step(c, h.details[j], h.closed, backend);
+// The reference's hierarchy with its polygon at every level (the frames of local details).
+struct Levels {
+  PolylineHierarchy h;
+  std::vector<MatrixX3> polygons;  // polygons[j]: C_R at level j
+  DetailFrames details = DetailFrames::Global;
+  // d^j as used on the level-j polygon c: turned with c's segments for local frames.
+  MatrixX3 detail(int j, const MatrixX3& c) const {
+    return details == DetailFrames::LocalFrames ? turn_details(h.details[j], polygons[j], c, h.closed) : h.details[j];
+  }
+};
+
+MatrixX3 synthesize(MatrixX3 c, const Levels& L, int from, int to, Backend backend) {
+  for (int j = from; j < to; ++j) c = synthesis_step(c, L.detail(j, c), L.h.closed, backend);
   return c;
 }
 
@@ -68,21 +82,30 @@ PreparedCurveEdit prepare_editing_loop(const Polyline& reference, int levels, co
   EditStages& out = prepared.stages;
   out.reference = reference.points;
 
-  const PolylineHierarchy h = decompose(reference, levels, backend);
-  MatrixX3 ce = reconstruct(h, edit.edit_level, backend).points;
+  Levels L;
+  L.h = decompose(reference, levels, backend);
+  L.details = edit.options.details;
+  L.polygons.push_back(L.h.coarse);
+  for (int j = 0; j < levels; ++j) L.polygons.push_back(synthesis_step(L.polygons.back(), L.h.details[j], closed, backend));
+  MatrixX3 ce = L.polygons[static_cast<std::size_t>(edit.edit_level)];
   const std::vector<int> moved = apply_moves(ce, edit.moves);
   const int stride_e = 1 << (levels - edit.edit_level);
   for (int i : moved) out.moved_points.push_back(i * stride_e);
-  out.edited = synthesize(ce, h, edit.edit_level, levels, backend);
+  out.support = edit_support(n, closed, levels, edit.edit_level, moved);
+  out.edited = synthesize(ce, L, edit.edit_level, levels, backend);
 
   const Timer explicit_timer;
   if (edit.wrinkle_level >= 0) {
     const int w = edit.wrinkle_level;
-    MatrixX3 cw = synthesize(ce, h, edit.edit_level, w, backend), dw = h.details[w];
-    const Eigen::VectorXd target = segment_lengths(reconstruct(h, w + 1, backend).points, closed);
-    const int anchor = moved.empty() ? 0 : moved.front() << (w - edit.edit_level);
-    out.explicit_step = preserve_lengths_explicitly(cw, dw, target, closed, anchor, backend);
-    out.attracting = synthesize(synthesis_step(cw, dw, closed, backend), h, w + 1, levels, backend);
+    MatrixX3 cw = synthesize(ce, L, edit.edit_level, w, backend), dw = L.detail(w, cw);
+    const Eigen::VectorXd target = segment_lengths(L.polygons[static_cast<std::size_t>(w + 1)], closed);
+    if (edit.options.explicit_step == ExplicitStep::Local) {
+      out.explicit_step = preserve_lengths_locally(cw, dw, target, closed, moved, 1 << (w - edit.edit_level));
+    } else {
+      const int anchor = moved.empty() ? 0 : moved.front() << (w - edit.edit_level);
+      out.explicit_step = preserve_lengths_explicitly(cw, dw, target, closed, anchor, backend);
+    }
+    out.attracting = synthesize(synthesis_step(cw, dw, closed, backend), L, w + 1, levels, backend);
   } else {
     out.attracting = out.edited;
   }
@@ -93,6 +116,7 @@ PreparedCurveEdit prepare_editing_loop(const Polyline& reference, int levels, co
   for (const auto* kind : objective.constraints) constraints.push_back(kind->build(context));
   prepared.problem = std::make_unique<LengthProblem>(out.attracting, closed, paper_objective(objective, n, closed),
                                                      std::move(constraints));
+  if (edit.options.solve_region == SolveRegion::Support) prepared.windows = edit_windows(*prepared.problem, out.support);
   return prepared;
 }
 
@@ -102,7 +126,8 @@ EditStages run_editing_loop(const Polyline& reference, int levels, const CurveEd
   PreparedCurveEdit prepared = prepare_editing_loop(reference, levels, edit, objective, backend);
   EditStages& out = prepared.stages;
   const Timer solve_timer;
-  out.solve = solver.solve(*prepared.problem, out.attracting);
+  out.solve = prepared.windows.empty() ? solver.solve(*prepared.problem, out.attracting)
+                                       : solve_windows(*prepared.problem, prepared.windows, solver);
   out.solve_s = solve_timer.seconds();
   out.final = out.solve.points;
   out.total_s = total.seconds();

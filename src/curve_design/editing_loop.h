@@ -11,6 +11,7 @@
 
 #include "core/backend.h"
 #include "curve_design/curve_components.h"
+#include "curve_design/edit_window.h"
 #include "curve_design/explicit_length.h"
 #include "curve_design/length_problem.h"
 #include "curve_design/length_solver.h"
@@ -26,10 +27,21 @@ struct CurveMove {
   double chord_scale = 0;
 };
 
+// How the loop keeps an edit local (issue 25 parts 3 and 4; papers/sauvage/README.md).
+enum class ExplicitStep { Local, Sweep };        // explicit_local.h | explicit_length.h
+enum class DetailFrames { Global, LocalFrames };  // the paper's world-coordinate details | detail_frames.h
+enum class SolveRegion { Support, Curve };       // edit_window.h | the paper's whole-curve eq. 2
+struct EditingOptions {
+  ExplicitStep explicit_step = ExplicitStep::Local;
+  DetailFrames details = DetailFrames::LocalFrames;
+  SolveRegion solve_region = SolveRegion::Support;
+};
+
 struct CurveEdit {
   int edit_level = 0;      // e
   int wrinkle_level = -1;  // w in [e, levels − 1]; −1: no explicit step (§3's method alone)
   std::vector<CurveMove> moves;
+  EditingOptions options;
   int drag_step = 1, drag_steps = 1;  // this loop's place in a drag split into drag_steps loops
 };
 
@@ -42,6 +54,7 @@ struct CurveObjective {
 struct EditStages {
   MatrixX3 reference, edited, attracting, final;  // C_R, C_D, C_A, C_F
   std::vector<int> moved_points;                  // fine-level indices
+  std::vector<char> support;                      // fine-level mask of the edit's support (edit_support.h)
   ExplicitLengthReport explicit_step;
   LengthSolveReport solve;
   double explicit_s = 0, solve_s = 0, total_s = 0;
@@ -50,7 +63,8 @@ struct EditStages {
 //! Every stage of the loop up to the solve: C_D, the explicit step, C_A and the length problem.
 struct PreparedCurveEdit {
   EditStages stages;  // final, solve and the times but explicit_s still empty
-  std::unique_ptr<LengthProblem> problem;
+  std::unique_ptr<LengthProblem> problem;  // the whole curve (the paper's eq. 2)
+  std::vector<EditWindow> windows;         // solve_region support: the pieces solved instead (empty: `problem`)
 };
 //! \throw InvalidInput as run_editing_loop.
 PreparedCurveEdit prepare_editing_loop(const Polyline& reference, int levels, const CurveEdit& edit,

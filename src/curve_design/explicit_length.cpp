@@ -42,7 +42,8 @@ Vec3 any_perpendicular(const Vec3& u) {
   return u.cross(Vec3::UnitX()).normalized();
 }
 
-// Segment i's new midpoint and detail; returns whether the detail changed.
+}  // namespace
+
 bool place_midpoint(const MatrixX3& c, MatrixX3& detail, const Eigen::VectorXd& target, int i) {
   const int m = static_cast<int>(c.rows());
   const Vec3 P = c.row(i).transpose(), Q = c.row((i + 1) % m).transpose();
@@ -59,8 +60,6 @@ bool place_midpoint(const MatrixX3& c, MatrixX3& detail, const Eigen::VectorXd& 
   detail.row(i) = (apex - mid).transpose();
   return changed;
 }
-
-}  // namespace
 
 ExplicitLengthReport preserve_lengths_explicitly(MatrixX3& coarse, MatrixX3& detail, const Eigen::VectorXd& target,
                                                  bool closed, int anchor, Backend backend) {

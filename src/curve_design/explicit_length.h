@@ -9,7 +9,10 @@
 //    the point of that circle nearest to the current midpoint, so untouched parts of the curve
 //    keep their details exactly and wrinkles bulge on the side the old detail was on. A
 //    midpoint exactly on PQ (a straight reference) bulges to the left of PQ in the xy plane.
-//  * when |PQ| > a + b (stretching) no midpoint reaches: level-w points are pulled in along
+//  * when |PQ| > a + b (stretching) no midpoint reaches. Two ways (`explicit_step`):
+//    `local` (explicit_local.h, the default): only the level-w points inside the edit's
+//    support move, each chain between fixed control points straightened just enough;
+//    `sweep` (here, the first implementation): level-w points are pulled in along
 //    the polygon, follow-the-leader, outwards from the anchor (the first moved control point),
 //    so what the user dragged stays where it was put and the far parts follow like a rope.
 //    On a closed curve the two sweeps meet opposite the anchor; the segment where they meet
@@ -25,6 +28,14 @@ namespace fairshape {
 struct ExplicitLengthReport {
   int shortened_segments = 0;  // level-w segments pulled in (stretching)
   int moved_midpoints = 0;     // level-(w+1) midpoints that had to move
+  // `local` only: chains of the support whose fixed ends are farther apart than the chain's
+  // reference length (no placement inside the support keeps the lengths), and the worst
+  // relative excess chord / length − 1 among them; those chains are left straight.
+  int unreachable_chains = 0;
+  double worst_excess = 0;
+  // `local` only: how far moved control points had to be pulled back towards their fixed
+  // neighbours because the edit asked for more length than the curve has there (0: none).
+  double worst_pull_back = 0;
 };
 
 //! \param coarse level-w points; moved in the stretching case.
@@ -33,5 +44,9 @@ struct ExplicitLengthReport {
 //! \param anchor level-w index kept in place when segments are pulled in.
 ExplicitLengthReport preserve_lengths_explicitly(MatrixX3& coarse, MatrixX3& detail, const Eigen::VectorXd& target,
                                                  bool closed, int anchor, Backend backend);
+
+//! Level-w segment i's new midpoint (the circle point nearest the current one), written into
+//! detail row i; returns whether it moved. Shared by both ways.
+bool place_midpoint(const MatrixX3& coarse, MatrixX3& detail, const Eigen::VectorXd& target, int i);
 
 }  // namespace fairshape

@@ -66,4 +66,10 @@ import csv, sys
 r = next(csv.DictReader(open(sys.argv[1])))
 sys.exit(0 if r["n_points"] == "289" and r["termination"] == "converged" else 1)
 PYEOF
+# Issue 25 parts 3-4: the editing options are checked, and locality is reported.
+expect_error 2 "editing.explicit_step: unknown value 'rope' (valid: local, sweep)" -- "$FS" run $C --set editing.explicit_step=rope --out "$SCRATCH/x"
+expect_error 2 "editing.details: unknown value 'local' (valid: global, local_frames)" -- "$FS" run $C --set editing.details=local --out "$SCRATCH/x"
+expect_error 2 "tangent constraints are not solved on the edit's support yet" -- "$FS" run $C --out "$SCRATCH/x" \
+  --set 'optimization.constraints=[{type: segment_lengths}, {type: tangent, points: endpoints}]'
+grep -q ",moved_outside_support,attractor_moved_outside_support," <(head -1 "$SCRATCH/ring/runs.csv") || fail "no moved_outside_support columns"
 echo "curve_run: ok"

@@ -43,6 +43,7 @@ YAML::Node wave_edit(const std::string& moves) {
 name: drag
 input: {curve: data/curves/wave129.obj}
 edits: [{level: 0, moves: )" + moves + R"(}]
+editing: {explicit_step: sweep, details: global, solve_region: curve}  # as measured for part 6 (README)
 optimization:
   beta: 0.01
   constraints: [{type: segment_lengths}]

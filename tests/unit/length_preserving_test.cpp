@@ -102,7 +102,9 @@ TEST_CASE("linearized loop: lengths to 1e-10 at a constrained stationary point, 
   int i = 0;
   for (Backend b : {Backend::Reference, Backend::Optimized}) {
     const auto solver = make_solver("linearized", b, "{length_tolerance: 1e-12, stationarity_tolerance: 1e-9}");
-    stages[i] = run_editing_loop(wave, 7, compress(0.8, 0, 4), recipe.objective, *solver, b);
+    CurveEdit edit = compress(0.8, 0, 4);
+    edit.options.solve_region = SolveRegion::Curve;  // checked below against the paper's whole-curve problem
+    stages[i] = run_editing_loop(wave, 7, edit, recipe.objective, *solver, b);
     const EditStages& s = stages[i++];
     INFO(s.solve.summary.message);
     REQUIRE(s.solve.converged());

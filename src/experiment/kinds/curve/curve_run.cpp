@@ -8,6 +8,7 @@
 #include "core/config.h"
 #include "core/timer.h"
 #include "curve_design/curve_metrics.h"
+#include "curve_design/edit_support.h"
 #include "curves/curve_sampling.h"
 #include "curve_design/wrinkle_scale.h"
 #include "curves/multires_polyline.h"
@@ -114,6 +115,9 @@ void read_optimization(Config& root, CurveRunSpec& s) {
     s.constraints.push_back(cc.constraints.create(type, s.implementation, k));
     k.check_no_unknown_keys();
     has_lengths |= type == "segment_lengths";
+    if (type == "tangent" && s.editing.solve_region == SolveRegion::Support)
+      throw InvalidConfig(k.key_path("type") + ": tangent constraints are not solved on the edit's support yet "
+                          "(src/curve_design/edit_window.h); set editing.solve_region: curve");
   }
   if (s.constraints.empty()) {
     s.constraints.push_back(cc.constraints.create("segment_lengths", s.implementation, none));
@@ -123,6 +127,24 @@ void read_optimization(Config& root, CurveRunSpec& s) {
     throw InvalidConfig(oc.key_path("constraints") + ": lengths are what this editor preserves; include {type: segment_lengths}");
   read_solver(oc, s);
   oc.check_no_unknown_keys();
+}
+
+// How the loop keeps edits local (papers/sauvage/README.md, issue 25 parts 3 and 4).
+EditingOptions read_editing(Config& root) {
+  EditingOptions o;
+  Config c = root.child("editing", "how the editing loop keeps an edit local: {explicit_step, details, solve_region}");
+  const std::string step = c.get_choice("explicit_step", "local", {"local", "sweep"},
+                                        "stretched level-w segments: local (only the edit's support moves) or sweep "
+                                        "(the first implementation: the rest follows the dragged point like a rope)");
+  const std::string details = c.get_choice("details", "local_frames", {"global", "local_frames"},
+                                           "details in world coordinates (the paper) or in their coarse segment's frame");
+  const std::string region = c.get_choice("solve_region", "support", {"support", "curve"},
+                                          "the §3 optimization over the edit's support (the rest held) or the whole curve");
+  c.check_no_unknown_keys();
+  o.explicit_step = step == "local" ? ExplicitStep::Local : ExplicitStep::Sweep;
+  o.details = details == "local_frames" ? DetailFrames::LocalFrames : DetailFrames::Global;
+  o.solve_region = region == "support" ? SolveRegion::Support : SolveRegion::Curve;
+  return o;
 }
 
 }  // namespace
@@ -179,6 +201,8 @@ CurveRunSpec CurveRunSpec::from_config(const YAML::Node& run_config, const std::
   for (Config ec : root.child_list("edits", "editing loops applied in order: [{level, wrinkle_level, moves, drag_steps}]"))
     for (CurveEdit& e : read_edit(ec, s)) s.edits.push_back(std::move(e));
   if (s.edits.empty()) throw InvalidConfig("edits: at least one edit is required");
+  s.editing = read_editing(root);
+  for (auto& e : s.edits) e.options = s.editing;
   read_optimization(root, s);
   Config out = root.child("output", "what each run writes");
   s.vtk = read_vtk_policy(out, "every stage of every edit");
@@ -192,7 +216,7 @@ const std::vector<std::string>& curve_metric_columns() {
   static const std::vector<std::string> cols{
       "n_points", "edits", "length_error_max", "length_error_rms", "total_length_change", "bending_energy",
       "distance_to_attractor", "wrinkles", "wrinkle_amplitude", "wrinkle_wavelength", "wrinkle_wavelength_segments",
-      "attractor_length_error", "solves", "outer_iterations", "stationarity", "min_reduced_hessian_eig", "saddle_escapes",
+      "attractor_length_error", "moved_outside_support", "attractor_moved_outside_support", "solves", "outer_iterations", "stationarity", "min_reduced_hessian_eig", "saddle_escapes",
       "explicit_s", "solve_s", "time_s", "unused_keys", "termination", "message"};
   return cols;
 }
@@ -251,6 +275,8 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
   const Timer wall;
   double time_s = 0, explicit_s = 0, solve_s = 0;
   int solves = 0, outer = 0, done = 0;
+  double outside_final = 0, outside_attracting = 0;
+  std::string explicit_note;  // an explicit step that could not keep the lengths inside the support
   try {
     const Eigen::VectorXd original = segment_lengths(spec.curve.points, spec.curve.closed);
     Polyline current = spec.curve;
@@ -264,6 +290,19 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
       solves += last.solve.solves;
       outer += last.solve.outer_iterations;
       ++done;
+      const double tol = rounding_tolerance(last.reference);
+      outside_final = std::max(outside_final, moved_outside_support(last.reference, last.final, last.support, tol));
+      outside_attracting = std::max(outside_attracting, moved_outside_support(last.reference, last.attracting, last.support, tol));
+      if (last.explicit_step.worst_pull_back > 0)
+        explicit_note += "edit " + std::to_string(k) + ": the edit asks for more length than the curve has inside its support: "
+                         "moved control point(s) pulled back by up to " + num(last.explicit_step.worst_pull_back) +
+                         " (" + num(100 * last.explicit_step.worst_pull_back / (tol * 1e12)) + " % of the curve's size) so the "
+                         "explicit step keeps the lengths locally; ";
+      if (last.explicit_step.unreachable_chains > 0)
+        explicit_note += "edit " + std::to_string(k) + ": explicit step could not keep the lengths inside the support (" +
+                         std::to_string(last.explicit_step.unreachable_chains) +
+                         " level-e segment(s) stretched beyond their reference length, up to " +
+                         num(100 * last.explicit_step.worst_excess) + " % too long: left straight for the optimization); ";
       const Eigen::VectorXd lengths = segment_lengths(current.points, current.closed);
       const MatrixX3* stage_points[] = {&last.reference, &last.edited, &last.attracting, &last.final};
       for (int st = 0; st < 4; ++st) {
@@ -306,7 +345,10 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
     if (!std::isnan(last.solve.min_reduced_hessian_eig)) row["min_reduced_hessian_eig"] = num(last.solve.min_reduced_hessian_eig);
     else if (last.solve.converged()) row["min_reduced_hessian_eig"] = "not_estimated";
     row["saddle_escapes"] = std::to_string(last.solve.saddle_escapes);
-    if (row["message"].empty()) row["message"] = last.solve.summary.message;
+    if (row["message"].empty())  // the last edit's solve (a multi-edit run names which edit)
+      row["message"] = (spec.edits.size() > 1 ? "edit " + std::to_string(done - 1) + ": " : std::string()) +
+                       last.solve.summary.message;
+    row["message"] = explicit_note + row["message"];
     if (spec.final_curve) write_polyline(current, out.final_path());
   } catch (const OutputError& e) {  // results incomplete: not a finished run
     row["termination"] = std::string(to_string(Termination::OutputFailed));
@@ -316,6 +358,8 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
     row["message"] = "edit " + std::to_string(done) + ": " + e.what();
   }
   row["edits"] = std::to_string(done);
+  row["moved_outside_support"] = num(outside_final);
+  row["attractor_moved_outside_support"] = num(outside_attracting);
   row["solves"] = std::to_string(solves);
   row["outer_iterations"] = std::to_string(outer);
   row["explicit_s"] = num(explicit_s);

@@ -21,6 +21,7 @@ struct CurveRunSpec : RunBasics {
   int levels = 0;
   Polyline curve;
   std::vector<CurveEdit> edits;
+  EditingOptions editing;  // `editing:` block, the same for every edit
   double beta = 0.5;
   std::unique_ptr<CurveEnergy> smoothness;
   std::vector<std::unique_ptr<CurveConstraintKind>> constraints;

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "bspline/surface_constraints.h"
+#include "core/message_format.h"
 #include "qp/kkt_solver.h"
 
 namespace fairshape::bspline {
@@ -56,18 +58,31 @@ Eigen::VectorXd alone_profile(const VariationalSheet& sheet, const SheetEnergy& 
   return error_profile(sheet.surface(), P, c, samples);
 }
 
-// Every span the uv polyline crosses, one level finer; false when all are at the deepest layer.
+// Every span the uv polyline crosses or passes within one leaf cell of, one level finer; false
+// when all are at the deepest layer. The band makes the refinement blind to how the path meets
+// cell corners (a diagonal through them: the cells on one side only, so a legal point just off
+// the path on the other side kept its error and looked like a conflict, while its mirror image
+// did not).
 bool refine_along(VariationalSheet& sheet, const std::vector<Eigen::Vector2d>& uv) {
   const HierarchicalSurface& s = sheet.surface();
+  const double U = s.shape().spans_u, V = s.shape().spans_v;
   std::vector<SpanId> spans;
+  const auto add = [&](double u, double v) {
+    if (s.shape().periodic_u) u = u - U * std::floor(u / U);
+    else if (u < 0 || u > U) return;
+    if (v < 0 || v > V) return;
+    const SpanId cell = s.leaf_cell_at(u, v);
+    const SpanId span = s.has_span(cell) ? cell : SpanId{cell.level - 1, cell.i / 2, cell.j / 2};
+    if (span.level + 1 > HierarchicalSurface::kMaxLevel) return;
+    if (std::none_of(spans.begin(), spans.end(), [&](const SpanId& o) { return o.level == span.level && o.i == span.i && o.j == span.j; }))
+      spans.push_back(span);
+  };
   const int samples = curve_samples(s, uv);
   for (int k = 0; k <= samples; ++k) {
     const Eigen::Vector2d at = polyline_at(uv, static_cast<double>(k) / samples);
-    const SpanId cell = s.leaf_cell_at(at.x(), at.y());
-    const SpanId span = s.has_span(cell) ? cell : SpanId{cell.level - 1, cell.i / 2, cell.j / 2};
-    if (span.level + 1 > HierarchicalSurface::kMaxLevel) continue;
-    if (std::none_of(spans.begin(), spans.end(), [&](const SpanId& o) { return o.level == span.level && o.i == span.i && o.j == span.j; }))
-      spans.push_back(span);
+    const double h = std::ldexp(1.0, -s.leaf_cell_at(at.x(), at.y()).level);  // the leaf cell's size there
+    for (int du = -1; du <= 1; ++du)
+      for (int dv = -1; dv <= 1; ++dv) add(at.x() + du * h, at.y() + dv * h);
   }
   if (spans.empty()) return false;
   sheet.refine(spans);
@@ -101,26 +116,33 @@ double surface_size(const VariationalSheet& sheet) {
   return (hi - lo).norm();
 }
 
-// The worst of `e` over each run of kPieceSamples samples: the error of each piece of the curve.
+// The pieces of a curve: runs of kPieceSamples of the `samples` + 1 samples the judged sheet
+// takes, as intervals of t. A refined sheet samples more densely (curve_samples grows with its
+// levels), so a conflict's spike, which narrows with the cells, stays sampled; each piece's
+// error is the worst of the samples in its interval, whatever their number.
 constexpr int kPieceSamples = 8;
-Eigen::VectorXd piece_errors(const Eigen::VectorXd& e) {
-  const Eigen::Index pieces = (e.size() + kPieceSamples - 1) / kPieceSamples;
-  Eigen::VectorXd out(pieces);
-  for (Eigen::Index p = 0; p < pieces; ++p)
-    out[p] = e.segment(p * kPieceSamples, std::min<Eigen::Index>(kPieceSamples, e.size() - p * kPieceSamples)).maxCoeff();
+Eigen::VectorXd piece_errors(const Eigen::VectorXd& e, int piece_samples) {
+  const std::int64_t dense = e.size() - 1;
+  const Eigen::Index pieces = piece_samples / kPieceSamples + 1;
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(pieces);
+  for (std::int64_t k = 0; k <= dense; ++k) {
+    const Eigen::Index p = static_cast<Eigen::Index>(k * piece_samples / (dense * kPieceSamples));
+    out[p] = std::max(out[p], e[k]);
+  }
   return out;
 }
 
 // The verdict on one curve constraint (see curve_convergence).
 CurveConvergence judge_curve(const VariationalSheet& sheet, const SheetEnergy& energy, const std::vector<SheetConstraint>& constraints,
-                             std::size_t index, Backend backend, double alone_factor, double limit_share, double tolerance) {
+                             std::size_t index, const std::vector<Coincidence>& meetings, Backend backend, double alone_factor,
+                             double limit_share, double tolerance) {
   const HierarchicalSurface& s = sheet.surface();
   const SheetConstraint& c = constraints[index];
   CurveConvergence out;
   out.constraint = static_cast<int>(index);
-  // One sampling in t for every solve below, so pieces of the curve can be compared.
+  // The pieces of this sheet's sampling: every solve below is judged on the same intervals of t.
   const int samples = curve_samples(s, c.curve.uv);
-  const Eigen::VectorXd error = piece_errors(error_profile(s, sheet.coefficients(), c, samples));
+  const Eigen::VectorXd error = piece_errors(error_profile(s, sheet.coefficients(), c, samples), samples);
   out.error = error.maxCoeff();
   // An error below the tolerance is not a conflict worth the name (and rounding has nothing to
   // converge to).
@@ -130,7 +152,7 @@ CurveConvergence judge_curve(const VariationalSheet& sheet, const SheetEnergy& e
   // start: the worst error 0.030 is 1.4 times the worst alone, at the lifted middle).
   const Eigen::VectorXd alone_samples = alone_profile(sheet, energy, c, backend, samples);
   if (alone_samples.size() == 0) return out;  // the solve failed: not judged
-  const Eigen::VectorXd alone = piece_errors(alone_samples);
+  const Eigen::VectorXd alone = piece_errors(alone_samples, samples);
   out.alone_error = alone.maxCoeff();
   const Eigen::Array<bool, Eigen::Dynamic, 1> suspect = error.array() > alone_factor * alone.array() && error.array() > tolerance;
   if (!suspect.any()) return out;
@@ -146,42 +168,89 @@ CurveConvergence judge_curve(const VariationalSheet& sheet, const SheetEnergy& e
     const Eigen::MatrixXd P = direct_solve(assemble(finer, energy, constraints, backend), finer, backend);
     if (P.size() == 0) return out;
     finer.set_coefficients(P);
-    errors[round] = piece_errors(error_profile(finer.surface(), finer.coefficients(), c, samples));
+    errors[round] = piece_errors(error_profile(finer.surface(), finer.coefficients(), c, curve_samples(finer.surface(), c.curve.uv)),
+                                 samples);
   }
-  // The suspect piece whose limit is largest against what refinement left.
-  double worst_share = -1;
+  // Every suspect piece is judged. Reported: an unresolved piece next to a constraint meeting
+  // the curve (within two pieces), else an unresolved one, each with the largest limit; else
+  // the piece whose limit is largest.
+  const double piece_t = static_cast<double>(kPieceSamples) / samples;
+  const auto rank = [](bool unresolved, bool met) { return (unresolved ? 2 : 0) + (met ? 1 : 0); };
+  double reported_limit = -1;
   for (Eigen::Index p = 0; p < error.size(); ++p) {
     if (!suspect[p]) continue;
     const double limit = error_limit(errors[0][p], errors[1][p], errors[2][p]);
-    const double share = limit / errors[2][p];
-    if (!(share > worst_share)) continue;
-    worst_share = share;
-    out.excess_t = std::min(1.0, static_cast<double>(p * kPieceSamples) / samples);
+    const bool unresolved = limit > limit_share * errors[2][p] && limit > tolerance;
+    const double middle = (static_cast<double>(p) + 0.5) * piece_t;
+    std::optional<Coincidence> met;
+    if (unresolved)
+      for (const Coincidence& m : meetings)
+        if (std::abs(m.t - middle) <= 2 * piece_t && (!met || std::abs(m.t - middle) < std::abs(met->t - middle))) met = m;
+    const int r = rank(unresolved, met.has_value()), reported = rank(out.unresolved, out.meeting.has_value());
+    if (r < reported || (r == reported && !(limit > reported_limit))) continue;
+    reported_limit = limit;
+    out.excess_t = std::min(1.0, static_cast<double>(p) * piece_t);
     out.excess_error = errors[0][p];
     out.excess_alone_error = alone[p];
     out.refined_error = errors[1][p];
     out.twice_refined_error = errors[2][p];
     out.limit = limit;
-    out.conflict = limit > limit_share * errors[2][p] && limit > tolerance;
-    if (out.conflict) break;
+    out.unresolved = unresolved;
+    out.meeting = met;
   }
   return out;
 }
 }  // namespace
 
+namespace {
+// "On the path": within a millionth of the parameter domain (typed coordinates with six digits;
+// a point farther off is beside the path, where the continuous problem is consistent).
+double on_path_distance(const VariationalSheet& sheet) {
+  return 1e-6 * std::max(sheet.surface().shape().spans_u, sheet.surface().shape().spans_v);
+}
+}  // namespace
+
+std::optional<Coincidence> curve_conflict(const VariationalSheet& sheet, const std::vector<SheetConstraint>& constraints,
+                                          double conflict_tolerance) {
+  return conflicting_coincidence(constraints, on_path_distance(sheet), conflict_tolerance * surface_size(sheet));
+}
+
 CurveConvergence curve_convergence(const VariationalSheet& sheet, const SheetEnergy& energy,
                                    const std::vector<SheetConstraint>& constraints, Backend backend, double alone_factor,
                                    double limit_share, double conflict_tolerance) {
-  // Every curve on its own: one with a large error of its own must not hide another's conflict.
   const double tolerance = conflict_tolerance * surface_size(sheet);
+  // Every curve on its own: one with a large error of its own must not hide another's.
+  const std::vector<Coincidence> all_meetings = coincidences(constraints, on_path_distance(sheet));
   CurveConvergence worst;
   for (std::size_t i = 0; i < constraints.size(); ++i) {
     if (!judged(constraints[i])) continue;
-    const CurveConvergence c = judge_curve(sheet, energy, constraints, i, backend, alone_factor, limit_share, tolerance);
-    if (c.conflict) return c;
+    std::vector<Coincidence> meetings;
+    for (const Coincidence& m : all_meetings)
+      if (m.curve == static_cast<int>(i)) meetings.push_back(m);
+    const CurveConvergence c = judge_curve(sheet, energy, constraints, i, meetings, backend, alone_factor, limit_share, tolerance);
+    if (c.unresolved) return c;
     if (worst.constraint < 0 || c.error > worst.error) worst = c;
   }
   return worst;
+}
+
+std::string describe_unresolved(const CurveConvergence& c, const std::vector<SheetConstraint>& constraints) {
+  const std::string& label = constraints[static_cast<std::size_t>(c.constraint)].label;
+  const std::string curve = label.empty() ? std::string("a curve constraint") : label;
+  if (c.meeting) {
+    const std::string& other = constraints[static_cast<std::size_t>(c.meeting->other)].label;
+    return curve + ": its pointwise error " + sci(c.excess_error) + " at t = " + sci(c.excess_t) + " (" +
+           sci(c.excess_error / c.excess_alone_error) + " times its error alone there) stays under refinement along it (" +
+           sci(c.refined_error) + ", " + sci(c.twice_refined_error) + ", tending to " + sci(c.limit) + ") where " +
+           (other.empty() ? std::string("another constraint") : other) + " meets it (t = " + sci(c.meeting->t) +
+           ", the same position asked): the two ask slopes no surface has there";
+  }
+  return "warning: " + curve +
+         " is not resolved at this resolution: its pointwise error " + sci(c.excess_error) + " at t = " + sci(c.excess_t) + " (" +
+         sci(c.excess_error / c.excess_alone_error) + " times its error alone there) stays under refinement along it (" +
+         sci(c.refined_error) + ", " + sci(c.twice_refined_error) + ", tending to " + sci(c.limit) +
+         "); no constraint on its path asks another position, so a constraint beside it asks a steep surface (refine: "
+         "refinement.tolerance) — or a tangent or normal on its path contradicts it (not compared exactly)";
 }
 
 }  // namespace fairshape::bspline

@@ -292,24 +292,30 @@ namespace {
 JoinedReport solve_and_refine(JoinedDesign& design, qp::QpSolver& solver, Backend backend, const RefinementOptions& refinement);
 
 // A sheet's own fixed curve constraints judged as on a single sheet (bspline/curve_fidelity.h):
-// a point of the sheet held off one of them is a conflict between that sheet's own constraints,
-// whatever the joints do.
+// a point of the sheet on one of them asking another position is a conflict between that
+// sheet's own constraints, whatever the joints do; an unresolved one is a warning.
 void check_sheet_curves(const JoinedDesign& design, const RefinementOptions& refinement, Backend backend, JoinedReport& report) {
-  if (refinement.curve_limit_share <= 0 || report.qp.summary.termination != Termination::Converged) return;
+  if (report.qp.summary.termination != Termination::Converged) return;
+  const auto append = [&](const std::string& text) {
+    report.message = (report.message.empty() ? "" : report.message + "; ") + text;
+    report.qp.summary.message = report.message;
+  };
   for (std::size_t k = 0; k < design.sheets.size(); ++k) {
     const JoinedSheet& s = design.sheets[k];
+    if (const auto conflict = curve_conflict(*s.sheet, s.constraints, refinement.curve_conflict_tolerance)) {
+      report.qp.summary.termination = Termination::ConstraintsUnmet;
+      append(describe(*conflict, s.constraints));
+      return;
+    }
+    if (refinement.curve_limit_share <= 0) continue;
     const CurveConvergence c = curve_convergence(*s.sheet, s.energy, s.constraints, backend, refinement.curve_error_factor,
                                                  refinement.curve_limit_share, refinement.curve_conflict_tolerance);
-    if (!c.conflict) continue;
-    const std::string& label = s.constraints[c.constraint].label;
-    report.qp.summary.termination = Termination::ConstraintsUnmet;
-    report.message = (report.message.empty() ? "" : report.message + "; ") + "sheet " + std::to_string(k) + ", " +
-                     (label.empty() ? std::string("a curve constraint") : label) + ": its pointwise error " + sci(c.error) +
-                     " does not vanish under refinement (" + sci(c.refined_error) + ", " + sci(c.twice_refined_error) +
-                     ", tending to " + sci(c.limit) + "; " + sci(c.excess_error) + " at t = " + sci(c.excess_t) +
-                     " where its error alone on the sheet is " + sci(c.excess_alone_error) + "): another constraint holds the surface off the curve";
-    report.qp.summary.message = report.message;
-    return;
+    if (!c.unresolved) continue;
+    append(describe_unresolved(c, s.constraints));
+    if (c.meeting) {
+      report.qp.summary.termination = Termination::ConstraintsUnmet;
+      return;
+    }
   }
 }
 }  // namespace

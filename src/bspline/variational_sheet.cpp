@@ -199,6 +199,12 @@ namespace {
 // (bspline/curve_fidelity.h).
 void check_curve_convergence(const VariationalSheet& sheet, const SheetEnergy& energy, const std::vector<SheetConstraint>& constraints,
                              const RefinementOptions& options, Backend backend, DesignReport& report) {
+  if (const auto conflict = curve_conflict(sheet, constraints, options.curve_conflict_tolerance)) {
+    report.qp.summary.termination = Termination::ConstraintsUnmet;
+    report.message = describe(*conflict, constraints) + " (tolerance: refinement.curve_conflict_tolerance " +
+                     sci(options.curve_conflict_tolerance) + " of the sheet's size)";
+    return;
+  }
   if (options.curve_limit_share <= 0) return;
   // A curve met to the requested refinement tolerance is what was asked.
   if (options.tolerance > 0 && report.max_constraint_error <= options.tolerance) return;
@@ -209,17 +215,11 @@ void check_curve_convergence(const VariationalSheet& sheet, const SheetEnergy& e
   report.curve_alone_error = c.alone_error;
   report.curve_error_refined = c.refined_error;
   report.curve_error_limit = c.limit;
-  if (!c.conflict) return;
-  report.qp.summary.termination = Termination::ConstraintsUnmet;
-  const std::string& label = constraints[c.constraint].label;
-  report.message = (label.empty() ? std::string("a curve constraint") : label) + ": its pointwise error " + sci(c.excess_error) + " at t = " +
-                   sci(c.excess_t) + " is " + sci(c.excess_error / c.excess_alone_error) + " times its error alone on the sheet there (" +
-                   sci(c.excess_alone_error) + "; worst " + sci(c.error) + " against " + sci(c.alone_error) +
-                   " alone) and does not vanish under refinement (" + sci(c.refined_error) + " and " + sci(c.twice_refined_error) +
-                   " with the spans along the curve one and two levels finer, tending to " + sci(c.limit) +
-                   "; refinement.curve_error_factor " + sci(options.curve_error_factor) + ", curve_limit_share " +
-                   sci(options.curve_limit_share) + ", curve_conflict_tolerance " + sci(options.curve_conflict_tolerance) +
-                   " of the sheet's size): another constraint holds the surface off the curve";
+  if (!c.unresolved) return;
+  // With a constraint meeting the curve there, slopes that disagree; without, the continuous
+  // problem is consistent and the discrete surface is not near the curve yet (a warning).
+  if (c.meeting) report.qp.summary.termination = Termination::ConstraintsUnmet;
+  report.message = (report.message.empty() ? "" : report.message + "; ") + describe_unresolved(c, constraints);
 }
 }  // namespace
 

@@ -226,10 +226,11 @@ SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config, const std::
   s.refinement.curve_limit_share = rc.get_number(
       "curve_limit_share", 0.5, 0, 1,
       "such a curve constraint whose error, refined twice along the curve, tends to a limit above this share of what is left "
-      "ends constraints_unmet (another constraint holds the surface off the curve); 0: no check");
+      "is unresolved: a warning, or constraints_unmet where another constraint meets the curve there; 0: no check");
   s.refinement.curve_conflict_tolerance = rc.get_number(
       "curve_conflict_tolerance", 1e-3, 0, 1,
-      "and only when that limit is above this share of the surface's size (the diagonal of its extent over the domain)");
+      "a point or curve on a curve constraint's path asking a position more than this share of the surface's size (the "
+      "diagonal of its extent over the domain) away is a conflict (constraints_unmet); also the floor of the unresolved check");
   s.estimate_objective_error = rc.get<bool>("estimate_objective_error", false,
                                             "after the last step, solve once more with every cell refined and report the change");
   rc.check_no_unknown_keys();

@@ -24,6 +24,9 @@ void validate(const TensionWeights& w) {
   if (Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(w.alpha).eigenvalues().minCoeff() < -1e-14)
     fail("alpha must be positive semi-definite (alpha_12^2 <= alpha_11 alpha_22, alpha_ii >= 0)");
   if ((w.beta.array() < 0).any()) fail("every beta_ij must be >= 0");
+  // No energy at all: nothing decides the surface between the constraints (the KKT system is
+  // singular).
+  if (w.alpha.isZero(0) && w.beta.isZero(0)) fail("alpha and beta are both zero: no energy to minimize");
 }
 
 namespace {

@@ -96,3 +96,21 @@ rc=0; "$FS" run $C --set energy.alpha=0 --set 'constraints=[{type: point, uv: [1
 grep -q "null space" "$SCRATCH/loose/runs.csv" || fail "singular problem not explained"
 ! grep -qi "nan" "$SCRATCH/loose/runs.csv" || fail "NaN written"
 echo "sheet_run: ok"
+
+# Bad input the fourth review found accepted (issue 23): each refused at load, naming the key.
+expect_error 2 "constraints\[0\]: give .by." -- "$FS" run $C --set 'constraints.0={type: point, uv: [0.125, 0.125]}' --out "$SCRATCH/x"
+expect_error 2 "moves\[0\]: a move needs .by." -- "$FS" run $C --set 'constraints.0={type: point, uv: [0.125, 0.125], by: [0, 0, 0], moves: [{step: 2}]}' --out "$SCRATCH/x"
+expect_error 2 "energy.alpha/energy.beta: .*both zero" -- "$FS" run $C --set energy.alpha=0 --set energy.beta=0 --out "$SCRATCH/x"
+expect_error 2 "sheets\[0\].refine: cannot refine span" -- "$FS" run $C --set 'sheets.0.refine=[[0, 9, 3]]' --out "$SCRATCH/x"
+expect_error 2 "constraints\[0\].normal: the zero vector" -- "$FS" run $C --set 'constraints.0={type: normal, uv: [1, 1], normal: [0, 0, 0]}' --out "$SCRATCH/x"
+# A closed ring on a cylinder written by its vertices: the closing segment would run back across
+# the whole circumference; refused with the way to write it.
+cat > "$SCRATCH/ring.yaml" <<'YAML'
+name: ring
+sheets: [{name: s, geometry: cylinder, spans: [16, 8], size: [0.5, 1]}]
+energy: {alpha: 0.01, beta: 1}
+curves: [{name: r, from_surface: {sheet: s, uv: {points: [[0, 0.5], [0.785398, 0.6], [1.570796, 0.5], [2.356194, 0.4]], closed: true}}, samples: 65}]
+constraints: [{type: curve, curve: r}]
+output: {vtk: none}
+YAML
+expect_error 2 "runs more than half way round the periodic sheet" -- "$FS" run "$SCRATCH/ring.yaml" --out "$SCRATCH/x"

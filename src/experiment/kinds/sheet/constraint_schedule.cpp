@@ -16,6 +16,7 @@ std::vector<PointMove> read_moves(Config& c, int step) {
   for (Config m : c.child_list("moves", "the target dragged over the steps: [{step, by: [x, y, z]}] (moves add up)")) {
     PointMove mv;
     mv.step = m.get_int("step", 1, 0, 1000, "design step from which the move applies");
+    if (!m.has("by") && !m.documenting()) throw InvalidConfig(m.path() + ": a move needs `by` (the displacement of the target)");
     mv.by = read_vec3(m, "by", mv.by, "displacement of the target");
     m.check_no_unknown_keys();
     if (mv.step <= step)

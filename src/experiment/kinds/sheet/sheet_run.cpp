@@ -92,10 +92,19 @@ SheetSpec read_sheet(Config& c, const std::vector<std::string>& search_dirs) {
     s.refine.push_back({r[0], r[1], r[2]});
   }
   c.check_no_unknown_keys();
-  try {
-    bspline::HierarchicalSurface probe(s.shape);
+  bspline::HierarchicalSurface probe = [&] {
+    try {
+      return bspline::HierarchicalSurface(s.shape);
+    } catch (const InvalidInput& e) {
+      throw InvalidConfig(c.key_path("spans") + ": " + e.what());
+    }
+  }();
+  try {  // coarser layers first, as VariationalSheet::refine takes them
+    std::map<int, std::vector<bspline::SpanId>> by_level;
+    for (const bspline::SpanId& r : s.refine) by_level[r.level].push_back(r);
+    for (const auto& [level, group] : by_level) (void)probe.refine(group);
   } catch (const InvalidInput& e) {
-    throw InvalidConfig(c.key_path("spans") + ": " + e.what());
+    throw InvalidConfig(c.key_path("refine") + ": " + e.what());
   }
   return s;
 }
@@ -171,6 +180,10 @@ SheetConstraintSpec read_constraint(Config& c, const std::string& label, const s
       k.kind = SheetConstraint::Kind::Point;
       s.relative = c.has("by");
       if (s.relative && c.has("target")) throw InvalidConfig(c.key_path("by") + ": give target or by, not both");
+      // Neither would pin the point to the world origin without a word.
+      if (!s.relative && !c.has("target") && !c.documenting())
+        throw InvalidConfig(c.path() + ": give `by` (an offset from the initial surface point, e.g. [0, 0, 0] to hold it) or "
+                            "`target` (a world position)");
       k.target = s.relative ? read_vec3(c, "by", Vec3::Zero(), "offset from the initial surface point")
                             : read_vec3(c, "target", Vec3::Zero(), "world position (or give `by`: offset from the initial point)");
       if (!s.relative) (void)c.get<std::vector<double>>("by", {0, 0, 0}, "offset from the initial surface point");
@@ -183,6 +196,7 @@ SheetConstraintSpec read_constraint(Config& c, const std::string& label, const s
     } else {
       k.kind = SheetConstraint::Kind::Normal;
       k.target = read_vec3(c, "normal", Vec3::UnitZ(), "normal direction");
+      if (!(k.target.norm() > 0)) throw InvalidConfig(c.key_path("normal") + ": the zero vector has no direction");
     }
   }
   c.check_no_unknown_keys();
@@ -294,6 +308,19 @@ SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config, const std::
       }
       uv[i] = spans;
     }
+    // A (u, v) path is straight in the parameter domain, so on a periodic sheet a segment from
+    // u = 2.36 to u = 0 runs back across the whole circumference rather than across the seam
+    // (a closed ring given by its vertices did so silently): refused, with the way to write it.
+    if (!shape.periodic_u) return;
+    for (std::size_t i = 0; i + 1 < uv.size(); ++i)
+      if (std::abs(uv[i + 1].x() - uv[i].x()) > 0.5 * shape.spans_u)
+        throw InvalidConfig(what + ": the (u, v) segment from point " + std::to_string(i) + " to " + std::to_string(i + 1) +
+                            " runs more than half way round the periodic sheet (u from " + num(uv[i].x() * shape.span_size.x()) +
+                            " to " + num(uv[i + 1].x() * shape.span_size.x()) + "; the circumference is " +
+                            num(shape.spans_u * shape.span_size.x()) +
+                            "): paths are straight in (u, v); to cross the seam write u past it (u is periodic), e.g. " +
+                            num((uv[i + 1].x() + (uv[i + 1].x() < uv[i].x() ? 1 : -1) * shape.spans_u) * shape.span_size.x()) +
+                            ", and give a closed ring as an open path whose last point repeats the first one circumference on");
   };
   for (std::size_t i = 0; i < s.curves.size(); ++i)
     if (!s.curves[i].from_sheet.empty()) to_spans(s.curves[i].from_sheet, s.curves[i].uv, "curves[" + std::to_string(i) + "].from_surface.uv");

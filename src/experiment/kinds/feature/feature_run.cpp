@@ -15,6 +15,8 @@
 #include "experiment/kinds/feature/feature_exports.h"
 #include "experiment/components.h"
 #include "experiment/kinds/feature/feature_steps.h"
+#include "experiment/kinds/feature/sparse_run.h"
+#include "core/memory.h"
 #include "experiment/kinds/sheet/constraint_schedule.h"
 #include "experiment/kinds/surface_edit/edited_hierarchy.h"
 #include "experiment/kinds/surface_edit/run_one.h"
@@ -202,13 +204,14 @@ FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const s
   s.vtk_every_step = vtk == VtkPolicy::All;
   oc.check_no_unknown_keys();
   root.check_no_unknown_keys();
+  if (s.adaptive_sparse) check_sparse_run(s);
   return s;
 }
 
 const std::vector<std::string>& feature_metric_columns() {
   static const std::vector<std::string> cols{"features", "levels", "n_fine", "segments", "edit_s", "apply_s", "vertices_moved",
                                              "max_displacement", "triangles_uniform", "triangles_adaptive",
-                                             "adaptive_evaluation", "adaptive_faces_computed",
+                                             "adaptive_evaluation", "adaptive_faces_computed", "peak_rss_mb",
                                              "profile_on", "features_within_tolerance", "worst_profile_error_fine",
                                              "worst_profile_error_limit", "worst_height_error", "worst_width_error", "time_s",
                                              "unused_keys", "termination", "message"};
@@ -358,7 +361,14 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
   row["profile_on"] = std::string(feature::profile_target_names().name(spec.profile_target));
   row["termination"] = std::string(to_string(Termination::Converged));
   const Timer wall;
+  reset_peak_rss();  // this run's own peak, not an earlier run's of the sweep
   try {
+    if (spec.adaptive_sparse) {  // the uniform hierarchy never built (sparse_run.h)
+      execute_sparse_feature_run(spec, out, row);
+      row["time_s"] = num(wall.seconds());
+      row["peak_rss_mb"] = num(peak_rss_mb());
+      return row;
+    }
     MultiresSurface original = feature_hierarchy(spec);
     const double diag = bounding_diagonal(original.mesh(spec.levels));
     feature::FeaturedSurface surface = placed_features(spec, std::move(original));
@@ -447,6 +457,7 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
     row["message"] = std::string("applying the features to the perturbed surface: ") + e.what();
   }
   row["time_s"] = num(wall.seconds());
+  row["peak_rss_mb"] = num(peak_rss_mb());
   return row;
 }
 

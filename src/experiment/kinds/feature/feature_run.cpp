@@ -21,7 +21,6 @@
 #include "experiment/kinds/surface_edit/edited_hierarchy.h"
 #include "experiment/kinds/surface_edit/run_one.h"
 #include "experiment/metric_format.h"
-#include "feature/adaptive_evaluation.h"
 #include "feature/adaptive_mesh.h"
 #include "feature/featured_surface.h"
 #include "feature/profile_measure.h"
@@ -417,25 +416,11 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
         from = std::min(from, f.curve.level);
         angle = std::min(angle, f.curve.params.flatness_angle_deg);
       }
-      SurfaceMesh adaptive;
-      if (spec.adaptive_sparse) {
-        std::vector<feature::FeatureCurve> curves;
-        for (const auto& [id, c] : surface.features()) curves.push_back(c);
-        feature::AdaptiveEvaluationOptions o;
-        o.from_level = 0;  // from the base mesh: the features' supports are refined to their levels
-        o.surface_angle_deg = spec.adaptive_surface_angle_deg;
-        o.backend = spec.implementation;
-        const feature::AdaptiveEvaluation a =
-            feature::evaluate_adaptive(surface.original().mesh(0), surface.original().options(), spec.levels, curves, o);
-        adaptive = a.mesh;
-        row["adaptive_faces_computed"] = std::to_string(a.faces_computed());
-      } else {
-        adaptive = feature::adaptive_mesh(result, from, angle).mesh;
-        long long faces = 0;
-        for (int k = 0; k <= spec.levels; ++k) faces += result.mesh(k).n_faces();
-        row["adaptive_faces_computed"] = std::to_string(faces);
-      }
-      row["adaptive_evaluation"] = spec.adaptive_sparse ? "sparse" : "uniform";
+      const SurfaceMesh adaptive = feature::adaptive_mesh(result, from, angle).mesh;
+      long long faces = 0;
+      for (int k = 0; k <= spec.levels; ++k) faces += result.mesh(k).n_faces();
+      row["adaptive_faces_computed"] = std::to_string(faces);
+      row["adaptive_evaluation"] = "uniform";  // sparse runs take execute_sparse_feature_run
       row["triangles_adaptive"] = std::to_string(adaptive.n_faces());
       fs::create_directories(fs::path(out.dir) / "adaptive");
       write_mesh(adaptive, (fs::path(out.dir) / "adaptive" / (out.run_id + ".obj")).string());

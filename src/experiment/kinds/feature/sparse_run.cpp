@@ -116,31 +116,53 @@ Vec3 point_on(const feature::SparseLevel& S, const feature::SurfacePoint& p) {
 
 }  // namespace
 
-void execute_sparse_feature_run(FeatureRunSpec& spec, const RunOutputs& out, MetricRow& row) {
-  const SurfaceMesh base = read_mesh(spec.mesh_path);
+namespace {
+struct SparseRunEvaluation {
+  SurfaceMesh base;
+  std::vector<feature::FeatureCurve> curves;
+  feature::AdaptiveEvaluation a;
+  double apply_s = 0;
+};
+
+// The base mesh read, the features placed on sparse levels and evaluated.
+SparseRunEvaluation evaluate_sparse_run(FeatureRunSpec& spec) {
+  SparseRunEvaluation e;
+  e.base = read_mesh(spec.mesh_path);
+  const SurfaceMesh& base = e.base;
   SubdivisionOptions opt;
   opt.scheme = SchemeType::Loop;
   opt.weights = spec.loop_weights;
-  const int L = spec.levels;
   // max_distance scales with the base mesh's diagonal (the uniform run takes the finest
   // level's, the same up to the surface's shrinkage).
   const double diag = (base.positions().colwise().maxCoeff() - base.positions().colwise().minCoeff()).norm();
   place_world_points(spec, base, opt, diag);
-  std::vector<feature::FeatureCurve> curves;
   for (FeatureSpec& f : spec.features) {
     for (const auto& p : f.curve.points)
       if (p.face < 0 || p.face >= uniform_faces(base, f.curve.level))
         throw InvalidInput("feature '" + f.curve.name + "': face " + std::to_string(p.face) + " is not a face of level " +
                            std::to_string(f.curve.level));
-    curves.push_back(f.curve);
+    e.curves.push_back(f.curve);
   }
   feature::AdaptiveEvaluationOptions o;
   o.from_level = 0;  // from the base mesh: the features' supports are refined to their levels
   o.surface_angle_deg = spec.adaptive_surface_angle_deg;
   o.backend = spec.implementation;
   const Timer apply;
-  const feature::AdaptiveEvaluation a = feature::evaluate_adaptive(base, opt, L, curves, o);
-  row["apply_s"] = num(apply.seconds());
+  e.a = feature::evaluate_adaptive(base, opt, spec.levels, e.curves, o);
+  e.apply_s = apply.seconds();
+  return e;
+}
+}  // namespace
+
+void check_sparse_features(FeatureRunSpec& spec) { (void)evaluate_sparse_run(spec); }
+
+void execute_sparse_feature_run(FeatureRunSpec& spec, const RunOutputs& out, MetricRow& row) {
+  const SparseRunEvaluation e = evaluate_sparse_run(spec);
+  const SurfaceMesh& base = e.base;
+  const std::vector<feature::FeatureCurve>& curves = e.curves;
+  const feature::AdaptiveEvaluation& a = e.a;
+  const int L = spec.levels;
+  row["apply_s"] = num(e.apply_s);
   const feature::SparseLevel& S = a.levels[static_cast<std::size_t>(L)];
   row["n_fine"] = std::to_string(S.n_local_vertices());  // computed, not the uniform count
   row["triangles_uniform"] = std::to_string(uniform_faces(base, L));

@@ -16,6 +16,11 @@ namespace fairshape {
 //! the valid choices.
 void check_sparse_run(const FeatureRunSpec& spec);
 
+//! Validation of a sparse run before the sweep starts: the features placed and evaluated on the
+//! sparse levels (cheap: the refined region), never the uniform hierarchy. \throw Error for the
+//! input, as the run would.
+void check_sparse_features(FeatureRunSpec& spec);
+
 //! Fills `row` (runs.csv) and writes final.obj, adaptive/<run>.obj, curves/, features.csv and
 //! attachments.csv. \throw Error for the input (a feature that cannot be placed or applied).
 void execute_sparse_feature_run(FeatureRunSpec& spec, const RunOutputs& out, MetricRow& row);

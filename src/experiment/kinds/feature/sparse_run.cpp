@@ -167,6 +167,8 @@ void execute_sparse_feature_run(FeatureRunSpec& spec, const RunOutputs& out, Met
   row["n_fine"] = std::to_string(S.n_local_vertices());  // computed, not the uniform count
   row["triangles_uniform"] = std::to_string(uniform_faces(base, L));
   row["vertices_moved"] = std::to_string(a.vertices_moved);
+  if (a.unperturbed.size() <= static_cast<std::size_t>(L) || a.unperturbed[static_cast<std::size_t>(L)].rows() != S.positions.rows())
+    throw std::logic_error("sparse run: the finest level's positions before the features are missing");
   const MatrixX3& before = a.unperturbed[static_cast<std::size_t>(L)];  // every feature is on L
   row["max_displacement"] = num((S.positions - before).rowwise().norm().maxCoeff());
   row["adaptive_evaluation"] = "sparse";

@@ -161,7 +161,8 @@ sys.exit(0 if ok else 1)
 PYEOF
 # What needs the whole hierarchy is refused with sparse, naming the key and the valid choices.
 expect_error 2 "output.vtk: with adaptive.evaluation: sparse no VTK is written" -- "$FS" run $C --set input.levels=2 --set profile_on=drawn_level --set adaptive.evaluation=sparse --out "$SCRATCH/x"
-expect_error 2 "features\[0\].level: 2 with adaptive.evaluation: sparse a feature is drawn on the finest level (valid: 3" -- "$FS" run $C $S --set input.levels=3 --set adaptive.evaluation=sparse --out "$SCRATCH/x"
+expect_error 2 "features\[0\].level: 2 with adaptive.evaluation: sparse a feature must be drawn on the finest level (valid: 3" -- "$FS" run $C $S --set input.levels=3 --set adaptive.evaluation=sparse --out "$SCRATCH/x"
+expect_error 2 "features\[0\]: the placement tools (geodesic, section, polyline) work on a whole level; with adaptive.evaluation: sparse give points" -- "$FS" run configs/khodakovsky-schroder/fig17.yaml --set input.levels=1 --set profile_on=drawn_level --set output.vtk=none --set adaptive.evaluation=sparse --out "$SCRATCH/x"
 expect_error 2 "features\[1\]: design steps (step, until, moves, changes)" -- "$FS" run $C $S --set adaptive.evaluation=sparse --set features.1.step=1 --out "$SCRATCH/x"
 expect_error 2 "adaptive.evaluation: sparse needs profile_on: drawn_level" -- "$FS" run $C --set adaptive.evaluation=sparse --out "$SCRATCH/x"
 expect_error 2 "adaptive.evaluation: unknown value 'dense' (valid: uniform, sparse)" -- "$FS" run $C --set adaptive.evaluation=dense --out "$SCRATCH/x"

@@ -25,10 +25,10 @@ void check_sparse_run(const FeatureRunSpec& s) {
     // to; the sparse levels keep that surface only on the level a feature is drawn on.
     if (f.curve.level != s.levels)
       throw InvalidConfig(f.key + ".level: " + std::to_string(f.curve.level) + sparse +
-                          " a feature is drawn on the finest level (valid: " + std::to_string(s.levels) +
+                          " a feature must be drawn on the finest level (valid: " + std::to_string(s.levels) +
                           " = input.levels), or use adaptive.evaluation: uniform");
     if (f.placement)
-      throw InvalidConfig(f.key + ": the placement tools (geodesic, section, polyline) work on a whole level; " + sparse +
+      throw InvalidConfig(f.key + ": the placement tools (geodesic, section, polyline) work on a whole level;" + sparse +
                           " give points or surface_points");
     if (f.step > 0 || f.until >= 0 || !f.moves.empty() || !f.changes.empty())
       throw InvalidConfig(f.key + ": design steps (step, until, moves, changes) re-evaluate the uniform hierarchy; not" +

@@ -103,6 +103,7 @@ class Evaluator {
       lowest_new_ = L_ + 1;
       if (evaluate_pass(start)) {
         for (int m : moved_) out_.vertices_moved += m;
+        out_.curves = curves_;
         build_output();
         return std::move(out_);
       }
@@ -354,7 +355,7 @@ class Evaluator {
     std::vector<std::size_t> on_level;
     for (std::size_t i = 0; i < features_.size(); ++i)
       if (features_[i].level == k) on_level.push_back(i);
-    if (on_level.empty()) return true;
+    if (on_level.empty() || !options_.apply_features) return true;
     SparseLevel& S = out_.levels[k];
     bool missing = false;
     std::vector<FeatureCurve> local;
@@ -410,6 +411,8 @@ class Evaluator {
       for (const BaseSegment& s : bc.segments)
         for (int v : S.corners[s.face]) check(v);
     if (missing) return false;
+    out_.unperturbed.resize(static_cast<std::size_t>(L_ + 1));
+    out_.unperturbed[static_cast<std::size_t>(k)] = S.positions;
     for (std::size_t r = 0; r < d.vertices.size(); ++r)
       S.positions.row(patch.local[d.vertices[r]]) += d.displacement.row(static_cast<Eigen::Index>(r));
     moved_[k] = static_cast<int>(d.vertices.size());

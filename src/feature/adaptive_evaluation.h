@@ -37,6 +37,9 @@ struct AdaptiveEvaluationOptions {
   int from_level = 0;              // levels below it are quadrisected everywhere
   double surface_angle_deg = 0;    // flatness threshold everywhere; 0: only features' regions refine
   Backend backend = Backend::Optimized;
+  //! false: the features only mark their supports (a run places world points on the sparse
+  //! levels this makes before the features exist on them).
+  bool apply_features = true;
 };
 
 struct AdaptiveEvaluation {
@@ -47,6 +50,11 @@ struct AdaptiveEvaluation {
   std::vector<int> mesh_vertex_level;       // the level its position comes from
   std::vector<int> triangles_per_level;     // output triangles by the level of their leaf
   std::vector<double> feature_angle_deg;    // per feature (input order): its threshold
+  //! Per feature (input order) once applied: its base curve, segment faces local to
+  //! levels[feature.level] (its patch's faces); and per level the positions before that
+  //! level's features moved them (empty where none): what a run measures the profile against.
+  std::vector<BaseCurve> curves;
+  std::vector<MatrixX3> unperturbed;
   int vertices_moved = 0;                   // control points the features moved (all levels)
   int passes = 0;                           // evaluations run until every mark was refinable
   long long faces_computed() const;         // present faces, all levels

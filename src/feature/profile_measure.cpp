@@ -152,6 +152,11 @@ ProfileMeasure measure_one(const SurfaceMesh& finest, const Surfaces& x, const T
   return m;
 }
 
+double error_scale(const FeatureParams& q) {
+  const double scale = std::max(std::abs(q.height), std::abs(q.height * q.end_height_ratio));
+  return scale > 0 ? scale : q.radius;  // a crease alone: errors as fractions of the radius
+}
+
 std::string miss(const char* where, const ProfileMeasure& m, const FeatureParams& q) {
   std::ostringstream o;
   o.precision(3);
@@ -165,6 +170,17 @@ std::string miss(const char* where, const ProfileMeasure& m, const FeatureParams
 }
 
 }  // namespace
+
+ProfileMeasure measure_on_mesh(const SurfaceMesh& mesh, const MatrixX3& reference, const MatrixX3& requested,
+                               const MatrixX3& achieved, const TriangleSurface& level, const BaseCurve& curve,
+                               const std::vector<const BaseCurve*>& others) {
+  const FinestFaces below(mesh, reference);
+  Others near;
+  for (const BaseCurve* c : others) near.push_back({c, Box(*c, reach_of(*c))});
+  return measure_one(mesh, {reference, requested, achieved, below}, level, curve, near, error_scale(curve.params));
+}
+
+std::string profile_miss(const char* where, const ProfileMeasure& m, const FeatureParams& q) { return miss(where, m, q); }
 
 std::vector<FeatureMeasure> measure_features(FeaturedSurface& surface) {
   const MultiresSurface& result = surface.result();
@@ -186,8 +202,7 @@ std::vector<FeatureMeasure> measure_features(FeaturedSurface& surface) {
       for (const BaseCurve* c : all)
         if (c != &curve) others.push_back({c, Box(*c, reach_of(*c))});
       const FeatureParams& q = curve.params;
-      double scale = std::max(std::abs(q.height), std::abs(q.height * q.end_height_ratio));
-      if (scale <= 0) scale = q.radius;  // a crease alone: errors as fractions of the radius
+      const double scale = error_scale(q);
       FeatureMeasure f;
       f.id = ops[k].ids[j];
       f.name = curve.name;

@@ -39,6 +39,17 @@ struct FeatureMeasure {
   std::string why;  // the first miss: "limit: profile error 0.063 > profile_tolerance 0.02"
 };
 
+//! The finest-level measure of one curve on any mesh that holds the curve's support (a sparse
+//! run's finest level as a patch, feature/sparse_loop.h: the vertices outside it have no
+//! displacement and change nothing): positions per vertex of `mesh` of the surface the curve
+//! was applied to, of what was asked and of what was achieved; `level` the surface the curve
+//! was built on, `others` the run's other curves.
+ProfileMeasure measure_on_mesh(const SurfaceMesh& mesh, const MatrixX3& reference, const MatrixX3& requested,
+                               const MatrixX3& achieved, const TriangleSurface& level, const BaseCurve& curve,
+                               const std::vector<const BaseCurve*>& others);
+//! The first tolerance `m` misses ("<where>: profile error … > profile_tolerance …"), or "".
+std::string profile_miss(const char* where, const ProfileMeasure& m, const FeatureParams& q);
+
 //! One entry per feature, in id order. Evaluates the surface.
 std::vector<FeatureMeasure> measure_features(FeaturedSurface& surface);
 

@@ -126,16 +126,44 @@ expect_error 2 "feature 'crest': the surface turns by [0-9]* degrees within radi
   "$FS" run configs/khodakovsky-schroder/fig17.yaml --set feature_defaults.radius=0.6 --set 'features.0.level=0' \
   --out "$SCRATCH/wide"
 [ ! -e "$SCRATCH/wide/runs.csv" ] || fail "a run with too wide a feature was started"
-# Truly adaptive evaluation (issue 24 part 3): the sparse hierarchy writes the adaptive mesh and
-# says how many faces it computed; it needs the drawn-level profile; bad values name the choices.
-"$FS" run $C --out "$SCRATCH/sparse" --set input.levels=3 --set profile_on=drawn_level --set adaptive.evaluation=sparse \
-  --set feature_defaults.profile_tolerance=0.5 --set feature_defaults.width_tolerance=0.5 2>/dev/null || fail "sparse run failed"
-$PY - "$SCRATCH/sparse/runs.csv" <<'PYEOF' || fail "sparse run: expected adaptive_evaluation sparse, fewer faces computed than the uniform levels"
-import csv, sys
-r = list(csv.DictReader(open(sys.argv[1])))[0]
-uniform_faces = 288 * (1 + 4 + 16 + 64)
-sys.exit(0 if r["adaptive_evaluation"] == "sparse" and 0 < int(r["adaptive_faces_computed"]) < uniform_faces and int(r["triangles_adaptive"]) > 0 else 1)
+# Truly adaptive evaluation (issue 24 part 3): a sparse run never builds the uniform hierarchy
+# (fewer faces computed than the uniform levels have, fewer finest vertices than the uniform
+# finest level), writes the adaptive mesh as final.obj, and measures each feature as the uniform
+# run does: the same placement (faces, barycentric coordinates), the same vertices (a sparse
+# vertex is the uniform one, sparse_loop.h) and the same measurement on the support, so
+# features.csv's finest-level columns agree to rounding (1e-9; the values are O(0.1) or less).
+# The features are drawn on level 2, so levels 2 makes them finest-level features.
+S="--set input.levels=2 --set profile_on=drawn_level --set output.vtk=none --set feature_defaults.profile_tolerance=0.5 --set feature_defaults.width_tolerance=0.5"
+"$FS" run $C --out "$SCRATCH/sparse" $S --set adaptive.evaluation=sparse 2>/dev/null || fail "sparse run failed"
+"$FS" run $C --out "$SCRATCH/sparse_u" $S 2>/dev/null || fail "uniform run for the sparse comparison failed"
+$PY - "$SCRATCH/sparse" "$SCRATCH/sparse_u" <<'PYEOF' || fail "sparse run: expected the uniform run's finest-level profile, no uniform level built, final.obj = the adaptive mesh"
+import csv, math, sys
+s, u = sys.argv[1], sys.argv[2]
+r = list(csv.DictReader(open(s + "/runs.csv")))[0]
+uniform_faces = 288 * (1 + 4 + 16)
+ok = r["adaptive_evaluation"] == "sparse" and 0 < int(r["adaptive_faces_computed"]) < uniform_faces
+ok = ok and int(r["n_fine"]) < int(list(csv.DictReader(open(u + "/runs.csv")))[0]["n_fine"]) and float(r["peak_rss_mb"]) > 0
+ok = ok and sum(1 for l in open(s + "/final.obj") if l.startswith("f ")) == int(r["triangles_adaptive"]) > 0
+fs = {x["feature"]: x for x in csv.DictReader(open(s + "/features.csv"))}
+fu = {x["feature"]: x for x in csv.DictReader(open(u + "/features.csv"))}
+cols = ["height_min_fine", "height_max_fine", "width_left_fine", "width_right_fine", "height_error_fine", "width_error_fine", "profile_error_fine"]
+ok = ok and len(fs) == 3 and fs.keys() == fu.keys()
+for f in fs:
+    for c in cols:
+        a, b = float(fs[f][c]), float(fu[f][c])
+        if not (abs(a - b) <= 1e-9 or (math.isnan(a) and math.isnan(b))): print(f, c, a, b); ok = False
+    ok = ok and fs[f]["profile_error_limit"] == "nan"
+sa = [x for x in csv.DictReader(open(s + "/attachments.csv"))]
+ua = [x for x in csv.DictReader(open(u + "/attachments.csv"))]
+key = lambda x: (x["feature"], x["level"], x["point"], x["face"])
+ok = ok and sorted(map(key, sa)) == sorted(map(key, ua))
+sys.exit(0 if ok else 1)
 PYEOF
+# What needs the whole hierarchy is refused with sparse, naming the key and the valid choices.
+expect_error 2 "output.vtk: with adaptive.evaluation: sparse no VTK is written" -- "$FS" run $C --set input.levels=2 --set profile_on=drawn_level --set adaptive.evaluation=sparse --out "$SCRATCH/x"
+expect_error 2 "features\[0\].level: 2 with adaptive.evaluation: sparse a feature must be drawn on the finest level (valid: 3" -- "$FS" run $C $S --set input.levels=3 --set adaptive.evaluation=sparse --out "$SCRATCH/x"
+expect_error 2 "features\[0\]: the placement tools (geodesic, section, polyline) work on a whole level; with adaptive.evaluation: sparse give points" -- "$FS" run configs/khodakovsky-schroder/fig17.yaml --set input.levels=1 --set profile_on=drawn_level --set output.vtk=none --set adaptive.evaluation=sparse --out "$SCRATCH/x"
+expect_error 2 "features\[1\]: design steps (step, until, moves, changes)" -- "$FS" run $C $S --set adaptive.evaluation=sparse --set features.1.step=1 --out "$SCRATCH/x"
 expect_error 2 "adaptive.evaluation: sparse needs profile_on: drawn_level" -- "$FS" run $C --set adaptive.evaluation=sparse --out "$SCRATCH/x"
 expect_error 2 "adaptive.evaluation: unknown value 'dense' (valid: uniform, sparse)" -- "$FS" run $C --set adaptive.evaluation=dense --out "$SCRATCH/x"
 expect_error 2 "adaptive.surface_angle_deg: only with adaptive.evaluation: sparse" -- "$FS" run $C --set adaptive.surface_angle_deg=3 --out "$SCRATCH/x"

@@ -6,6 +6,7 @@
 #include "experiment/kinds/feature/feature_exports.h"
 #include "experiment/kinds/feature/feature_run.h"
 #include "experiment/kinds/feature/feature_steps.h"
+#include "experiment/kinds/feature/sparse_run.h"
 #include "experiment/kinds/kinds.h"
 #include "experiment/kinds/thread_limit.h"
 
@@ -21,7 +22,8 @@ class FeatureKind final : public RunKind {
     FeatureRunSpec spec = FeatureRunSpec::from_config(c, dirs);
     // A saved hierarchy (.vtm) is read whole by check_on_hierarchy.
     if (std::filesystem::path(spec.mesh_path).extension() != ".vtm") require_readable_mesh(spec.mesh_path, "input.mesh");
-    check_on_hierarchy(spec);
+    if (spec.adaptive_sparse) check_sparse(spec);
+    else check_on_hierarchy(spec);
     return {spec.name, {spec.mesh_path}};
   }
   void validation_done() override { hierarchies_.clear(); }
@@ -35,6 +37,16 @@ class FeatureKind final : public RunKind {
   }
 
  private:
+  // A sparse run is checked on its sparse levels: building the uniform hierarchy here would
+  // cost what the run saves.
+  static void check_sparse(FeatureRunSpec& spec) {
+    try {
+      check_sparse_features(spec);
+    } catch (const Error& e) {
+      throw InvalidConfig(std::string("features on ") + spec.mesh_path + ": " + e.what());
+    }
+  }
+
   // The features placed on the run's hierarchy and those of the coarsest feature level applied
   // (a point off the surface, a curve that leaves it, too curved a surface): the sweep is
   // refused before its first run. Finer features need the perturbed surface: the run checks them.

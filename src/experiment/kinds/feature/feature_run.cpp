@@ -15,11 +15,12 @@
 #include "experiment/kinds/feature/feature_exports.h"
 #include "experiment/components.h"
 #include "experiment/kinds/feature/feature_steps.h"
+#include "experiment/kinds/feature/sparse_run.h"
+#include "core/memory.h"
 #include "experiment/kinds/sheet/constraint_schedule.h"
 #include "experiment/kinds/surface_edit/edited_hierarchy.h"
 #include "experiment/kinds/surface_edit/run_one.h"
 #include "experiment/metric_format.h"
-#include "feature/adaptive_evaluation.h"
 #include "feature/adaptive_mesh.h"
 #include "feature/featured_surface.h"
 #include "feature/profile_measure.h"
@@ -202,13 +203,14 @@ FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const s
   s.vtk_every_step = vtk == VtkPolicy::All;
   oc.check_no_unknown_keys();
   root.check_no_unknown_keys();
+  if (s.adaptive_sparse) check_sparse_run(s);
   return s;
 }
 
 const std::vector<std::string>& feature_metric_columns() {
   static const std::vector<std::string> cols{"features", "levels", "n_fine", "segments", "edit_s", "apply_s", "vertices_moved",
                                              "max_displacement", "triangles_uniform", "triangles_adaptive",
-                                             "adaptive_evaluation", "adaptive_faces_computed",
+                                             "adaptive_evaluation", "adaptive_faces_computed", "peak_rss_mb",
                                              "profile_on", "features_within_tolerance", "worst_profile_error_fine",
                                              "worst_profile_error_limit", "worst_height_error", "worst_width_error", "time_s",
                                              "unused_keys", "termination", "message"};
@@ -358,7 +360,14 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
   row["profile_on"] = std::string(feature::profile_target_names().name(spec.profile_target));
   row["termination"] = std::string(to_string(Termination::Converged));
   const Timer wall;
+  reset_peak_rss();  // this run's own peak, not an earlier run's of the sweep
   try {
+    if (spec.adaptive_sparse) {  // the uniform hierarchy never built (sparse_run.h)
+      execute_sparse_feature_run(spec, out, row);
+      row["time_s"] = num(wall.seconds());
+      row["peak_rss_mb"] = num(peak_rss_mb());
+      return row;
+    }
     MultiresSurface original = feature_hierarchy(spec);
     const double diag = bounding_diagonal(original.mesh(spec.levels));
     feature::FeaturedSurface surface = placed_features(spec, std::move(original));
@@ -407,25 +416,11 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
         from = std::min(from, f.curve.level);
         angle = std::min(angle, f.curve.params.flatness_angle_deg);
       }
-      SurfaceMesh adaptive;
-      if (spec.adaptive_sparse) {
-        std::vector<feature::FeatureCurve> curves;
-        for (const auto& [id, c] : surface.features()) curves.push_back(c);
-        feature::AdaptiveEvaluationOptions o;
-        o.from_level = 0;  // from the base mesh: the features' supports are refined to their levels
-        o.surface_angle_deg = spec.adaptive_surface_angle_deg;
-        o.backend = spec.implementation;
-        const feature::AdaptiveEvaluation a =
-            feature::evaluate_adaptive(surface.original().mesh(0), surface.original().options(), spec.levels, curves, o);
-        adaptive = a.mesh;
-        row["adaptive_faces_computed"] = std::to_string(a.faces_computed());
-      } else {
-        adaptive = feature::adaptive_mesh(result, from, angle).mesh;
-        long long faces = 0;
-        for (int k = 0; k <= spec.levels; ++k) faces += result.mesh(k).n_faces();
-        row["adaptive_faces_computed"] = std::to_string(faces);
-      }
-      row["adaptive_evaluation"] = spec.adaptive_sparse ? "sparse" : "uniform";
+      const SurfaceMesh adaptive = feature::adaptive_mesh(result, from, angle).mesh;
+      long long faces = 0;
+      for (int k = 0; k <= spec.levels; ++k) faces += result.mesh(k).n_faces();
+      row["adaptive_faces_computed"] = std::to_string(faces);
+      row["adaptive_evaluation"] = "uniform";  // sparse runs take execute_sparse_feature_run
       row["triangles_adaptive"] = std::to_string(adaptive.n_faces());
       fs::create_directories(fs::path(out.dir) / "adaptive");
       write_mesh(adaptive, (fs::path(out.dir) / "adaptive" / (out.run_id + ".obj")).string());
@@ -447,6 +442,7 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
     row["message"] = std::string("applying the features to the perturbed surface: ") + e.what();
   }
   row["time_s"] = num(wall.seconds());
+  row["peak_rss_mb"] = num(peak_rss_mb());
   return row;
 }
 

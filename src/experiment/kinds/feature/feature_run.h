@@ -97,7 +97,8 @@ void place_features_after_edit(FeatureRunSpec& spec, feature::FeaturedSurface& s
 //! Writes final.obj (finest level), vtk/<run>.vtp (point arrays displacement, displacement_norm,
 //! limit_position, limit_normal), adaptive/<run>.obj, curves/<run>_<feature>.obj, features.csv,
 //! attachments.csv and (with VTK output) levels/<run>_level<k>.vtp and limit/<run>.vtp
-//! (feature_exports.h); never throws for problems of the input.
+//! (feature_exports.h); never throws for problems of the input. With adaptive.evaluation: sparse
+//! the uniform hierarchy is never built (sparse_run.h): final.obj is the adaptive mesh.
 MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out);
 
 }  // namespace fairshape

@@ -1,0 +1,245 @@
+#include "experiment/kinds/feature/sparse_run.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "core/timer.h"
+#include "experiment/kinds/feature/curve_placement_config.h"
+#include "experiment/metric_format.h"
+#include "feature/adaptive_evaluation.h"
+#include "feature/level_attachment.h"
+#include "feature/perturbation.h"
+#include "feature/profile_measure.h"
+#include "feature/triangle_surface.h"
+#include "io/mesh_io.h"
+#include "mesh/polyline.h"
+
+namespace fairshape {
+namespace fs = std::filesystem;
+
+void check_sparse_run(const FeatureRunSpec& s) {
+  const std::string sparse = " with adaptive.evaluation: sparse";
+  for (const FeatureSpec& f : s.features) {
+    // features.csv measures a feature on the finest level against the surface it was applied
+    // to; the sparse levels keep that surface only on the level a feature is drawn on.
+    if (f.curve.level != s.levels)
+      throw InvalidConfig(f.key + ".level: " + std::to_string(f.curve.level) + sparse +
+                          " a feature must be drawn on the finest level (valid: " + std::to_string(s.levels) +
+                          " = input.levels), or use adaptive.evaluation: uniform");
+    if (f.placement)
+      throw InvalidConfig(f.key + ": the placement tools (geodesic, section, polyline) work on a whole level;" + sparse +
+                          " give points or surface_points");
+    if (f.step > 0 || f.until >= 0 || !f.moves.empty() || !f.changes.empty())
+      throw InvalidConfig(f.key + ": design steps (step, until, moves, changes) re-evaluate the uniform hierarchy; not" +
+                          sparse);
+  }
+  if (s.vtk)
+    throw InvalidConfig("output.vtk:" + sparse + " no VTK is written (its limit surface and levels need the whole "
+                        "hierarchy; valid: none)");
+  if (!s.adaptive)
+    throw InvalidConfig("adaptive.enabled: false" + sparse + " (the result is the adaptive mesh; valid: true)");
+}
+
+namespace {
+
+std::int64_t uniform_faces(const SurfaceMesh& base, int level) { return static_cast<std::int64_t>(base.n_faces()) << (2 * level); }
+
+// World points placed level by level: projected on the base mesh, then on each finer level
+// carried down by parameter (child_point) and projected again on the sparse level a
+// non-applying evaluation refines around them (the curve's support, radius plus three edges:
+// the sag between two consecutive levels is a fraction of an edge, so the uniform level's
+// nearest point lies among the present faces). A face whose corners lack their one-rings is at
+// the edge of the computed region and refused rather than trusted.
+void place_world_points(FeatureRunSpec& spec, const SurfaceMesh& base, const SubdivisionOptions& opt, double diag) {
+  std::vector<FeatureSpec*> todo;
+  for (FeatureSpec& f : spec.features)
+    if (!f.world_points.empty()) todo.push_back(&f);
+  if (todo.empty()) return;
+  std::vector<std::vector<feature::SurfacePoint>> at(todo.size());
+  const auto place = [&](const feature::TriangleSurface& s, int level, std::size_t i) {
+    FeatureSpec g = *todo[i];
+    g.curve.level = level;
+    if (level < g.curve.level) g.max_distance = 1;  // a coarse level is farther from the points
+    place_on_level(s, diag, g);
+    at[i] = g.curve.points;
+  };
+  const feature::TriangleSurface on_base(base, feature::loop_limit_normals(base));
+  for (std::size_t i = 0; i < todo.size(); ++i) place(on_base, 0, i);
+  for (int k = 1; k <= spec.levels; ++k) {
+    std::vector<feature::FeatureCurve> probes;
+    std::vector<std::size_t> which;
+    for (std::size_t i = 0; i < todo.size(); ++i) {
+      if (todo[i]->curve.level < k) continue;
+      feature::FeatureCurve c = todo[i]->curve;
+      c.level = k;
+      c.points = at[i];
+      for (feature::SurfacePoint& p : c.points) p = feature::child_point(p);
+      probes.push_back(std::move(c));
+      which.push_back(i);
+    }
+    if (probes.empty()) break;
+    feature::AdaptiveEvaluationOptions o;
+    o.apply_features = false;
+    o.backend = spec.implementation;
+    const feature::AdaptiveEvaluation a = feature::evaluate_adaptive(base, opt, k, probes, o);
+    const feature::SparseLevel& S = a.levels[static_cast<std::size_t>(k)];
+    const feature::SparsePatch patch = feature::make_patch(S);
+    const feature::TriangleSurface s(patch.mesh, feature::loop_limit_normals(patch.mesh));
+    for (std::size_t i : which) {
+      place(s, k, i);
+      for (feature::SurfacePoint& p : at[i]) {
+        for (int v : S.corners[static_cast<std::size_t>(p.face)])
+          if (!S.complete[static_cast<std::size_t>(v)])
+            throw InvalidInput("feature '" + todo[i]->curve.name + "': a point projects to the edge of the region refined "
+                               "around it on level " + std::to_string(k) + " (adaptive.evaluation: sparse); use uniform");
+        p.face = static_cast<int>(S.face[static_cast<std::size_t>(p.face)]);
+      }
+    }
+  }
+  for (std::size_t i = 0; i < todo.size(); ++i) todo[i]->curve.points = at[i];
+}
+
+// A base curve with its segments' faces as uniform ids (they are local to the level's patch).
+feature::BaseCurve on_uniform_faces(feature::BaseCurve c, const feature::SparseLevel& S) {
+  for (feature::BaseSegment& s : c.segments) s.face = static_cast<int>(S.face[static_cast<std::size_t>(s.face)]);
+  return c;
+}
+
+Vec3 point_on(const feature::SparseLevel& S, const feature::SurfacePoint& p) {
+  const int f = S.face_of(p.face);
+  if (f < 0) throw std::logic_error("sparse run: an attachment's face is not computed");
+  Vec3 x = Vec3::Zero();
+  for (int c = 0; c < 3; ++c) x += p.bary[c] * S.positions.row(S.corners[static_cast<std::size_t>(f)][c]).transpose();
+  return x;
+}
+
+}  // namespace
+
+namespace {
+struct SparseRunEvaluation {
+  SurfaceMesh base;
+  std::vector<feature::FeatureCurve> curves;
+  feature::AdaptiveEvaluation a;
+  double apply_s = 0;
+};
+
+// The base mesh read, the features placed on sparse levels and evaluated.
+SparseRunEvaluation evaluate_sparse_run(FeatureRunSpec& spec) {
+  SparseRunEvaluation e;
+  e.base = read_mesh(spec.mesh_path);
+  const SurfaceMesh& base = e.base;
+  SubdivisionOptions opt;
+  opt.scheme = SchemeType::Loop;
+  opt.weights = spec.loop_weights;
+  // max_distance scales with the base mesh's diagonal (the uniform run takes the finest
+  // level's, the same up to the surface's shrinkage).
+  const double diag = (base.positions().colwise().maxCoeff() - base.positions().colwise().minCoeff()).norm();
+  place_world_points(spec, base, opt, diag);
+  for (FeatureSpec& f : spec.features) {
+    for (const auto& p : f.curve.points)
+      if (p.face < 0 || p.face >= uniform_faces(base, f.curve.level))
+        throw InvalidInput("feature '" + f.curve.name + "': face " + std::to_string(p.face) + " is not a face of level " +
+                           std::to_string(f.curve.level));
+    e.curves.push_back(f.curve);
+  }
+  feature::AdaptiveEvaluationOptions o;
+  o.from_level = 0;  // from the base mesh: the features' supports are refined to their levels
+  o.surface_angle_deg = spec.adaptive_surface_angle_deg;
+  o.backend = spec.implementation;
+  const Timer apply;
+  e.a = feature::evaluate_adaptive(base, opt, spec.levels, e.curves, o);
+  e.apply_s = apply.seconds();
+  return e;
+}
+}  // namespace
+
+void check_sparse_features(FeatureRunSpec& spec) { (void)evaluate_sparse_run(spec); }
+
+void execute_sparse_feature_run(FeatureRunSpec& spec, const RunOutputs& out, MetricRow& row) {
+  const SparseRunEvaluation e = evaluate_sparse_run(spec);
+  const SurfaceMesh& base = e.base;
+  const std::vector<feature::FeatureCurve>& curves = e.curves;
+  const feature::AdaptiveEvaluation& a = e.a;
+  const int L = spec.levels;
+  row["apply_s"] = num(e.apply_s);
+  const feature::SparseLevel& S = a.levels[static_cast<std::size_t>(L)];
+  row["n_fine"] = std::to_string(S.n_local_vertices());  // computed, not the uniform count
+  row["triangles_uniform"] = std::to_string(uniform_faces(base, L));
+  row["vertices_moved"] = std::to_string(a.vertices_moved);
+  if (a.unperturbed.size() <= static_cast<std::size_t>(L) || a.unperturbed[static_cast<std::size_t>(L)].rows() != S.positions.rows())
+    throw std::logic_error("sparse run: the finest level's positions before the features are missing");
+  const MatrixX3& before = a.unperturbed[static_cast<std::size_t>(L)];  // every feature is on L
+  row["max_displacement"] = num((S.positions - before).rowwise().norm().maxCoeff());
+  row["adaptive_evaluation"] = "sparse";
+  row["adaptive_faces_computed"] = std::to_string(a.faces_computed());
+  row["triangles_adaptive"] = std::to_string(a.mesh.n_faces());
+  fs::create_directories(fs::path(out.dir) / "adaptive");
+  write_mesh(a.mesh, (fs::path(out.dir) / "adaptive" / (out.run_id + ".obj")).string());
+  write_mesh(a.mesh, out.final_path());
+
+  // The finest level as the patch the features were applied on (positions before them), the
+  // achieved positions beside it, and what was asked: the profile as a displacement of the
+  // level (OffsetMeaning::Displacement), as the uniform run's visible target takes it
+  // (visible_profile.cpp), so both runs measure the same thing.
+  feature::SparseLevel U = S;
+  U.positions = before;
+  const feature::SparsePatch patch = feature::make_patch(U);
+  MatrixX3 achieved(patch.mesh.n_vertices(), 3);
+  for (int v = 0; v < patch.mesh.n_vertices(); ++v) achieved.row(v) = S.positions.row(patch.local[static_cast<std::size_t>(v)]);
+  const feature::TriangleSurface drawn(patch.mesh, feature::loop_limit_normals(patch.mesh));
+  const MatrixX3 requested =
+      patch.mesh.positions() +
+      feature::displace_points(drawn, a.curves, patch.mesh.positions(), spec.implementation).dense(patch.mesh.n_vertices());
+  std::vector<const feature::BaseCurve*> all;
+  for (const feature::BaseCurve& c : a.curves) all.push_back(&c);
+  fs::create_directories(fs::path(out.dir) / "curves");
+  int segments = 0, within = 0;
+  double fine = 0, height = 0, width = 0;
+  std::string first_miss;
+  const std::string nan = "nan";  // the limit columns: the limit needs the whole finest level
+  for (std::size_t i = 0; i < a.curves.size(); ++i) {
+    const feature::BaseCurve& bc = a.curves[i];
+    const feature::FeatureParams& q = curves[i].params;
+    segments += static_cast<int>(bc.segments.size());
+    MatrixX3 X(static_cast<Eigen::Index>(bc.segments.size() + (bc.closed ? 0 : 1)), 3);
+    for (std::size_t j = 0; j < bc.segments.size(); ++j) X.row(static_cast<Eigen::Index>(j)) = bc.segments[j].a.transpose();
+    if (!bc.closed) X.row(X.rows() - 1) = bc.segments.back().b.transpose();
+    write_polyline(Polyline{X, bc.closed},
+                   (fs::path(out.dir) / "curves" / (out.run_id + "_" + file_name_part(curves[i].name) + ".obj")).string());
+    std::vector<const feature::BaseCurve*> others;
+    for (const feature::BaseCurve* c : all)
+      if (c != &bc) others.push_back(c);
+    const feature::ProfileMeasure m =
+        feature::measure_on_mesh(patch.mesh, patch.mesh.positions(), requested, achieved, drawn, bc, others);
+    const std::string why = feature::profile_miss("finest level", m, q);
+    out.add_row("features", {curves[i].name, std::to_string(L), num(q.height), num(q.radius), num(q.right_radius()),
+                             num(m.height_min), num(m.height_max), num(m.width_left), num(m.width_right), num(m.height_error),
+                             num(m.width_error), num(m.profile_error), nan, nan, nan, nan, nan, nan, nan,
+                             why.empty() ? "1" : "0", why});
+    within += why.empty() ? 1 : 0;
+    fine = std::max(fine, m.profile_error), height = std::max(height, m.height_error), width = std::max(width, m.width_error);
+    if (!why.empty() && first_miss.empty()) first_miss = "feature '" + curves[i].name + "' (level " + std::to_string(L) + "), " + why;
+    // attachments.csv: the curve on its level (the finest), on the result there.
+    const auto per_level = feature::attachments_per_level(on_uniform_faces(bc, S), L, L);
+    for (std::size_t j = 0; j < per_level[0].size(); ++j) {
+      const feature::SurfacePoint& p = per_level[0][j];
+      const Vec3 x = point_on(S, p);
+      out.add_row("attachments", {curves[i].name, std::to_string(L), std::to_string(j), std::to_string(p.face), num(p.bary[0]),
+                                  num(p.bary[1]), num(p.bary[2]), num(x.x()), num(x.y()), num(x.z())});
+    }
+  }
+  row["segments"] = std::to_string(segments);
+  row["features_within_tolerance"] = std::to_string(within);
+  row["worst_profile_error_fine"] = num(fine);
+  row["worst_profile_error_limit"] = "";  // runs.csv holds finite numbers or nothing
+  row["worst_height_error"] = num(height);
+  row["worst_width_error"] = num(width);
+  if (!first_miss.empty()) {
+    row["termination"] = std::string(to_string(Termination::ConstraintsUnmet));
+    row["message"] = std::to_string(a.curves.size() - static_cast<std::size_t>(within)) + " of " +
+                     std::to_string(a.curves.size()) + " features miss their tolerance; first: " + first_miss;
+  }
+}
+
+}  // namespace fairshape

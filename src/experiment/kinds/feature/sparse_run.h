@@ -1,0 +1,28 @@
+// A feature run on the sparse Loop hierarchy alone (adaptive.evaluation: sparse; issue 24 part 3):
+// Khodakovsky & Schröder §2.5 compute the surface only where it is refined, so a finest-level
+// feature on a large model costs time and memory in proportion to its region. The uniform
+// hierarchy is never built: the curves are placed on sparse levels, final.obj is the adaptive
+// mesh, features.csv is measured on the finest sparse level, attachments.csv comes from the
+// sparse levels. What needs the whole surface (the VTK exports' limit surface and uniform
+// levels, the limit columns of features.csv, design steps re-evaluating the whole hierarchy) is
+// refused at load (FeatureRunSpec::from_config) or written as "nan" (the limit columns).
+#pragma once
+
+#include "experiment/kinds/feature/feature_run.h"
+
+namespace fairshape {
+
+//! Checks the config keys a sparse run cannot honour. \throw InvalidConfig naming the key and
+//! the valid choices.
+void check_sparse_run(const FeatureRunSpec& spec);
+
+//! Validation of a sparse run before the sweep starts: the features placed and evaluated on the
+//! sparse levels (cheap: the refined region), never the uniform hierarchy. \throw Error for the
+//! input, as the run would.
+void check_sparse_features(FeatureRunSpec& spec);
+
+//! Fills `row` (runs.csv) and writes final.obj, adaptive/<run>.obj, curves/, features.csv and
+//! attachments.csv. \throw Error for the input (a feature that cannot be placed or applied).
+void execute_sparse_feature_run(FeatureRunSpec& spec, const RunOutputs& out, MetricRow& row);
+
+}  // namespace fairshape

@@ -310,6 +310,8 @@ void check_sheet_curves(const JoinedDesign& design, const RefinementOptions& ref
     if (refinement.curve_limit_share <= 0) continue;
     const CurveConvergence c = curve_convergence(*s.sheet, s.energy, s.constraints, backend, refinement.curve_error_factor,
                                                  refinement.curve_limit_share, refinement.curve_conflict_tolerance);
+    report.sheet_curve_probe.resize(design.sheets.size());
+    report.sheet_curve_probe[k] = c;
     if (!c.unresolved) continue;
     append(describe_unresolved(c, s.constraints));
     if (c.meeting) {

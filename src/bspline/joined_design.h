@@ -15,6 +15,8 @@
 // tolerance — both sides of a joint, since either may be the one too coarse to follow.
 #pragma once
 
+#include "bspline/curve_fidelity.h"
+
 #include <string>
 #include <vector>
 
@@ -88,6 +90,9 @@ struct JoinedReport {
   std::vector<double> sheet_residual, curve_residual;  // ‖A p − b‖_F over those rows
   int rounds = 0;                                      // solves (1 + refinements)
   std::vector<int> sheet_spans_refined, curve_spans_refined;
+  //! Per sheet: the probe of its own weak curve constraints (curve_fidelity.h; default-constructed
+  //! where it did not run), for steps.csv's curve_error columns.
+  std::vector<CurveConvergence> sheet_curve_probe;
   std::string message;
   double energy() const;
   //! The largest error of any sheet cell or curve leaf: what refinement compares with its tolerance.

@@ -615,7 +615,12 @@ output: {vtk: none}
   INFO(off.at("message"));
   CHECK(off.at("termination") == "constraints_unmet");
   CHECK(off.at("message").find("constraints[1] (a point) lies on the path of curve constraints[0]") != std::string::npos);
-  test::run_sheet_steps(design(0.2), "joined_conflict_on", "on", on);
+  const auto on_steps = test::run_sheet_steps(design(0.2), "joined_conflict_on", "on", on);
   INFO(on.at("message"));
   CHECK(on.at("termination") == "converged");
+  // The floor's own curve is judged and reported in steps.csv (curve_error is the fourth column
+  // from the end), as on a single sheet.
+  REQUIRE(!on_steps.empty());
+  CHECK(on_steps[0][1] == "floor");
+  CHECK(std::stod(on_steps[0][on_steps[0].size() - 4]) > 0);
 }

@@ -263,6 +263,11 @@ JoinedStep FreeCurves::solve_step(const SheetRunSpec& spec, int step, std::vecto
       dr.energy = r.sheet_energy[i];
       dr.errors_per_round = {r.sheet_errors[i]};
       dr.max_constraint_error = bspline::max_error(r.sheet_errors[i]);
+      if (i < r.sheet_curve_probe.size()) {
+        const bspline::CurveConvergence& probe = r.sheet_curve_probe[i];
+        dr.curve_error = probe.error, dr.curve_alone_error = probe.alone_error;
+        dr.curve_error_refined = probe.refined_error, dr.curve_error_limit = probe.limit;
+      }
     }
     for (std::size_t i = 0; i < g.curves.size(); ++i) {
       FreeCurveStep c;

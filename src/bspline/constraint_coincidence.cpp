@@ -45,13 +45,15 @@ std::vector<std::pair<double, double>> shared_points(const Path& a, const Path& 
       const double x = (q.x() * s.y() - q.y() * s.x()) / cross, y = (q.x() * r.y() - q.y() * r.x()) / cross;
       if (x >= 0 && x <= 1 && y >= 0 && y <= 1) out.emplace_back(path_t(a, i, x), path_t(b, j, y));
     }
-  for (const Eigen::Vector2d& p : a) {
-    const Nearest n = nearest_on(b, p), self = nearest_on(a, p);
-    if (n.distance <= on_path) out.emplace_back(self.t, n.t);
+  // A vertex's own parameter is its index's (nearest_on on its own path could pick another
+  // stretch where the path comes back near itself).
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    const Nearest n = nearest_on(b, a[k]);
+    if (n.distance <= on_path) out.emplace_back(path_t(a, k, 0), n.t);
   }
-  for (const Eigen::Vector2d& p : b) {
-    const Nearest n = nearest_on(a, p), self = nearest_on(b, p);
-    if (n.distance <= on_path) out.emplace_back(n.t, self.t);
+  for (std::size_t k = 0; k < b.size(); ++k) {
+    const Nearest n = nearest_on(a, b[k]);
+    if (n.distance <= on_path) out.emplace_back(n.t, path_t(b, k, 0));
   }
   return out;
 }

@@ -31,9 +31,6 @@ Eigen::VectorXd error_profile(const HierarchicalSurface& s, const Eigen::MatrixX
   return e;
 }
 
-}  // namespace
-
-namespace {
 // Solves `program` for `sheet`'s surface with a direct KKT solve; the coefficients, or empty
 // when the solve gave nothing finite.
 Eigen::MatrixXd direct_solve(const qp::QuadraticProgram& program, const VariationalSheet& sheet, Backend backend) {
@@ -200,9 +197,7 @@ CurveConvergence judge_curve(const VariationalSheet& sheet, const SheetEnergy& e
   }
   return out;
 }
-}  // namespace
 
-namespace {
 // "On the path": within a millionth of the parameter domain (typed coordinates with six digits;
 // a point farther off is beside the path, where the continuous problem is consistent).
 double on_path_distance(const VariationalSheet& sheet) {

@@ -105,10 +105,9 @@ LengthSolveReport ProjectionLengthSolver::solve(const LengthProblem& p, const Ma
     X = global.solve(rhs);
     ++rep.solves;
     if (!X.allFinite()) return finish(Termination::NumericalFailure, "non-finite iterate");
-    const double err = std::max(p.max_relative_length_error(X), p.max_relative_pin_error(X));
+    const double length_error = p.max_relative_length_error(X), err = std::max(length_error, p.max_relative_pin_error(X));
     // Stationarity (a least-squares solve) is measured on the last iterate only: NaN here.
-    rep.history.push_back({rep.solves, p.max_relative_length_error(X), std::numeric_limits<double>::quiet_NaN(), timer.seconds(),
-                           p.objective(X)});
+    rep.history.push_back({rep.solves, length_error, std::numeric_limits<double>::quiet_NaN(), timer.seconds(), p.objective(X)});
     if (err <= o_.tolerances.length) {
       const double stat = p.stationarity(X);
       if (stat <= o_.tolerances.stationarity || o_.tolerances.stationarity == 0)

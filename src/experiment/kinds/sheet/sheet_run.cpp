@@ -99,10 +99,9 @@ SheetSpec read_sheet(Config& c, const std::vector<std::string>& search_dirs) {
       throw InvalidConfig(c.key_path("spans") + ": " + e.what());
     }
   }();
-  try {  // coarser layers first, as VariationalSheet::refine takes them
-    std::map<int, std::vector<bspline::SpanId>> by_level;
-    for (const bspline::SpanId& r : s.refine) by_level[r.level].push_back(r);
-    for (const auto& [level, group] : by_level) (void)probe.refine(group);
+  try {  // the run's own refinement, on a trial sheet (as sheet_files.cpp checks a file's)
+    bspline::VariationalSheet trial(s.shape, Eigen::MatrixXd::Zero(probe.dof_count(), 3));
+    (void)trial.refine(s.refine);
   } catch (const InvalidInput& e) {
     throw InvalidConfig(c.key_path("refine") + ": " + e.what());
   }

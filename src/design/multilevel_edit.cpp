@@ -59,6 +59,15 @@ MultilevelEdit::MultilevelEdit(const EditLadder& ladder, Accuracy accuracy, cons
 
 MultilevelEdit::~MultilevelEdit() = default;
 
+void MultilevelEdit::restart_with_linear_terms(const std::vector<Eigen::MatrixXd>& g) {
+  if (g.size() != ladder_.problems.size())
+    throw InvalidInput("multilevel edit: " + std::to_string(g.size()) + " linear terms for " +
+                       std::to_string(ladder_.problems.size()) + " levels");
+  for (std::size_t k = 0; k < g.size(); ++k)
+    if (prepared_[k]) prepared_[k]->set_linear_term(g[k]);
+  previous_.clear();
+}
+
 Eigen::MatrixXd MultilevelEdit::prolongate(std::size_t from, std::size_t to, const Eigen::MatrixXd& x) const {
   if (backend_ == Backend::Reference) {
     Eigen::MatrixXd y = x;

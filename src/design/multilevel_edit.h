@@ -53,6 +53,11 @@ class MultilevelEdit {
   //! offsets; 1 = the configured edit). The deformation of level L; summary.iterations
   //! counts the finest level's iterations (converged) or every relaxation sweep (improved).
   EditSolution solve(double scale, const IterationCallback& cb = {});
+  //! Replaces every level's linear term g (problems[k]'s layout, n_k × 3) for the next solves
+  //! and forgets the previous step, so the next solve starts cold: a regional pass
+  //! (design/regional_edit.h) solves for an increment each round, with the energy of the whole
+  //! deformation so far as its linear term and its targets written into the ladder's problems.
+  void restart_with_linear_terms(const std::vector<Eigen::MatrixXd>& g);
   //! After solve(): the deformation on each level of the ladder (Figure 8 d–f).
   const std::vector<Eigen::MatrixXd>& level_solutions() const { return current_; }
   double analyze_s() const { return analyze_s_; }

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <map>
+#include <memory>
 #include <optional>
 #include <limits>
 #include <set>
 #include <sstream>
 
+#include "core/error.h"
 #include "core/timer.h"
 #include "design/multires_constraints.h"
 #include "problem/anderson_acceleration.h"
@@ -110,6 +112,14 @@ std::optional<std::vector<int>> pass_unknowns(const std::vector<PlacedTerm>& ter
   return region;
 }
 
+// True when pass k moves its whole level (pass_unknowns gives nullopt).
+bool moves_whole_level(const std::vector<PlacedTerm>& terms, int k, int edit_level) {
+  for (const auto& t : terms)
+    if (!t.influence.held && t.influence.level_or(edit_level) == k && t.influence.rings == Influence::kWholeLevel)
+      return true;
+  return false;
+}
+
 // Keeps the rows of A (acting on the columns `cols` of B = A·pick) that reach a kept column.
 std::vector<int> rows_reaching(const SparseMatrix& restricted) {
   std::vector<char> reaches(static_cast<std::size_t>(restricted.rows()), 0);
@@ -157,7 +167,8 @@ SolveSummary combined(const std::vector<RegionalPass>& passes) {
   for (const RegionalPass& p : passes) {
     s.iterations += p.summary.iterations;
     detail += std::string(detail.empty() ? "" : "; ") + "level " + std::to_string(p.level) + ": " +
-              std::to_string(p.unknowns) + " of " + std::to_string(p.level_vertices) + " vertices";
+              std::to_string(p.unknowns) + " of " + std::to_string(p.level_vertices) + " vertices" +
+              (p.solved_by.empty() ? "" : ", " + p.solved_by);
     if (!is_success(p.summary.termination) && is_success(s.termination)) {
       s.termination = p.summary.termination;
       s.message = "pass on level " + std::to_string(p.level) + ": " + p.summary.message;
@@ -170,39 +181,137 @@ SolveSummary combined(const std::vector<RegionalPass>& passes) {
   return s;
 }
 
+// What a pass solves each round: the increment of its unknowns for what its constraints still
+// miss (`targets`, in the rows' order, restricted to the rows that reach the unknowns), with the
+// energy of the whole deformation so far — read from `edited` — as the linear term.
+class RoundSolver {
+ public:
+  virtual ~RoundSolver() = default;
+  virtual EditSolution solve(const LinearConstraints& targets, const MultiresSurface& edited) = 0;
+  double analyze_s() const { return analyze_s_; }
+
+ protected:
+  double analyze_s_ = 0;
+};
+
+// The pass's program on level k (its region, or the whole level) solved directly by one
+// analysed PreparedEdit.
+class DirectRound : public RoundSolver {
+ public:
+  //! `own`: a solver of its own (the ladder's direct one), used instead of `solver`.
+  DirectRound(const EditProblem& full, const std::optional<std::vector<int>>& region, Restriction& r,
+              const MultiresSurface& rest, int k, ConstraintMode mode, Solver& solver, std::unique_ptr<Solver> own,
+              Backend backend, const Config& qp_options)
+      : full_(full), rest_(rest), k_(k), region_(region.has_value()), r_(r), own_(std::move(own)) {
+    if (region_) {
+      full_.levels.reset();  // a region is not a level of the hierarchy
+      program_ = restricted_to(full_, *region, r_);
+    } else {
+      program_ = full_;
+    }
+    prepared_ = std::make_unique<PreparedEdit>(program_, mode, own_ ? *own_ : solver, backend, qp_options);
+    analyze_s_ = prepared_->analyze_s();
+  }
+
+  EditSolution solve(const LinearConstraints& targets, const MultiresSurface& edited) override {
+    // E(Δ_prev + δ) = E(Δ_prev) + ½δᵀHδ + (HΔ_prev − g)ᵀδ: the energy of the whole deformation.
+    const Eigen::MatrixXd moved = edited.mesh(k_).positions() - rest_.mesh(k_).positions();
+    const Eigen::MatrixXd g = full_.g - full_.H * moved;
+    program_.constraints.C_coupled = targets.C_coupled;  // PreparedEdit reads them at every solve
+    prepared_->set_linear_term(region_ ? Eigen::MatrixXd(r_.pick.transpose() * g) : g);
+    return prepared_->solve(targets.C);
+  }
+
+ private:
+  EditProblem full_, program_;
+  const MultiresSurface& rest_;
+  int k_;
+  bool region_;
+  Restriction& r_;
+  std::unique_ptr<Solver> own_;
+  std::unique_ptr<PreparedEdit> prepared_;  // after own_: destroyed before the solver it uses
+};
+
+// A whole-level pass on §5's ladder from level c to k (design/multilevel_edit.h): every level
+// carries the pass's rows propagated to it, the same targets (a target belongs to its
+// constraint, not to a level) and the energy of the whole deformation so far on that level.
+class LadderRound : public RoundSolver {
+ public:
+  LadderRound(const EditTerms& energies_only, const MultiresSurface& rest, const DesignConstraints& imposed, int k,
+              const PassLadder& how, Backend backend)
+      : rest_(rest), coarse_(std::min(how.coarse_level, k)) {
+    DesignConstraints none;
+    ladder_ = assemble_edit_ladder(energies_only, rest, coarse_, k, none);
+    for (std::size_t i = 0; i < ladder_.problems.size(); ++i) {
+      EditProblem& p = ladder_.problems[i];
+      p.constraints = propagate_constraints(rest, coarse_ + static_cast<int>(i), imposed);
+      g_rest_.push_back(p.g);
+    }
+    edit_ = std::make_unique<MultilevelEdit>(ladder_, how.accuracy, how.direct, how.relaxer, *how.finest, backend,
+                                             how.coarse_mode);
+    analyze_s_ = edit_->analyze_s();
+  }
+
+  EditSolution solve(const LinearConstraints& targets, const MultiresSurface& edited) override {
+    std::vector<Eigen::MatrixXd> g;
+    for (std::size_t i = 0; i < ladder_.problems.size(); ++i) {
+      EditProblem& p = ladder_.problems[i];
+      FAIRSHAPE_ASSERT(p.constraints.A.rows() == targets.C.rows() && p.constraints.A_coupled.rows() == targets.C_coupled.rows(),
+                       "a ladder level's rows and the pass's targets differ in number");
+      p.constraints.C = targets.C;
+      p.constraints.C_coupled = targets.C_coupled;
+      const int l = coarse_ + static_cast<int>(i);
+      g.push_back(g_rest_[i] - p.H * (edited.mesh(l).positions() - rest_.mesh(l).positions()));
+    }
+    edit_->restart_with_linear_terms(g);
+    return edit_->solve(1.0);
+  }
+
+ private:
+  const MultiresSurface& rest_;
+  int coarse_;
+  EditLadder ladder_;  // MultilevelEdit keeps a reference: never moved after construction
+  std::vector<Eigen::MatrixXd> g_rest_;
+  std::unique_ptr<MultilevelEdit> edit_;
+};
+
 // Pass k: its program analysed once, then solved until what its constraints still miss on the
 // actual surface is within tolerance. One round is exact when k is the finest level; on a
 // coarser one the finer levels' local details turn with the edit, so the surface misses the
 // linear rows' answer by a little — the next round, its targets measured again, takes that up.
 RegionalPass solve_pass(const std::vector<PlacedTerm>& placed, const EditTerms& energies_only, const MultiresSurface& rest,
                         int k, int edit_level, ConstraintMode mode, Solver& solver, Backend backend,
-                        const Config& qp_options, double tolerance, MultiresSurface& edited) {
+                        const Config& qp_options, double tolerance, const PassLadder* ladder, MultiresSurface& edited) {
   constexpr int kMaxRounds = 30, kStallRounds = 3;
   RegionalPass pass;
   pass.level = k;
   pass.level_vertices = rest.mesh(k).n_vertices();
   const DesignConstraints imposed = imposed_in_pass(placed, k, edit_level);
-  DesignConstraints none;
-  EditProblem full = assemble_edit_problem(energies_only, rest, k, none);
-  const Eigen::MatrixXd g_rest = full.g;
-  full.constraints = propagate_constraints(rest, k, imposed);  // the rows; each round measures its targets
   const std::optional<std::vector<int>> region = pass_unknowns(placed, rest, k, edit_level);
   Eigen::VectorXi on_level = Eigen::VectorXi::Ones(pass.level_vertices);
-  Restriction r;
-  EditProblem program;  // PreparedEdit reads its coupled targets at every solve: updated in place
   if (region) {
     on_level.setZero();
     for (int v : *region) on_level(v) = 1;
-    full.levels.reset();  // a region is not a level of the hierarchy
-    program = restricted_to(full, *region, r);
-  } else {
-    program = full;
   }
   pass.unknowns = region ? static_cast<int>(region->size()) : pass.level_vertices;
   pass.reached = reached_on_level(rest, k, on_level, rest.levels());
   pass.surface_fraction = pass.reached.sum() / static_cast<double>(pass.reached.size());
-  PreparedEdit prepared(program, mode, solver, backend, qp_options);
-  pass.analyze_s = prepared.analyze_s();
+  Restriction r;
+  std::unique_ptr<RoundSolver> round_solver;
+  if (ladder && !region) {
+    round_solver = std::make_unique<LadderRound>(energies_only, rest, imposed, k, *ladder, backend);
+    pass.solved_by = std::string(to_string(ladder->accuracy)) + " ladder from level " +
+                     std::to_string(std::min(ladder->coarse_level, k));
+  } else {
+    if (ladder) pass.solved_by = "direct";
+    DesignConstraints none;
+    EditProblem full = assemble_edit_problem(energies_only, rest, k, none);
+    full.constraints = propagate_constraints(rest, k, imposed);  // the rows; each round measures its targets
+    // Under the ladder a bounded region is solved like the ladder's coarse level: directly.
+    round_solver = std::make_unique<DirectRound>(full, region, r, rest, k, ladder ? ladder->coarse_mode : mode, solver,
+                                                 ladder ? ladder->direct() : nullptr, backend, qp_options);
+  }
+  pass.analyze_s = round_solver->analyze_s();
   // Rounds: x, the pass's change of level k so far, is a fixed point of x ← x + δ(x) (δ: the
   // solve for what the surface built on x still misses); accelerated, since near a tip with
   // large details each round removes only about half of the rest (measured on the cow's nose).
@@ -210,13 +319,10 @@ RegionalPass solve_pass(const std::vector<PlacedTerm>& placed, const EditTerms& 
   // local details are kept, so the result depends on x alone (no copy of the hierarchy needed).
   const MatrixX3 before = edited.mesh(k).positions();
   AndersonAcceleration accelerate(5);
-  Eigen::MatrixXd x = Eigen::MatrixXd::Zero(program.H.rows(), 3);
+  Eigen::MatrixXd x = Eigen::MatrixXd::Zero(pass.unknowns, 3);
   double missing = 0, best = std::numeric_limits<double>::infinity();
   int best_round = 0;
   for (int round = 1;; ++round) {
-    // E(Δ_prev + δ) = E(Δ_prev) + ½δᵀHδ + (HΔ_prev − g)ᵀδ: the energy of the whole deformation.
-    const Eigen::MatrixXd moved = edited.mesh(k).positions() - rest.mesh(k).positions();
-    const Eigen::MatrixXd g = g_rest - full.H * moved;
     LinearConstraints targets = missing_targets(rest, imposed, edited);
     if (region) {
       targets.C = r.keep.transpose() * targets.C;
@@ -226,9 +332,7 @@ RegionalPass solve_pass(const std::vector<PlacedTerm>& placed, const EditTerms& 
     if (missing < best * (1 - 1e-3)) best = missing, best_round = round;
     const bool stalled = round - best_round >= kStallRounds;
     if ((round > 1 && missing <= tolerance) || stalled || round > kMaxRounds) break;
-    program.constraints.C_coupled = targets.C_coupled;
-    prepared.set_linear_term(region ? Eigen::MatrixXd(r.pick.transpose() * g) : g);
-    EditSolution sol = prepared.solve(targets.C);
+    EditSolution sol = round_solver->solve(targets, edited);
     pass.solve_s += sol.solve_s;
     pass.rounds = round;
     const int iterations = pass.summary.iterations + sol.summary.iterations;
@@ -266,27 +370,30 @@ bool is_regional(const EditTerms& terms) {
 }
 
 void check_regional_edit(const EditTerms& terms, const MultiresSurface& h, int edit_level, const Solver& solver,
-                         ConstraintMode mode) {
+                         ConstraintMode mode, const PassLadder* ladder) {
   if (terms.energies.empty()) throw InvalidInput("edit: no energy term");
   const std::vector<PlacedTerm> placed = place_terms(terms, h, edit_level);
   for (const auto& t : placed)
-    if (!t.influence.held && t.influence.rings != Influence::kWholeLevel && mode == ConstraintMode::Paper &&
+    if (!ladder && !t.influence.held && t.influence.rings != Influence::kWholeLevel && mode == ConstraintMode::Paper &&
         solver.uses_levels())
       throw InvalidInput(t.label + ": a bounded region of influence (influence_rings " +
                          std::to_string(t.influence.rings) + ") is solved on its own vertices, but the solver needs "
                          "every vertex of the level (it is multilevel): use a direct or single-level solver, or a QP "
                          "constraint_mode");
   for (int k : pass_levels(placed, edit_level)) {
-    for (const WeightedEnergy& e : terms.energies) e.energy->check_applicable(h.mesh(k));
+    // A whole-level pass under the ladder is solved on levels min(coarse, k)..k.
+    const bool on_ladder = ladder && moves_whole_level(placed, k, edit_level);
     const DesignConstraints imposed = imposed_in_pass(placed, k, edit_level);
-    if (imposed.points.empty() && imposed.normals.empty()) continue;
-    check_constraints(h, k, imposed);
+    for (int l = on_ladder ? std::min(ladder->coarse_level, k) : k; l <= k; ++l) {
+      for (const WeightedEnergy& e : terms.energies) e.energy->check_applicable(h.mesh(l));
+      if (!imposed.points.empty() || !imposed.normals.empty()) check_constraints(h, l, imposed);
+    }
   }
 }
 
 RegionalEditResult solve_regional_edit(const EditTerms& terms, const MultiresSurface& rest, int edit_level,
                                        ConstraintMode mode, Solver& solver, Backend backend, const Config& qp_options,
-                                       double tolerance) {
+                                       double tolerance, const PassLadder* ladder) {
   const std::vector<PlacedTerm> placed = place_terms(terms, rest, edit_level);
   const int finest = rest.levels();
   RegionalEditResult out{rest, {}, {}, Eigen::VectorXi::Zero(rest.mesh(finest).n_vertices()), {}, 0, 0, 0, 0};
@@ -301,7 +408,7 @@ RegionalEditResult solve_regional_edit(const EditTerms& terms, const MultiresSur
   for (int k : pass_levels(placed, edit_level)) {
     RegionalPass pass =
         solve_pass(placed, energies_only, rest, k, edit_level, mode, solver, backend, qp_options, tolerance * size,
-                   out.edited);
+                   ladder, out.edited);
     out.analyze_s += pass.analyze_s;
     out.solve_s += pass.solve_s;
     for (Eigen::Index v = 0; v < pass.reached.size(); ++v)

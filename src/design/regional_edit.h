@@ -17,13 +17,21 @@
 // A constraint given on level j is met on level j (its vertex or limit point), so its influence
 // level must be ≤ j. With every constraint on the edit level and no rings this is one pass
 // over the whole level: the plain single-level edit.
+//
+// With §5's accuracy ladder (PassLadder): a pass that moves a whole level k is solved on the
+// ladder from min(coarse, k) to k — interactive, improved or converged, as a single-level run
+// would be — and a pass on a bounded region directly, like the ladder's coarse level (its few
+// vertices are what the ladder would make cheap). Either way nothing outside a region moves:
+// the ladder only ever moves a whole level, which is that pass's region.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "design/edit_assembly.h"
 #include "design/edit_solve.h"
 #include "design/influence.h"
+#include "design/multilevel_edit.h"
 
 namespace fairshape {
 
@@ -41,6 +49,9 @@ struct RegionalPass {
   int rounds = 0;            // solves until the surface met the pass's constraints
   int unknowns = 0;          // vertices of level `level` that moved freely
   int level_vertices = 0;
+  //! Under the ladder: "interactive ladder from level c" etc., or "direct" for a bounded region;
+  //! empty without a ladder.
+  std::string solved_by;
   double surface_fraction = 0;  // of the finest level's vertices, inside this pass's region
   Eigen::VectorXi reached;      // 1 for the finest-level vertices of this pass's region
   SolveSummary summary;
@@ -61,6 +72,17 @@ struct RegionalEditResult {
   double outside_region_move = 0;
 };
 
+//! How the passes are solved under §5's accuracy ladder (design/multilevel_edit.h); the
+//! factories and the solver must outlive the solve.
+struct PassLadder {
+  Accuracy accuracy = Accuracy::Interactive;
+  int coarse_level = 0;
+  SolverFactory direct;    // the coarse level, and every pass on a bounded region
+  SolverFactory relaxer;   // improved: each finer level's relaxation
+  Solver* finest = nullptr;  // converged: the configured solver on the pass's level
+  ConstraintMode coarse_mode = ConstraintMode::Kkt;  // the coarse level and the bounded regions
+};
+
 //! True when some constraint has an influence level or rings of its own.
 bool is_regional(const EditTerms& terms);
 
@@ -68,12 +90,14 @@ bool is_regional(const EditTerms& terms);
 //! and are not finer than the level their constraint is given on, a bounded region is not
 //! asked of a solver that needs the whole level (multigrid), and each pass's constraints can
 //! be placed and do not conflict. \throw InvalidInput naming the constraint.
+//! `ladder`: as solve_regional_edit's (the ladder's levels are checked too).
 void check_regional_edit(const EditTerms& terms, const MultiresSurface& h, int edit_level, const Solver& solver,
-                         ConstraintMode mode);
+                         ConstraintMode mode, const PassLadder* ladder = nullptr);
 
 //! \throw InvalidInput as check_regional_edit; SolverError from a pass's solve.
 RegionalEditResult solve_regional_edit(const EditTerms& terms, const MultiresSurface& rest, int edit_level,
                                        ConstraintMode mode, Solver& solver, Backend backend, const Config& qp_options,
-                                       double tolerance = kDefaultConstraintTolerance);
+                                       double tolerance = kDefaultConstraintTolerance,
+                                       const PassLadder* ladder = nullptr);
 
 }  // namespace fairshape

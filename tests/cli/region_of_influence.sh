@@ -45,8 +45,9 @@ expect_error 2 "finer than level 0" -- "$FS" run $C --out "$S/bad1" "${BASE[@]}"
   --set "constraints=[$FIX, {$NOSE, level: 0, influence_level: 2}]"
 expect_error 2 "constraints\[0\].influence_level: a fixed constraint" -- "$FS" run $C --out "$S/bad2" "${BASE[@]}" \
   --set "constraints=[{type: fixed, region: {axis: x, from: 0.0, to: 0.3}, influence_level: 0}, {$NOSE}]"
-expect_error 2 "cannot be combined" -- "$FS" run $C --out "$S/bad3" "${BASE[@]}" \
-  --set 'problem={constraint_mode: paper, accuracy: interactive, coarse_level: 1}' \
+expect_error 2 "problem.drag_steps: a drag cannot be combined with constraints\[1\]'s influence_level" -- \
+  "$FS" run $C --out "$S/bad3" "${BASE[@]}" \
+  --set 'problem={constraint_mode: paper, accuracy: interactive, coarse_level: 1, drag_steps: 2}' \
   --set "constraints=[$FIX, {$NOSE, influence_level: 0}]"
 expect_error 2 "influence_rings" -- "$FS" run $C --out "$S/bad4" "${BASE[@]}" \
   --set "constraints=[$FIX, {$NOSE, influence_rings: -5}]"
@@ -60,6 +61,27 @@ import csv, sys
 r = list(csv.DictReader(open(f"{sys.argv[1]}/given0/runs.csv")))[0]
 assert r["termination"] == "converged" and float(r["constraint_violation"]) < 1e-9, r
 assert float(r["outside_region_move"]) == 0.0, r
+PYEOF
+
+# Under §5's ladder: the bounded level-0 region solved directly, the whole-level handle on the
+# interactive / improved ladder from level 1; nothing outside the regions moves, every
+# constraint is met, and the error against the converged ladder is reported.
+TOP='type: position, nearest: [-0.05, 0.21, 0.0], offset: [0.0, 0.04, 0.0]'
+for a in interactive improved; do
+  "$FS" run $C --out "$S/ladder_$a" "${BASE[@]}" \
+    --set "problem={constraint_mode: paper, accuracy: $a, coarse_level: 1}" \
+    --set "constraints=[$FIX, {$NOSE, influence_level: 0}, {$TOP}]" 2>/dev/null || fail "ladder_$a: the run failed"
+done
+$PY - "$S" <<'PYEOF'
+import csv, sys
+for a in ("interactive", "improved"):
+    r = list(csv.DictReader(open(f"{sys.argv[1]}/ladder_{a}/runs.csv")))[0]
+    assert r["termination"] in ("converged", "schedule_completed"), (a, r["termination"], r["message"])
+    assert "level 0: " in r["message"] and "direct" in r["message"], r["message"]
+    assert f"{a} ladder from level 1" in r["message"], r["message"]
+    assert float(r["outside_region_move"]) == 0.0, r
+    assert float(r["constraint_violation"]) < 1e-8, r
+    assert 0 < float(r["error_vs_reference"]) < 0.5, (a, r["error_vs_reference"])
 PYEOF
 
 # Rotation-aware details: the nose's normal turned 45 degrees (remeshed cow, details). Whether

@@ -7,6 +7,8 @@
 #include <Eigen/Geometry>
 
 #include "constraint/constraint_factories.h"
+#include "design/edit_assembly.h"
+#include "design/multilevel_edit.h"
 #include "design/regional_edit.h"
 #include "design/rotation_aware_edit.h"
 #include "energy/local_rotations.h"
@@ -151,6 +153,92 @@ TEST_CASE("region of influence: bad influence levels are errors naming the const
   const EditTerms missing = cow.terms({cow.back.get(), cow.nose.get()}, {held(), at(5, 1)});
   CHECK_THROWS_WITH(check_regional_edit(missing, cow.h, 2, *direct, ConstraintMode::Kkt),
                     Catch::Contains("not in the hierarchy"));
+}
+
+// §5's accuracy ladder with regions of influence (design/regional_edit.h, PassLadder).
+namespace {
+
+std::unique_ptr<Solver> sweeps(int n) {
+  Config cfg(YAML::Load("{max_iterations: " + std::to_string(n) + ", check_every: " + std::to_string(n) +
+                        ", tolerance: 0}"),
+             "problem.relaxation");
+  return components().solvers.create("gauss_seidel", Backend::Optimized, cfg);
+}
+
+PassLadder ladder_of(Accuracy a, int coarse, Solver* finest) {
+  return {a, coarse, [] { return cholesky(); }, [] { return sweeps(10); }, finest, ConstraintMode::Kkt};
+}
+
+}  // namespace
+
+TEST_CASE("regions under the accuracy ladder: a whole-level pass is the ladder's own solve",
+          "[design][bm][influence][ladder]") {
+  const CowEdit cow(2);
+  const EditTerms plain = cow.terms({cow.back.get(), cow.nose.get()}, {});
+  DesignConstraints placed;
+  const EditLadder ladder = assemble_edit_ladder(plain, cow.h, 0, 2, placed);
+  const auto finest = cholesky();
+  for (Accuracy a : {Accuracy::Interactive, Accuracy::Improved, Accuracy::Converged}) {
+    INFO(to_string(a));
+    const PassLadder how = ladder_of(a, 0, finest.get());
+    MultilevelEdit edit(ladder, a, how.direct, how.relaxer, *finest, Backend::Optimized, ConstraintMode::Kkt);
+    const EditSolution expected = edit.solve(1.0);
+    const auto unused = cholesky();
+    const RegionalEditResult r =
+        solve_regional_edit(cow.terms({cow.back.get(), cow.nose.get()}, {held(), at(2, Influence::kWholeLevel)}), cow.h,
+                            2, ConstraintMode::Paper, *unused, Backend::Optimized, Config{}, kDefaultConstraintTolerance,
+                            &how);
+    REQUIRE(is_success(r.summary.termination));
+    REQUIRE(r.passes.size() == 1);
+    CHECK_THAT(r.passes[0].solved_by, Catch::StartsWith(std::string(to_string(a)) + " ladder from level 0"));
+    CHECK(relative_error(cow.moved(r), expected.delta) < 1e-10);
+  }
+}
+
+TEST_CASE("regions under the accuracy ladder: bounded regions are solved exactly in every mode, nothing outside moves",
+          "[design][bm][influence][ladder]") {
+  const CowEdit cow(2);
+  const auto finest = cholesky();
+  const EditTerms bounded = cow.terms({cow.back.get(), cow.nose.get()}, {held(), at(1, 2)});
+  const RegionalEditResult exact = cow.solve(bounded, ConstraintMode::Kkt);
+  for (Accuracy a : {Accuracy::Interactive, Accuracy::Improved, Accuracy::Converged}) {
+    INFO(to_string(a));
+    const PassLadder how = ladder_of(a, 0, finest.get());
+    const auto unused = cholesky();
+    const RegionalEditResult r = solve_regional_edit(bounded, cow.h, 2, ConstraintMode::Paper, *unused,
+                                                     Backend::Optimized, Config{}, kDefaultConstraintTolerance, &how);
+    REQUIRE(r.summary.termination == Termination::Converged);
+    CHECK(r.passes[0].solved_by == "direct");
+    CHECK(relative_error(cow.moved(r), cow.moved(exact)) < 1e-12);
+    CHECK(r.outside_region_move == 0.0);
+  }
+}
+
+TEST_CASE("regions under the accuracy ladder: a bounded coarse pass and a whole-level pass combine",
+          "[design][bm][influence][ladder]") {
+  const CowEdit cow(2);
+  const auto finest = cholesky();
+  // The top of the back on its own level-0 region, the nose on the whole edit level.
+  const EditTerms mixed = cow.terms({cow.back.get(), cow.top.get(), cow.nose.get()}, {held(), at(0, 2), Influence{}});
+  const PassLadder converged_how = ladder_of(Accuracy::Converged, 1, finest.get());
+  const auto unused = cholesky();
+  const RegionalEditResult converged = solve_regional_edit(mixed, cow.h, 2, ConstraintMode::Paper, *unused,
+                                                           Backend::Optimized, Config{}, kDefaultConstraintTolerance,
+                                                           &converged_how);
+  REQUIRE(converged.summary.termination == Termination::Converged);
+  const PassLadder how = ladder_of(Accuracy::Interactive, 1, finest.get());
+  const RegionalEditResult r = solve_regional_edit(mixed, cow.h, 2, ConstraintMode::Paper, *unused, Backend::Optimized,
+                                                   Config{}, kDefaultConstraintTolerance, &how);
+  REQUIRE(is_success(r.summary.termination));
+  REQUIRE(r.passes.size() == 2);
+  CHECK(r.passes[0].solved_by == "direct");
+  CHECK_THAT(r.passes[1].solved_by, Catch::StartsWith("interactive ladder from level 1"));
+  CHECK(r.constraint_violation < 1e-8);  // every constraint met, the coarse one kept by the ladder's rows
+  // The interactive answer approximates the converged one: close, but not the same.
+  const double error = relative_error(cow.moved(r), cow.moved(converged));
+  INFO("interactive vs converged " << error);
+  CHECK(error > 1e-6);
+  CHECK(error < 0.2);
 }
 
 // Beyond the paper: rotation-aware details (energy/local_rotations.h, design/rotation_aware_edit.h).

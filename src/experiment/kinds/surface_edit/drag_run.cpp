@@ -14,17 +14,16 @@ std::vector<double> drag_scales(int steps) {
   return s;
 }
 
-DragOutcome run_drag(const SurfaceEditSpec& spec, const RunOutputs& out, const EditLadder& ladder,
-                     const std::vector<const ReferenceSolution*>& references, const IterationCallback& last_step,
-                     bool write_steps, const StepCallback& on_step) {
-  const AccuracyOptions& a = spec.accuracy;
-  const Backend backend = spec.implementation;
-  const SolverFactory direct = [backend] {
+SolverFactory ladder_direct_solver(Backend backend) {
+  return [backend] {
     Config none;
     return components().solvers.create("cholesky", backend, none);
   };
+}
+
+SolverFactory ladder_relaxer(const AccuracyOptions& a, Backend backend) {
   // The cascade's smoother: a fixed count, no residual checks (the paper's fixed iterations).
-  const SolverFactory relaxer = [&a, backend] {
+  return [&a, backend] {
     YAML::Node n;
     n["max_iterations"] = a.relaxation_sweeps;
     n["check_every"] = a.relaxation_sweeps;
@@ -33,7 +32,20 @@ DragOutcome run_drag(const SurfaceEditSpec& spec, const RunOutputs& out, const E
     Config c(n, "problem.relaxation");
     return components().solvers.create(a.relaxation, backend, c);
   };
-  MultilevelEdit edit(ladder, a.ladder(), direct, relaxer, *spec.solver, backend,
+}
+
+PassLadder pass_ladder(const SurfaceEditSpec& spec, Solver* finest) {
+  const AccuracyOptions& a = spec.accuracy;
+  return {a.ladder(), a.coarse_level, ladder_direct_solver(spec.implementation),
+          ladder_relaxer(a, spec.implementation), finest, a.coarse_constraint_mode};
+}
+
+DragOutcome run_drag(const SurfaceEditSpec& spec, const RunOutputs& out, const EditLadder& ladder,
+                     const std::vector<const ReferenceSolution*>& references, const IterationCallback& last_step,
+                     bool write_steps, const StepCallback& on_step) {
+  const AccuracyOptions& a = spec.accuracy;
+  const Backend backend = spec.implementation;
+  MultilevelEdit edit(ladder, a.ladder(), ladder_direct_solver(backend), ladder_relaxer(a, backend), *spec.solver, backend,
                       a.coarse_constraint_mode);
   const std::vector<double> scales = drag_scales(a.drag_steps);
   DragOutcome result;

@@ -8,9 +8,20 @@
 #include <vector>
 
 #include "design/multilevel_edit.h"
+#include "design/regional_edit.h"
 #include "experiment/kinds/surface_edit/run_one.h"
 
 namespace fairshape {
+
+//! The ladder's coarse (and bounded-region) solver: CHOLMOD.
+SolverFactory ladder_direct_solver(Backend backend);
+//! The improved cascade's relaxation on each finer level: problem.relaxation with a fixed
+//! count (problem.relaxation_sweeps), no residual checks. `a` must outlive the factory.
+SolverFactory ladder_relaxer(const AccuracyOptions& a, Backend backend);
+
+//! The ladder of a run with regions of influence (design/regional_edit.h), as configured;
+//! `finest` is the converged mode's solver. Only for spec.accuracy.multilevel().
+PassLadder pass_ladder(const SurfaceEditSpec& spec, Solver* finest);
 
 //! s / steps for s = 1..steps.
 std::vector<double> drag_scales(int steps);

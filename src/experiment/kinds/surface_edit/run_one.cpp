@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <random>
 
 #include "core/error.h"
@@ -229,11 +230,14 @@ void report_result(const SurfaceEditSpec& spec, const RunOutputs& out, const Mul
 void execute_regional(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& out, const MultiresSurface& rest,
                       int level, MetricRow& row) {
   const EditTerms terms = spec.edit_terms();
+  // Under §5's ladder the whole-level passes are solved on it (design/regional_edit.h).
+  const std::optional<PassLadder> ladder =
+      spec.accuracy.multilevel() ? std::optional<PassLadder>(pass_ladder(spec, spec.solver.get())) : std::nullopt;
   const double before_solve_mb = trimmed_rss_mb();
   reset_peak_rss();
   const RegionalEditResult r =
       solve_regional_edit(terms, rest, level, spec.constraint_mode, *spec.solver, spec.implementation, spec.qp_config(),
-                          spec.constraint_tolerance);
+                          spec.constraint_tolerance, ladder ? &*ladder : nullptr);
   const double solve_peak_mb = peak_rss_mb();
   row["peak_rss_mb"] = num(solve_peak_mb);
   row["solve_extra_mb"] = num(solve_peak_mb - before_solve_mb);
@@ -273,11 +277,16 @@ void execute_regional(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
   if (spec.output.reference_solution) {
     const std::string key = spec.system_key + std::string(constraint_mode_names().name(spec.constraint_mode)) + "|regional";
     if (!cache.reference_solution(key)) {
+      // The yardstick: the same passes with CHOLMOD on the free vertices — under the ladder its
+      // converged mode with CHOLMOD as the finest solver (the answer interactive and improved
+      // approximate; bounded regions are solved the same way in every mode).
       Config none_cfg;
       const auto direct = components().solvers.create("cholesky", Backend::Optimized, none_cfg);
+      std::optional<PassLadder> converged = ladder;
+      if (converged) converged->accuracy = Accuracy::Converged, converged->finest = direct.get();
       const RegionalEditResult ref =
           solve_regional_edit(terms, rest, level, spec.constraint_mode, *direct, Backend::Optimized, spec.qp_config(),
-                              spec.constraint_tolerance);
+                              spec.constraint_tolerance, converged ? &*converged : nullptr);
       if (is_success(ref.summary.termination))
         cache.store_reference_solution(key, {ref.edited.mesh(finest).positions() - rest.mesh(finest).positions(), ref.solve_s});
     }

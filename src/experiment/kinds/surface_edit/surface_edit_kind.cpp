@@ -1,11 +1,13 @@
 // Boier-Martin et al.'s constrained edits of a (multiresolution) surface as a run kind.
 #include <filesystem>
+#include <optional>
 #include <set>
 
 #include "core/error.h"
 #include "design/regional_edit.h"
 #include "experiment/components.h"
 #include "experiment/kinds/kinds.h"
+#include "experiment/kinds/surface_edit/drag_run.h"
 #include "experiment/kinds/surface_edit/run_one.h"
 #include "experiment/kinds/thread_limit.h"
 
@@ -61,8 +63,11 @@ class SurfaceEditKind final : public RunKind {
     const int level = spec.edit_level < 0 ? rest->levels() : spec.edit_level;
     try {
       const EditTerms terms = spec.edit_terms();
-      if (is_regional(terms))
-        check_regional_edit(terms, *rest, level, *spec.solver, spec.constraint_mode);
+      if (is_regional(terms)) {
+        const std::optional<PassLadder> ladder =
+            spec.accuracy.multilevel() ? std::optional<PassLadder>(pass_ladder(spec, spec.solver.get())) : std::nullopt;
+        check_regional_edit(terms, *rest, level, *spec.solver, spec.constraint_mode, ladder ? &*ladder : nullptr);
+      }
       else
         check_edit(terms, *rest, spec.accuracy.multilevel() ? spec.accuracy.coarse_level : level, level);
     } catch (const InvalidInput& e) {

@@ -222,16 +222,17 @@ void read_accuracy(Config& pc, SurfaceEditSpec& s) {
                         " needs problem.constraint_mode paper");
 }
 
-// §5's ladder solves every constraint on one level at a time; constraints with regions of their
-// own are solved in passes (design/regional_edit.h). The two are not combined.
-void refuse_regions_on_ladder(Config& pc, const SurfaceEditSpec& s) {
-  if (!s.accuracy.multilevel()) return;
+// Constraints with regions of influence under §5's ladder (design/regional_edit.h): a pass on a
+// whole level is solved on the ladder, a bounded region directly. A drag moves every handle of
+// one constraint set along its offset, which the regional passes (each measuring what is still
+// missing on the surface) do not do: refused rather than run as a single step.
+void refuse_drags_with_regions(Config& pc, const SurfaceEditSpec& s) {
+  if (s.accuracy.drag_steps <= 1) return;
   for (std::size_t i = 0; i < s.constraints.size(); ++i)
     if (s.constraints[i].influence.regional())
-      throw InvalidConfig(pc.key_path("accuracy") + ": " + std::string(accuracy_names().name(s.accuracy.mode)) +
-                          " cannot be combined with constraints[" + std::to_string(i) +
-                          "]'s influence_level / influence_rings: constraints with regions of influence are "
-                          "solved exactly, pass by pass (use accuracy single-level)");
+      throw InvalidConfig(pc.key_path("drag_steps") + ": a drag cannot be combined with constraints[" +
+                          std::to_string(i) + "]'s influence_level / influence_rings: constraints with regions of "
+                          "influence are solved in passes, once (use drag_steps: 1)");
 }
 
 // problem.rotation_iterations: details that turn with the surface (design/rotation_aware_edit.h),
@@ -342,7 +343,7 @@ SurfaceEditSpec SurfaceEditSpec::from_config(const YAML::Node& run_config, const
                                   "kkt (default): the exact Lagrange system; paper: least-squares constrained vertices "
                                   "then the solver (§4.3); qr_penalty / range_space: Welch & Witkin's solvers (src/qp)");
   read_accuracy(pc, s);
-  refuse_regions_on_ladder(pc, s);
+  refuse_drags_with_regions(pc, s);
   s.constraint_tolerance = pc.get_number(
       "constraint_tolerance", s.constraint_tolerance, 1e-15, 1.0,
       "regional edits: the largest miss of the constraints, measured on the result, × the bounding-box diagonal");

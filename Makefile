@@ -4,7 +4,7 @@ FUZZ_RUNS ?= 100000
 BUILD_DIR := build
 FAIRSHAPE := $(BUILD_DIR)/bin/fairshape
 
-.PHONY: deps configure build test demo asan-test fuzz fuzz-run bench clean
+.PHONY: deps configure build install test demo asan-test fuzz fuzz-run bench clean
 
 deps:
 	bash scripts/install-deps.sh
@@ -14,6 +14,12 @@ configure: deps
 
 build: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS)
+
+# The CLI, the libraries, their headers (include/fairshape/) and the CMake package
+# (lib/cmake/fairshape: find_package(fairshape)); PREFIX=/path to install elsewhere.
+PREFIX ?= /usr/local
+install: build
+	cmake --install $(BUILD_DIR) --prefix $(PREFIX)
 
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS) -LE slow --timeout 600

@@ -11,53 +11,38 @@ endmacro()
 fairshape_require(Eigen3 libeigen3-dev 3.4 NO_MODULE)
 fairshape_require(yaml-cpp libyaml-cpp-dev CONFIG)
 fairshape_require(nlohmann_json nlohmann-json3-dev CONFIG)
-fairshape_require(CLI11 libcli11-dev CONFIG)
-fairshape_require(Ceres libceres-dev 2.1 CONFIG)
-fairshape_require(VTK libvtk9-dev 9.1 COMPONENTS CommonCore CommonDataModel IOXML IOImage
-                  RenderingCore RenderingOpenGL2 RenderingAnnotation RenderingFreeType FiltersCore
-                  FiltersGeometry FiltersSources)
+if(FAIRSHAPE_FULL)
+  fairshape_require(CLI11 libcli11-dev CONFIG)
+endif()
+if(FAIRSHAPE_WITH_CERES)
+  fairshape_require(Ceres libceres-dev 2.1 CONFIG)
+endif()
+set(FAIRSHAPE_VTK_COMPONENTS CommonCore CommonDataModel IOXML IOImage RenderingCore RenderingOpenGL2
+    RenderingAnnotation RenderingFreeType FiltersCore FiltersGeometry FiltersSources)
+if(FAIRSHAPE_WITH_VTK)
+  fairshape_require(VTK libvtk9-dev 9.1 COMPONENTS ${FAIRSHAPE_VTK_COMPONENTS})
+endif()
 fairshape_require(TBB libtbb-dev CONFIG)
-fairshape_require(OpenSSL libssl-dev)  # SHA-256 of input files and configs (provenance)
+if(FAIRSHAPE_FULL)
+  fairshape_require(OpenSSL libssl-dev)  # SHA-256 of input files and configs (provenance)
+endif()
 if(FAIRSHAPE_BUILD_TESTS)
   fairshape_require(Catch2 catch2 2 CONFIG)
 endif()
 if(FAIRSHAPE_BUILD_BENCHMARKS)
   fairshape_require(benchmark libbenchmark-dev CONFIG)
 endif()
-set(CGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE TRUE)
-fairshape_require(CGAL libcgal-dev CONFIG)
-find_package(X11 QUIET)
-if(NOT X11_FOUND)
-  message(FATAL_ERROR "fairshape: X11 not found: install the Debian package 'libx11-dev'")
+if(FAIRSHAPE_WITH_CGAL)
+  set(CGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE TRUE)
+  fairshape_require(CGAL libcgal-dev CONFIG)
 endif()
-
-# SuiteSparse 5 ships no CMake package: imported targets from its headers and libraries.
-find_path(SUITESPARSE_INCLUDE_DIR cholmod.h PATH_SUFFIXES suitesparse)
-if(NOT SUITESPARSE_INCLUDE_DIR)
-  message(FATAL_ERROR "fairshape: SuiteSparse (cholmod.h) not found: install the Debian package "
-                      "'libsuitesparse-dev' (or run scripts/install-deps.sh)")
-endif()
-foreach(part cholmod spqr umfpack)
-  string(TOUPPER ${part} PART)
-  find_library(SUITESPARSE_${PART}_LIBRARY ${part})
-  if(NOT SUITESPARSE_${PART}_LIBRARY)
-    message(FATAL_ERROR "fairshape: SuiteSparse library '${part}' not found: install the Debian "
-                        "package 'libsuitesparse-dev'")
+if(FAIRSHAPE_WITH_VTK)  # Debian's VTK renders through X11
+  find_package(X11 QUIET)
+  if(NOT X11_FOUND)
+    message(FATAL_ERROR "fairshape: X11 not found: install the Debian package 'libx11-dev'")
   endif()
-  add_library(SuiteSparse::${PART}_fs INTERFACE IMPORTED)
-  target_include_directories(SuiteSparse::${PART}_fs SYSTEM INTERFACE ${SUITESPARSE_INCLUDE_DIR})
-  target_link_libraries(SuiteSparse::${PART}_fs INTERFACE ${SUITESPARSE_${PART}_LIBRARY})
-endforeach()
-
-# OpenSubdiv's Debian CMake config is broken (it names static libraries that are not shipped):
-# an imported target from its headers and the shared libosdCPU. subdivision uses it for exact
-# limit evaluation at surface points (Bfr); the conformance tests use it as an oracle.
-find_path(OPENSUBDIV_INCLUDE_DIR opensubdiv/far/topologyRefiner.h)
-find_library(OPENSUBDIV_CPU_LIBRARY osdCPU)
-if(NOT OPENSUBDIV_INCLUDE_DIR OR NOT OPENSUBDIV_CPU_LIBRARY)
-  message(FATAL_ERROR "fairshape: OpenSubdiv (opensubdiv/far/topologyRefiner.h, libosdCPU) not found: "
-                      "install the Debian package 'libosd-dev' (or run scripts/install-deps.sh)")
 endif()
-add_library(OpenSubdiv::cpu INTERFACE IMPORTED)
-target_include_directories(OpenSubdiv::cpu SYSTEM INTERFACE ${OPENSUBDIV_INCLUDE_DIR})
-target_link_libraries(OpenSubdiv::cpu INTERFACE ${OPENSUBDIV_CPU_LIBRARY})
+
+# SuiteSparse and OpenSubdiv as imported targets (also what an installed fairshape's
+# fairshapeConfig.cmake defines for its users).
+include(FairshapeImportedTargets)

@@ -1,10 +1,10 @@
 // The `fixed` and `position` constraints: selected vertices of one level (the finest unless
 // `level` says otherwise) keep their place or move by an offset.
-#include "constraint/constraint_factories.h"
-#include "constraint/rigid_motion.h"
-#include "constraint/surface_points.h"
-#include "constraint/vertex_selection.h"
-#include "subdivision/limit.h"
+#include "fairshape/constraint/constraint_factories.h"
+#include "fairshape/constraint/rigid_motion.h"
+#include "fairshape/constraint/surface_points.h"
+#include "fairshape/constraint/vertex_selection.h"
+#include "fairshape/subdivision/limit.h"
 
 namespace fairshape {
 namespace {
@@ -101,10 +101,12 @@ void register_constraints(ConstraintRegistry& r) {
           make_normal);
     r.add("rigid", b, "selected vertices (e.g. a boundary loop) follow a rotation and translation (Figure 9)",
           make_rigid);
+#if FAIRSHAPE_WITH_CGAL  // snapping finds closest points through CGAL (remesh/closest_point.h)
     r.add("curve", b,
           "a curve on the surface follows a rigid motion; vertices snapped onto it (Appendix) or, with placement "
           "limit_points, points of the limit surface along it",
           make_curve);
+#endif
   }
 }
 

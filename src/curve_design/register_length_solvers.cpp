@@ -1,8 +1,10 @@
-#include "core/config.h"
-#include "curve_design/ceres_length_solver.h"
-#include "curve_design/linearized_length_solver.h"
-#include "curve_design/projection_length_solver.h"
-#include "curve_design/trust_region_length_solver.h"
+#include "fairshape/core/config.h"
+#if FAIRSHAPE_WITH_CERES
+#include "fairshape/curve_design/ceres_length_solver.h"
+#endif
+#include "fairshape/curve_design/linearized_length_solver.h"
+#include "fairshape/curve_design/projection_length_solver.h"
+#include "fairshape/curve_design/trust_region_length_solver.h"
 
 namespace fairshape {
 namespace {
@@ -73,6 +75,7 @@ void register_length_solvers(LengthSolverRegistry& r) {
   r.add("trust_region", Backend::Optimized,
         "globalized (not in the paper): trust-region Newton on the lengths, inertia-controlled, negative-curvature steps; banded LDL^T",
         trust_region(Backend::Optimized));
+#if FAIRSHAPE_WITH_CERES  // configured with Ceres (FAIRSHAPE_WITH_CERES)
   const auto ceres = [](Config& c) {
     CeresOptions o;
     o.tolerances = read_tolerances(c);
@@ -85,6 +88,7 @@ void register_length_solvers(LengthSolverRegistry& r) {
   };
   for (Backend b : {Backend::Reference, Backend::Optimized})
     r.add("ceres", b, "exact: augmented Lagrangian over Ceres (SPARSE_NORMAL_CHOLESKY, SuiteSparse)", ceres);
+#endif
   const auto projection = [](Config& c) {
     ProjectionOptions o;
     o.tolerances = read_tolerances(c);

@@ -28,10 +28,10 @@
 #include <string>
 #include <vector>
 
-#include "design/edit_assembly.h"
-#include "design/edit_solve.h"
-#include "design/influence.h"
-#include "design/multilevel_edit.h"
+#include "fairshape/design/edit_assembly.h"
+#include "fairshape/design/edit_solve.h"
+#include "fairshape/design/influence.h"
+#include "fairshape/design/multilevel_edit.h"
 
 namespace fairshape {
 

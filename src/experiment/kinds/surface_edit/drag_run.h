@@ -7,9 +7,9 @@
 #include <functional>
 #include <vector>
 
-#include "design/multilevel_edit.h"
-#include "design/regional_edit.h"
-#include "experiment/kinds/surface_edit/run_one.h"
+#include "fairshape/design/multilevel_edit.h"
+#include "fairshape/design/regional_edit.h"
+#include "fairshape/experiment/kinds/surface_edit/run_one.h"
 
 namespace fairshape {
 

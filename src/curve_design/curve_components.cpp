@@ -20,9 +20,9 @@ class SegmentLengthsKind final : public CurveConstraintKind {
 class TotalLengthKind final : public CurveConstraintKind {
  public:
   explicit TotalLengthKind(Config& c) {
-    if (!c.has("value")) return;
-    value_ = c.get<double>("value", 0, "the total length to keep (omitted: the reference curve's length)");
-    if (!(value_ > 0) || !std::isfinite(value_))
+    const bool given = c.has("value");  // read either way, so `fairshape list` shows the option
+    value_ = c.get<double>("value", 0, "the total length to keep, a positive length (omitted: the reference curve's length)");
+    if (given && (!(value_ > 0) || !std::isfinite(value_)))
       throw InvalidConfig(c.key_path("value") + ": " + format_default(value_) +
                           " is not a length; give a positive finite number (or omit it: the reference curve's length)");
   }

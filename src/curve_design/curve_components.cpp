@@ -1,9 +1,9 @@
-#include "curve_design/curve_components.h"
+#include "fairshape/curve_design/curve_components.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/config.h"
+#include "fairshape/core/config.h"
 
 namespace fairshape {
 namespace {

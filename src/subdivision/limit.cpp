@@ -1,10 +1,10 @@
-#include "subdivision/limit.h"
+#include "fairshape/subdivision/limit.h"
 
 #include <Eigen/Geometry>
 #include <cmath>
 
-#include "subdivision/crease_rules.h"
-#include "subdivision/subdivider.h"
+#include "fairshape/subdivision/crease_rules.h"
+#include "fairshape/subdivision/subdivider.h"
 
 namespace fairshape {
 namespace {

@@ -11,16 +11,16 @@
 #include <Eigen/LU>
 #include <yaml-cpp/yaml.h>
 
-#include "core/config.h"
-#include "core/error.h"
-#include "curve_design/ceres_length_solver.h"
-#include "curve_design/editing_loop.h"
-#include "curve_design/kkt_factor.h"
-#include "curve_design/length_manifold.h"
-#include "curve_design/second_order.h"
-#include "experiment/kinds/curve/curve_run.h"
-#include "experiment/run_outputs.h"
-#include "io/mesh_io.h"
+#include "fairshape/core/config.h"
+#include "fairshape/core/error.h"
+#include "fairshape/curve_design/ceres_length_solver.h"
+#include "fairshape/curve_design/editing_loop.h"
+#include "fairshape/curve_design/kkt_factor.h"
+#include "fairshape/curve_design/length_manifold.h"
+#include "fairshape/curve_design/second_order.h"
+#include "fairshape/experiment/kinds/curve/curve_run.h"
+#include "fairshape/experiment/run_outputs.h"
+#include "fairshape/io/mesh_io.h"
 #include "test_support.h"
 
 using namespace fairshape;

@@ -8,9 +8,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "feature/adaptive_evaluation.h"
-#include "feature/featured_surface.h"
-#include "io/mesh_io.h"
+#include "fairshape/feature/adaptive_evaluation.h"
+#include "fairshape/feature/featured_surface.h"
+#include "fairshape/io/mesh_io.h"
 #include "test_support.h"
 
 using namespace fairshape;

@@ -77,12 +77,21 @@ class AugmentedRowCost final : public ceres::CostFunction {
 LengthSolveReport CeresLengthSolver::solve(const LengthProblem& p, const MatrixX3& start) const {
   const Timer timer;
   LengthSolveReport rep;
+  if (p.has_dense_rows()) {
+    // One residual over every point would make Ceres's normal equations dense (O(n³) per step):
+    // refused, not approximated.
+    rep.points = start;
+    rep.summary.termination = Termination::InvalidInput;
+    rep.summary.message = "solver ceres does not take the total_length constraint (a residual over every point makes "
+                          "its normal equations dense); the solvers that do: linearized, trust_region";
+    return rep;
+  }
   MatrixX3 X = start;  // row-major: point i's block is X.data() + 3i
   const int m = p.n_constraint_rows();
   std::vector<double> lambda(m, 0.0);
   // μ in units of the objective's curvature: a segment constraint g = f/l² has gradient
   // ~2/l, so μ·4/l² against the largest diagonal entry of Q balances the two.
-  const double mean_l = p.lengths().lengths().mean();
+  const double mean_l = p.reference_lengths().mean();
   double mu = o_.initial_penalty * p.objective_hessian().diagonal().maxCoeff() * mean_l * mean_l / 4;
 
   ceres::Problem::Options po;

@@ -1,6 +1,7 @@
 #include "fairshape/curve_design/curve_components.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "fairshape/core/config.h"
 
@@ -12,6 +13,26 @@ class SegmentLengthsKind final : public CurveConstraintKind {
   std::unique_ptr<CurveConstraint> build(const CurveEditContext& e) const override {
     return std::make_unique<SegmentLengths>(segment_lengths(e.reference.points, e.reference.closed), e.reference.closed);
   }
+};
+
+// The paper's alternative to per-segment lengths: the curve's total length kept (`value`
+// omitted: the reference curve's length) while its segments may stretch.
+class TotalLengthKind final : public CurveConstraintKind {
+ public:
+  explicit TotalLengthKind(Config& c) {
+    const bool given = c.has("value");  // read either way, so `fairshape list` shows the option
+    value_ = c.get<double>("value", 0, "the total length to keep, a positive length (omitted: the reference curve's length)");
+    if (given && (!(value_ > 0) || !std::isfinite(value_)))
+      throw InvalidConfig(c.key_path("value") + ": " + format_default(value_) +
+                          " is not a length; give a positive finite number (or omit it: the reference curve's length)");
+  }
+  std::unique_ptr<CurveConstraint> build(const CurveEditContext& e) const override {
+    const Eigen::VectorXd l = segment_lengths(e.reference.points, e.reference.closed);
+    return std::make_unique<TotalLength>(l, value_ > 0 ? value_ : l.sum(), e.reference.closed);
+  }
+
+ private:
+  double value_ = 0;  // 0: the reference's length
 };
 
 // Which points a pin or tangent constraint holds: the edit's moved control points, the
@@ -114,6 +135,10 @@ void register_curve_constraints(CurveConstraintRegistry& r) {
   for (Backend b : {Backend::Reference, Backend::Optimized}) {
     r.add("segment_lengths", b, "Sauvage et al. §2: |c[i+1] - c[i]|² = l[i]² for every segment of the reference",
           [](Config&) { return std::make_unique<SegmentLengthsKind>(); });
+    r.add("total_length", b,
+          "the alternative Sauvage et al. discuss: the curve's total length kept ({value: L}, omitted: the reference's), "
+          "segments free to stretch; replaces segment_lengths",
+          [](Config& c) { return std::make_unique<TotalLengthKind>(c); });
     r.add("pin", b, "points held where the edit put them (at: edited) or where they were (at: reference)",
           [](Config& c) { return std::make_unique<PinKind>(c); });
     r.add("tangent", b, "tangents (the chord through a point's neighbours) held along a direction: edited | reference | [x, y, z]",

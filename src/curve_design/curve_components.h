@@ -27,7 +27,7 @@ class CurveConstraintKind {
 };
 
 using CurveConstraintRegistry = Registry<CurveConstraintKind>;
-//! segment_lengths (the paper's), pin {points: edited | endpoints | [indices], at: edited |
+//! segment_lengths (the paper's), total_length {value} (the alternative it discusses), pin {points: edited | endpoints | [indices], at: edited |
 //! reference}, tangent {points, direction: edited | reference | [x, y, z]}.
 void register_curve_constraints(CurveConstraintRegistry& r);
 

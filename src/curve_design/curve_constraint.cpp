@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>
 
+#include "fairshape/core/config.h"
 #include "fairshape/core/error.h"
 
 namespace fairshape {
@@ -44,7 +45,7 @@ void SegmentLengths::evaluate_at(ConstraintRow& r, const Vec3* x) const {
   r.gradient = {-2 * d, 2 * d};
 }
 
-void SegmentLengths::add_row_hessian(int i, double scale, Triplets& out) const {
+void SegmentLengths::add_row_hessian(int i, double scale, const MatrixX3& /*X*/, Triplets& out) const {
   const int j = (i + 1) % n_points_;
   for (int c = 0; c < 3; ++c) {
     out.emplace_back(3 * i + c, 3 * i + c, 2 * scale);
@@ -137,6 +138,69 @@ double FixedTangents::relative_error(const MatrixX3& X, double /*curve_length*/)
     worst = std::max(worst, std::atan2(d.cross(t).norm(), d.dot(t)));
   }
   return worst;
+}
+
+TotalLength::TotalLength(const Eigen::VectorXd& reference, double target, bool closed)
+    : target_(target), closed_(closed), n_points_(static_cast<int>(closed ? reference.size() : reference.size() + 1)) {
+  if (reference.size() == 0) throw InvalidInput("total_length: the curve has no segment");
+  if (!(target_ > 0) || !std::isfinite(target_))
+    throw InvalidInput("total_length: the length to keep must be a positive finite number, not " + format_default(target_));
+}
+
+ConstraintRow TotalLength::touched(int row) const {
+  ConstraintRow r;
+  r.row = row;
+  r.size = n_points_;
+  r.dense = true;
+  return r;
+}
+
+void TotalLength::evaluate_at(ConstraintRow&, const Vec3*) const {
+  FAIRSHAPE_ASSERT(false, "total_length is a dense row: evaluate it on the whole curve");
+}
+
+// f = Σ|d_i| − L, ∂f/∂X_i = u_{i−1} − u_i (u the unit segment directions).
+ConstraintRow TotalLength::evaluate(int row, const MatrixX3& X) const {
+  ConstraintRow r = touched(row);
+  const int n = n_points_, segments = closed_ ? n : n - 1;
+  r.dense_gradient = MatrixX3::Zero(n, 3);
+  double total = 0;
+  for (int i = 0; i < segments; ++i) {
+    const int j = (i + 1) % n;
+    const Eigen::RowVector3d d = X.row(j) - X.row(i);
+    const double len = d.norm();
+    total += len;
+    if (len > 0) {  // a zero-length segment has no direction: its subgradient 0 is taken
+      r.dense_gradient.row(i) -= d / len;
+      r.dense_gradient.row(j) += d / len;
+    }
+  }
+  r.value = total - target_;
+  return r;
+}
+
+// ∇²|d| = (I − u uᵀ)/|d| on segment i's two points, with the signs of [1 −1; −1 1]; all nine
+// entries of every block are emitted (zeros too), so the pattern does not depend on X.
+void TotalLength::add_row_hessian(int /*row*/, double scale, const MatrixX3& X, Triplets& out) const {
+  const int n = n_points_, segments = closed_ ? n : n - 1;
+  for (int i = 0; i < segments; ++i) {
+    const int j = (i + 1) % n;
+    const Vec3 d = (X.row(j) - X.row(i)).transpose();
+    const double len = d.norm();
+    Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+    if (len > 0) H = (Eigen::Matrix3d::Identity() - d * d.transpose() / (len * len)) * (scale / len);
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) {
+        out.emplace_back(3 * i + a, 3 * i + b, H(a, b));
+        out.emplace_back(3 * j + a, 3 * j + b, H(a, b));
+        out.emplace_back(3 * i + a, 3 * j + b, -H(a, b));
+        out.emplace_back(3 * j + a, 3 * i + b, -H(a, b));
+      }
+  }
+}
+
+double TotalLength::relative_error(const MatrixX3& X) const {
+  return std::abs(segment_lengths(X, closed_).sum() - target_) / target_;
 }
 
 }  // namespace fairshape

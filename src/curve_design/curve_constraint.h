@@ -1,8 +1,9 @@
-// Constraints on a polyline's points, each a list of scalar rows f_r(X) = 0 that touch at
-// most two points: the per-segment length constraints of Sauvage, Hahmann and Bonneau,
-// "Length preserving multiresolution editing of curves" (§2, f_i = |Δc_i|² − l_i²), and pinned
-// points. Rows give their value, gradient and (for the Newton variant of the linearized loop)
-// Hessian, so the Lagrange loop and Ceres work with any registered constraint.
+// Constraints on a polyline's points, each a list of scalar rows f_r(X) = 0: the per-segment
+// length constraints of Sauvage, Hahmann and Bonneau, "Length preserving multiresolution
+// editing of curves" (§2, f_i = |Δc_i|² − l_i²), pinned points, tangents — rows that touch at
+// most two points — and the paper's alternative to per-segment lengths, one fixed total length
+// (a dense row over every point). Rows give their value, gradient and (for Newton-type steps
+// and the second-order check) Hessian, so every solver works with any registered constraint.
 #pragma once
 
 #include <array>
@@ -17,10 +18,16 @@ namespace fairshape {
 
 struct ConstraintRow {
   int row = 0;                     // index within its constraint
-  int size = 0;                    // points touched (1 or 2)
-  std::array<int, 2> points{};
+  int size = 0;                    // points touched: 1 or 2, or every point of the curve (dense)
+  std::array<int, 2> points{};     // sparse rows: the points touched
   double value = 0;                // f_r(X)
-  std::array<Vec3, 2> gradient{};  // ∂f_r/∂X_point
+  std::array<Vec3, 2> gradient{};  // sparse rows: ∂f_r/∂X_point
+  //! A dense row touches every point 0..size−1 (a total length): its gradient is one row per
+  //! point. The banded KKT factor borders such rows instead of ordering them into the band.
+  bool dense = false;
+  MatrixX3 dense_gradient;
+  int point(int k) const { return dense ? k : points[static_cast<std::size_t>(k)]; }
+  Vec3 grad(int k) const { return dense ? Vec3(dense_gradient.row(k).transpose()) : gradient[static_cast<std::size_t>(k)]; }
 };
 
 class CurveConstraint {
@@ -30,16 +37,23 @@ class CurveConstraint {
   //! The points row `row` touches (size and points set; value and gradient left empty).
   virtual ConstraintRow touched(int row) const = 0;
   //! Fills value and gradient from the touched points' positions x[0], x[1] (Ceres hands
-  //! over trial positions this way, not a whole curve).
+  //! over trial positions this way, not a whole curve). Sparse rows only.
   virtual void evaluate_at(ConstraintRow& r, const Vec3* x) const = 0;
-  ConstraintRow evaluate(int row, const MatrixX3& X) const {
+  //! The row at the curve X (dense rows read every point).
+  virtual ConstraintRow evaluate(int row, const MatrixX3& X) const {
     ConstraintRow r = touched(row);
     const Vec3 x[2] = {X.row(r.points[0]).transpose(), X.row(r.points[1]).transpose()};
     evaluate_at(r, x);
     return r;
   }
-  //! Adds scale·∇²f_row to `out` over interleaved unknowns 3·point + coordinate.
-  virtual void add_row_hessian(int /*row*/, double /*scale*/, Triplets& /*out*/) const {}
+  //! True when some row touches every point (ConstraintRow::dense).
+  virtual bool has_dense_rows() const { return false; }
+  //! Adds scale·∇²f_row at the curve X to `out` over interleaved unknowns 3·point + coordinate.
+  //! Rows whose Hessian depends on X (a dense row's) emit the same entries in the same order
+  //! at every X, zeros included, so a factor can reuse their slots.
+  virtual void add_row_hessian(int /*row*/, double /*scale*/, const MatrixX3& /*X*/, Triplets& /*out*/) const {}
+  //! False when ∇²f_row depends on X (the factor then re-reads it at every iterate).
+  virtual bool constant_hessian() const { return true; }
   //! A typical |f_row| (so scaled rows are dimensionless: Ceres's penalty uses f/scale).
   virtual double row_scale(int /*row*/) const { return 1.0; }
   //! How far X is from meeting this constraint, dimensionless (pins: distance over the curve's
@@ -55,7 +69,7 @@ class SegmentLengths final : public CurveConstraint {
   int rows() const override { return static_cast<int>(lengths_.size()); }
   ConstraintRow touched(int row) const override;
   void evaluate_at(ConstraintRow& r, const Vec3* x) const override;
-  void add_row_hessian(int row, double scale, Triplets& out) const override;
+  void add_row_hessian(int row, double scale, const MatrixX3& X, Triplets& out) const override;
   double row_scale(int row) const override { return lengths_[row] * lengths_[row]; }
   const Eigen::VectorXd& lengths() const { return lengths_; }
   bool closed() const { return closed_; }
@@ -105,6 +119,35 @@ class FixedTangents final : public CurveConstraint {
   std::vector<std::pair<int, int>> chords_;
   MatrixX3 directions_, normals_[2];
   std::vector<double> scales_;
+};
+
+// The alternative to per-segment lengths the paper discusses: one row f(X) = Σ_i |X_{i+1} − X_i|
+// − L over every segment (closed curves wrap), so individual segments may stretch while the
+// curve's total length stays L. Its gradient touches every point (a dense row) and its Hessian,
+// Σ_i (I − u_i u_iᵀ)/|d_i| on the block pattern [1 −1; −1 1] of segment i (u_i = d_i / |d_i|),
+// depends on X but stays block-tridiagonal, inside the banded KKT order's band.
+class TotalLength final : public CurveConstraint {
+ public:
+  //! `reference`: the reference curve's segment lengths (scale and messages); `target` L.
+  //! \throw InvalidInput for a target that is not a positive finite length, or a curve without segments.
+  TotalLength(const Eigen::VectorXd& reference, double target, bool closed);
+  int rows() const override { return 1; }
+  ConstraintRow touched(int row) const override;
+  void evaluate_at(ConstraintRow& r, const Vec3* x) const override;  // not for dense rows: asserts
+  ConstraintRow evaluate(int row, const MatrixX3& X) const override;
+  bool has_dense_rows() const override { return true; }
+  void add_row_hessian(int row, double scale, const MatrixX3& X, Triplets& out) const override;
+  bool constant_hessian() const override { return false; }
+  double row_scale(int /*row*/) const override { return target_; }
+  double target() const { return target_; }
+  bool closed() const { return closed_; }
+  //! |L(X) − L| / L.
+  double relative_error(const MatrixX3& X) const;
+
+ private:
+  double target_;
+  bool closed_;
+  int n_points_;
 };
 
 //! The lengths of a polyline's segments (closed curves include the closing one).

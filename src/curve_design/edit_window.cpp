@@ -62,7 +62,7 @@ EditWindow build_window(const LengthProblem& whole, std::vector<int> pts, bool c
 
   MatrixX3 attractor(nw, 3);
   for (int k = 0; k < nw; ++k) attractor.row(k) = whole.attractor().row(pts[static_cast<std::size_t>(k)]);
-  const Eigen::VectorXd& l = whole.lengths().lengths();
+  const Eigen::VectorXd& l = whole.reference_lengths();
   Eigen::VectorXd lengths(closed_window ? nw : nw - 1);
   for (int k = 0; k < lengths.size(); ++k) lengths[k] = l[pts[static_cast<std::size_t>(k)]];  // segment p → p+1
   std::vector<std::unique_ptr<CurveConstraint>> constraints;

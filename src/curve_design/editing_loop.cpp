@@ -115,7 +115,9 @@ PreparedCurveEdit prepare_editing_loop(const Polyline& reference, int levels, co
   std::vector<std::unique_ptr<CurveConstraint>> constraints;
   for (const auto* kind : objective.constraints) constraints.push_back(kind->build(context));
   prepared.problem = std::make_unique<LengthProblem>(out.attracting, closed, paper_objective(objective, n, closed),
-                                                     std::move(constraints));
+                                                     std::move(constraints), segment_lengths(reference.points, closed));
+  out.total_length_asked = prepared.problem->total_length_target();
+  out.length_mode = prepared.problem->length_mode();
   if (edit.options.solve_region == SolveRegion::Support) prepared.windows = edit_windows(*prepared.problem, out.support);
   return prepared;
 }

@@ -56,6 +56,8 @@ struct EditStages {
   std::vector<int> moved_points;                  // fine-level indices
   std::vector<char> support;                      // fine-level mask of the edit's support (edit_support.h)
   ExplicitLengthReport explicit_step;
+  LengthMode length_mode = LengthMode::Segments;  // which length constraint the solve kept
+  double total_length_asked = 0;                  // the total length the solve aimed at
   LengthSolveReport solve;
   double explicit_s = 0, solve_s = 0, total_s = 0;
 };

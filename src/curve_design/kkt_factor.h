@@ -2,7 +2,8 @@
 // "Length preserving multiresolution editing of curves" (§3, eq. 4), generalized to 3D and
 // to any constraint rows:  [ W  Jᵀ ] [X]   [r_x]
 //                          [ J  0  ] [λ] = [r_λ],   W = Q ⊗ I₃ (+ Σ λ_r ∇²f_r, Newton).
-// Unknowns in natural order: 3·point + coordinate, then one per constraint row.
+// Unknowns in natural order: 3·point + coordinate, then one per constraint row. A dense row (a
+// total length, touching every point) is bordered onto the banded system (see make_kkt_factor).
 #pragma once
 
 #include <memory>
@@ -17,11 +18,11 @@ namespace fairshape {
 class KktFactor {
  public:
   virtual ~KktFactor() = default;
-  //! Factors (or, for the iterative method, stores) the system for rows evaluated at the
-  //! current iterate; `newton_multipliers` (may be null) adds their constraint Hessians to W,
-  //! `curvature_shift` ≥ 0 adds δ I to W (the modified Newton step of an indefinite W).
+  //! Factors (or, for the iterative method, stores) the system for `rows` evaluated at the
+  //! current iterate X; `newton_multipliers` (may be null) adds their constraint Hessians at X
+  //! to W, `curvature_shift` ≥ 0 adds δ I to W (the modified Newton step of an indefinite W).
   //! \return false when the factorization failed (singular system).
-  virtual bool factor(const std::vector<ConstraintRow>& rows, const Eigen::VectorXd* newton_multipliers,
+  virtual bool factor(const MatrixX3& X, const std::vector<ConstraintRow>& rows, const Eigen::VectorXd* newton_multipliers,
                       double curvature_shift = 0) = 0;
   virtual Eigen::VectorXd solve(const Eigen::VectorXd& rhs) = 0;
   virtual std::string last_error() const { return {}; }
@@ -41,6 +42,12 @@ enum class KktMethod { Direct, Minres };
 //! touches), so the system is banded; its pattern and symbolic LDLᵀ analysis are made once
 //! and each step only rewrites values (TBB) and refactors, then refines once against the
 //! unregularized system. Minres: Eigen's MINRES on the same matrix (no preconditioner).
+//! Dense rows (ConstraintRow::dense) would make the band as wide as the curve: the optimized
+//! factor keeps them out of it and solves the bordered system [A B; Bᵀ 0] (A the banded KKT of
+//! the sparse rows, B the dense rows' gradients) by the Schur complement S = −Bᵀ A⁻¹ B: V =
+//! A⁻¹B once per factorization (one banded solve per dense row), then every solve is one banded
+//! solve u = A⁻¹r, μ = (BᵀV)⁻¹(Bᵀu − s), y = u − Vμ — linear in the point count. Its inertia is
+//! A's plus S's (Haynsworth), so negative_pivots keeps its meaning.
 std::unique_ptr<KktFactor> make_kkt_factor(const LengthProblem& p, Backend backend, KktMethod method,
                                            double iterative_tolerance);
 

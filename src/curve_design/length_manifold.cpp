@@ -27,14 +27,14 @@ Eigen::VectorXd least_squares_multipliers(const LengthProblem& p, const MatrixX3
   return ldlt.solve(-(J * flat(G)));
 }
 
-SparseMatrix lagrangian_hessian(const LengthProblem& p, const Eigen::VectorXd& lambda) {
+SparseMatrix lagrangian_hessian(const LengthProblem& p, const MatrixX3& X, const Eigen::VectorXd& lambda) {
   const int n = 3 * p.n_points();
   Triplets t;
   const SparseMatrix& Q = p.objective_hessian();
   for (int k = 0; k < Q.outerSize(); ++k)
     for (SparseMatrix::InnerIterator it(Q, k); it; ++it)
       for (int c = 0; c < 3; ++c) t.emplace_back(3 * static_cast<int>(it.row()) + c, 3 * static_cast<int>(it.col()) + c, it.value());
-  p.add_constraint_hessians(lambda, t);
+  p.add_constraint_hessians(lambda, X, t);
   SparseMatrix W(n, n);
   W.setFromTriplets(t.begin(), t.end());
   return W;
@@ -141,7 +141,7 @@ Retraction restore(const LengthProblem& p, const MatrixX3& X, double tolerance, 
 
 double length_rounding_floor(const LengthProblem& p, const MatrixX3& X) {
   const double extent = X.cwiseAbs().maxCoeff();
-  const double shortest = p.lengths().lengths().minCoeff();
+  const double shortest = p.reference_lengths().minCoeff();
   return kRoundingSafety * std::numeric_limits<double>::epsilon() * std::max(extent / shortest, 1.0);
 }
 

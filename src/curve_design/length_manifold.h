@@ -16,8 +16,8 @@ namespace fairshape {
 //! a solver computed them. Interleaved unknowns, like constraint_jacobian.
 Eigen::VectorXd least_squares_multipliers(const LengthProblem& p, const MatrixX3& X);
 
-//! The Lagrangian's Hessian W = Q ⊗ I₃ + Σ_r λ_r ∇²f_r over interleaved unknowns (3·point + c).
-SparseMatrix lagrangian_hessian(const LengthProblem& p, const Eigen::VectorXd& lambda);
+//! The Lagrangian's Hessian W = Q ⊗ I₃ + Σ_r λ_r ∇²f_r(X) over interleaved unknowns (3·point + c).
+SparseMatrix lagrangian_hessian(const LengthProblem& p, const MatrixX3& X, const Eigen::VectorXd& lambda);
 
 struct Retraction {
   MatrixX3 points;

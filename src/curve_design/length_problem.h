@@ -1,7 +1,9 @@
 // The optimization problem of Sauvage, Hahmann and Bonneau, "Length preserving
 // multiresolution editing of curves" (§3, eq. 2): minimize Σ_t w_t E_t(X) — by default
 // (1−β)·bending + β·D, D the distance to the attracting curve — subject to constraint rows
-// f_r(X) = 0 (segment lengths, pinned points). Built once per edit; solvers only read it.
+// f_r(X) = 0: the length constraint (every segment's length, the paper's, or the curve's total
+// length, the alternative it discusses), pinned points, tangents. Built once per edit; solvers
+// only read it.
 #pragma once
 
 #include <memory>
@@ -24,20 +26,34 @@ struct WeightedStencils {
 // least this weight so the curve stays where the attracting curve puts it.
 inline constexpr double kMinimumAttractorWeight = 1e-9;
 
+// Which length constraint the problem holds: SegmentLengths (the paper's) or TotalLength.
+enum class LengthMode { Segments, Total };
+
 class LengthProblem {
  public:
-  //! \throw InvalidInput when no segment-length constraint is given, or when pinned points are
-  //! farther apart than the curve between them is long (no curve can satisfy the edit).
+  //! \throw InvalidInput when neither a segment-length nor a total-length constraint is given
+  //! (or both: the total is the sum of the segments, a dependent row), or when pinned points are
+  //! farther apart than the curve between them can be long (no curve can satisfy the edit).
+  //! `reference_lengths`: the reference curve's segment lengths (the lengths' scale: radii,
+  //! rounding floors); empty: those of the SegmentLengths constraint.
   LengthProblem(MatrixX3 attractor, bool closed, std::vector<WeightedStencils> energies,
-                std::vector<std::unique_ptr<CurveConstraint>> constraints);
+                std::vector<std::unique_ptr<CurveConstraint>> constraints, Eigen::VectorXd reference_lengths = {});
 
   int n_points() const { return static_cast<int>(attractor_.rows()); }
   bool closed() const { return closed_; }
   const MatrixX3& attractor() const { return attractor_; }
   const std::vector<WeightedStencils>& energies() const { return energies_; }
   const std::vector<std::unique_ptr<CurveConstraint>>& constraints() const { return constraints_; }
-  const SegmentLengths& lengths() const { return *lengths_; }
+  LengthMode length_mode() const { return total_ ? LengthMode::Total : LengthMode::Segments; }
+  //! The reference curve's segment lengths (in Total mode the segments are free to stretch:
+  //! these only give the problem its scale).
+  const Eigen::VectorXd& reference_lengths() const { return reference_lengths_; }
+  //! Total mode: the total length asked; Segments mode: the reference lengths' sum.
+  double total_length_target() const;
   int n_constraint_rows() const { return n_rows_; }
+  //! Some constraint row touches every point (a total length): solvers that order rows into a
+  //! band or cost blocks over a few points must border it or refuse.
+  bool has_dense_rows() const { return dense_; }
 
   // The objective F(X) = ½ Σ_c X_cᵀ Q X_c − Σ_c b_cᵀ X_c + const.
   const SparseMatrix& objective_hessian() const { return Q_; }  // N×N, shared by x, y, z
@@ -48,12 +64,14 @@ class LengthProblem {
 
   //! Every constraint row at X, in order (constraint by constraint).
   std::vector<ConstraintRow> rows(const MatrixX3& X) const;
-  //! Adds Σ_r scale_r ∇²f_r over interleaved unknowns (3·point + coordinate).
-  void add_constraint_hessians(const Eigen::VectorXd& scale, Triplets& out) const;
-  void add_row_hessian(int row, double scale, Triplets& out) const;  // one row's share of the above
+  //! Adds Σ_r scale_r ∇²f_r(X) over interleaved unknowns (3·point + coordinate).
+  void add_constraint_hessians(const Eigen::VectorXd& scale, const MatrixX3& X, Triplets& out) const;
+  void add_row_hessian(int row, double scale, const MatrixX3& X, Triplets& out) const;  // one row's share of the above
+  bool row_hessian_constant(int row) const;  // false: ∇²f_row depends on X
   double row_scale(int row) const;
 
-  //! max_i | |X_{i+1} − X_i| − l_i | / l_i
+  //! The error of the length constraint in force, relative: Segments max_i | |X_{i+1} − X_i| −
+  //! l_i | / l_i; Total |L(X) − L| / L. Every solver's "length error" and stopping rule.
   double max_relative_length_error(const MatrixX3& X) const;
   //! The largest relative error of the constraints other than the lengths: pins (distance
   //! over the curve's length), tangents (angle); 0 without them.
@@ -70,6 +88,9 @@ class LengthProblem {
   std::vector<WeightedStencils> energies_;
   std::vector<std::unique_ptr<CurveConstraint>> constraints_;
   const SegmentLengths* lengths_ = nullptr;
+  const TotalLength* total_ = nullptr;
+  Eigen::VectorXd reference_lengths_;
+  bool dense_ = false;
   int n_rows_ = 0;
   SparseMatrix Q_;
   MatrixX3 b_;

@@ -56,6 +56,9 @@ class LengthSolver {
   //! Never throws for numerical failure: the report's summary says numerical_failure and why.
   virtual LengthSolveReport solve(const LengthProblem& problem, const MatrixX3& start) const = 0;
   virtual const LengthTolerances& tolerances() const = 0;
+  //! Whether it solves problems with a dense row (a total length, LengthProblem::has_dense_rows):
+  //! the KKT-based solvers border it; the others refuse (invalid_input) rather than ignore it.
+  virtual bool takes_dense_rows() const { return false; }
 };
 
 using LengthSolverRegistry = Registry<LengthSolver>;

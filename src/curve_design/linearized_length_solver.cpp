@@ -70,7 +70,7 @@ double merit_step(const LengthProblem& p, const MatrixX3& X, const std::vector<C
 // paper's steps then bring the lengths back, and the second-order decrease ½α²dᵀWd < 0 makes the
 // next stationary point a lower one.
 MatrixX3 escape_saddle(const LengthProblem& p, const MatrixX3& X, const MatrixX3& d) {
-  const Eigen::VectorXd& lengths = p.lengths().lengths();
+  const Eigen::VectorXd& lengths = p.reference_lengths();
   const double mean = lengths.size() ? lengths.mean() : 1.0;
   const double alpha = 0.1 * mean * std::sqrt(static_cast<double>(p.n_points()));
   const double sign = (p.objective_gradient(X).array() * d.array()).sum() > 0 ? -1.0 : 1.0;
@@ -114,7 +114,7 @@ LengthSolveReport LinearizedLengthSolver::solve(const LengthProblem& p, const Ma
     MatrixX3 next;
     for (int attempt = 0;; ++attempt) {
       const bool use_newton = newton && attempt <= kMaxShifts;
-      if (!kkt->factor(rows, use_newton ? &previous_lambda : nullptr, use_newton ? shift : 0.0)) {
+      if (!kkt->factor(X, rows, use_newton ? &previous_lambda : nullptr, use_newton ? shift : 0.0)) {
         rep.summary.message = "the KKT system could not be factored at solve " + std::to_string(rep.solves + 1) +
                               " (singular: dependent constraints?) " + kkt->last_error();
         return rep;
@@ -132,7 +132,7 @@ LengthSolveReport LinearizedLengthSolver::solve(const LengthProblem& p, const Ma
       MatrixX3 rx = b;
       if (use_newton) {
         Triplets t;
-        p.add_constraint_hessians(previous_lambda, t);
+        p.add_constraint_hessians(previous_lambda, X, t);
         SparseMatrix H(n, n);
         H.setFromTriplets(t.begin(), t.end());
         Eigen::Map<Eigen::VectorXd>(rx.data(), n) += H * flat(X) + shift * flat(X);
@@ -140,7 +140,7 @@ LengthSolveReport LinearizedLengthSolver::solve(const LengthProblem& p, const Ma
       rhs.head(n) = flat(rx);
       for (int r = 0; r < m; ++r) {
         double g_dot_x = 0;
-        for (int k = 0; k < rows[r].size; ++k) g_dot_x += rows[r].gradient[k].dot(X.row(rows[r].points[k]).transpose());
+        for (int k = 0; k < rows[r].size; ++k) g_dot_x += rows[r].grad(k).dot(X.row(rows[r].point(k)).transpose());
         rhs[n + r] = g_dot_x - rows[r].value;
       }
       const Eigen::VectorXd sol = kkt->solve(rhs);

@@ -39,6 +39,7 @@ class LinearizedLengthSolver final : public LengthSolver {
   explicit LinearizedLengthSolver(LinearizedOptions o) : o_(o) {}
   LengthSolveReport solve(const LengthProblem& problem, const MatrixX3& start) const override;
   const LengthTolerances& tolerances() const override { return o_.tolerances; }
+  bool takes_dense_rows() const override { return true; }  // bordered onto the banded KKT
 
  private:
   LinearizedOptions o_;

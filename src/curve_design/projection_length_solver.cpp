@@ -27,6 +27,10 @@ bool collect(const LengthProblem& p, std::vector<Projection>& out, std::string& 
     } else if (const auto* pins = dynamic_cast<const PinnedPoints*>(c.get())) {
       for (std::size_t k = 0; k < pins->points().size(); ++k)
         out.push_back({-1, pins->points()[k], 0, pins->targets().row(static_cast<Eigen::Index>(k)).transpose()});
+    } else if (c->has_dense_rows()) {
+      why = "solver projection does not take the total_length constraint (its local step projects a few points per "
+            "constraint); the solvers that do: linearized, trust_region";
+      return false;
     } else {
       why = "the projection baseline projects segment lengths and pins only; this problem has another constraint kind";
       return false;

@@ -27,7 +27,7 @@ SecondOrderCheck check_second_order(const LengthProblem& p, const MatrixX3& X) {
     for (int c = 0; c < 3; ++c) g[3 * i + c] = G(i, c);
   const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr_jt(J.transpose());
   const Eigen::VectorXd lambda = qr_jt.solve(-g);
-  const SparseMatrix W = lagrangian_hessian(p, lambda);
+  const SparseMatrix W = lagrangian_hessian(p, X, lambda);
   // Z: the last n − rank columns of the full Q factor of Jᵀ.
   const Eigen::Index rank = qr_jt.rank();
   const Eigen::MatrixXd Qfull = qr_jt.householderQ();
@@ -56,7 +56,7 @@ int reduced_hessian_negative_count(const LengthProblem& p, const MatrixX3& X, do
   if (!lambda.allFinite()) return -1;
   const auto kkt = make_kkt_factor(p, Backend::Optimized, KktMethod::Direct, 1e-13);
   if (shift < 0) shift = kSecondOrderTolerance * p.objective_hessian().diagonal().cwiseAbs().maxCoeff();
-  if (!kkt->factor(p.rows(X), &lambda, shift)) return -1;
+  if (!kkt->factor(X, p.rows(X), &lambda, shift)) return -1;
   const int negative = kkt->negative_pivots();
   return negative < 0 ? -1 : std::max(negative - p.n_constraint_rows(), 0);
 }

@@ -46,7 +46,7 @@ Retraction restore_in_objective_metric(const LengthProblem& p, KktFactor& kkt, c
     out.length_error = p.max_relative_length_error(out.points);
     out.pin_error = p.max_relative_pin_error(out.points);
     if (out.length_error <= tolerance && out.pin_error <= tolerance) break;
-    if (!kkt.factor(rows, nullptr, eps)) break;
+    if (!kkt.factor(out.points, rows, nullptr, eps)) break;
     ++solves;
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n + m);
     for (int r = 0; r < m; ++r) rhs[n + r] = -rows[r].value;
@@ -107,7 +107,7 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
     return rep;
   }
 
-  const Eigen::VectorXd& lengths = p.lengths().lengths();
+  const Eigen::VectorXd& lengths = p.reference_lengths();
   // Radii in units of the curve: a copy ×1000 takes the same steps.
   double radius = o_.initial_radius * lengths.mean() * std::sqrt(static_cast<double>(N));
   const double max_radius = lengths.sum(), min_radius = 1e-15 * std::max(rep.points.cwiseAbs().maxCoeff(), lengths.mean());
@@ -153,7 +153,7 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
     // leaves Newton's convergence intact to that level). Back ends without inertia (SparseLU)
     // ask the shared banded check, so both back ends decide alike.
     const double base_shift = kSecondOrderTolerance * q_scale;
-    if (!kkt->factor(rows, &lambda, base_shift))
+    if (!kkt->factor(X, rows, &lambda, base_shift))
       return finish(Termination::NumericalFailure, "the KKT system could not be factored at solve " +
                                                        std::to_string(rep.solves + 1) + " " + kkt->last_error());
     const auto negative_count = [&](double shift) {
@@ -193,12 +193,12 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
     // 2. The shifted Newton step: σ = 2|λ_min| from the dense eigenvalue, or (above the dense
     // limit) raised until the inertia is right — the same check for both back ends.
     double sigma = have_direction ? 2 * -so.min_eigenvalue : base_shift;
-    if (have_direction && !kkt->factor(rows, &lambda, sigma))
+    if (have_direction && !kkt->factor(X, rows, &lambda, sigma))
       return finish(Termination::NumericalFailure, "the shifted KKT system could not be factored at solve " + std::to_string(rep.solves + 1));
     if (negative && !have_direction) {
       sigma = kFirstShift * q_scale;
       for (int attempt = 0;; ++attempt, sigma *= kShiftGrowth) {
-        if (!kkt->factor(rows, &lambda, sigma))
+        if (!kkt->factor(X, rows, &lambda, sigma))
           return finish(Termination::NumericalFailure, "the shifted KKT system could not be factored at solve " + std::to_string(rep.solves + 1));
         const int left = negative_count(sigma);
         ++inertia_checks;
@@ -209,7 +209,7 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
                                                            std::to_string(iterations));
       }
     }
-    const SparseMatrix W = lagrangian_hessian(p, lambda);
+    const SparseMatrix W = lagrangian_hessian(p, X, lambda);
     if (negative && !have_direction) {
       // Above the dense limit: the direction by inverse iteration on the tangent space with the
       // factor just made, W + σI = W − μI with μ = −σ ≤ λ_min (σ is the first shift with the

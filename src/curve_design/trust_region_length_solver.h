@@ -49,6 +49,7 @@ class TrustRegionLengthSolver final : public LengthSolver {
   explicit TrustRegionLengthSolver(TrustRegionOptions o) : o_(o) {}
   LengthSolveReport solve(const LengthProblem& problem, const MatrixX3& start) const override;
   const LengthTolerances& tolerances() const override { return o_.tolerances; }
+  bool takes_dense_rows() const override { return true; }  // bordered onto the banded KKT
 
  private:
   TrustRegionOptions o_;

@@ -25,7 +25,7 @@ expect_error 2 "edits\[0\].level: 9 is outside the hierarchy" -- "$FS" run $C --
 expect_error 2 "edits\[0\].wrinkle_level: 7 must lie in \[e, levels-1\]" -- "$FS" run $C --set 'sweep={}' --set edits.0.wrinkle_level=7 --out "$SCRATCH/x"
 expect_error 2 "edits\[0\].moves\[0\].index: 9 is not on the level-2 polygon of 5 points" -- "$FS" run $C --set edits.0.moves.0.index=9 --out "$SCRATCH/x"
 expect_error 2 "unknown value 'newtn'" -- "$FS" run $C --set optimization.solver.linearized.linearization=newtn --out "$SCRATCH/x"
-expect_error 2 "include {type: segment_lengths}" -- "$FS" run $C --set 'optimization.constraints=[{type: pin}]' --out "$SCRATCH/x"
+expect_error 2 "include {type: segment_lengths} (every segment's length) or {type: total_length}" -- "$FS" run $C --set 'optimization.constraints=[{type: pin}]' --out "$SCRATCH/x"
 # A point count that is not 2^n·k + 1: 128 open points allow no level above 0.
 head -129 $W | grep -v '^l' > "$SCRATCH/open128.obj"
 echo "l $(seq -s ' ' 1 128)" >> "$SCRATCH/open128.obj"
@@ -72,4 +72,22 @@ expect_error 2 "editing.details: unknown value 'local' (valid: global, local_fra
 expect_error 2 "tangent constraints are not solved on the edit's support yet" -- "$FS" run $C --out "$SCRATCH/x" \
   --set 'optimization.constraints=[{type: segment_lengths}, {type: tangent, points: endpoints}]'
 grep -q ",moved_outside_support,attractor_moved_outside_support," <(head -1 "$SCRATCH/ring/runs.csv") || fail "no moved_outside_support columns"
+# Issue 25 part 6: a fixed total length instead of every segment's: the total is met, the
+# segments stretch, runs.csv says both; what it cannot combine with is refused by name.
+T=configs/sauvage/total_length.yaml
+"$FS" run $T --out "$SCRATCH/total" --set 'sweep={}' 2>/dev/null || fail "the total-length run failed"
+$PY - "$SCRATCH/total/runs.csv" <<'PYEOF' || fail "the total-length run should keep the total and stretch segments"
+import csv, sys
+r = next(csv.DictReader(open(sys.argv[1])))
+ok = (r["termination"] == "converged" and r["length_constraint"] == "total_length" and float(r["total_length_error"]) < 1e-12
+      and float(r["segment_stretch_max"]) > 1.01 and float(r["segment_stretch_min"]) < 0.99 and float(r["min_reduced_hessian_eig"]) >= 0)
+sys.exit(0 if ok else 1)
+PYEOF
+expect_error 2 "optimization.constraints\[0\].value: -1 is not a length" -- "$FS" run $T --out "$SCRATCH/x" \
+  --set 'optimization.constraints=[{type: total_length, value: -1}]'
+expect_error 2 "optimization.solver.type: ceres does not take the total_length constraint .*the solvers that do: linearized, trust_region" -- \
+  "$FS" run $T --out "$SCRATCH/x" --set optimization.solver.type=ceres
+expect_error 2 "total_length and segment_lengths together" -- "$FS" run $T --out "$SCRATCH/x" \
+  --set 'optimization.constraints=[{type: segment_lengths}, {type: total_length}]'
+expect_error 2 "set editing.solve_region: curve" -- "$FS" run $T --out "$SCRATCH/x" --set editing.solve_region=support
 echo "curve_run: ok"

@@ -301,7 +301,7 @@ MatrixX3 project_to_constraints(const LengthProblem& p, MatrixX3 X) {
 double projected_descent(const LengthProblem& p, const MatrixX3& X, const MatrixX3& d) {
   double best = 0;
   for (double h : {1e-3, 1e-2}) {
-    const double scale = h * p.lengths().lengths().mean() * std::sqrt(static_cast<double>(p.n_points()));
+    const double scale = h * p.reference_lengths().mean() * std::sqrt(static_cast<double>(p.n_points()));
     for (double sign : {-1.0, 1.0}) {
       const MatrixX3 Y = project_to_constraints(p, X + sign * scale * d);
       if (p.max_relative_length_error(Y) < 1e-12) best = std::min(best, p.objective(Y) - p.objective(X));

@@ -233,9 +233,9 @@ TEST_CASE("the optimized curve KKT factor rebuilds its pattern for rows of anoth
   const std::vector<ConstraintRow> reversed(rows.rbegin(), rows.rend());  // each row touches other points
   const auto banded = make_kkt_factor(p, Backend::Optimized, KktMethod::Direct, 0);
   const auto reference = make_kkt_factor(p, Backend::Reference, KktMethod::Direct, 0);
-  REQUIRE(banded->factor(rows, nullptr));
-  REQUIRE(banded->factor(reversed, nullptr));
-  REQUIRE(reference->factor(reversed, nullptr));
+  REQUIRE(banded->factor(X, rows, nullptr));
+  REQUIRE(banded->factor(X, reversed, nullptr));
+  REQUIRE(reference->factor(X, reversed, nullptr));
   const Eigen::VectorXd rhs = right_hand_side(3 * n + p.n_constraint_rows()).col(0);
   const Eigen::VectorXd expected = reference->solve(rhs);
   CHECK((banded->solve(rhs) - expected).norm() <= 1e-9 * expected.norm());

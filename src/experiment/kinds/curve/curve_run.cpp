@@ -110,11 +110,19 @@ void read_optimization(Config& root, CurveRunSpec& s) {
   Config none;
   s.smoothness = cc.energies.create(sm, s.implementation, none);
   bool has_lengths = false;
-  for (Config k : oc.child_list("constraints", "constraints: [{type: segment_lengths}, {type: pin, points: ...}]")) {
+  std::string total_key;  // the total_length entry's key, when there is one
+  for (Config k : oc.child_list("constraints", "constraints: [{type: segment_lengths} | {type: total_length, value}, {type: pin, points: ...}]")) {
     const std::string type = k.get_choice("type", "segment_lengths", cc.constraints.names(), "constraint kind");
     s.constraints.push_back(cc.constraints.create(type, s.implementation, k));
     k.check_no_unknown_keys();
     has_lengths |= type == "segment_lengths";
+    if (type == "total_length") {
+      if (!total_key.empty()) throw InvalidConfig(k.key_path("type") + ": a second total_length (" + total_key + " is one); keep one");
+      total_key = k.key_path("type");
+      if (s.editing.solve_region == SolveRegion::Support)
+        throw InvalidConfig(total_key + ": total_length couples every point of the curve, so it is not solved on the edit's "
+                            "support (editing.solve_region: support, the default); set editing.solve_region: curve");
+    }
     if (type == "tangent" && s.editing.solve_region == SolveRegion::Support)
       throw InvalidConfig(k.key_path("type") + ": tangent constraints are not solved on the edit's support yet "
                           "(src/curve_design/edit_window.h); set editing.solve_region: curve");
@@ -123,9 +131,21 @@ void read_optimization(Config& root, CurveRunSpec& s) {
     s.constraints.push_back(cc.constraints.create("segment_lengths", s.implementation, none));
     has_lengths = true;
   }
-  if (!has_lengths)
-    throw InvalidConfig(oc.key_path("constraints") + ": lengths are what this editor preserves; include {type: segment_lengths}");
+  if (has_lengths && !total_key.empty())
+    throw InvalidConfig(total_key + ": total_length and segment_lengths together: the total is the sum of the segments (a "
+                        "dependent row); keep one — segment_lengths keeps every segment, total_length only their sum");
+  if (!has_lengths && total_key.empty())
+    throw InvalidConfig(oc.key_path("constraints") + ": lengths are what this editor preserves; include {type: segment_lengths} "
+                        "(every segment's length) or {type: total_length} (the curve's total length)");
   read_solver(oc, s);
+  if (!total_key.empty() && !s.solver->takes_dense_rows()) {
+    std::string takers;
+    Config none;
+    for (const auto& name : cc.solvers.names())
+      if (cc.solvers.create(name, Backend::Optimized, none)->takes_dense_rows()) takers += (takers.empty() ? "" : ", ") + name;
+    throw InvalidConfig(oc.key_path("solver") + ".type: " + s.solver_type + " does not take the total_length constraint (" +
+                        total_key + "); the solvers that do: " + takers);
+  }
   oc.check_no_unknown_keys();
 }
 
@@ -216,6 +236,7 @@ const std::vector<std::string>& curve_metric_columns() {
   static const std::vector<std::string> cols{
       "n_points", "edits", "length_error_max", "length_error_rms", "total_length_change", "bending_energy",
       "distance_to_attractor", "wrinkles", "wrinkle_amplitude", "wrinkle_wavelength", "wrinkle_wavelength_segments",
+      "length_constraint", "total_length_asked", "total_length_error", "segment_stretch_min", "segment_stretch_max",
       "attractor_length_error", "moved_outside_support", "attractor_moved_outside_support", "solves", "outer_iterations", "stationarity", "min_reduced_hessian_eig", "saddle_escapes",
       "explicit_s", "solve_s", "time_s", "unused_keys", "termination", "message"};
   return cols;
@@ -326,6 +347,15 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
     row["length_error_max"] = num(m.length_error_max);
     row["length_error_rms"] = num(m.length_error_rms);
     row["total_length_change"] = num(m.total_length_change);
+    if (done > 0) {  // what the last solve was asked to keep, next to what it reached
+      const Eigen::VectorXd l = segment_lengths(current.points, current.closed);
+      const Eigen::VectorXd stretch = l.cwiseQuotient(original);
+      row["length_constraint"] = last.length_mode == LengthMode::Total ? "total_length" : "segment_lengths";
+      row["total_length_asked"] = num(last.total_length_asked);
+      row["total_length_error"] = num(std::abs(l.sum() - last.total_length_asked) / last.total_length_asked);
+      row["segment_stretch_min"] = num(stretch.minCoeff());
+      row["segment_stretch_max"] = num(stretch.maxCoeff());
+    }
     row["bending_energy"] = num(m.bending_energy);
     row["distance_to_attractor"] = num(m.distance_to_attractor);
     row["wrinkles"] = std::to_string(m.wrinkles);

@@ -7,6 +7,7 @@
 #include "fairshape/core/error.h"
 #include "fairshape/core/timer.h"
 #include "fairshape/problem/least_squares.h"
+#include "fairshape/solver/independent_columns.h"
 
 namespace fairshape::qp {
 
@@ -69,7 +70,8 @@ QpReport SplitSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b, 
       if (!std::isnan(r.energy) && !energy_offset) energy_offset = quadratic_energy(H_, f, full) - r.energy;
       return o.callback({r.iteration, r.residual, r.seconds, r.energy + energy_offset.value_or(0.0), &full});
     };
-    out.summary = free_.solve(red_.A, red_.b, x, o.callback ? expanded : IterationCallback());
+    // A single handle's right-hand side has rank 1: only its independent columns are solved.
+    out.summary = solve_independent_columns(free_, red_.A, red_.b, x, o.callback ? expanded : IterationCallback());
   }
   out.p = red_.expand(x);
   out.constraint_residual = o.measure_residual ? constraint_residual(A_, b, out.p) : std::numeric_limits<double>::quiet_NaN();

@@ -65,6 +65,9 @@ struct SolveSummary {
   //! Seconds spent observing the iterations (energies, callbacks, iterate copies for them):
   //! callers subtract it, so a monitored solve is timed like an unmonitored one.
   double observe_s = 0;
+  //! Relative error estimate of the answer (solver/iterative.h: the A-norm for conjugate
+  //! gradients, the steps' geometric tail for stationary solvers); −1: not estimated.
+  double error_estimate = -1;
   bool succeeded() const { return is_success(termination); }
 };
 

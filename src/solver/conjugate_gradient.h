@@ -10,9 +10,10 @@ namespace fairshape {
 template <class Multiply>
 SolveSummary conjugate_gradient(const Multiply& A_times, const Eigen::VectorXd& diag, const Eigen::MatrixXd& b,
                                 Eigen::MatrixXd& x, const IterativeOptions& opt, const IterationCallback& cb) {
-  IterationMonitor monitor(opt, cb, [&](const Eigen::MatrixXd& v) {
-    return 0.5 * v.cwiseProduct(A_times(v)).sum() - v.cwiseProduct(b).sum();
-  });
+  IterationMonitor monitor(
+      opt, cb, [&](const Eigen::MatrixXd& v) { return 0.5 * v.cwiseProduct(A_times(v)).sum() - v.cwiseProduct(b).sum(); },
+      /*krylov=*/true);
+  CgErrorEstimate error(opt.error_delay);
   if (const auto problem = diagonal_problem(diag); !problem.empty()) {
     monitor.fail(problem);
     return monitor.summary();
@@ -32,6 +33,10 @@ SolveSummary conjugate_gradient(const Multiply& A_times, const Eigen::VectorXd& 
     x += p * alpha.asDiagonal();
     r -= Ap * alpha.asDiagonal();
     if (monitor.should_check(it) && !monitor.record(it, r.norm() / b_norm, x)) break;
+    if (monitor.estimates_error()) {
+      error.push(alpha.dot(rz));
+      if (error.ready() && !monitor.record_error(it, error.estimate(x.cwiseProduct(b - r).sum()))) break;
+    }
     z = inv_diag.asDiagonal() * r;
     const Eigen::RowVectorXd rz_new = r.cwiseProduct(z).colwise().sum();
     for (Eigen::Index c = 0; c < x.cols(); ++c) p.col(c) = z.col(c) + (rz[c] != 0 ? rz_new[c] / rz[c] : 0.0) * p.col(c);

@@ -15,6 +15,14 @@ IterativeOptions IterativeOptions::from_config(Config& cfg) {
   o.energy_tolerance = cfg.get_number("energy_tolerance", o.energy_tolerance, 0.0, 1.0,
                                       "stop when a check's energy decrease is at most this fraction of the "
                                       "decrease since the start (0: off)");
+  o.error_tolerance = cfg.get_number("error_tolerance", o.error_tolerance, 0.0, 1.0,
+                                     "stop when the estimated relative error is at most this (0: off; CG: A-norm, "
+                                     "Hestenes-Stiefel; stationary solvers: the steps' geometric tail)");
+  o.error_delay = cfg.get_int("error_delay", o.error_delay, 1, 1000,
+                              "CG iterations between an iterate and its error estimate (longer: tighter)");
+  // Stopping on the error replaces the default residual rule; a residual tolerance given as
+  // well must hold too.
+  if (o.error_tolerance > 0 && !cfg.has("tolerance")) o.tolerance = 0;
   o.max_iterations = cfg.get_int("max_iterations", o.max_iterations, 1, 100000000, "iteration cap");
   o.check_every = cfg.get_int("check_every", o.check_every, 1, 1000000, "sweeps between residual checks");
   return o;
@@ -54,6 +62,22 @@ SystemEnergy system_energy(const SparseMatrix& A, const Eigen::MatrixXd& b) {
 bool IterationMonitor::record(int iteration, double residual, const Eigen::MatrixXd& x) {
   summary_.iterations = iteration;
   summary_.residual = residual;
+  last_residual_ = residual;
+  if (estimates_error() && !krylov_) {
+    // A stationary iteration's error decays geometrically: e_k ≈ Δ_k q/(1 − q), q the ratio of
+    // successive steps (meaningful once the steps contract).
+    const Timer estimating;
+    if (previous_x_.size() == x.size()) {
+      const double step = (x - previous_x_).norm(), size = std::max(x.norm(), 1e-300);
+      if (previous_step_ > 0 && step < previous_step_) {
+        const double q = step / previous_step_;
+        summary_.error_estimate = step * q / (1 - q) / size;
+      }
+      previous_step_ = step;
+    }
+    previous_x_ = x;
+    summary_.observe_s += estimating.seconds();
+  }
   const bool first = first_residual_ < 0;
   if (first) first_residual_ = residual;
   const bool energy_rule = opt_.energy_tolerance > 0;
@@ -78,8 +102,18 @@ bool IterationMonitor::record(int iteration, double residual, const Eigen::Matri
     summary_.message = "stopped by the callback";
     return false;
   }
-  if (residual <= opt_.tolerance) {
+  const bool residual_met = opt_.tolerance > 0 && residual <= opt_.tolerance;
+  if (!estimates_error() && residual_met) {
     summary_.termination = Termination::Converged;
+    return false;
+  }
+  if (estimates_error() && !krylov_ && summary_.error_estimate >= 0 &&
+      summary_.error_estimate <= opt_.error_tolerance && (opt_.tolerance == 0 || residual_met)) {
+    char text[160];
+    std::snprintf(text, sizeof text, "relative error estimate %.3g <= %.3g (the steps' geometric tail)",
+                  summary_.error_estimate, opt_.error_tolerance);
+    summary_.termination = Termination::Converged;
+    summary_.message = text;
     return false;
   }
   if (stalled) {
@@ -88,11 +122,28 @@ bool IterationMonitor::record(int iteration, double residual, const Eigen::Matri
   }
   if (iteration >= opt_.max_iterations && summary_.termination == Termination::MaxIterations) {
     char text[160];
-    std::snprintf(text, sizeof text, "the iteration cap (%d) came before the tolerance %.3g: relative residual %.3g",
-                  opt_.max_iterations, opt_.tolerance, residual);
+    if (estimates_error())
+      std::snprintf(text, sizeof text, "the iteration cap (%d) came before the error tolerance %.3g: error estimate %.3g, "
+                    "relative residual %.3g", opt_.max_iterations, opt_.error_tolerance, summary_.error_estimate, residual);
+    else
+      std::snprintf(text, sizeof text, "the iteration cap (%d) came before the tolerance %.3g: relative residual %.3g",
+                    opt_.max_iterations, opt_.tolerance, residual);
     summary_.message = text;
   }
   return iteration < opt_.max_iterations;
+}
+
+bool IterationMonitor::record_error(int iteration, double relative_error) {
+  summary_.iterations = iteration;
+  summary_.error_estimate = relative_error;
+  if (!estimates_error() || relative_error > opt_.error_tolerance) return true;
+  if (opt_.tolerance > 0 && !(last_residual_ >= 0 && last_residual_ <= opt_.tolerance)) return true;
+  char text[160];
+  std::snprintf(text, sizeof text, "relative A-norm error estimate %.3g <= %.3g (Hestenes-Stiefel, %d iterations late)",
+                relative_error, opt_.error_tolerance, opt_.error_delay);
+  summary_.termination = Termination::Converged;
+  summary_.message = text;
+  return false;
 }
 
 std::string diagonal_problem(const Eigen::VectorXd& diag) {

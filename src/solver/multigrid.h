@@ -267,7 +267,7 @@ SolveSummary run_multigrid(Kernels& k, const MultigridOptions& mg, const Iterati
                            const SystemEnergy& energy, const Eigen::MatrixXd& b_in, Eigen::MatrixXd& x_out,
                            const IterationCallback& cb) {
   using Block = typename Kernels::Block;
-  IterationMonitor monitor(opt, cb, energy);
+  IterationMonitor monitor(opt, cb, energy, krylov);
   MultigridCycles<Kernels> cycles(k, mg);
   const int top = k.levels() - 1;
   const Block b = k.to_block(b_in);
@@ -312,15 +312,22 @@ SolveSummary run_multigrid(Kernels& k, const MultigridOptions& mg, const Iterati
   Block z = precondition(r);
   Block p = z;
   Eigen::VectorXd rz = column_dots(r, z);
+  CgErrorEstimate error(opt.error_delay);
   for (int it = 1;; ++it) {
     const Block Ap = k.multiply(top, p);
     const Eigen::VectorXd pAp = column_dots(p, Ap);
+    double alpha_rz = 0;
     for (Eigen::Index j = 0; j < x.cols(); ++j) {
       const double alpha = pAp[j] != 0 ? rz[j] / pAp[j] : 0.0;
       x.col(j) += alpha * p.col(j);
       r.col(j) -= alpha * Ap.col(j);
+      alpha_rz += alpha * rz[j];
     }
     if (monitor.should_check(it) && !record(it, r)) break;
+    if (monitor.estimates_error()) {
+      error.push(alpha_rz);
+      if (error.ready() && !monitor.record_error(it, error.estimate((column_dots(x, b) - column_dots(x, r)).sum()))) break;
+    }
     if (!monitor.should_check(it) && it >= opt.max_iterations) break;
     z = precondition(r);
     if (failed()) break;

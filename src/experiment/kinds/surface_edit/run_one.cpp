@@ -311,7 +311,7 @@ const std::vector<std::string>& iteration_columns() {
 const std::vector<std::string>& metric_columns() {
   static const std::vector<std::string> cols{
       "n_dofs", "n_fine", "n_constrained", "repeat", "subdivide_s", "assemble_s", "analyze_s", "solve_s", "solve_min_s",
-      "time_s", "iterations", "residual", "energy", "constraint_violation", "error_vs_reference", "detail_change", "spike_ratio", "curve_points",
+      "time_s", "iterations", "residual", "error_estimate", "energy", "constraint_violation", "error_vs_reference", "detail_change", "spike_ratio", "curve_points",
       "region_fraction", "moved_fraction", "outside_region_move", "rotation_rounds",
       "remesh_hausdorff", "remesh_edge_ratio", "peak_rss_mb", "solve_extra_mb", "unused_keys", "termination", "message"};
   return cols;
@@ -454,6 +454,7 @@ MetricRow execute_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
     row["solve_min_s"] = num(sol.solve_s);  // over the repeats: the harness's (experiment/repeats.h)
     row["iterations"] = std::to_string(sol.summary.iterations);
     row["residual"] = num(sol.summary.residual);
+    if (sol.summary.error_estimate >= 0) row["error_estimate"] = num(sol.summary.error_estimate);
     row["termination"] = std::string(to_string(sol.summary.termination));
     row["message"] = sol.summary.message;
     if (sol.delta.allFinite() && sol.summary.termination != Termination::NumericalFailure) {

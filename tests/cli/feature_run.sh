@@ -93,18 +93,30 @@ YAML
 } > "$SCRATCH/at_once.yaml"
 "$FS" run "$SCRATCH/steps.yaml" --out "$SCRATCH/steps" 2>/dev/null || fail "the stepped feature session failed"
 "$FS" run "$SCRATCH/at_once.yaml" --out "$SCRATCH/at_once" 2>/dev/null || fail "the same features at once failed"
+"$FS" run "$SCRATCH/steps.yaml" --out "$SCRATCH/steps_whole" --set step_evaluation=whole 2>/dev/null || fail "the stepped session evaluated whole failed"
 [ "$(ls "$SCRATCH/steps/vtk/"*_step*.vtp | wc -l)" -eq 4 ] || fail "expected a VTK per design step"
-$PY - "$SCRATCH/steps" "$SCRATCH/at_once" <<'PYEOF' || fail "the session's steps are not reported, or it does not end where the same features placed at once end"
+$PY - "$SCRATCH/steps" "$SCRATCH/at_once" "$SCRATCH/steps_whole" <<'PYEOF' || fail "the session's steps are not reported, or it does not end where the same features placed at once end"
 import csv, sys
 steps = list(csv.DictReader(open(sys.argv[1] + "/steps.csv")))
 ok = [r["step"] for r in steps] == ["0", "1", "2", "3"] and steps[1]["moved"] == "groove" and steps[2]["added"] == "late"
 ok = ok and steps[2]["changed"] == "ridge_b" and steps[3]["removed"] == "ridge_a" and all(int(r["vertices_changed"]) > 0 for r in steps[1:])
 ok = ok and len(list(csv.DictReader(open(sys.argv[1] + "/features.csv")))) == 3
-a, b = ([[float(x) for x in l.split()[1:4]] for l in open(d + "/final.obj") if l.startswith("v ")] for d in sys.argv[1:3])
+# Region-limited steps: the first evaluates the whole hierarchy, the later ones their region
+# (fewer vertices than the whole, more than the step changed on the finest level); evaluated
+# whole, every step reports the whole hierarchy and the session ends on the same surface.
+whole = list(csv.DictReader(open(sys.argv[3] + "/steps.csv")))
+total = int(steps[0]["vertices_recomputed"])
+ok = ok and steps[0]["evaluation"] == "whole" and all(r["evaluation"] == "region" for r in steps[1:])
+ok = ok and all(int(r["vertices_changed"]) <= int(r["vertices_recomputed"]) < total for r in steps[1:])
+ok = ok and all(r["evaluation"] == "whole" and int(r["vertices_recomputed"]) == total for r in whole)
+a, b, c = ([[float(x) for x in l.split()[1:4]] for l in open(d + "/final.obj") if l.startswith("v ")] for d in sys.argv[1:4])
 ok = ok and len(a) == len(b) and max(abs(x - y) for p, q in zip(a, b) for x, y in zip(p, q)) <= 1e-12
+ok = ok and len(a) == len(c) and max(abs(x - y) for p, q in zip(a, c) for x, y in zip(p, q)) <= 1e-12
 sys.exit(0 if ok else 1)
 PYEOF
 expect_error 2 "features\[0\].moves: only a feature given by world .points. is moved" -- "$FS" run configs/khodakovsky-schroder/fig17.yaml --set 'features.0.moves=[{step: 1, by: [0, 0, 0.1]}]' --out "$SCRATCH/x"
+expect_error 2 "step_evaluation: unknown value 'partial' (valid: region, whole)" -- "$FS" run "$SCRATCH/steps.yaml" --set step_evaluation=partial --out "$SCRATCH/x"
+expect_error 2 "step_evaluation: the features schedule no design step after the first" -- "$FS" run $C --set step_evaluation=whole --out "$SCRATCH/x"
 expect_error 2 "features\[1\].until: 0 must come after step 0" -- "$FS" run $C --set features.1.until=0 --out "$SCRATCH/x"
 expect_error 2 "features\[1\].changes\[0\].height" -- "$FS" run $C --set 'features.1.changes=[{step: 1, height: nan}]' --out "$SCRATCH/x"
 # The radial bump of the base mesh (base_edit) still carries the features (at 3 levels the grooves,

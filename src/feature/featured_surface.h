@@ -66,7 +66,7 @@ class FeaturedSurface {
   //! Region-limited re-evaluation (default on): after an evaluation, when only features were
   //! added, replaced or removed, the next one recomputes only what they reach — on the level of
   //! a changed feature its old and new neighbourhoods (every vertex within its reach, the
-  //! features' heights and three edges of the level, Euclidean), on each finer level the
+  //! largest feature height and three of its own longest edges of the curve), on each finer level the
   //! vertices whose subdivision stencil and local frame read a recomputed one, there the
   //! features whose neighbourhood meets them (rebuilt on the changed surface, their old and new
   //! neighbourhoods added), and for the limit target the blocks of the least-squares fit those

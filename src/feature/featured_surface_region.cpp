@@ -119,8 +119,9 @@ void FeaturedSurface::evaluate_region() {
                                 std::move(op));
       const auto k = static_cast<std::size_t>(op_it - operators_.begin());
       if (!visible_.fine.empty()) {  // its targets start as the previous ones (it displaced nothing)
-        visible_.fine.insert(visible_.fine.begin() + static_cast<std::ptrdiff_t>(k + 1), visible_.fine[k]);
-        visible_.limit.insert(visible_.limit.begin() + static_cast<std::ptrdiff_t>(k + 1), visible_.limit[k]);
+        MatrixX3 fine = visible_.fine[k], limit = visible_.limit[k];  // copies: inserted into their own vector
+        visible_.fine.insert(visible_.fine.begin() + static_cast<std::ptrdiff_t>(k + 1), std::move(fine));
+        visible_.limit.insert(visible_.limit.begin() + static_cast<std::ptrdiff_t>(k + 1), std::move(limit));
       }
     } else if (op_it != operators_.end()) {
       LevelOperator& op = *op_it;

@@ -2,11 +2,13 @@
 // featured_surface_region.cpp; issue 24 part 4): a session of steps — a coarse feature moved, a
 // fine one re-parameterized, a feature added on a level that had none, features removed until
 // none is left, one added again — evaluated once region by region and once whole after every
-// step. Every level agrees to 1e-12 (of the model's size), every vertex outside the reported
-// region is bit for bit what it was before the step, and a small change recomputes a small part.
+// step, on the patch, the helmet and the helmet with random local details. Every level agrees to
+// 1e-12 (of the model's size), every vertex outside the reported region is bit for bit what it
+// was before the step, and a small change recomputes a small part.
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <functional>
 
 #include "feature/featured_surface.h"
@@ -50,6 +52,7 @@ struct Model {
   // on level 2 (far from both), the wide one moved.
   std::vector<Vec3> wide, wide_moved, fine, later;
   double wide_r, fine_r, later_r;
+  bool details = false;  // random local details on every finer level (a remeshed surface's kind)
 };
 
 std::vector<Model> models() {
@@ -59,6 +62,19 @@ std::vector<Model> models() {
           {"helmet", read_mesh(test::data_path("helmet.off")), 3,
            {Vec3(-0.05, 0.0, 0.332), Vec3(0.16, 0.0, 0.334)}, {Vec3(-0.05, 0.02, 0.332), Vec3(0.16, 0.02, 0.334)},
            {Vec3(0.05, -0.09, 0.33), Vec3(0.06, 0.08, 0.33)}, {Vec3(-0.2, -0.07, 0.215), Vec3(-0.18, 0.03, 0.245)}, 0.06, 0.03, 0.04}};
+}
+
+// The hierarchy of a model, with small random details in local frames when it asks for them.
+MultiresSurface hierarchy_of(const Model& m) {
+  MultiresSurface h = loop_hierarchy(m.base, m.levels);
+  if (!m.details) return h;
+  std::srand(7);
+  for (int k = 1; k <= m.levels; ++k) {
+    const double size = 1e-3 * std::ldexp(1.0, -k);
+    h.set_details(k, size * MatrixX3::Random(h.mesh(k).n_vertices(), 3), DetailSpace::Local);
+  }
+  h.synthesize(DetailSpace::Local);
+  return h;
 }
 
 // Max difference of two hierarchies over every level.
@@ -91,11 +107,15 @@ long long total_vertices(const MultiresSurface& h) {
 }  // namespace
 
 TEST_CASE("a design step re-evaluated on its region equals the whole re-evaluation", "[feature][steps]") {
-  for (const Model& model : models()) {
+  std::vector<Model> all = models();
+  all.push_back(all.back());
+  all.back().name = "helmet with details";
+  all.back().details = true;
+  for (const Model& model : all) {
     for (const ProfileTarget target : {ProfileTarget::Limit, ProfileTarget::Finest, ProfileTarget::DrawnLevel}) {
-      if (model.name == "helmet" && target != ProfileTarget::Limit) continue;  // the patch covers the other targets
+      if (model.name != "patch" && target != ProfileTarget::Limit) continue;  // the patch covers the other targets
       INFO(model.name << ", profile_on " << profile_target_names().name(target));
-      const MultiresSurface plain = loop_hierarchy(model.base, model.levels);
+      const MultiresSurface plain = hierarchy_of(model);
       const double tol = 1e-12 * diagonal(model.base);
       const int L = model.levels;
       FeaturedSurface region(plain, Backend::Optimized, target), whole(plain, Backend::Optimized, target);

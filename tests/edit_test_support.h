@@ -4,10 +4,10 @@
 
 #include <memory>
 
-#include "design/edit_solve.h"
-#include "design/multires_constraints.h"
-#include "energy/local_quadratic.h"
-#include "experiment/components.h"
+#include "fairshape/design/edit_solve.h"
+#include "fairshape/design/multires_constraints.h"
+#include "fairshape/energy/local_quadratic.h"
+#include "fairshape/experiment/components.h"
 
 namespace fairshape::test {
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "mesh/surface_mesh.h"
+#include "fairshape/mesh/surface_mesh.h"
 
 namespace fairshape::test {
 

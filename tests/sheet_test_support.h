@@ -6,8 +6,8 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "experiment/kinds/sheet/sheet_run.h"
-#include "experiment/run_outputs.h"
+#include "fairshape/experiment/kinds/sheet/sheet_run.h"
+#include "fairshape/experiment/run_outputs.h"
 #include "test_support.h"
 
 namespace fairshape::test {

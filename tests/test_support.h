@@ -8,7 +8,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "mesh/surface_mesh.h"
+#include "fairshape/mesh/surface_mesh.h"
 
 namespace fairshape::test {
 

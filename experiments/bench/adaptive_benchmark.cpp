@@ -22,12 +22,12 @@
 #include <functional>
 #include <string>
 
-#include "feature/adaptive_evaluation.h"
-#include "feature/adaptive_mesh.h"
-#include "feature/featured_surface.h"
-#include "feature/level_attachment.h"
-#include "io/mesh_io.h"
-#include "subdivision/multires_surface.h"
+#include "fairshape/feature/adaptive_evaluation.h"
+#include "fairshape/feature/adaptive_mesh.h"
+#include "fairshape/feature/featured_surface.h"
+#include "fairshape/feature/level_attachment.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/subdivision/multires_surface.h"
 
 using namespace fairshape;
 using namespace fairshape::feature;

@@ -8,11 +8,11 @@
 #include <memory>
 #include <string>
 
-#include "constraint/constraint_factories.h"
-#include "design/edit_assembly.h"
-#include "energy/local_quadratic.h"
-#include "experiment/components.h"
-#include "io/mesh_io.h"
+#include "fairshape/constraint/constraint_factories.h"
+#include "fairshape/design/edit_assembly.h"
+#include "fairshape/energy/local_quadratic.h"
+#include "fairshape/experiment/components.h"
+#include "fairshape/io/mesh_io.h"
 
 namespace fairshape::bench {
 

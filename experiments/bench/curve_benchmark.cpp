@@ -5,10 +5,10 @@
 
 #include <cmath>
 
-#include "core/config.h"
-#include "curve_design/editing_loop.h"
-#include "curve_design/second_order.h"
-#include "io/mesh_io.h"
+#include "fairshape/core/config.h"
+#include "fairshape/curve_design/editing_loop.h"
+#include "fairshape/curve_design/second_order.h"
+#include "fairshape/io/mesh_io.h"
 
 using namespace fairshape;
 

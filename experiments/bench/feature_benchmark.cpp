@@ -12,10 +12,10 @@
 
 #include <tbb/global_control.h>
 
-#include "feature/featured_surface.h"
-#include "feature/perturbation.h"
-#include "subdivision/multires_surface.h"
-#include "subdivision/subdivider.h"
+#include "fairshape/feature/featured_surface.h"
+#include "fairshape/feature/perturbation.h"
+#include "fairshape/subdivision/multires_surface.h"
+#include "fairshape/subdivision/subdivider.h"
 
 using namespace fairshape;
 using namespace fairshape::feature;

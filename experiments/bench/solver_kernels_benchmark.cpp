@@ -15,15 +15,15 @@
 #include <tbb/parallel_for.h>
 
 #include "cow_edit_problem.h"
-#include "energy/laplacian.h"
-#include "energy/local_quadratic.h"
-#include "solver/block_ordering.h"
-#include "solver/multigrid.h"
-#include "solver/parallel_kernels.h"
-#include "experiment/components.h"
-#include "io/mesh_io.h"
-#include "problem/constrained_system.h"
-#include "problem/least_squares.h"
+#include "fairshape/energy/laplacian.h"
+#include "fairshape/energy/local_quadratic.h"
+#include "fairshape/solver/block_ordering.h"
+#include "fairshape/solver/multigrid.h"
+#include "fairshape/solver/parallel_kernels.h"
+#include "fairshape/experiment/components.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/problem/constrained_system.h"
+#include "fairshape/problem/least_squares.h"
 
 namespace fairshape {
 namespace {

@@ -21,10 +21,10 @@
 #include <map>
 
 #include "cow_edit_problem.h"
-#include "design/multilevel_edit.h"
-#include "io/mesh_io.h"
-#include "subdivision/apply.h"
-#include "subdivision/subdivider.h"
+#include "fairshape/design/multilevel_edit.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/subdivision/apply.h"
+#include "fairshape/subdivision/subdivider.h"
 
 namespace fairshape {
 namespace {

@@ -5,20 +5,20 @@
 #include <filesystem>
 #include <iostream>
 
-#include "core/error.h"
-#include "curve_design/curve_components.h"
-#include "qp/qp_solver.h"
-#include "experiment/components.h"
-#include "energy/local_quadratic.h"
-#include "io/json_io.h"
-#include "io/matrix_market.h"
-#include "io/mesh_io.h"
-#include "io/vtk_io.h"
-#include "mesh/mesh_stats.h"
-#include "remesh/quality.h"
-#include "remesh/remesh.h"
-#include "subdivision/limit.h"
-#include "subdivision/subdivider.h"
+#include "fairshape/core/error.h"
+#include "fairshape/curve_design/curve_components.h"
+#include "fairshape/qp/qp_solver.h"
+#include "fairshape/experiment/components.h"
+#include "fairshape/energy/local_quadratic.h"
+#include "fairshape/io/json_io.h"
+#include "fairshape/io/matrix_market.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/io/vtk_io.h"
+#include "fairshape/mesh/mesh_stats.h"
+#include "fairshape/remesh/quality.h"
+#include "fairshape/remesh/remesh.h"
+#include "fairshape/subdivision/limit.h"
+#include "fairshape/subdivision/subdivider.h"
 
 namespace fairshape::cli {
 namespace fs = std::filesystem;

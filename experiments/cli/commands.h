@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "experiment/sweep_runner.h"
-#include "render/figure.h"
+#include "fairshape/experiment/sweep_runner.h"
+#include "fairshape/render/figure.h"
 
 namespace fairshape::cli {
 

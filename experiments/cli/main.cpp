@@ -8,8 +8,8 @@
 #include <iostream>
 
 #include "commands.h"
-#include "core/error.h"
-#include "experiment/run_metadata.h"
+#include "fairshape/core/error.h"
+#include "fairshape/experiment/run_metadata.h"
 
 namespace {
 // CLI11's NonNegativeNumber and PositiveNumber let "nan" and "inf" through: every number a

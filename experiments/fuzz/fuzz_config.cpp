@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <string>
 
-#include "core/config.h"
-#include "experiment/yaml_structure.h"
+#include "fairshape/core/config.h"
+#include "fairshape/experiment/yaml_structure.h"
 
 namespace {
 // Every key of every map, read as the config layer reads them (strings, numbers, children).

@@ -7,8 +7,8 @@
 #include <sstream>
 #include <string_view>
 
-#include "bspline/sheet_file.h"
-#include "core/error.h"
+#include "fairshape/bspline/sheet_file.h"
+#include "fairshape/core/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);

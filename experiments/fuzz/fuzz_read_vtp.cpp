@@ -8,8 +8,8 @@
 #include <fstream>
 #include <string>
 
-#include "core/error.h"
-#include "io/vtk_io.h"
+#include "fairshape/core/error.h"
+#include "fairshape/io/vtk_io.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const std::string path = "/tmp/fairshape_fuzz_" + std::to_string(::getpid()) + ".vtp";

@@ -1,6 +1,6 @@
 // Reference `conjugate_gradient`: the shared CG algorithm with Eigen's serial product. It keeps
 // nothing from analyze(): every solve works on the A it is given (solver.h).
-#include "solver/conjugate_gradient.h"
+#include "fairshape/solver/conjugate_gradient.h"
 
 namespace fairshape::reference {
 namespace {

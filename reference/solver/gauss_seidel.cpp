@@ -1,9 +1,9 @@
 // Reference `gauss_seidel` and `sor`: lexicographic sweeps (lexicographic_sweep.h) over a
 // row-major copy of A, made again whenever a solve brings another matrix (solver.h).
-#include "problem/constrained_system.h"
-#include "reference/solver/lexicographic_sweep.h"
-#include "solver/iterative.h"
-#include "solver/matrix_fingerprint.h"
+#include "fairshape/problem/constrained_system.h"
+#include "fairshape/reference/solver/lexicographic_sweep.h"
+#include "fairshape/solver/iterative.h"
+#include "fairshape/solver/matrix_fingerprint.h"
 
 namespace fairshape::reference {
 namespace {

@@ -4,7 +4,7 @@
 // solvers and the reference multigrid smoother.
 #pragma once
 
-#include "core/types.h"
+#include "fairshape/core/types.h"
 
 namespace fairshape::reference {
 

@@ -3,8 +3,8 @@
 // correction), products with P and Pᵀ, Eigen's LDLᵀ on the coarsest level.
 #include <Eigen/SparseCholesky>
 
-#include "reference/solver/lexicographic_sweep.h"
-#include "solver/multigrid.h"
+#include "fairshape/reference/solver/lexicographic_sweep.h"
+#include "fairshape/solver/multigrid.h"
 
 namespace fairshape::reference {
 namespace {

@@ -1,4 +1,4 @@
-#include "solver/solver.h"
+#include "fairshape/solver/solver.h"
 
 namespace fairshape::reference {
 

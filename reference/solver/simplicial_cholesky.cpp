@@ -3,9 +3,9 @@
 // analyzed pattern keeps the symbolic analysis and is only refactored.
 #include <Eigen/SparseCholesky>
 
-#include "problem/constrained_system.h"
-#include "solver/matrix_fingerprint.h"
-#include "solver/solver.h"
+#include "fairshape/problem/constrained_system.h"
+#include "fairshape/solver/matrix_fingerprint.h"
+#include "fairshape/solver/solver.h"
 
 namespace fairshape::reference {
 namespace {

@@ -3,8 +3,8 @@
 // Bernardini, "Detail-preserving variational surface design with multiresolution
 // constraints"; creases and corners as OpenSubdiv: crease_rules.h), visiting the half-edge
 // mesh one vertex, edge and face at a time.
-#include "subdivision/crease_rules.h"
-#include "subdivision/subdivider.h"
+#include "fairshape/subdivision/crease_rules.h"
+#include "fairshape/subdivision/subdivider.h"
 
 namespace fairshape::reference {
 namespace {

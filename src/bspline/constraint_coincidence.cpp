@@ -1,10 +1,10 @@
-#include "bspline/constraint_coincidence.h"
+#include "fairshape/bspline/constraint_coincidence.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "bspline/surface_constraints.h"
-#include "core/message_format.h"
+#include "fairshape/bspline/surface_constraints.h"
+#include "fairshape/core/message_format.h"
 
 namespace fairshape::bspline {
 namespace {

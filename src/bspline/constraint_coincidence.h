@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "bspline/variational_sheet.h"
+#include "fairshape/bspline/variational_sheet.h"
 
 namespace fairshape::bspline {
 

@@ -1,13 +1,13 @@
-#include "bspline/curve_fidelity.h"
+#include "fairshape/bspline/curve_fidelity.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 
-#include "bspline/surface_constraints.h"
-#include "core/message_format.h"
-#include "qp/kkt_solver.h"
+#include "fairshape/bspline/surface_constraints.h"
+#include "fairshape/core/message_format.h"
+#include "fairshape/qp/kkt_solver.h"
 
 namespace fairshape::bspline {
 

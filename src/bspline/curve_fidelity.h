@@ -25,8 +25,8 @@
 #include <optional>
 #include <string>
 
-#include "bspline/constraint_coincidence.h"
-#include "bspline/variational_sheet.h"
+#include "fairshape/bspline/constraint_coincidence.h"
+#include "fairshape/bspline/variational_sheet.h"
 
 namespace fairshape::bspline {
 

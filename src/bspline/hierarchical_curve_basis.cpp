@@ -1,12 +1,12 @@
-#include "bspline/hierarchical_curve_basis.h"
+#include "fairshape/bspline/hierarchical_curve_basis.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include <Eigen/QR>
 
-#include "bspline/uniform_basis.h"
-#include "core/error.h"
+#include "fairshape/bspline/uniform_basis.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape::bspline {
 

@@ -17,8 +17,8 @@
 #include <set>
 #include <vector>
 
-#include "bspline/knot_basis.h"
-#include "core/types.h"
+#include "fairshape/bspline/knot_basis.h"
+#include "fairshape/core/types.h"
 
 namespace fairshape::bspline {
 

@@ -1,4 +1,4 @@
-#include "bspline/hierarchical_surface.h"
+#include "fairshape/bspline/hierarchical_surface.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,8 +7,8 @@
 #include <set>
 #include <string>
 
-#include "bspline/uniform_basis.h"
-#include "core/error.h"
+#include "fairshape/bspline/uniform_basis.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape::bspline {
 

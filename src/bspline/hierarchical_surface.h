@@ -23,7 +23,7 @@
 #include <unordered_set>
 #include <vector>
 
-#include "core/types.h"
+#include "fairshape/core/types.h"
 
 namespace fairshape::bspline {
 

@@ -1,15 +1,15 @@
-#include "bspline/joined_design.h"
+#include "fairshape/bspline/joined_design.h"
 
-#include "bspline/curve_fidelity.h"
+#include "fairshape/bspline/curve_fidelity.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 
-#include "bspline/mortar_curve.h"
-#include "core/error.h"
-#include "core/message_format.h"
-#include "core/timer.h"
+#include "fairshape/bspline/mortar_curve.h"
+#include "fairshape/core/error.h"
+#include "fairshape/core/message_format.h"
+#include "fairshape/core/timer.h"
 
 namespace fairshape::bspline {
 

@@ -15,13 +15,13 @@
 // tolerance — both sides of a joint, since either may be the one too coarse to follow.
 #pragma once
 
-#include "bspline/curve_fidelity.h"
+#include "fairshape/bspline/curve_fidelity.h"
 
 #include <string>
 #include <vector>
 
-#include "bspline/variational_curve.h"
-#include "bspline/variational_sheet.h"
+#include "fairshape/bspline/variational_curve.h"
+#include "fairshape/bspline/variational_sheet.h"
 
 namespace fairshape::bspline {
 

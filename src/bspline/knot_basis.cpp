@@ -1,9 +1,9 @@
-#include "bspline/knot_basis.h"
+#include "fairshape/bspline/knot_basis.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/error.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape::bspline {
 

@@ -1,11 +1,11 @@
-#include "bspline/mortar_curve.h"
+#include "fairshape/bspline/mortar_curve.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "bspline/knot_basis.h"
-#include "bspline/uniform_basis.h"
-#include "core/error.h"
+#include "fairshape/bspline/knot_basis.h"
+#include "fairshape/bspline/uniform_basis.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape::bspline {
 

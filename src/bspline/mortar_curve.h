@@ -18,8 +18,8 @@
 // residual is a distance in world units.
 #pragma once
 
-#include "bspline/knot_basis.h"
-#include "bspline/surface_constraints.h"
+#include "fairshape/bspline/knot_basis.h"
+#include "fairshape/bspline/surface_constraints.h"
 
 namespace fairshape::bspline {
 

@@ -1,4 +1,4 @@
-#include "bspline/sheet_file.h"
+#include "fairshape/bspline/sheet_file.h"
 
 #include <charconv>
 #include <cmath>
@@ -7,10 +7,10 @@
 #include <optional>
 #include <unordered_set>
 
-#include "bspline/uniform_basis.h"
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "io/text_scanner.h"
+#include "fairshape/bspline/uniform_basis.h"
+#include "fairshape/core/atomic_file.h"
+#include "fairshape/core/error.h"
+#include "fairshape/io/text_scanner.h"
 
 namespace fairshape::bspline {
 namespace {

@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-#include "bspline/variational_sheet.h"
+#include "fairshape/bspline/variational_sheet.h"
 
 namespace fairshape::bspline {
 

@@ -1,10 +1,10 @@
-#include "bspline/sheet_geometry.h"
+#include "fairshape/bspline/sheet_geometry.h"
 
 #include <Eigen/Geometry>
 
 #include <cmath>
 
-#include "bspline/uniform_basis.h"
+#include "fairshape/bspline/uniform_basis.h"
 
 namespace fairshape::bspline {
 

@@ -2,8 +2,8 @@
 // cylinder placed in the world, and the tessellation of a (refined) sheet into a quad mesh.
 #pragma once
 
-#include "bspline/hierarchical_surface.h"
-#include "mesh/surface_mesh.h"
+#include "fairshape/bspline/hierarchical_surface.h"
+#include "fairshape/mesh/surface_mesh.h"
 
 namespace fairshape::bspline {
 

@@ -1,4 +1,4 @@
-#include "bspline/surface_constraints.h"
+#include "fairshape/bspline/surface_constraints.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,9 +6,9 @@
 
 #include <Eigen/Geometry>
 
-#include "bspline/uniform_basis.h"
-#include "core/error.h"
-#include "problem/constrained_system.h"
+#include "fairshape/bspline/uniform_basis.h"
+#include "fairshape/core/error.h"
+#include "fairshape/problem/constrained_system.h"
 
 namespace fairshape::bspline {
 

@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "bspline/hierarchical_surface.h"
-#include "core/types.h"
+#include "fairshape/bspline/hierarchical_surface.h"
+#include "fairshape/core/types.h"
 
 namespace fairshape::bspline {
 

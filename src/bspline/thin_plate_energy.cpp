@@ -1,4 +1,4 @@
-#include "bspline/thin_plate_energy.h"
+#include "fairshape/bspline/thin_plate_energy.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -9,8 +9,8 @@
 #include <cmath>
 #include <string>
 
-#include "bspline/uniform_basis.h"
-#include "core/error.h"
+#include "fairshape/bspline/uniform_basis.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape::bspline {
 

@@ -9,9 +9,9 @@
 
 #include <Eigen/Core>
 
-#include "bspline/hierarchical_surface.h"
-#include "core/backend.h"
-#include "core/types.h"
+#include "fairshape/bspline/hierarchical_surface.h"
+#include "fairshape/core/backend.h"
+#include "fairshape/core/types.h"
 
 namespace fairshape::bspline {
 

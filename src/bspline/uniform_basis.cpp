@@ -1,8 +1,8 @@
-#include "bspline/uniform_basis.h"
+#include "fairshape/bspline/uniform_basis.h"
 
 #include <cmath>
 
-#include "core/error.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape::bspline {
 

@@ -1,12 +1,12 @@
-#include "bspline/variational_curve.h"
+#include "fairshape/bspline/variational_curve.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include <Eigen/SparseCholesky>
 
-#include "bspline/uniform_basis.h"
-#include "core/error.h"
+#include "fairshape/bspline/uniform_basis.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape::bspline {
 

@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "bspline/hierarchical_curve_basis.h"
-#include "bspline/surface_constraints.h"
-#include "qp/quadratic_program.h"
+#include "fairshape/bspline/hierarchical_curve_basis.h"
+#include "fairshape/bspline/surface_constraints.h"
+#include "fairshape/qp/quadratic_program.h"
 
 namespace fairshape::bspline {
 

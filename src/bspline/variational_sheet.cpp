@@ -1,4 +1,4 @@
-#include "bspline/variational_sheet.h"
+#include "fairshape/bspline/variational_sheet.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,12 +7,12 @@
 #include <set>
 #include <tuple>
 
-#include "bspline/curve_fidelity.h"
-#include "bspline/mortar_curve.h"
-#include "core/error.h"
-#include "core/message_format.h"
-#include "core/timer.h"
-#include "problem/constrained_system.h"
+#include "fairshape/bspline/curve_fidelity.h"
+#include "fairshape/bspline/mortar_curve.h"
+#include "fairshape/core/error.h"
+#include "fairshape/core/message_format.h"
+#include "fairshape/core/timer.h"
+#include "fairshape/problem/constrained_system.h"
 
 namespace fairshape::bspline {
 

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "bspline/hierarchical_surface.h"
-#include "bspline/surface_constraints.h"
-#include "bspline/thin_plate_energy.h"
-#include "qp/qp_solver.h"
+#include "fairshape/bspline/hierarchical_surface.h"
+#include "fairshape/bspline/surface_constraints.h"
+#include "fairshape/bspline/thin_plate_energy.h"
+#include "fairshape/qp/qp_solver.h"
 
 namespace fairshape::bspline {
 

@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "core/registry.h"
-#include "core/types.h"
-#include "mesh/surface_mesh.h"
-#include "subdivision/limit_evaluation.h"
+#include "fairshape/core/registry.h"
+#include "fairshape/core/types.h"
+#include "fairshape/mesh/surface_mesh.h"
+#include "fairshape/subdivision/limit_evaluation.h"
 
 namespace fairshape {
 

@@ -4,9 +4,9 @@
 #include <memory>
 #include <string>
 
-#include "constraint/constraint.h"
-#include "constraint/vertex_selection.h"
-#include "core/config.h"
+#include "fairshape/constraint/constraint.h"
+#include "fairshape/constraint/vertex_selection.h"
+#include "fairshape/core/config.h"
 
 namespace fairshape {
 

@@ -1,10 +1,10 @@
-#include "constraint/crease_normals.h"
+#include "fairshape/constraint/crease_normals.h"
 
 #include <sstream>
 #include <vector>
 
-#include "core/error.h"
-#include "subdivision/crease_rules.h"
+#include "fairshape/core/error.h"
+#include "fairshape/subdivision/crease_rules.h"
 
 namespace fairshape {
 namespace {

@@ -16,9 +16,9 @@
 
 #include <string>
 
-#include "mesh/surface_mesh.h"
-#include "subdivision/limit_evaluation.h"
-#include "subdivision/scheme.h"
+#include "fairshape/mesh/surface_mesh.h"
+#include "fairshape/subdivision/limit_evaluation.h"
+#include "fairshape/subdivision/scheme.h"
 
 namespace fairshape {
 

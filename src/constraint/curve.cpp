@@ -6,10 +6,10 @@
 // surface instead (curve_limit_points.h), on any level, without the re-parameterization.
 #include <sstream>
 
-#include "constraint/constraint_factories.h"
-#include "constraint/curve_limit_points.h"
-#include "constraint/curve_snapping.h"
-#include "constraint/rigid_motion.h"
+#include "fairshape/constraint/constraint_factories.h"
+#include "fairshape/constraint/curve_limit_points.h"
+#include "fairshape/constraint/curve_snapping.h"
+#include "fairshape/constraint/rigid_motion.h"
 #include <limits>
 
 namespace fairshape {

@@ -1,10 +1,10 @@
-#include "constraint/curve_limit_points.h"
+#include "fairshape/constraint/curve_limit_points.h"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "constraint/surface_points.h"
+#include "fairshape/constraint/surface_points.h"
 
 namespace fairshape {
 namespace {

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "constraint/constraint.h"
+#include "fairshape/constraint/constraint.h"
 
 namespace fairshape {
 

@@ -1,12 +1,12 @@
-#include "constraint/curve_snapping.h"
+#include "fairshape/constraint/curve_snapping.h"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <unordered_map>
 
-#include "core/error.h"
-#include "remesh/closest_point.h"
+#include "fairshape/core/error.h"
+#include "fairshape/remesh/closest_point.h"
 
 namespace fairshape {
 namespace {

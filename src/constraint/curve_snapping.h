@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "mesh/surface_mesh.h"
+#include "fairshape/mesh/surface_mesh.h"
 
 namespace fairshape {
 

@@ -1,9 +1,9 @@
 // The `normal` constraint (Boier-Martin et al. §4.2): at each selected vertex the surface
 // normal becomes the given direction.
-#include "constraint/constraint_factories.h"
-#include "constraint/rigid_motion.h"
-#include "constraint/surface_points.h"
-#include "constraint/vertex_selection.h"
+#include "fairshape/constraint/constraint_factories.h"
+#include "fairshape/constraint/rigid_motion.h"
+#include "fairshape/constraint/surface_points.h"
+#include "fairshape/constraint/vertex_selection.h"
 
 namespace fairshape {
 namespace {

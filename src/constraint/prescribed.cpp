@@ -1,10 +1,10 @@
 // The `fixed` and `position` constraints: selected vertices of one level (the finest unless
 // `level` says otherwise) keep their place or move by an offset.
-#include "constraint/constraint_factories.h"
-#include "constraint/rigid_motion.h"
-#include "constraint/surface_points.h"
-#include "constraint/vertex_selection.h"
-#include "subdivision/limit.h"
+#include "fairshape/constraint/constraint_factories.h"
+#include "fairshape/constraint/rigid_motion.h"
+#include "fairshape/constraint/surface_points.h"
+#include "fairshape/constraint/vertex_selection.h"
+#include "fairshape/subdivision/limit.h"
 
 namespace fairshape {
 namespace {

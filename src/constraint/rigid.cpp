@@ -1,8 +1,8 @@
 // The `rigid` constraint: selected vertices — typically a boundary loop, Boier-Martin et al.'s
 // Figure 9 — follow one rotation and translation; each becomes a point constraint.
-#include "constraint/constraint_factories.h"
-#include "constraint/rigid_motion.h"
-#include "constraint/vertex_selection.h"
+#include "fairshape/constraint/constraint_factories.h"
+#include "fairshape/constraint/rigid_motion.h"
+#include "fairshape/constraint/vertex_selection.h"
 
 namespace fairshape {
 namespace {

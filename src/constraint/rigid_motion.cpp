@@ -1,4 +1,4 @@
-#include "constraint/rigid_motion.h"
+#include "fairshape/constraint/rigid_motion.h"
 
 #include <numbers>
 

@@ -6,8 +6,8 @@
 
 #include <optional>
 
-#include "core/config.h"
-#include "core/types.h"
+#include "fairshape/core/config.h"
+#include "fairshape/core/types.h"
 
 namespace fairshape {
 

@@ -1,9 +1,9 @@
-#include "constraint/surface_points.h"
+#include "fairshape/constraint/surface_points.h"
 
 #include <limits>
 
-#include "constraint/crease_normals.h"
-#include "constraint/rigid_motion.h"
+#include "fairshape/constraint/crease_normals.h"
+#include "fairshape/constraint/rigid_motion.h"
 
 namespace fairshape {
 

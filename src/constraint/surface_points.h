@@ -11,8 +11,8 @@
 #include <optional>
 #include <string>
 
-#include "constraint/constraint.h"
-#include "core/config.h"
+#include "fairshape/constraint/constraint.h"
+#include "fairshape/core/config.h"
 
 namespace fairshape {
 

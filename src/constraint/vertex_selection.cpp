@@ -1,4 +1,4 @@
-#include "constraint/vertex_selection.h"
+#include "fairshape/constraint/vertex_selection.h"
 
 #include <algorithm>
 #include <limits>

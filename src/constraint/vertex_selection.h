@@ -9,8 +9,8 @@
 
 #include <vector>
 
-#include "core/config.h"
-#include "mesh/surface_mesh.h"
+#include "fairshape/core/config.h"
+#include "fairshape/mesh/surface_mesh.h"
 
 namespace fairshape {
 

@@ -1,11 +1,11 @@
-#include "core/atomic_file.h"
+#include "fairshape/core/atomic_file.h"
 
 #include <fcntl.h>
 #include <unistd.h>
 
 #include <atomic>
 
-#include "core/error.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape {
 namespace fs = std::filesystem;

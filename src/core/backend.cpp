@@ -1,6 +1,6 @@
-#include "core/backend.h"
+#include "fairshape/core/backend.h"
 
-#include "core/error.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape {
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <string_view>
 
-#include "core/name_table.h"
+#include "fairshape/core/name_table.h"
 
 namespace fairshape {
 

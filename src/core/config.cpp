@@ -1,4 +1,4 @@
-#include "core/config.h"
+#include "fairshape/core/config.h"
 
 #include <cstdio>
 #include <cstdlib>

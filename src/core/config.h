@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
-#include "core/name_table.h"
+#include "fairshape/core/error.h"
+#include "fairshape/core/name_table.h"
 
 namespace fairshape {
 

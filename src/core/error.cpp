@@ -1,4 +1,4 @@
-#include "core/error.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape {
 

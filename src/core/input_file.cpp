@@ -1,10 +1,10 @@
-#include "core/input_file.h"
+#include "fairshape/core/input_file.h"
 
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
-#include "core/error.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape {
 

@@ -1,4 +1,4 @@
-#include "core/memory.h"
+#include "fairshape/core/memory.h"
 
 #include <malloc.h>
 

@@ -14,7 +14,7 @@
 #include <numeric>
 #include <vector>
 
-#include "core/types.h"
+#include "fairshape/core/types.h"
 
 namespace fairshape {
 

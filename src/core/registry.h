@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "core/backend.h"
-#include "core/config.h"
-#include "core/error.h"
+#include "fairshape/core/backend.h"
+#include "fairshape/core/config.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape {
 

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "core/error.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape {
 

@@ -1,6 +1,6 @@
-#include "core/summary.h"
+#include "fairshape/core/summary.h"
 
-#include "core/error.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape {
 

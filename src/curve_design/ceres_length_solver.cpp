@@ -1,14 +1,14 @@
-#include "curve_design/ceres_length_solver.h"
+#include "fairshape/curve_design/ceres_length_solver.h"
 
-#include "curve_design/length_manifold.h"
-#include "curve_design/second_order.h"
+#include "fairshape/curve_design/length_manifold.h"
+#include "fairshape/curve_design/second_order.h"
 
 #include <ceres/ceres.h>
 
 #include <cmath>
 
-#include "core/config.h"
-#include "core/timer.h"
+#include "fairshape/core/config.h"
+#include "fairshape/core/timer.h"
 
 namespace fairshape {
 namespace {

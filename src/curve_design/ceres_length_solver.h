@@ -6,7 +6,7 @@
 // linearized loop it never linearizes the lengths: each round minimizes the true objective.
 #pragma once
 
-#include "curve_design/length_solver.h"
+#include "fairshape/curve_design/length_solver.h"
 
 namespace fairshape {
 

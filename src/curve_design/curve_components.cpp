@@ -1,8 +1,8 @@
-#include "curve_design/curve_components.h"
+#include "fairshape/curve_design/curve_components.h"
 
 #include <algorithm>
 
-#include "core/config.h"
+#include "fairshape/core/config.h"
 
 namespace fairshape {
 namespace {

@@ -5,11 +5,11 @@
 #include <memory>
 #include <vector>
 
-#include "core/registry.h"
-#include "curve_design/curve_constraint.h"
-#include "curve_design/curve_energy.h"
-#include "curve_design/length_solver.h"
-#include "mesh/polyline.h"
+#include "fairshape/core/registry.h"
+#include "fairshape/curve_design/curve_constraint.h"
+#include "fairshape/curve_design/curve_energy.h"
+#include "fairshape/curve_design/length_solver.h"
+#include "fairshape/mesh/polyline.h"
 
 namespace fairshape {
 

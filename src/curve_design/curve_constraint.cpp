@@ -1,4 +1,4 @@
-#include "curve_design/curve_constraint.h"
+#include "fairshape/curve_design/curve_constraint.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include <Eigen/Geometry>
 
-#include "core/error.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape {
 

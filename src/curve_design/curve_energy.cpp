@@ -1,6 +1,6 @@
-#include "curve_design/curve_energy.h"
+#include "fairshape/curve_design/curve_energy.h"
 
-#include "core/config.h"
+#include "fairshape/core/config.h"
 
 namespace fairshape {
 

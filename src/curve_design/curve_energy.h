@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "core/registry.h"
-#include "core/types.h"
+#include "fairshape/core/registry.h"
+#include "fairshape/core/types.h"
 
 namespace fairshape {
 

@@ -1,11 +1,11 @@
-#include "curve_design/curve_metrics.h"
+#include "fairshape/curve_design/curve_metrics.h"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <cmath>
 
-#include "curve_design/curve_constraint.h"
-#include "curve_design/curve_energy.h"
+#include "fairshape/curve_design/curve_constraint.h"
+#include "fairshape/curve_design/curve_energy.h"
 
 namespace fairshape {
 namespace {

@@ -1,7 +1,7 @@
 // What a curve experiment reports about a result (the CSV columns of configs/sauvage).
 #pragma once
 
-#include "core/types.h"
+#include "fairshape/core/types.h"
 
 namespace fairshape {
 

@@ -1,4 +1,4 @@
-#include "curve_design/detail_frames.h"
+#include "fairshape/curve_design/detail_frames.h"
 
 #include <Eigen/Geometry>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "curve_design/edit_support.h"
+#include "fairshape/curve_design/edit_support.h"
 
 namespace fairshape {
 

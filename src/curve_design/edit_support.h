@@ -8,7 +8,7 @@
 
 #include <vector>
 
-#include "core/types.h"
+#include "fairshape/core/types.h"
 
 namespace fairshape {
 

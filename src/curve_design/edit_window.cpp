@@ -1,4 +1,4 @@
-#include "curve_design/edit_window.h"
+#include "fairshape/curve_design/edit_window.h"
 
 #include <algorithm>
 #include <cmath>

@@ -17,8 +17,8 @@
 #include <memory>
 #include <vector>
 
-#include "curve_design/length_problem.h"
-#include "curve_design/length_solver.h"
+#include "fairshape/curve_design/length_problem.h"
+#include "fairshape/curve_design/length_solver.h"
 
 namespace fairshape {
 

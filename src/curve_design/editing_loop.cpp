@@ -1,10 +1,10 @@
-#include "curve_design/editing_loop.h"
+#include "fairshape/curve_design/editing_loop.h"
 
-#include "core/timer.h"
-#include "curve_design/detail_frames.h"
-#include "curve_design/edit_support.h"
-#include "curve_design/explicit_local.h"
-#include "curves/multires_polyline.h"
+#include "fairshape/core/timer.h"
+#include "fairshape/curve_design/detail_frames.h"
+#include "fairshape/curve_design/edit_support.h"
+#include "fairshape/curve_design/explicit_local.h"
+#include "fairshape/curves/multires_polyline.h"
 
 namespace fairshape {
 namespace {

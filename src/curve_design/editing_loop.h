@@ -9,13 +9,13 @@
 #include <string>
 #include <vector>
 
-#include "core/backend.h"
-#include "curve_design/curve_components.h"
-#include "curve_design/edit_window.h"
-#include "curve_design/explicit_length.h"
-#include "curve_design/length_problem.h"
-#include "curve_design/length_solver.h"
-#include "mesh/polyline.h"
+#include "fairshape/core/backend.h"
+#include "fairshape/curve_design/curve_components.h"
+#include "fairshape/curve_design/edit_window.h"
+#include "fairshape/curve_design/explicit_length.h"
+#include "fairshape/curve_design/length_problem.h"
+#include "fairshape/curve_design/length_solver.h"
+#include "fairshape/mesh/polyline.h"
 
 namespace fairshape {
 

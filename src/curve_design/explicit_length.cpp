@@ -1,4 +1,4 @@
-#include "curve_design/explicit_length.h"
+#include "fairshape/curve_design/explicit_length.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
@@ -6,7 +6,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
-#include "core/error.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape {
 namespace {

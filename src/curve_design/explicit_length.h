@@ -20,8 +20,8 @@
 //  * |PQ| < |a − b| (no intersection): the midpoint goes on the line PQ at distance a from P.
 #pragma once
 
-#include "core/backend.h"
-#include "core/types.h"
+#include "fairshape/core/backend.h"
+#include "fairshape/core/types.h"
 
 namespace fairshape {
 

@@ -1,11 +1,11 @@
-#include "curve_design/explicit_local.h"
+#include "fairshape/curve_design/explicit_local.h"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
 
-#include "core/error.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape {
 namespace {

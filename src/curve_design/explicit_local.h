@@ -25,8 +25,8 @@
 
 #include <vector>
 
-#include "core/backend.h"
-#include "curve_design/explicit_length.h"
+#include "fairshape/core/backend.h"
+#include "fairshape/curve_design/explicit_length.h"
 
 namespace fairshape {
 

@@ -1,4 +1,4 @@
-#include "curve_design/kkt_factor.h"
+#include "fairshape/curve_design/kkt_factor.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "core/backend.h"
-#include "curve_design/length_problem.h"
+#include "fairshape/core/backend.h"
+#include "fairshape/curve_design/length_problem.h"
 
 namespace fairshape {
 

@@ -1,4 +1,4 @@
-#include "curve_design/length_manifold.h"
+#include "fairshape/curve_design/length_manifold.h"
 
 #include <Eigen/SparseCholesky>
 #include <algorithm>

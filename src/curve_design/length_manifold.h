@@ -7,8 +7,8 @@
 
 #include <string>
 
-#include "core/types.h"
-#include "curve_design/length_problem.h"
+#include "fairshape/core/types.h"
+#include "fairshape/curve_design/length_problem.h"
 
 namespace fairshape {
 

@@ -1,10 +1,10 @@
-#include "curve_design/length_problem.h"
+#include "fairshape/curve_design/length_problem.h"
 
 #include <Eigen/SparseCholesky>
 #include <cmath>
 
-#include "core/config.h"
-#include "core/error.h"
+#include "fairshape/core/config.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape {
 

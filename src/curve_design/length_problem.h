@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "core/types.h"
-#include "curve_design/curve_constraint.h"
-#include "curve_design/curve_energy.h"
+#include "fairshape/core/types.h"
+#include "fairshape/curve_design/curve_constraint.h"
+#include "fairshape/curve_design/curve_energy.h"
 
 namespace fairshape {
 

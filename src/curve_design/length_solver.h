@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "core/registry.h"
-#include "core/summary.h"
-#include "core/types.h"
-#include "curve_design/length_problem.h"
+#include "fairshape/core/registry.h"
+#include "fairshape/core/summary.h"
+#include "fairshape/core/types.h"
+#include "fairshape/curve_design/length_problem.h"
 
 namespace fairshape {
 

@@ -1,12 +1,12 @@
-#include "curve_design/linearized_length_solver.h"
+#include "fairshape/curve_design/linearized_length_solver.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/config.h"
-#include "core/timer.h"
-#include "curve_design/length_manifold.h"
-#include "curve_design/second_order.h"
+#include "fairshape/core/config.h"
+#include "fairshape/core/timer.h"
+#include "fairshape/curve_design/length_manifold.h"
+#include "fairshape/curve_design/second_order.h"
 
 namespace fairshape {
 namespace {

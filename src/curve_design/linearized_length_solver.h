@@ -4,8 +4,8 @@
 // lengths (and, optionally, stationarity) meet the tolerances.
 #pragma once
 
-#include "curve_design/kkt_factor.h"
-#include "curve_design/length_solver.h"
+#include "fairshape/curve_design/kkt_factor.h"
+#include "fairshape/curve_design/length_solver.h"
 
 namespace fairshape {
 

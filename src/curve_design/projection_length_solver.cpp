@@ -1,12 +1,12 @@
-#include "curve_design/projection_length_solver.h"
+#include "fairshape/curve_design/projection_length_solver.h"
 
 #include <cmath>
 #include <limits>
 
 #include <Eigen/SparseCholesky>
 
-#include "core/message_format.h"
-#include "core/timer.h"
+#include "fairshape/core/message_format.h"
+#include "fairshape/core/timer.h"
 
 namespace fairshape {
 namespace {

@@ -9,7 +9,7 @@
 // error it reached, never converged unless the tolerances are met.
 #pragma once
 
-#include "curve_design/length_solver.h"
+#include "fairshape/curve_design/length_solver.h"
 
 namespace fairshape {
 

@@ -1,8 +1,8 @@
-#include "core/config.h"
-#include "curve_design/ceres_length_solver.h"
-#include "curve_design/linearized_length_solver.h"
-#include "curve_design/projection_length_solver.h"
-#include "curve_design/trust_region_length_solver.h"
+#include "fairshape/core/config.h"
+#include "fairshape/curve_design/ceres_length_solver.h"
+#include "fairshape/curve_design/linearized_length_solver.h"
+#include "fairshape/curve_design/projection_length_solver.h"
+#include "fairshape/curve_design/trust_region_length_solver.h"
 
 namespace fairshape {
 namespace {

@@ -1,12 +1,12 @@
-#include "curve_design/second_order.h"
+#include "fairshape/curve_design/second_order.h"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 #include <algorithm>
 
-#include "core/message_format.h"
-#include "curve_design/kkt_factor.h"
-#include "curve_design/length_manifold.h"
+#include "fairshape/core/message_format.h"
+#include "fairshape/curve_design/kkt_factor.h"
+#include "fairshape/curve_design/length_manifold.h"
 
 namespace fairshape {
 

@@ -9,9 +9,9 @@
 
 #include <string>
 
-#include "core/types.h"
-#include "curve_design/length_problem.h"
-#include "curve_design/length_solver.h"
+#include "fairshape/core/types.h"
+#include "fairshape/curve_design/length_problem.h"
+#include "fairshape/curve_design/length_solver.h"
 
 namespace fairshape {
 

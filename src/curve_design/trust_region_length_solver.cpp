@@ -1,13 +1,13 @@
-#include "curve_design/trust_region_length_solver.h"
+#include "fairshape/curve_design/trust_region_length_solver.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/config.h"
-#include "core/message_format.h"
-#include "core/timer.h"
-#include "curve_design/length_manifold.h"
-#include "curve_design/second_order.h"
+#include "fairshape/core/config.h"
+#include "fairshape/core/message_format.h"
+#include "fairshape/core/timer.h"
+#include "fairshape/curve_design/length_manifold.h"
+#include "fairshape/curve_design/second_order.h"
 
 namespace fairshape {
 namespace {

@@ -23,8 +23,8 @@
 // at every accepted point.
 #pragma once
 
-#include "curve_design/kkt_factor.h"
-#include "curve_design/length_solver.h"
+#include "fairshape/curve_design/kkt_factor.h"
+#include "fairshape/curve_design/length_solver.h"
 
 namespace fairshape {
 

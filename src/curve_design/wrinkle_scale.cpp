@@ -1,4 +1,4 @@
-#include "curve_design/wrinkle_scale.h"
+#include "fairshape/curve_design/wrinkle_scale.h"
 
 #include <Eigen/Geometry>
 #include <unsupported/Eigen/FFT>

@@ -12,7 +12,7 @@
 //               do not leak into every frequency).
 #pragma once
 
-#include "core/types.h"
+#include "fairshape/core/types.h"
 
 namespace fairshape {
 

@@ -1,11 +1,11 @@
-#include "curves/curve_sampling.h"
+#include "fairshape/curves/curve_sampling.h"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <sstream>
 
-#include "core/error.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape {
 

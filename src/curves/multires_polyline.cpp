@@ -1,9 +1,9 @@
-#include "curves/multires_polyline.h"
+#include "fairshape/curves/multires_polyline.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "core/error.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape {
 namespace {

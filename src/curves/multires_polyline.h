@@ -8,9 +8,9 @@
 
 #include <vector>
 
-#include "core/backend.h"
-#include "core/error.h"
-#include "mesh/polyline.h"
+#include "fairshape/core/backend.h"
+#include "fairshape/core/error.h"
+#include "fairshape/mesh/polyline.h"
 
 namespace fairshape {
 

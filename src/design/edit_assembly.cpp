@@ -1,7 +1,7 @@
-#include "design/edit_assembly.h"
+#include "fairshape/design/edit_assembly.h"
 
-#include "design/multires_constraints.h"
-#include "subdivision/subdivider.h"
+#include "fairshape/design/multires_constraints.h"
+#include "fairshape/subdivision/subdivider.h"
 
 namespace fairshape {
 

@@ -6,11 +6,11 @@
 
 #include <vector>
 
-#include "constraint/constraint.h"
-#include "design/influence.h"
-#include "design/multilevel_edit.h"
-#include "energy/energy.h"
-#include "subdivision/multires_surface.h"
+#include "fairshape/constraint/constraint.h"
+#include "fairshape/design/influence.h"
+#include "fairshape/design/multilevel_edit.h"
+#include "fairshape/energy/energy.h"
+#include "fairshape/subdivision/multires_surface.h"
 
 namespace fairshape {
 

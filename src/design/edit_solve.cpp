@@ -1,14 +1,14 @@
-#include "design/edit_solve.h"
+#include "fairshape/design/edit_solve.h"
 
 #include <cmath>
 #include <limits>
 #include <optional>
 
-#include "core/timer.h"
-#include "problem/constrained_system.h"
-#include "problem/least_squares.h"
-#include "qp/qp_solver.h"
-#include "qp/split_solver.h"
+#include "fairshape/core/timer.h"
+#include "fairshape/problem/constrained_system.h"
+#include "fairshape/problem/least_squares.h"
+#include "fairshape/qp/qp_solver.h"
+#include "fairshape/qp/split_solver.h"
 
 namespace fairshape {
 

@@ -14,13 +14,13 @@
 #include <optional>
 #include <vector>
 
-#include "core/backend.h"
-#include "design/multires_constraints.h"
-#include "solver/level_operators.h"
-#include "problem/constrained_system.h"
-#include "core/config.h"
-#include "core/name_table.h"
-#include "solver/solver.h"
+#include "fairshape/core/backend.h"
+#include "fairshape/design/multires_constraints.h"
+#include "fairshape/solver/level_operators.h"
+#include "fairshape/problem/constrained_system.h"
+#include "fairshape/core/config.h"
+#include "fairshape/core/name_table.h"
+#include "fairshape/solver/solver.h"
 
 namespace fairshape {
 

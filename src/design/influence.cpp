@@ -1,4 +1,4 @@
-#include "design/influence.h"
+#include "fairshape/design/influence.h"
 
 #include <algorithm>
 

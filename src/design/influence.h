@@ -18,9 +18,9 @@
 
 #include <vector>
 
-#include "core/types.h"
-#include "mesh/surface_mesh.h"
-#include "subdivision/multires_surface.h"
+#include "fairshape/core/types.h"
+#include "fairshape/mesh/surface_mesh.h"
+#include "fairshape/subdivision/multires_surface.h"
 
 namespace fairshape {
 

@@ -1,8 +1,8 @@
-#include "design/multilevel_edit.h"
+#include "fairshape/design/multilevel_edit.h"
 
-#include "core/error.h"
-#include "core/timer.h"
-#include "solver/parallel_kernels.h"
+#include "fairshape/core/error.h"
+#include "fairshape/core/timer.h"
+#include "fairshape/solver/parallel_kernels.h"
 
 namespace fairshape {
 

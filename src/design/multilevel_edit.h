@@ -20,7 +20,7 @@
 #include <string_view>
 #include <vector>
 
-#include "design/edit_solve.h"
+#include "fairshape/design/edit_solve.h"
 
 namespace fairshape {
 

@@ -1,4 +1,4 @@
-#include "design/multires_constraints.h"
+#include "fairshape/design/multires_constraints.h"
 
 #include <map>
 #include <sstream>
@@ -8,9 +8,9 @@
 
 #include <Eigen/Geometry>
 
-#include "constraint/crease_normals.h"
-#include "energy/divided_differences.h"
-#include "subdivision/limit.h"
+#include "fairshape/constraint/crease_normals.h"
+#include "fairshape/energy/divided_differences.h"
+#include "fairshape/subdivision/limit.h"
 
 namespace fairshape {
 

@@ -1,4 +1,4 @@
-#include "design/regional_edit.h"
+#include "fairshape/design/regional_edit.h"
 
 #include <algorithm>
 #include <map>
@@ -7,11 +7,11 @@
 #include <set>
 #include <sstream>
 
-#include "core/timer.h"
-#include "design/multires_constraints.h"
-#include "problem/anderson_acceleration.h"
-#include "problem/constrained_system.h"
-#include "problem/least_squares.h"
+#include "fairshape/core/timer.h"
+#include "fairshape/design/multires_constraints.h"
+#include "fairshape/problem/anderson_acceleration.h"
+#include "fairshape/problem/constrained_system.h"
+#include "fairshape/problem/least_squares.h"
 
 namespace fairshape {
 

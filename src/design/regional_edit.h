@@ -21,9 +21,9 @@
 
 #include <vector>
 
-#include "design/edit_assembly.h"
-#include "design/edit_solve.h"
-#include "design/influence.h"
+#include "fairshape/design/edit_assembly.h"
+#include "fairshape/design/edit_solve.h"
+#include "fairshape/design/influence.h"
 
 namespace fairshape {
 

@@ -1,11 +1,11 @@
-#include "design/rotation_aware_edit.h"
+#include "fairshape/design/rotation_aware_edit.h"
 
 #include <algorithm>
 #include <memory>
 #include <sstream>
 
-#include "energy/local_rotations.h"
-#include "problem/anderson_acceleration.h"
+#include "fairshape/energy/local_rotations.h"
+#include "fairshape/problem/anderson_acceleration.h"
 
 namespace fairshape {
 namespace {

@@ -6,8 +6,8 @@
 
 #include <vector>
 
-#include "design/edit_assembly.h"
-#include "design/edit_solve.h"
+#include "fairshape/design/edit_assembly.h"
+#include "fairshape/design/edit_solve.h"
 
 namespace fairshape {
 

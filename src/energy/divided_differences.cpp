@@ -1,10 +1,10 @@
-#include "energy/divided_differences.h"
+#include "fairshape/energy/divided_differences.h"
 
 #include <Eigen/Dense>
 #include <cmath>
 #include <optional>
 
-#include "core/error.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape {
 

@@ -5,9 +5,9 @@
 #include <memory>
 #include <string>
 
-#include "core/registry.h"
-#include "core/types.h"
-#include "mesh/surface_mesh.h"
+#include "fairshape/core/registry.h"
+#include "fairshape/core/types.h"
+#include "fairshape/mesh/surface_mesh.h"
 
 namespace fairshape {
 

@@ -1,10 +1,10 @@
-#include "energy/gram_assembly.h"
+#include "fairshape/energy/gram_assembly.h"
 
 #include <algorithm>
 #include <numeric>
 
-#include "core/error.h"
-#include "core/parallel_row_assembly.h"
+#include "fairshape/core/error.h"
+#include "fairshape/core/parallel_row_assembly.h"
 
 namespace fairshape {
 

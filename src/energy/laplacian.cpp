@@ -1,8 +1,8 @@
-#include "energy/laplacian.h"
+#include "fairshape/energy/laplacian.h"
 
 #include <Eigen/Geometry>
 
-#include "core/error.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape {
 namespace {

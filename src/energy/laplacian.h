@@ -2,7 +2,7 @@
 // with L·1 = 0: (L u)_i = Σ_j w_ij (u_j − u_i).
 #pragma once
 
-#include "mesh/surface_mesh.h"
+#include "fairshape/mesh/surface_mesh.h"
 
 namespace fairshape {
 

@@ -1,13 +1,13 @@
-#include "energy/local_quadratic.h"
-#include "energy/ring_coupling.h"
+#include "fairshape/energy/local_quadratic.h"
+#include "fairshape/energy/ring_coupling.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <cmath>
 
-#include "energy/divided_differences.h"
-#include "energy/gram_assembly.h"
+#include "fairshape/energy/divided_differences.h"
+#include "fairshape/energy/gram_assembly.h"
 
 namespace fairshape {
 

@@ -8,9 +8,9 @@
 #include <memory>
 #include <vector>
 
-#include "core/backend.h"
-#include "core/types.h"
-#include "mesh/surface_mesh.h"
+#include "fairshape/core/backend.h"
+#include "fairshape/core/types.h"
+#include "fairshape/mesh/surface_mesh.h"
 
 namespace fairshape {
 

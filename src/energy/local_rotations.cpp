@@ -1,11 +1,11 @@
-#include "energy/local_rotations.h"
+#include "fairshape/energy/local_rotations.h"
 
 #include <Eigen/LU>
 #include <Eigen/SVD>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "energy/divided_differences.h"
+#include "fairshape/energy/divided_differences.h"
 
 namespace fairshape {
 

@@ -19,7 +19,7 @@
 
 #include <vector>
 
-#include "energy/local_quadratic.h"
+#include "fairshape/energy/local_quadratic.h"
 
 namespace fairshape {
 

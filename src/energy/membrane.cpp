@@ -1,6 +1,6 @@
 // Membrane (stretch) energy ½ Σ_edges w_ij |u_i − u_j|²: its Hessian is −L.
-#include "energy/energy.h"
-#include "energy/laplacian.h"
+#include "fairshape/energy/energy.h"
+#include "fairshape/energy/laplacian.h"
 
 namespace fairshape {
 namespace {

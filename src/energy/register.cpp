@@ -1,4 +1,4 @@
-#include "energy/energy.h"
+#include "fairshape/energy/energy.h"
 
 namespace fairshape {
 

@@ -1,9 +1,9 @@
-#include "energy/ring_coupling.h"
+#include "fairshape/energy/ring_coupling.h"
 
 #include <cstdint>
 #include <limits>
 
-#include "core/error.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape {
 

@@ -4,10 +4,10 @@
 //                      taken from the rest shape (§4.1): details ride along with an edit.
 // The unknowns are always displacements; thin-plate's linear term −H P_rest comes from
 // measures_positions().
-#include "energy/energy.h"
-#include "energy/local_quadratic.h"
-#include "energy/local_rotations.h"
-#include "energy/ring_coupling.h"
+#include "fairshape/energy/energy.h"
+#include "fairshape/energy/local_quadratic.h"
+#include "fairshape/energy/local_rotations.h"
+#include "fairshape/energy/ring_coupling.h"
 
 namespace fairshape {
 namespace {

@@ -1,8 +1,8 @@
 // Discrete thin-plate (bending) energy ½ Σ_i |(U u)_i|² with U the umbrella operator:
 // its Hessian is UᵀU, which annihilates translations.
-#include "energy/energy.h"
-#include "energy/laplacian.h"
-#include "energy/ring_coupling.h"
+#include "fairshape/energy/energy.h"
+#include "fairshape/energy/laplacian.h"
+#include "fairshape/energy/ring_coupling.h"
 
 namespace fairshape {
 namespace {

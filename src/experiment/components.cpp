@@ -1,4 +1,4 @@
-#include "experiment/components.h"
+#include "fairshape/experiment/components.h"
 
 namespace fairshape {
 

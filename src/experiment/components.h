@@ -1,9 +1,9 @@
 // Every registry of pluggable components, filled by register_all().
 #pragma once
 
-#include "constraint/constraint.h"
-#include "energy/energy.h"
-#include "solver/solver.h"
+#include "fairshape/constraint/constraint.h"
+#include "fairshape/energy/energy.h"
+#include "fairshape/solver/solver.h"
 
 namespace fairshape {
 

@@ -1,13 +1,13 @@
-#include "experiment/config_loader.h"
+#include "fairshape/experiment/config_loader.h"
 
 #include <filesystem>
 #include <map>
 #include <vector>
 
-#include "core/config.h"
-#include "core/error.h"
-#include "core/input_file.h"
-#include "experiment/yaml_structure.h"
+#include "fairshape/core/config.h"
+#include "fairshape/core/error.h"
+#include "fairshape/core/input_file.h"
+#include "fairshape/experiment/yaml_structure.h"
 
 namespace fairshape {
 namespace fs = std::filesystem;

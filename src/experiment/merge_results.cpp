@@ -5,12 +5,12 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "core/error.h"
-#include "core/config.h"
-#include "experiment/run_metadata.h"
-#include "experiment/sweep_runner.h"
-#include "io/csv.h"
-#include "io/json_io.h"
+#include "fairshape/core/error.h"
+#include "fairshape/core/config.h"
+#include "fairshape/experiment/run_metadata.h"
+#include "fairshape/experiment/sweep_runner.h"
+#include "fairshape/io/csv.h"
+#include "fairshape/io/json_io.h"
 
 namespace fairshape {
 namespace fs = std::filesystem;

@@ -1,4 +1,4 @@
-#include "experiment/output_folder.h"
+#include "fairshape/experiment/output_folder.h"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -7,10 +7,10 @@
 #include <cstring>
 #include <fstream>
 
-#include "core/error.h"
-#include "core/summary.h"
-#include "experiment/run_metadata.h"
-#include "io/csv.h"
+#include "fairshape/core/error.h"
+#include "fairshape/core/summary.h"
+#include "fairshape/experiment/run_metadata.h"
+#include "fairshape/io/csv.h"
 
 namespace fairshape {
 namespace fs = std::filesystem;

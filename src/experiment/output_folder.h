@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "experiment/run_outputs.h"
+#include "fairshape/experiment/run_outputs.h"
 
 namespace fairshape {
 

@@ -1,4 +1,4 @@
-#include "experiment/progress.h"
+#include "fairshape/experiment/progress.h"
 
 #include <unistd.h>
 

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "core/timer.h"
+#include "fairshape/core/timer.h"
 
 namespace fairshape {
 

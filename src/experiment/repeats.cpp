@@ -1,10 +1,10 @@
-#include "experiment/repeats.h"
+#include "fairshape/experiment/repeats.h"
 
 #include <algorithm>
 #include <set>
 
-#include "core/statistics.h"
-#include "experiment/metric_format.h"
+#include "fairshape/core/statistics.h"
+#include "fairshape/experiment/metric_format.h"
 
 namespace fairshape {
 namespace fs = std::filesystem;

@@ -1,11 +1,11 @@
-#include "experiment/run_basics.h"
+#include "fairshape/experiment/run_basics.h"
 
 #include <cmath>
 #include <filesystem>
 #include <map>
 #include <mutex>
 
-#include "io/mesh_io.h"
+#include "fairshape/io/mesh_io.h"
 
 namespace fairshape {
 namespace fs = std::filesystem;

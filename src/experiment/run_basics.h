@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "core/backend.h"
-#include "core/config.h"
-#include "core/types.h"
+#include "fairshape/core/backend.h"
+#include "fairshape/core/config.h"
+#include "fairshape/core/types.h"
 
 namespace fairshape {
 

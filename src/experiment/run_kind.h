@@ -11,8 +11,8 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "experiment/repeats.h"
-#include "experiment/run_outputs.h"
+#include "fairshape/experiment/repeats.h"
+#include "fairshape/experiment/run_outputs.h"
 
 namespace fairshape {
 

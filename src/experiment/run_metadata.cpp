@@ -1,4 +1,4 @@
-#include "experiment/run_metadata.h"
+#include "fairshape/experiment/run_metadata.h"
 
 #include <cholmod.h>
 #include <tbb/info.h>
@@ -11,11 +11,11 @@
 #include <filesystem>
 #include <thread>
 
-#include "core/atomic_file.h"
-#include "core/sha256.h"
-#include "experiment/sweep_runner.h"
+#include "fairshape/core/atomic_file.h"
+#include "fairshape/core/sha256.h"
+#include "fairshape/experiment/sweep_runner.h"
 #include "fairshape_build_info.h"
-#include "io/json_io.h"
+#include "fairshape/io/json_io.h"
 
 namespace fairshape {
 namespace {

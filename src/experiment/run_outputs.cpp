@@ -1,10 +1,10 @@
-#include "experiment/run_outputs.h"
+#include "fairshape/experiment/run_outputs.h"
 
 #include <cctype>
 #include <filesystem>
 #include <map>
 
-#include "core/error.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape {
 namespace fs = std::filesystem;

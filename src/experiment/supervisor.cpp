@@ -1,4 +1,4 @@
-#include "experiment/supervisor.h"
+#include "fairshape/experiment/supervisor.h"
 
 #include <signal.h>
 #include <spawn.h>
@@ -11,7 +11,7 @@
 #include <iostream>
 #include <map>
 
-#include "core/error.h"
+#include "fairshape/core/error.h"
 
 extern char** environ;
 

@@ -1,9 +1,9 @@
-#include "experiment/sweep.h"
+#include "fairshape/experiment/sweep.h"
 
-#include "core/config.h"
-#include "core/error.h"
-#include "core/sha256.h"
-#include "experiment/config_loader.h"
+#include "fairshape/core/config.h"
+#include "fairshape/core/error.h"
+#include "fairshape/core/sha256.h"
+#include "fairshape/experiment/config_loader.h"
 
 namespace fairshape {
 namespace {

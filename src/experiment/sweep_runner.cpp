@@ -1,4 +1,4 @@
-#include "experiment/sweep_runner.h"
+#include "fairshape/experiment/sweep_runner.h"
 
 #include <algorithm>
 #include <csignal>
@@ -10,18 +10,18 @@
 #include <set>
 #include <stdexcept>
 
-#include "core/atomic_file.h"
-#include "core/config.h"
-#include "core/error.h"
-#include "core/summary.h"
-#include "experiment/config_loader.h"
-#include "experiment/output_folder.h"
-#include "experiment/progress.h"
-#include "experiment/run_kind.h"
-#include "experiment/run_metadata.h"
-#include "experiment/run_basics.h"
-#include "experiment/supervisor.h"
-#include "experiment/sweep.h"
+#include "fairshape/core/atomic_file.h"
+#include "fairshape/core/config.h"
+#include "fairshape/core/error.h"
+#include "fairshape/core/summary.h"
+#include "fairshape/experiment/config_loader.h"
+#include "fairshape/experiment/output_folder.h"
+#include "fairshape/experiment/progress.h"
+#include "fairshape/experiment/run_kind.h"
+#include "fairshape/experiment/run_metadata.h"
+#include "fairshape/experiment/run_basics.h"
+#include "fairshape/experiment/supervisor.h"
+#include "fairshape/experiment/sweep.h"
 
 namespace fairshape {
 namespace fs = std::filesystem;

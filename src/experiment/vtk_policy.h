@@ -4,7 +4,7 @@
 // runs have one state, so `all` is `final` there.
 #pragma once
 
-#include "core/config.h"
+#include "fairshape/core/config.h"
 
 namespace fairshape {
 

@@ -1,4 +1,4 @@
-#include "experiment/yaml_structure.h"
+#include "fairshape/experiment/yaml_structure.h"
 
 #include <map>
 #include <sstream>
@@ -9,7 +9,7 @@
 #include <yaml-cpp/mark.h>
 #include <yaml-cpp/parser.h>
 
-#include "core/error.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape {
 namespace {

@@ -1,4 +1,4 @@
-#include "feature/adaptive_evaluation.h"
+#include "fairshape/feature/adaptive_evaluation.h"
 
 #include <Eigen/Geometry>
 
@@ -8,10 +8,10 @@
 #include <numbers>
 #include <unordered_set>
 
-#include "feature/adaptive_mesh.h"
-#include "feature/perturbation.h"
-#include "feature/triangle_surface.h"
-#include "subdivision/subdivider.h"
+#include "fairshape/feature/adaptive_mesh.h"
+#include "fairshape/feature/perturbation.h"
+#include "fairshape/feature/triangle_surface.h"
+#include "fairshape/subdivision/subdivider.h"
 
 namespace fairshape::feature {
 namespace {

@@ -26,10 +26,10 @@
 
 #include <vector>
 
-#include "core/backend.h"
-#include "feature/feature_curve.h"
-#include "feature/sparse_loop.h"
-#include "subdivision/scheme.h"
+#include "fairshape/core/backend.h"
+#include "fairshape/feature/feature_curve.h"
+#include "fairshape/feature/sparse_loop.h"
+#include "fairshape/subdivision/scheme.h"
 
 namespace fairshape::feature {
 

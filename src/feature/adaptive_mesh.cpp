@@ -1,4 +1,4 @@
-#include "feature/adaptive_mesh.h"
+#include "fairshape/feature/adaptive_mesh.h"
 
 #include <Eigen/Geometry>
 

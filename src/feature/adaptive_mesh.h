@@ -12,7 +12,7 @@
 #include <array>
 #include <vector>
 
-#include "subdivision/multires_surface.h"
+#include "fairshape/subdivision/multires_surface.h"
 
 namespace fairshape::feature {
 

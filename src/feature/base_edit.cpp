@@ -1,4 +1,4 @@
-#include "feature/base_edit.h"
+#include "fairshape/feature/base_edit.h"
 
 #include <cmath>
 

@@ -2,7 +2,7 @@
 // the features, stored as details above it, follow the edited base.
 #pragma once
 
-#include "mesh/surface_mesh.h"
+#include "fairshape/mesh/surface_mesh.h"
 
 namespace fairshape::feature {
 

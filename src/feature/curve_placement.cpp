@@ -1,11 +1,11 @@
-#include "feature/curve_placement.h"
+#include "fairshape/feature/curve_placement.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "feature/geodesic_path.h"
-#include "feature/plane_section.h"
-#include "feature/polyline_import.h"
+#include "fairshape/feature/geodesic_path.h"
+#include "fairshape/feature/plane_section.h"
+#include "fairshape/feature/polyline_import.h"
 
 namespace fairshape::feature {
 namespace {

@@ -9,7 +9,7 @@
 #include <variant>
 #include <vector>
 
-#include "feature/feature_curve.h"
+#include "fairshape/feature/feature_curve.h"
 
 namespace fairshape::feature {
 

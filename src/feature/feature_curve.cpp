@@ -1,8 +1,8 @@
-#include "feature/feature_curve.h"
+#include "fairshape/feature/feature_curve.h"
 
 #include <cmath>
 
-#include "remesh/closest_point.h"
+#include "fairshape/remesh/closest_point.h"
 
 namespace fairshape::feature {
 

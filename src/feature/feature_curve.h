@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "feature/ray_unrolling.h"
-#include "feature/triangle_surface.h"
+#include "fairshape/feature/ray_unrolling.h"
+#include "fairshape/feature/triangle_surface.h"
 
 namespace fairshape::feature {
 

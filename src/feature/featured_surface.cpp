@@ -1,4 +1,4 @@
-#include "feature/featured_surface.h"
+#include "fairshape/feature/featured_surface.h"
 
 namespace fairshape::feature {
 

@@ -14,9 +14,9 @@
 #include <set>
 #include <vector>
 
-#include "feature/perturbation.h"
-#include "feature/visible_profile.h"
-#include "subdivision/multires_surface.h"
+#include "fairshape/feature/perturbation.h"
+#include "fairshape/feature/visible_profile.h"
+#include "fairshape/subdivision/multires_surface.h"
 
 namespace fairshape::feature {
 

@@ -13,11 +13,11 @@
 //    recomputed vertex gives the same offsets as before;
 //  - the finest level's visible targets displace each point by itself (displace_points), so
 //    only the recomputed rows change; the limit fit separates into blocks (visible_profile.h).
-#include "feature/featured_surface.h"
+#include "fairshape/feature/featured_surface.h"
 
 #include <algorithm>
 
-#include "subdivision/limit.h"
+#include "fairshape/subdivision/limit.h"
 
 namespace fairshape::feature {
 namespace {

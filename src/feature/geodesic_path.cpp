@@ -4,7 +4,7 @@
 // leg took ~20 s), so each leg gets only the faces within the ellipsoid its geodesic cannot
 // leave: every point x of a path of length ≤ L from a to b has |x − a| + |x − b| ≤ L, and L is
 // bounded by a path along the edges. The result is the same geodesic, exactly.
-#include "feature/geodesic_path.h"
+#include "fairshape/feature/geodesic_path.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>

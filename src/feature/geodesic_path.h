@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "feature/surface_polyline.h"
+#include "fairshape/feature/surface_polyline.h"
 
 namespace fairshape::feature {
 

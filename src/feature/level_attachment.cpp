@@ -1,4 +1,4 @@
-#include "feature/level_attachment.h"
+#include "fairshape/feature/level_attachment.h"
 
 namespace fairshape::feature {
 

@@ -7,7 +7,7 @@
 
 #include <vector>
 
-#include "feature/feature_curve.h"
+#include "fairshape/feature/feature_curve.h"
 
 namespace fairshape::feature {
 

@@ -1,6 +1,6 @@
-#include "feature/perturbation.h"
+#include "fairshape/feature/perturbation.h"
 
-#include "feature/perturbation_backends.h"
+#include "fairshape/feature/perturbation_backends.h"
 
 #include <algorithm>
 #include <cmath>

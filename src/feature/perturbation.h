@@ -13,8 +13,8 @@
 #include <optional>
 #include <vector>
 
-#include "core/backend.h"
-#include "feature/feature_curve.h"
+#include "fairshape/core/backend.h"
+#include "fairshape/feature/feature_curve.h"
 
 namespace fairshape::feature {
 

@@ -1,7 +1,7 @@
 // The two back ends of compute_perturbation (perturbation.h) and what they share.
 #pragma once
 
-#include "feature/perturbation.h"
+#include "fairshape/feature/perturbation.h"
 
 namespace fairshape::feature {
 

@@ -1,6 +1,6 @@
 // Reference back end of compute_perturbation: every vertex of the level against every segment of
 // every curve, serially — the paper's description read literally.
-#include "feature/perturbation_backends.h"
+#include "fairshape/feature/perturbation_backends.h"
 
 namespace fairshape::feature {
 

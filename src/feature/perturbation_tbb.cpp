@@ -15,7 +15,7 @@
 #include <cmath>
 #include <unordered_map>
 
-#include "feature/perturbation_backends.h"
+#include "fairshape/feature/perturbation_backends.h"
 
 namespace fairshape::feature {
 namespace {

@@ -1,4 +1,4 @@
-#include "feature/plane_section.h"
+#include "fairshape/feature/plane_section.h"
 
 namespace fairshape::feature {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "feature/surface_polyline.h"
+#include "fairshape/feature/surface_polyline.h"
 
 namespace fairshape::feature {
 

@@ -1,9 +1,9 @@
-#include "feature/polyline_import.h"
+#include "fairshape/feature/polyline_import.h"
 
 #include <vector>
 
-#include "io/mesh_io.h"
-#include "io/text_scanner.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/io/text_scanner.h"
 
 namespace fairshape::feature {
 namespace {

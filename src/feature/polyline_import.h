@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "mesh/polyline.h"
+#include "fairshape/mesh/polyline.h"
 
 namespace fairshape::feature {
 

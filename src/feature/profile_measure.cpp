@@ -1,10 +1,10 @@
-#include "feature/profile_measure.h"
+#include "fairshape/feature/profile_measure.h"
 
 #include <cmath>
 #include <limits>
 #include <sstream>
 
-#include "remesh/closest_point.h"
+#include "fairshape/remesh/closest_point.h"
 
 namespace fairshape::feature {
 namespace {

@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "feature/featured_surface.h"
+#include "fairshape/feature/featured_surface.h"
 
 namespace fairshape::feature {
 

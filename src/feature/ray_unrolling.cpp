@@ -1,4 +1,4 @@
-#include "feature/ray_unrolling.h"
+#include "fairshape/feature/ray_unrolling.h"
 
 #include <algorithm>
 #include <cmath>

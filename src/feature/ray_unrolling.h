@@ -8,8 +8,8 @@
 
 #include <vector>
 
-#include "core/error.h"
-#include "feature/triangle_surface.h"
+#include "fairshape/core/error.h"
+#include "fairshape/feature/triangle_surface.h"
 
 namespace fairshape::feature {
 

@@ -1,10 +1,10 @@
-#include "feature/sparse_loop.h"
+#include "fairshape/feature/sparse_loop.h"
 
 #include <algorithm>
 #include <numeric>
 
-#include "core/error.h"
-#include "subdivision/subdivider.h"
+#include "fairshape/core/error.h"
+#include "fairshape/subdivision/subdivider.h"
 
 namespace fairshape::feature {
 namespace {

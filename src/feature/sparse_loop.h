@@ -18,8 +18,8 @@
 #include <unordered_map>
 #include <vector>
 
-#include "mesh/surface_mesh.h"
-#include "subdivision/scheme.h"
+#include "fairshape/mesh/surface_mesh.h"
+#include "fairshape/subdivision/scheme.h"
 
 namespace fairshape::feature {
 

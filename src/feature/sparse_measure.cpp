@@ -1,8 +1,8 @@
-#include "feature/sparse_measure.h"
+#include "fairshape/feature/sparse_measure.h"
 
 #include <stdexcept>
 
-#include "subdivision/limit.h"
+#include "fairshape/subdivision/limit.h"
 
 namespace fairshape::feature {
 namespace {

@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "feature/adaptive_evaluation.h"
-#include "feature/profile_measure.h"
+#include "fairshape/feature/adaptive_evaluation.h"
+#include "fairshape/feature/profile_measure.h"
 
 namespace fairshape::feature {
 

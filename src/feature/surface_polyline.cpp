@@ -1,9 +1,9 @@
-#include "feature/surface_polyline.h"
+#include "fairshape/feature/surface_polyline.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "remesh/closest_point.h"
+#include "fairshape/remesh/closest_point.h"
 
 namespace fairshape::feature {
 namespace {

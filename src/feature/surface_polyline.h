@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "feature/ray_unrolling.h"
+#include "fairshape/feature/ray_unrolling.h"
 
 namespace fairshape::feature {
 

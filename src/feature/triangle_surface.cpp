@@ -1,10 +1,10 @@
-#include "feature/triangle_surface.h"
+#include "fairshape/feature/triangle_surface.h"
 
 #include <algorithm>
 
-#include "core/error.h"
-#include "remesh/closest_point.h"
-#include "subdivision/limit.h"
+#include "fairshape/core/error.h"
+#include "fairshape/remesh/closest_point.h"
+#include "fairshape/subdivision/limit.h"
 
 namespace fairshape::feature {
 

@@ -11,7 +11,7 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "mesh/surface_mesh.h"
+#include "fairshape/mesh/surface_mesh.h"
 
 namespace fairshape {
 class ClosestPointQuery;

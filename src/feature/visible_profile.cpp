@@ -1,8 +1,8 @@
-#include "feature/visible_profile.h"
+#include "fairshape/feature/visible_profile.h"
 
 #include <Eigen/SparseCholesky>
 
-#include "subdivision/limit.h"
+#include "fairshape/subdivision/limit.h"
 
 namespace fairshape::feature {
 

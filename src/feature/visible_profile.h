@@ -13,9 +13,9 @@
 #include <memory>
 #include <vector>
 
-#include "core/name_table.h"
-#include "feature/perturbation.h"
-#include "subdivision/scheme.h"
+#include "fairshape/core/name_table.h"
+#include "fairshape/feature/perturbation.h"
+#include "fairshape/subdivision/scheme.h"
 
 namespace fairshape::feature {
 

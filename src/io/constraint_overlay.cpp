@@ -1,6 +1,6 @@
-#include "io/constraint_overlay.h"
+#include "fairshape/io/constraint_overlay.h"
 
-#include "io/vtk_io.h"
+#include "fairshape/io/vtk_io.h"
 
 namespace fairshape {
 

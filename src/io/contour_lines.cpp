@@ -1,4 +1,4 @@
-#include "io/contour_lines.h"
+#include "fairshape/io/contour_lines.h"
 
 #include <vtkCellArray.h>
 #include <vtkContourFilter.h>
@@ -7,8 +7,8 @@
 #include <vtkPointData.h>
 #include <vtkStripper.h>
 
-#include "core/error.h"
-#include "io/vtk_convert.h"
+#include "fairshape/core/error.h"
+#include "fairshape/io/vtk_convert.h"
 
 namespace fairshape {
 

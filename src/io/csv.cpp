@@ -1,4 +1,4 @@
-#include "io/csv.h"
+#include "fairshape/io/csv.h"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -9,9 +9,9 @@
 #include <cstring>
 #include <filesystem>
 
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "io/text_scanner.h"
+#include "fairshape/core/atomic_file.h"
+#include "fairshape/core/error.h"
+#include "fairshape/io/text_scanner.h"
 
 namespace fairshape {
 

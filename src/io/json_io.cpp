@@ -1,8 +1,8 @@
-#include "io/json_io.h"
+#include "fairshape/io/json_io.h"
 
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "io/text_scanner.h"
+#include "fairshape/core/atomic_file.h"
+#include "fairshape/core/error.h"
+#include "fairshape/io/text_scanner.h"
 
 namespace fairshape {
 

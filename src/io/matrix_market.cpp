@@ -1,9 +1,9 @@
-#include "io/matrix_market.h"
+#include "fairshape/io/matrix_market.h"
 
 #include <cstdio>
 
-#include "core/atomic_file.h"
-#include "io/text_scanner.h"
+#include "fairshape/core/atomic_file.h"
+#include "fairshape/io/text_scanner.h"
 
 namespace fairshape {
 

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "core/types.h"
+#include "fairshape/core/types.h"
 
 namespace fairshape {
 

@@ -1,12 +1,12 @@
-#include "io/mesh_io.h"
+#include "fairshape/io/mesh_io.h"
 
 #include <bit>
 #include <cinttypes>
 #include <cstdio>
 #include <filesystem>
 
-#include "core/atomic_file.h"
-#include "io/text_scanner.h"
+#include "fairshape/core/atomic_file.h"
+#include "fairshape/io/text_scanner.h"
 
 namespace fairshape {
 namespace {

@@ -8,9 +8,9 @@
 #include <string_view>
 #include <vector>
 
-#include "core/error.h"
-#include "mesh/polyline.h"
-#include "mesh/surface_mesh.h"
+#include "fairshape/core/error.h"
+#include "fairshape/mesh/polyline.h"
+#include "fairshape/mesh/surface_mesh.h"
 
 namespace fairshape {
 

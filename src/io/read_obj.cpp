@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <map>
 
-#include "io/mesh_io.h"
-#include "io/text_scanner.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/io/text_scanner.h"
 
 namespace fairshape {
 namespace {

@@ -1,7 +1,7 @@
 // Object File Format: "OFF" (or COFF / NOFF / CNOFF: per-vertex colours or normals after the
 // coordinates, ignored), counts "nv nf ne", vertices, then faces "k i0 .. i(k-1) [colour]".
-#include "io/mesh_io.h"
-#include "io/text_scanner.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/io/text_scanner.h"
 
 namespace fairshape {
 

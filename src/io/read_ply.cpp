@@ -7,8 +7,8 @@
 #include <memory>
 #include <sstream>
 
-#include "io/mesh_io.h"
-#include "io/text_scanner.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/io/text_scanner.h"
 
 namespace fairshape {
 namespace {

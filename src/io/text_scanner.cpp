@@ -1,8 +1,8 @@
-#include "io/text_scanner.h"
+#include "fairshape/io/text_scanner.h"
 
 #include <cmath>
 
-#include "core/input_file.h"
+#include "fairshape/core/input_file.h"
 
 namespace fairshape::io::internal {
 

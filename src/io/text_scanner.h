@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "core/error.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape::io::internal {
 

@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "mesh/surface_mesh.h"
+#include "fairshape/mesh/surface_mesh.h"
 
 namespace fairshape::io::internal {
 

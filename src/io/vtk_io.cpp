@@ -1,4 +1,4 @@
-#include "io/vtk_io.h"
+#include "fairshape/io/vtk_io.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
@@ -26,10 +26,10 @@
 #include <string_view>
 #include <vector>
 
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "io/text_scanner.h"
-#include "io/vtk_convert.h"
+#include "fairshape/core/atomic_file.h"
+#include "fairshape/core/error.h"
+#include "fairshape/io/text_scanner.h"
+#include "fairshape/io/vtk_convert.h"
 
 namespace fairshape {
 namespace fs = std::filesystem;

@@ -7,8 +7,8 @@
 #include <utility>
 #include <vector>
 
-#include "mesh/polyline.h"
-#include "mesh/surface_mesh.h"
+#include "fairshape/mesh/polyline.h"
+#include "fairshape/mesh/surface_mesh.h"
 
 namespace fairshape {
 

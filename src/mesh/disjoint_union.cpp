@@ -1,4 +1,4 @@
-#include "mesh/disjoint_union.h"
+#include "fairshape/mesh/disjoint_union.h"
 
 namespace fairshape {
 

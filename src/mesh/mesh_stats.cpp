@@ -1,4 +1,4 @@
-#include "mesh/mesh_stats.h"
+#include "fairshape/mesh/mesh_stats.h"
 
 #include <numeric>
 #include <sstream>

@@ -1,7 +1,7 @@
 // A polyline: open or closed, 2D curves stored with z = 0.
 #pragma once
 
-#include "core/types.h"
+#include "fairshape/core/types.h"
 
 namespace fairshape {
 

@@ -1,10 +1,10 @@
-#include "mesh/surface_mesh.h"
+#include "fairshape/mesh/surface_mesh.h"
 
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
 
-#include "core/error.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape {
 namespace {

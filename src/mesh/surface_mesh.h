@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "core/types.h"
+#include "fairshape/core/types.h"
 
 namespace fairshape {
 

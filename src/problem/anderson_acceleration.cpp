@@ -1,4 +1,4 @@
-#include "problem/anderson_acceleration.h"
+#include "fairshape/problem/anderson_acceleration.h"
 
 #include <Eigen/QR>
 

@@ -1,6 +1,6 @@
-#include "problem/constrained_system.h"
+#include "fairshape/problem/constrained_system.h"
 
-#include "core/error.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape {
 

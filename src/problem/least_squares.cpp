@@ -1,4 +1,4 @@
-#include "problem/least_squares.h"
+#include "fairshape/problem/least_squares.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <Eigen/SPQRSupport>
 #include <Eigen/SparseQR>
 
-#include "core/error.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape {
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "core/backend.h"
-#include "core/types.h"
+#include "fairshape/core/backend.h"
+#include "fairshape/core/types.h"
 
 namespace fairshape {
 

@@ -1,4 +1,4 @@
-#include "qp/constraint_policy.h"
+#include "fairshape/qp/constraint_policy.h"
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/Eigenvalues>
@@ -7,9 +7,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/config.h"
-#include "core/message_format.h"
-#include "problem/least_squares.h"
+#include "fairshape/core/config.h"
+#include "fairshape/core/message_format.h"
+#include "fairshape/problem/least_squares.h"
 
 namespace fairshape::qp {
 

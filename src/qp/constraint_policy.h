@@ -16,8 +16,8 @@
 #include <limits>
 #include <string>
 
-#include "core/types.h"
-#include "qp/qp_solver.h"
+#include "fairshape/core/types.h"
+#include "fairshape/qp/qp_solver.h"
 
 namespace fairshape {
 class Config;

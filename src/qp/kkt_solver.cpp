@@ -17,12 +17,12 @@
 #include <memory>
 #include <random>
 
-#include "core/error.h"
-#include "core/message_format.h"
-#include "core/timer.h"
-#include "problem/least_squares.h"
-#include "qp/kkt_solver.h"
-#include "qp/constraint_policy.h"
+#include "fairshape/core/error.h"
+#include "fairshape/core/message_format.h"
+#include "fairshape/core/timer.h"
+#include "fairshape/problem/least_squares.h"
+#include "fairshape/qp/kkt_solver.h"
+#include "fairshape/qp/constraint_policy.h"
 
 namespace fairshape::qp {
 

@@ -4,10 +4,10 @@
 #include <memory>
 #include <vector>
 
-#include "core/backend.h"
-#include "qp/qp_solver.h"
-#include "qp/constraint_policy.h"
-#include "qp/row_dependence.h"
+#include "fairshape/core/backend.h"
+#include "fairshape/qp/qp_solver.h"
+#include "fairshape/qp/constraint_policy.h"
+#include "fairshape/qp/row_dependence.h"
 
 namespace fairshape::qp {
 

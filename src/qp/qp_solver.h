@@ -16,9 +16,9 @@
 #include <string>
 #include <vector>
 
-#include "core/registry.h"
-#include "qp/quadratic_program.h"
-#include "solver/solver.h"
+#include "fairshape/core/registry.h"
+#include "fairshape/qp/quadratic_program.h"
+#include "fairshape/solver/solver.h"
 
 namespace fairshape::qp {
 

@@ -1,4 +1,4 @@
-#include "qp/qr_penalty_solver.h"
+#include "fairshape/qp/qr_penalty_solver.h"
 
 #include <Eigen/SPQRSupport>
 #include <Eigen/SparseCholesky>
@@ -10,11 +10,11 @@
 #include <optional>
 #include <string>
 
-#include "core/error.h"
-#include "core/message_format.h"
-#include "core/timer.h"
-#include "qp/constraint_policy.h"
-#include "problem/constrained_system.h"
+#include "fairshape/core/error.h"
+#include "fairshape/core/message_format.h"
+#include "fairshape/core/timer.h"
+#include "fairshape/qp/constraint_policy.h"
+#include "fairshape/problem/constrained_system.h"
 
 namespace fairshape::qp {
 

@@ -17,9 +17,9 @@
 #include <functional>
 #include <memory>
 
-#include "core/backend.h"
-#include "qp/constraint_policy.h"
-#include "qp/qp_solver.h"
+#include "fairshape/core/backend.h"
+#include "fairshape/qp/constraint_policy.h"
+#include "fairshape/qp/qp_solver.h"
 
 namespace fairshape::qp {
 

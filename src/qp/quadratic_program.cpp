@@ -1,6 +1,6 @@
-#include "qp/quadratic_program.h"
+#include "fairshape/qp/quadratic_program.h"
 
-#include "core/error.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape::qp {
 

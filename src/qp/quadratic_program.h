@@ -7,8 +7,8 @@
 #include <memory>
 #include <string>
 
-#include "core/types.h"
-#include "solver/level_operators.h"
+#include "fairshape/core/types.h"
+#include "fairshape/solver/level_operators.h"
 
 namespace fairshape::qp {
 

@@ -1,6 +1,6 @@
-#include "qp/range_space_solver.h"
-#include "qp/constraint_policy.h"
-#include "qp/row_dependence.h"
+#include "fairshape/qp/range_space_solver.h"
+#include "fairshape/qp/constraint_policy.h"
+#include "fairshape/qp/row_dependence.h"
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/Eigenvalues>
@@ -12,11 +12,11 @@
 #include <cmath>
 #include <string>
 
-#include "core/error.h"
-#include "core/message_format.h"
-#include "core/timer.h"
-#include "problem/constrained_system.h"
-#include "problem/least_squares.h"
+#include "fairshape/core/error.h"
+#include "fairshape/core/message_format.h"
+#include "fairshape/core/timer.h"
+#include "fairshape/problem/constrained_system.h"
+#include "fairshape/problem/least_squares.h"
 
 namespace fairshape::qp {
 

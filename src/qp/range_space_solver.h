@@ -16,8 +16,8 @@
 #include <optional>
 #include <vector>
 
-#include "qp/constraint_policy.h"
-#include "qp/qp_solver.h"
+#include "fairshape/qp/constraint_policy.h"
+#include "fairshape/qp/qp_solver.h"
 
 namespace fairshape::qp {
 

@@ -1,10 +1,10 @@
 #include <algorithm>
 
-#include "core/config.h"
-#include "qp/kkt_solver.h"
-#include "qp/qr_penalty_solver.h"
-#include "qp/range_space_solver.h"
-#include "qp/split_solver.h"
+#include "fairshape/core/config.h"
+#include "fairshape/qp/kkt_solver.h"
+#include "fairshape/qp/qr_penalty_solver.h"
+#include "fairshape/qp/range_space_solver.h"
+#include "fairshape/qp/split_solver.h"
 
 namespace fairshape::qp {
 

@@ -1,4 +1,4 @@
-#include "qp/row_dependence.h"
+#include "fairshape/qp/row_dependence.h"
 
 #include <Eigen/QR>
 #include <Eigen/SPQRSupport>
@@ -7,9 +7,9 @@
 #include <algorithm>
 #include <memory>
 
-#include "core/error.h"
-#include "problem/least_squares.h"
-#include "solver/parallel_kernels.h"
+#include "fairshape/core/error.h"
+#include "fairshape/problem/least_squares.h"
+#include "fairshape/solver/parallel_kernels.h"
 
 namespace fairshape::qp {
 

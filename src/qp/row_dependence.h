@@ -11,8 +11,8 @@
 
 #include <functional>
 
-#include "core/backend.h"
-#include "core/types.h"
+#include "fairshape/core/backend.h"
+#include "fairshape/core/types.h"
 
 namespace fairshape::qp {
 

@@ -1,12 +1,12 @@
-#include "qp/split_solver.h"
+#include "fairshape/qp/split_solver.h"
 
 #include <cmath>
 #include <limits>
 #include <optional>
 
-#include "core/error.h"
-#include "core/timer.h"
-#include "problem/least_squares.h"
+#include "fairshape/core/error.h"
+#include "fairshape/core/timer.h"
+#include "fairshape/problem/least_squares.h"
 
 namespace fairshape::qp {
 

@@ -8,10 +8,10 @@
 #include <memory>
 #include <vector>
 
-#include "core/backend.h"
-#include "problem/constrained_system.h"
-#include "qp/qp_solver.h"
-#include "solver/solver.h"
+#include "fairshape/core/backend.h"
+#include "fairshape/problem/constrained_system.h"
+#include "fairshape/qp/qp_solver.h"
+#include "fairshape/solver/solver.h"
 
 namespace fairshape {
 class MinNormLeastSquares;

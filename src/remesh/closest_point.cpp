@@ -1,4 +1,4 @@
-#include "remesh/closest_point.h"
+#include "fairshape/remesh/closest_point.h"
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -10,7 +10,7 @@
 #include <atomic>
 #include <limits>
 
-#include "core/error.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape {
 

@@ -5,7 +5,7 @@
 #include <memory>
 #include <vector>
 
-#include "mesh/surface_mesh.h"
+#include "fairshape/mesh/surface_mesh.h"
 
 namespace fairshape {
 

@@ -1,11 +1,11 @@
-#include "remesh/quad_pairing.h"
+#include "fairshape/remesh/quad_pairing.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
-#include "subdivision/subdivider.h"
+#include "fairshape/subdivision/subdivider.h"
 
 namespace fairshape {
 namespace {

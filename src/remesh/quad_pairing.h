@@ -5,7 +5,7 @@
 // a triangle without a good partner stays a triangle.
 #pragma once
 
-#include "mesh/surface_mesh.h"
+#include "fairshape/mesh/surface_mesh.h"
 
 namespace fairshape {
 

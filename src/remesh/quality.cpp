@@ -1,11 +1,11 @@
-#include "remesh/quality.h"
+#include "fairshape/remesh/quality.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
 
-#include "remesh/closest_point.h"
+#include "fairshape/remesh/closest_point.h"
 
 namespace fairshape {
 

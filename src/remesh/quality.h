@@ -9,7 +9,7 @@
 #include <map>
 #include <string>
 
-#include "mesh/surface_mesh.h"
+#include "fairshape/mesh/surface_mesh.h"
 
 namespace fairshape {
 

@@ -1,10 +1,10 @@
-#include "remesh/relaxation.h"
+#include "fairshape/remesh/relaxation.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <limits>
 
-#include "remesh/closest_point.h"
+#include "fairshape/remesh/closest_point.h"
 
 namespace fairshape {
 

@@ -1,4 +1,4 @@
-#include "remesh/remesh.h"
+#include "fairshape/remesh/remesh.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -9,14 +9,14 @@
 #include <sstream>
 #include <optional>
 
-#include "core/error.h"
-#include "core/timer.h"
-#include "remesh/closest_point.h"
-#include "remesh/quad_pairing.h"
-#include "remesh/quality.h"
-#include "remesh/relaxation.h"
-#include "remesh/simplify.h"
-#include "subdivision/subdivider.h"
+#include "fairshape/core/error.h"
+#include "fairshape/core/timer.h"
+#include "fairshape/remesh/closest_point.h"
+#include "fairshape/remesh/quad_pairing.h"
+#include "fairshape/remesh/quality.h"
+#include "fairshape/remesh/relaxation.h"
+#include "fairshape/remesh/simplify.h"
+#include "fairshape/subdivision/subdivider.h"
 
 namespace fairshape {
 namespace {

@@ -27,7 +27,7 @@
 #include <string>
 #include <vector>
 
-#include "subdivision/multires_surface.h"
+#include "fairshape/subdivision/multires_surface.h"
 
 namespace fairshape {
 

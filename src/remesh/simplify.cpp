@@ -1,4 +1,4 @@
-#include "remesh/simplify.h"
+#include "fairshape/remesh/simplify.h"
 
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
@@ -8,8 +8,8 @@
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 #include <cmath>
 
-#include "core/error.h"
-#include "subdivision/subdivider.h"
+#include "fairshape/core/error.h"
+#include "fairshape/subdivision/subdivider.h"
 
 namespace fairshape {
 

@@ -2,7 +2,7 @@
 // headers are expensive to compile).
 #pragma once
 
-#include "mesh/surface_mesh.h"
+#include "fairshape/mesh/surface_mesh.h"
 
 namespace fairshape {
 

@@ -1,4 +1,4 @@
-#include "render/camera.h"
+#include "fairshape/render/camera.h"
 
 #include <cmath>
 #include <numbers>

@@ -6,8 +6,8 @@
 #include <vtkCamera.h>
 #include <vtkRenderer.h>
 
-#include "core/name_table.h"
-#include "core/types.h"
+#include "fairshape/core/name_table.h"
+#include "fairshape/core/types.h"
 
 namespace fairshape::render {
 

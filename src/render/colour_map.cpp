@@ -1,4 +1,4 @@
-#include "render/colour_map.h"
+#include "fairshape/render/colour_map.h"
 
 #include <array>
 

@@ -6,7 +6,7 @@
 #include <vtkColorTransferFunction.h>
 #include <vtkSmartPointer.h>
 
-#include "core/name_table.h"
+#include "fairshape/core/name_table.h"
 
 namespace fairshape::render {
 

@@ -1,4 +1,4 @@
-#include "render/display.h"
+#include "fairshape/render/display.h"
 
 #include <X11/Xlib.h>
 

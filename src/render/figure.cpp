@@ -1,4 +1,4 @@
-#include "render/figure.h"
+#include "fairshape/render/figure.h"
 
 #include <vtkImageData.h>
 #include <vtkLight.h>
@@ -18,12 +18,12 @@
 #include <cmath>
 #include <filesystem>
 
-#include "core/atomic_file.h"
-#include "io/constraint_overlay.h"
-#include "io/json_io.h"
-#include "core/error.h"
-#include "render/display.h"
-#include "render/overlay.h"
+#include "fairshape/core/atomic_file.h"
+#include "fairshape/io/constraint_overlay.h"
+#include "fairshape/io/json_io.h"
+#include "fairshape/core/error.h"
+#include "fairshape/render/display.h"
+#include "fairshape/render/overlay.h"
 
 namespace fairshape::render {
 

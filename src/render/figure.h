@@ -8,8 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include "render/camera.h"
-#include "render/scene.h"
+#include "fairshape/render/camera.h"
+#include "fairshape/render/scene.h"
 
 namespace fairshape::render {
 

@@ -1,4 +1,4 @@
-#include "render/overlay.h"
+#include "fairshape/render/overlay.h"
 
 #include <vtkActor.h>
 #include <vtkArrowSource.h>
@@ -17,7 +17,7 @@
 
 #include <array>
 
-#include "io/constraint_overlay.h"
+#include "fairshape/io/constraint_overlay.h"
 
 namespace fairshape::render {
 namespace {

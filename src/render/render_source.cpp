@@ -1,4 +1,4 @@
-#include "render/render_source.h"
+#include "fairshape/render/render_source.h"
 
 #include <vtkCellArray.h>
 #include <vtkNew.h>
@@ -9,12 +9,12 @@
 #include <fstream>
 #include <vector>
 
-#include "core/error.h"
-#include "core/input_file.h"
-#include "io/csv.h"
-#include "io/mesh_io.h"
-#include "io/vtk_convert.h"
-#include "io/vtk_io.h"
+#include "fairshape/core/error.h"
+#include "fairshape/core/input_file.h"
+#include "fairshape/io/csv.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/io/vtk_convert.h"
+#include "fairshape/io/vtk_io.h"
 
 namespace fairshape::render {
 namespace fs = std::filesystem;

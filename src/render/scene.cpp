@@ -1,4 +1,4 @@
-#include "render/scene.h"
+#include "fairshape/render/scene.h"
 
 #include <vtkActor.h>
 #include <vtkNew.h>
@@ -8,7 +8,7 @@
 #include <vtkProperty.h>
 #include <vtkTubeFilter.h>
 
-#include "core/error.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape::render {
 

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "core/name_table.h"
-#include "render/colour_map.h"
-#include "render/render_source.h"
+#include "fairshape/core/name_table.h"
+#include "fairshape/render/colour_map.h"
+#include "fairshape/render/render_source.h"
 
 namespace fairshape::render {
 

@@ -1,9 +1,9 @@
-#include "solver/block_ordering.h"
+#include "fairshape/solver/block_ordering.h"
 
 #include <algorithm>
 
-#include "core/error.h"
-#include "solver/graph_coloring.h"
+#include "fairshape/core/error.h"
+#include "fairshape/solver/graph_coloring.h"
 
 namespace fairshape {
 namespace {

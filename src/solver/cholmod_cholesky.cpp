@@ -3,9 +3,9 @@
 // keeps the symbolic analysis (the fill-reducing ordering) and is only refactored.
 #include <Eigen/CholmodSupport>
 
-#include "problem/constrained_system.h"
-#include "solver/matrix_fingerprint.h"
-#include "solver/solver.h"
+#include "fairshape/problem/constrained_system.h"
+#include "fairshape/solver/matrix_fingerprint.h"
+#include "fairshape/solver/solver.h"
 
 namespace fairshape {
 namespace {

@@ -3,7 +3,7 @@
 // and differ only in the kernel (serial Eigen vs TBB row-parallel).
 #pragma once
 
-#include "solver/iterative.h"
+#include "fairshape/solver/iterative.h"
 
 namespace fairshape {
 

@@ -4,8 +4,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
 
-#include "solver/conjugate_gradient.h"
-#include "solver/matrix_fingerprint.h"
+#include "fairshape/solver/conjugate_gradient.h"
+#include "fairshape/solver/matrix_fingerprint.h"
 
 namespace fairshape {
 namespace {

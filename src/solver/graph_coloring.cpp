@@ -1,4 +1,4 @@
-#include "solver/graph_coloring.h"
+#include "fairshape/solver/graph_coloring.h"
 
 namespace fairshape {
 

@@ -1,4 +1,4 @@
-#include "solver/iterative.h"
+#include "fairshape/solver/iterative.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>

@@ -2,9 +2,9 @@
 // iteration cap, divergence and NaN detection, callbacks).
 #pragma once
 
-#include "core/config.h"
-#include "core/timer.h"
-#include "solver/solver.h"
+#include "fairshape/core/config.h"
+#include "fairshape/core/timer.h"
+#include "fairshape/solver/solver.h"
 
 namespace fairshape {
 

@@ -7,7 +7,7 @@
 #include <functional>
 #include <vector>
 
-#include "core/types.h"
+#include "fairshape/core/types.h"
 
 namespace fairshape {
 

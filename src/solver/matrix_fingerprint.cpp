@@ -1,4 +1,4 @@
-#include "solver/matrix_fingerprint.h"
+#include "fairshape/solver/matrix_fingerprint.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

@@ -9,7 +9,7 @@
 
 #include <cstdint>
 
-#include "core/types.h"
+#include "fairshape/core/types.h"
 
 namespace fairshape {
 

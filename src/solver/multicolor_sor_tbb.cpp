@@ -2,9 +2,9 @@
 // tbb::parallel_for per colour, on a row-major copy of A and a row-major iterate.
 // Rows of one colour are independent, so the result does not depend on the thread count.
 // The copy and its colouring are redone whenever a solve brings another matrix (solver.h).
-#include "solver/iterative.h"
-#include "solver/matrix_fingerprint.h"
-#include "solver/parallel_kernels.h"
+#include "fairshape/solver/iterative.h"
+#include "fairshape/solver/matrix_fingerprint.h"
+#include "fairshape/solver/parallel_kernels.h"
 
 namespace fairshape {
 namespace {

@@ -1,10 +1,10 @@
-#include "solver/multigrid.h"
+#include "fairshape/solver/multigrid.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/error.h"
-#include "problem/constrained_system.h"
+#include "fairshape/core/error.h"
+#include "fairshape/problem/constrained_system.h"
 
 namespace fairshape {
 

@@ -20,11 +20,11 @@
 #include <string>
 #include <vector>
 
-#include "core/config.h"
-#include "core/error.h"
-#include "solver/iterative.h"
-#include "solver/level_operators.h"
-#include "solver/matrix_fingerprint.h"
+#include "fairshape/core/config.h"
+#include "fairshape/core/error.h"
+#include "fairshape/solver/iterative.h"
+#include "fairshape/solver/level_operators.h"
+#include "fairshape/solver/matrix_fingerprint.h"
 
 namespace fairshape {
 

@@ -8,10 +8,10 @@
 #include <algorithm>
 #include <vector>
 
-#include "solver/block_ordering.h"
-#include "solver/multigrid.h"
-#include "solver/parallel_kernels.h"
-#include "solver/row_kernels.h"
+#include "fairshape/solver/block_ordering.h"
+#include "fairshape/solver/multigrid.h"
+#include "fairshape/solver/parallel_kernels.h"
+#include "fairshape/solver/row_kernels.h"
 
 namespace fairshape {
 namespace {

@@ -1,4 +1,4 @@
-#include "solver/parallel_kernels.h"
+#include "fairshape/solver/parallel_kernels.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -8,10 +8,10 @@
 #include <cmath>
 #include <functional>
 
-#include "core/error.h"
-#include "core/parallel_row_assembly.h"
-#include "solver/graph_coloring.h"
-#include "solver/row_kernels.h"
+#include "fairshape/core/error.h"
+#include "fairshape/core/parallel_row_assembly.h"
+#include "fairshape/solver/graph_coloring.h"
+#include "fairshape/solver/row_kernels.h"
 
 namespace fairshape {
 

@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/types.h"
+#include "fairshape/core/types.h"
 
 namespace fairshape {
 

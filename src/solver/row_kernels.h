@@ -8,8 +8,8 @@
 #include <cstddef>
 #include <type_traits>
 
-#include "core/error.h"
-#include "core/types.h"
+#include "fairshape/core/error.h"
+#include "fairshape/core/types.h"
 
 namespace fairshape {
 

@@ -8,9 +8,9 @@
 #include <string>
 #include <string_view>
 
-#include "core/registry.h"
-#include "core/summary.h"
-#include "core/types.h"
+#include "fairshape/core/registry.h"
+#include "fairshape/core/summary.h"
+#include "fairshape/core/types.h"
 
 namespace fairshape {
 

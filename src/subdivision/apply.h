@@ -2,7 +2,7 @@
 // (each fine vertex reads only its stencil), the optimized counterpart of S * X.
 #pragma once
 
-#include "core/types.h"
+#include "fairshape/core/types.h"
 
 namespace fairshape {
 

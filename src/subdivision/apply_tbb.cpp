@@ -2,7 +2,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
 
-#include "subdivision/apply.h"
+#include "fairshape/subdivision/apply.h"
 
 namespace fairshape {
 

@@ -1,6 +1,6 @@
 // Child connectivity of one subdivision step (pure bookkeeping, shared by both back ends).
-#include "core/error.h"
-#include "subdivision/subdivider.h"
+#include "fairshape/core/error.h"
+#include "fairshape/subdivision/subdivider.h"
 
 namespace fairshape {
 

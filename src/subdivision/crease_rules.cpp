@@ -1,6 +1,6 @@
 // The rules are learned from OpenSubdiv's Sdc::Crease and Sdc::Scheme (not copied); see the
 // header for the statement of each.
-#include "subdivision/crease_rules.h"
+#include "fairshape/subdivision/crease_rules.h"
 
 #include <algorithm>
 

@@ -21,8 +21,8 @@
 
 #include <vector>
 
-#include "mesh/surface_mesh.h"
-#include "subdivision/scheme.h"
+#include "fairshape/mesh/surface_mesh.h"
+#include "fairshape/subdivision/scheme.h"
 
 namespace fairshape {
 

@@ -1,10 +1,10 @@
-#include "subdivision/feature_creases.h"
+#include "fairshape/subdivision/feature_creases.h"
 
 #include <Eigen/Geometry>
 #include <cmath>
 
-#include "core/error.h"
-#include "subdivision/crease_rules.h"
+#include "fairshape/core/error.h"
+#include "fairshape/subdivision/crease_rules.h"
 
 namespace fairshape {
 namespace {

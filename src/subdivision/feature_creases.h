@@ -7,7 +7,7 @@
 // OpenSubdiv's dart rule would make it.
 #pragma once
 
-#include "mesh/surface_mesh.h"
+#include "fairshape/mesh/surface_mesh.h"
 
 namespace fairshape {
 

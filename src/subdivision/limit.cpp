@@ -1,11 +1,11 @@
-#include "subdivision/limit.h"
+#include "fairshape/subdivision/limit.h"
 
 #include <Eigen/Geometry>
 #include <cmath>
 
-#include "core/error.h"
-#include "subdivision/crease_rules.h"
-#include "subdivision/subdivider.h"
+#include "fairshape/core/error.h"
+#include "fairshape/subdivision/crease_rules.h"
+#include "fairshape/subdivision/subdivider.h"
 
 namespace fairshape {
 namespace {

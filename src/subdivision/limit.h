@@ -2,8 +2,8 @@
 // operator (so constraints on the limit surface are linear rows) and tangent frames/normals.
 #pragma once
 
-#include "mesh/surface_mesh.h"
-#include "subdivision/scheme.h"
+#include "fairshape/mesh/surface_mesh.h"
+#include "fairshape/subdivision/scheme.h"
 
 namespace fairshape {
 

@@ -1,4 +1,4 @@
-#include "subdivision/limit_evaluation.h"
+#include "fairshape/subdivision/limit_evaluation.h"
 
 #include <opensubdiv/bfr/refinerSurfaceFactory.h>
 #include <opensubdiv/bfr/surface.h>
@@ -13,7 +13,7 @@
 #include <map>
 #include <sstream>
 
-#include "core/error.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape {
 

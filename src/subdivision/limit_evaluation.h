@@ -26,8 +26,8 @@
 #include <utility>
 #include <vector>
 
-#include "mesh/surface_mesh.h"
-#include "subdivision/scheme.h"
+#include "fairshape/mesh/surface_mesh.h"
+#include "fairshape/subdivision/scheme.h"
 
 namespace fairshape {
 

@@ -1,4 +1,4 @@
-#include "subdivision/subdivider.h"
+#include "fairshape/subdivision/subdivider.h"
 
 namespace fairshape {
 

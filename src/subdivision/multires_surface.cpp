@@ -1,4 +1,4 @@
-#include "subdivision/multires_surface.h"
+#include "fairshape/subdivision/multires_surface.h"
 
 #include <cmath>
 #include <limits>
@@ -7,10 +7,10 @@
 #include <Eigen/SparseCholesky>
 #include <filesystem>
 
-#include "io/json_io.h"
-#include "io/vtk_io.h"
-#include "subdivision/limit.h"
-#include "subdivision/subdivider.h"
+#include "fairshape/io/json_io.h"
+#include "fairshape/io/vtk_io.h"
+#include "fairshape/subdivision/limit.h"
+#include "fairshape/subdivision/subdivider.h"
 
 namespace fairshape {
 namespace fs = std::filesystem;

@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "core/backend.h"
-#include "core/error.h"
-#include "mesh/surface_mesh.h"
-#include "subdivision/scheme.h"
+#include "fairshape/core/backend.h"
+#include "fairshape/core/error.h"
+#include "fairshape/mesh/surface_mesh.h"
+#include "fairshape/subdivision/scheme.h"
 
 namespace fairshape {
 

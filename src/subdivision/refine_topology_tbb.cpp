@@ -8,8 +8,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "subdivision/crease_rules.h"
-#include "subdivision/subdivider.h"
+#include "fairshape/subdivision/crease_rules.h"
+#include "fairshape/subdivision/subdivider.h"
 
 namespace fairshape {
 namespace {

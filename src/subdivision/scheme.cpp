@@ -1,8 +1,8 @@
-#include "subdivision/scheme.h"
+#include "fairshape/subdivision/scheme.h"
 
 #include <cmath>
 
-#include "core/error.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape {
 

@@ -1,10 +1,10 @@
-#include "subdivision/subdivider.h"
+#include "fairshape/subdivision/subdivider.h"
 
 #include <cmath>
 #include <sstream>
 
-#include "core/error.h"
-#include "subdivision/apply.h"
+#include "fairshape/core/error.h"
+#include "fairshape/subdivision/apply.h"
 
 namespace fairshape {
 

@@ -13,9 +13,9 @@
 
 #include <memory>
 
-#include "core/backend.h"
-#include "mesh/surface_mesh.h"
-#include "subdivision/scheme.h"
+#include "fairshape/core/backend.h"
+#include "fairshape/mesh/surface_mesh.h"
+#include "fairshape/subdivision/scheme.h"
 
 namespace fairshape {
 

@@ -9,8 +9,8 @@
 #include <numeric>
 #include <random>
 
-#include "experiment/components.h"
-#include "io/mesh_io.h"
+#include "fairshape/experiment/components.h"
+#include "fairshape/io/mesh_io.h"
 #include "test_support.h"
 
 using namespace fairshape;

@@ -11,10 +11,10 @@
 #include <iostream>
 #include <unordered_map>
 
-#include "io/mesh_io.h"
-#include "subdivision/crease_rules.h"
-#include "subdivision/limit.h"
-#include "subdivision/subdivider.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/subdivision/crease_rules.h"
+#include "fairshape/subdivision/limit.h"
+#include "fairshape/subdivision/subdivider.h"
 #include "test_support.h"
 
 using namespace fairshape;

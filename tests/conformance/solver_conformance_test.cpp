@@ -6,11 +6,11 @@
 #include <Eigen/SparseCholesky>
 #include <random>
 
-#include "energy/laplacian.h"
-#include "experiment/components.h"
-#include "io/mesh_io.h"
-#include "problem/constrained_system.h"
-#include "solver/graph_coloring.h"
+#include "fairshape/energy/laplacian.h"
+#include "fairshape/experiment/components.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/problem/constrained_system.h"
+#include "fairshape/solver/graph_coloring.h"
 #include "test_support.h"
 #include "tolerances.h"
 

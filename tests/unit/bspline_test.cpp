@@ -3,14 +3,14 @@
 #include <catch2/catch.hpp>
 #include <random>
 
-#include "bspline/hierarchical_surface.h"
-#include "bspline/surface_constraints.h"
-#include "bspline/thin_plate_energy.h"
-#include "bspline/uniform_basis.h"
-#include "bspline/variational_sheet.h"
-#include "core/config.h"
-#include "core/error.h"
-#include "qp/qp_solver.h"
+#include "fairshape/bspline/hierarchical_surface.h"
+#include "fairshape/bspline/surface_constraints.h"
+#include "fairshape/bspline/thin_plate_energy.h"
+#include "fairshape/bspline/uniform_basis.h"
+#include "fairshape/bspline/variational_sheet.h"
+#include "fairshape/core/config.h"
+#include "fairshape/core/error.h"
+#include "fairshape/qp/qp_solver.h"
 
 using namespace fairshape;
 using namespace fairshape::bspline;

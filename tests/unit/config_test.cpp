@@ -5,12 +5,12 @@
 #include <fstream>
 #include <set>
 
-#include "core/config.h"
-#include "core/summary.h"
-#include "experiment/components.h"
-#include "experiment/config_loader.h"
-#include "experiment/kinds/surface_edit/surface_edit_spec.h"
-#include "experiment/sweep.h"
+#include "fairshape/core/config.h"
+#include "fairshape/core/summary.h"
+#include "fairshape/experiment/components.h"
+#include "fairshape/experiment/config_loader.h"
+#include "fairshape/experiment/kinds/surface_edit/surface_edit_spec.h"
+#include "fairshape/experiment/sweep.h"
 #include "test_support.h"
 
 using namespace fairshape;

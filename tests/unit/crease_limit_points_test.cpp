@@ -12,16 +12,16 @@
 #include <iostream>
 #include <regex>
 
-#include "constraint/surface_points.h"
-#include "core/error.h"
-#include "design/multires_constraints.h"
-#include "experiment/components.h"
-#include "io/mesh_io.h"
-#include "subdivision/crease_rules.h"
-#include "subdivision/limit.h"
-#include "subdivision/limit_evaluation.h"
-#include "subdivision/multires_surface.h"
-#include "subdivision/subdivider.h"
+#include "fairshape/constraint/surface_points.h"
+#include "fairshape/core/error.h"
+#include "fairshape/design/multires_constraints.h"
+#include "fairshape/experiment/components.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/subdivision/crease_rules.h"
+#include "fairshape/subdivision/limit.h"
+#include "fairshape/subdivision/limit_evaluation.h"
+#include "fairshape/subdivision/multires_surface.h"
+#include "fairshape/subdivision/subdivider.h"
 #include "test_support.h"
 
 using namespace fairshape;

@@ -6,15 +6,15 @@
 #include <cmath>
 #include <fstream>
 
-#include "core/error.h"
-#include "energy/divided_differences.h"
-#include "energy/local_quadratic.h"
-#include "io/mesh_io.h"
-#include "io/vtk_io.h"
-#include "subdivision/crease_rules.h"
-#include "subdivision/feature_creases.h"
-#include "subdivision/multires_surface.h"
-#include "subdivision/subdivider.h"
+#include "fairshape/core/error.h"
+#include "fairshape/energy/divided_differences.h"
+#include "fairshape/energy/local_quadratic.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/io/vtk_io.h"
+#include "fairshape/subdivision/crease_rules.h"
+#include "fairshape/subdivision/feature_creases.h"
+#include "fairshape/subdivision/multires_surface.h"
+#include "fairshape/subdivision/subdivider.h"
 #include "test_support.h"
 
 using namespace fairshape;

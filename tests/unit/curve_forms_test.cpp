@@ -9,12 +9,12 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "curves/curve_sampling.h"
-#include "experiment/config_loader.h"
-#include "experiment/kinds/sheet/curve_forms.h"
-#include "experiment/kinds/sheet/sheet_run.h"
-#include "experiment/run_outputs.h"
-#include "io/mesh_io.h"
+#include "fairshape/curves/curve_sampling.h"
+#include "fairshape/experiment/config_loader.h"
+#include "fairshape/experiment/kinds/sheet/curve_forms.h"
+#include "fairshape/experiment/kinds/sheet/sheet_run.h"
+#include "fairshape/experiment/run_outputs.h"
+#include "fairshape/io/mesh_io.h"
 #include "test_support.h"
 
 using namespace fairshape;

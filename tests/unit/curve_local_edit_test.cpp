@@ -5,13 +5,13 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 
-#include "core/config.h"
-#include "curve_design/curve_metrics.h"
-#include "curve_design/detail_frames.h"
-#include "curve_design/edit_support.h"
-#include "curve_design/editing_loop.h"
-#include "curves/multires_polyline.h"
-#include "io/mesh_io.h"
+#include "fairshape/core/config.h"
+#include "fairshape/curve_design/curve_metrics.h"
+#include "fairshape/curve_design/detail_frames.h"
+#include "fairshape/curve_design/edit_support.h"
+#include "fairshape/curve_design/editing_loop.h"
+#include "fairshape/curves/multires_polyline.h"
+#include "fairshape/io/mesh_io.h"
 
 using namespace fairshape;
 

@@ -10,16 +10,16 @@
 #include <numbers>
 #include <queue>
 
-#include "experiment/kinds/feature/feature_run.h"
-#include "experiment/run_basics.h"
-#include "feature/curve_placement.h"
-#include "feature/geodesic_path.h"
-#include "feature/perturbation.h"
-#include "feature/plane_section.h"
-#include "feature/polyline_import.h"
-#include "io/mesh_io.h"
+#include "fairshape/experiment/kinds/feature/feature_run.h"
+#include "fairshape/experiment/run_basics.h"
+#include "fairshape/feature/curve_placement.h"
+#include "fairshape/feature/geodesic_path.h"
+#include "fairshape/feature/perturbation.h"
+#include "fairshape/feature/plane_section.h"
+#include "fairshape/feature/polyline_import.h"
+#include "fairshape/io/mesh_io.h"
 #include "feature_test_meshes.h"
-#include "remesh/closest_point.h"
+#include "fairshape/remesh/closest_point.h"
 #include "test_support.h"
 
 using namespace fairshape;

@@ -7,10 +7,10 @@
 #include <Eigen/Geometry>
 #include <yaml-cpp/yaml.h>
 
-#include "experiment/kinds/curve/curve_run.h"
-#include "core/error.h"
-#include "experiment/run_outputs.h"
-#include "io/mesh_io.h"
+#include "fairshape/experiment/kinds/curve/curve_run.h"
+#include "fairshape/core/error.h"
+#include "fairshape/experiment/run_outputs.h"
+#include "fairshape/io/mesh_io.h"
 #include "test_support.h"
 
 using namespace fairshape;

@@ -6,11 +6,11 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
-#include "design/edit_solve.h"
-#include "energy/local_quadratic.h"
-#include "experiment/components.h"
-#include "io/mesh_io.h"
-#include "problem/least_squares.h"
+#include "fairshape/design/edit_solve.h"
+#include "fairshape/energy/local_quadratic.h"
+#include "fairshape/experiment/components.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/problem/least_squares.h"
 #include "edit_test_support.h"
 #include "test_support.h"
 

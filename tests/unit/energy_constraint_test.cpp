@@ -2,11 +2,11 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "constraint/constraint.h"
-#include "energy/energy.h"
-#include "experiment/components.h"
-#include "io/mesh_io.h"
-#include "problem/constrained_system.h"
+#include "fairshape/constraint/constraint.h"
+#include "fairshape/energy/energy.h"
+#include "fairshape/experiment/components.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/problem/constrained_system.h"
 #include "test_support.h"
 
 using namespace fairshape;

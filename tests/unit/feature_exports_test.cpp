@@ -4,8 +4,8 @@
 
 #include <random>
 
-#include "feature/level_attachment.h"
-#include "subdivision/subdivider.h"
+#include "fairshape/feature/level_attachment.h"
+#include "fairshape/subdivision/subdivider.h"
 #include "feature_test_meshes.h"
 #include "test_support.h"
 

@@ -8,9 +8,9 @@
 #include <cmath>
 #include <map>
 
-#include "feature/featured_surface.h"
-#include "feature/profile_measure.h"
-#include "io/mesh_io.h"
+#include "fairshape/feature/featured_surface.h"
+#include "fairshape/feature/profile_measure.h"
+#include "fairshape/io/mesh_io.h"
 #include "feature_test_meshes.h"
 #include "test_support.h"
 

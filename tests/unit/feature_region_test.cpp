@@ -11,9 +11,9 @@
 #include <cstdlib>
 #include <functional>
 
-#include "feature/featured_surface.h"
-#include "feature/profile_measure.h"
-#include "io/mesh_io.h"
+#include "fairshape/feature/featured_surface.h"
+#include "fairshape/feature/profile_measure.h"
+#include "fairshape/io/mesh_io.h"
 #include "test_support.h"
 
 using namespace fairshape;

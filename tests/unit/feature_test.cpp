@@ -7,9 +7,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "feature/adaptive_mesh.h"
-#include "feature/featured_surface.h"
-#include "io/mesh_io.h"
+#include "fairshape/feature/adaptive_mesh.h"
+#include "fairshape/feature/featured_surface.h"
+#include "fairshape/io/mesh_io.h"
 #include "feature_test_meshes.h"
 #include "test_support.h"
 

@@ -9,14 +9,14 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "bspline/joined_design.h"
-#include "bspline/knot_basis.h"
-#include "bspline/mortar_curve.h"
-#include "bspline/sheet_geometry.h"
-#include "bspline/variational_curve.h"
-#include "core/config.h"
-#include "core/error.h"
-#include "qp/qp_solver.h"
+#include "fairshape/bspline/joined_design.h"
+#include "fairshape/bspline/knot_basis.h"
+#include "fairshape/bspline/mortar_curve.h"
+#include "fairshape/bspline/sheet_geometry.h"
+#include "fairshape/bspline/variational_curve.h"
+#include "fairshape/core/config.h"
+#include "fairshape/core/error.h"
+#include "fairshape/qp/qp_solver.h"
 #include "sheet_test_support.h"
 
 using namespace fairshape;

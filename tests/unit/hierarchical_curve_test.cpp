@@ -7,12 +7,12 @@
 
 #include <Eigen/QR>
 
-#include "bspline/hierarchical_curve_basis.h"
-#include "bspline/joined_design.h"
-#include "bspline/variational_curve.h"
-#include "core/config.h"
-#include "core/error.h"
-#include "qp/qp_solver.h"
+#include "fairshape/bspline/hierarchical_curve_basis.h"
+#include "fairshape/bspline/joined_design.h"
+#include "fairshape/bspline/variational_curve.h"
+#include "fairshape/core/config.h"
+#include "fairshape/core/error.h"
+#include "fairshape/qp/qp_solver.h"
 #include "sheet_test_support.h"
 
 using namespace fairshape;

@@ -3,12 +3,12 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/error.h"
-#include "io/csv.h"
-#include "io/json_io.h"
-#include "io/matrix_market.h"
-#include "io/mesh_io.h"
-#include "io/vtk_io.h"
+#include "fairshape/core/error.h"
+#include "fairshape/io/csv.h"
+#include "fairshape/io/json_io.h"
+#include "fairshape/io/matrix_market.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/io/vtk_io.h"
 #include "test_support.h"
 
 using namespace fairshape;

@@ -6,14 +6,14 @@
 
 #include <Eigen/Cholesky>
 
-#include "core/config.h"
-#include "curve_design/curve_metrics.h"
-#include "curve_design/editing_loop.h"
-#include "curve_design/kkt_factor.h"
-#include "curve_design/length_manifold.h"
-#include "curve_design/second_order.h"
-#include "curves/multires_polyline.h"
-#include "io/mesh_io.h"
+#include "fairshape/core/config.h"
+#include "fairshape/curve_design/curve_metrics.h"
+#include "fairshape/curve_design/editing_loop.h"
+#include "fairshape/curve_design/kkt_factor.h"
+#include "fairshape/curve_design/length_manifold.h"
+#include "fairshape/curve_design/second_order.h"
+#include "fairshape/curves/multires_polyline.h"
+#include "fairshape/io/mesh_io.h"
 
 using namespace fairshape;
 

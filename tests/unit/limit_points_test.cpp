@@ -7,16 +7,16 @@
 #include <random>
 #include <sstream>
 
-#include "constraint/curve_limit_points.h"
-#include "constraint/surface_points.h"
-#include "core/error.h"
-#include "design/edit_solve.h"
-#include "energy/local_quadratic.h"
-#include "experiment/components.h"
-#include "io/mesh_io.h"
-#include "remesh/remesh.h"
-#include "subdivision/limit.h"
-#include "subdivision/subdivider.h"
+#include "fairshape/constraint/curve_limit_points.h"
+#include "fairshape/constraint/surface_points.h"
+#include "fairshape/core/error.h"
+#include "fairshape/design/edit_solve.h"
+#include "fairshape/energy/local_quadratic.h"
+#include "fairshape/experiment/components.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/remesh/remesh.h"
+#include "fairshape/subdivision/limit.h"
+#include "fairshape/subdivision/subdivider.h"
 #include "edit_test_support.h"
 #include "test_support.h"
 

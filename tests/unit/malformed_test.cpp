@@ -5,7 +5,7 @@
 
 #include <filesystem>
 
-#include "io/mesh_io.h"
+#include "fairshape/io/mesh_io.h"
 #include "test_support.h"
 
 using namespace fairshape;

@@ -8,17 +8,17 @@
 
 #include <random>
 
-#include "curves/multires_polyline.h"
-#include "energy/laplacian.h"
-#include "energy/local_quadratic.h"
-#include "experiment/components.h"
-#include "io/mesh_io.h"
-#include "problem/constrained_system.h"
-#include "solver/block_ordering.h"
-#include "solver/multigrid.h"
-#include "solver/parallel_kernels.h"
-#include "subdivision/multires_surface.h"
-#include "subdivision/subdivider.h"
+#include "fairshape/curves/multires_polyline.h"
+#include "fairshape/energy/laplacian.h"
+#include "fairshape/energy/local_quadratic.h"
+#include "fairshape/experiment/components.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/problem/constrained_system.h"
+#include "fairshape/solver/block_ordering.h"
+#include "fairshape/solver/multigrid.h"
+#include "fairshape/solver/parallel_kernels.h"
+#include "fairshape/subdivision/multires_surface.h"
+#include "fairshape/subdivision/subdivider.h"
 #include "test_support.h"
 
 using namespace fairshape;

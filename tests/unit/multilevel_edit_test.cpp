@@ -4,13 +4,13 @@
 
 #include <cmath>
 
-#include "design/multilevel_edit.h"
-#include "energy/local_quadratic.h"
-#include "experiment/components.h"
-#include "io/mesh_io.h"
-#include "problem/constrained_system.h"
-#include "solver/level_operators.h"
-#include "subdivision/subdivider.h"
+#include "fairshape/design/multilevel_edit.h"
+#include "fairshape/energy/local_quadratic.h"
+#include "fairshape/experiment/components.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/problem/constrained_system.h"
+#include "fairshape/solver/level_operators.h"
+#include "fairshape/subdivision/subdivider.h"
 #include "test_support.h"
 
 using namespace fairshape;

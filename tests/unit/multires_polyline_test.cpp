@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "curves/multires_polyline.h"
+#include "fairshape/curves/multires_polyline.h"
 
 using namespace fairshape;
 

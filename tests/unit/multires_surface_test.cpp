@@ -3,10 +3,10 @@
 #include <Eigen/Geometry>
 #include <cstdlib>
 
-#include "io/json_io.h"
-#include "io/mesh_io.h"
-#include "subdivision/multires_surface.h"
-#include "subdivision/subdivider.h"
+#include "fairshape/io/json_io.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/subdivision/multires_surface.h"
+#include "fairshape/subdivision/subdivider.h"
 #include "test_support.h"
 
 using namespace fairshape;

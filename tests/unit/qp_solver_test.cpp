@@ -1,14 +1,14 @@
 // The constrained quadratic solvers (Welch & Witkin §4.3) on B-spline problems.
 #include <catch2/catch.hpp>
 
-#include "bspline/hierarchical_surface.h"
-#include "bspline/surface_constraints.h"
-#include "bspline/thin_plate_energy.h"
-#include "core/config.h"
-#include "qp/kkt_solver.h"
-#include "qp/qp_solver.h"
-#include "qp/qr_penalty_solver.h"
-#include "qp/range_space_solver.h"
+#include "fairshape/bspline/hierarchical_surface.h"
+#include "fairshape/bspline/surface_constraints.h"
+#include "fairshape/bspline/thin_plate_energy.h"
+#include "fairshape/core/config.h"
+#include "fairshape/qp/kkt_solver.h"
+#include "fairshape/qp/qp_solver.h"
+#include "fairshape/qp/qr_penalty_solver.h"
+#include "fairshape/qp/range_space_solver.h"
 
 using namespace fairshape;
 using namespace fairshape::bspline;

@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 
-#include "io/mesh_io.h"
-#include "subdivision/subdivider.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/subdivision/subdivider.h"
 #include "test_support.h"
 
 using namespace fairshape;

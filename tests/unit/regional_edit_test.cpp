@@ -6,14 +6,14 @@
 
 #include <Eigen/Geometry>
 
-#include "constraint/constraint_factories.h"
-#include "design/regional_edit.h"
-#include "design/rotation_aware_edit.h"
-#include "energy/local_rotations.h"
-#include "energy/energy.h"
-#include "experiment/components.h"
-#include "io/mesh_io.h"
-#include "problem/constrained_system.h"
+#include "fairshape/constraint/constraint_factories.h"
+#include "fairshape/design/regional_edit.h"
+#include "fairshape/design/rotation_aware_edit.h"
+#include "fairshape/energy/local_rotations.h"
+#include "fairshape/energy/energy.h"
+#include "fairshape/experiment/components.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/problem/constrained_system.h"
 #include "edit_test_support.h"
 #include "test_support.h"
 

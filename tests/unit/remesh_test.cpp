@@ -5,12 +5,12 @@
 #include <cmath>
 #include <numbers>
 
-#include "io/mesh_io.h"
-#include "remesh/closest_point.h"
-#include "remesh/quad_pairing.h"
-#include "remesh/quality.h"
-#include "remesh/remesh.h"
-#include "remesh/simplify.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/remesh/closest_point.h"
+#include "fairshape/remesh/quad_pairing.h"
+#include "fairshape/remesh/quality.h"
+#include "fairshape/remesh/remesh.h"
+#include "fairshape/remesh/simplify.h"
 #include "test_support.h"
 
 using namespace fairshape;

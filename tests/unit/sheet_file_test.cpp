@@ -8,11 +8,11 @@
 #include <sstream>
 #include <tuple>
 
-#include "bspline/sheet_file.h"
-#include "bspline/sheet_geometry.h"
-#include "core/config.h"
-#include "core/error.h"
-#include "qp/qp_solver.h"
+#include "fairshape/bspline/sheet_file.h"
+#include "fairshape/bspline/sheet_geometry.h"
+#include "fairshape/core/config.h"
+#include "fairshape/core/error.h"
+#include "fairshape/qp/qp_solver.h"
 #include "test_support.h"
 
 using namespace fairshape;

@@ -7,8 +7,8 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "experiment/kinds/sheet/sheet_run.h"
-#include "experiment/run_outputs.h"
+#include "fairshape/experiment/kinds/sheet/sheet_run.h"
+#include "fairshape/experiment/run_outputs.h"
 #include "sheet_test_support.h"
 
 using namespace fairshape;

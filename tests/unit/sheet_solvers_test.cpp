@@ -9,10 +9,10 @@
 #include <Eigen/Geometry>
 #include <yaml-cpp/yaml.h>
 
-#include "experiment/config_loader.h"
-#include "experiment/kinds/sheet/sheet_run.h"
-#include "experiment/run_outputs.h"
-#include "io/mesh_io.h"
+#include "fairshape/experiment/config_loader.h"
+#include "fairshape/experiment/kinds/sheet/sheet_run.h"
+#include "fairshape/experiment/run_outputs.h"
+#include "fairshape/io/mesh_io.h"
 #include "test_support.h"
 
 using namespace fairshape;

@@ -8,12 +8,12 @@
 #include <cmath>
 #include <numbers>
 
-#include "feature/adaptive_evaluation.h"
-#include "feature/featured_surface.h"
-#include "feature/profile_measure.h"
-#include "feature/sparse_measure.h"
+#include "fairshape/feature/adaptive_evaluation.h"
+#include "fairshape/feature/featured_surface.h"
+#include "fairshape/feature/profile_measure.h"
+#include "fairshape/feature/sparse_measure.h"
 #include "feature_test_meshes.h"
-#include "io/mesh_io.h"
+#include "fairshape/io/mesh_io.h"
 #include "test_support.h"
 
 using namespace fairshape;

@@ -10,13 +10,13 @@
 #include <cmath>
 #include <random>
 
-#include "curve_design/kkt_factor.h"
-#include "energy/laplacian.h"
-#include "experiment/components.h"
-#include "solver/level_operators.h"
-#include "solver/matrix_fingerprint.h"
-#include "subdivision/multires_surface.h"
-#include "subdivision/subdivider.h"
+#include "fairshape/curve_design/kkt_factor.h"
+#include "fairshape/energy/laplacian.h"
+#include "fairshape/experiment/components.h"
+#include "fairshape/solver/level_operators.h"
+#include "fairshape/solver/matrix_fingerprint.h"
+#include "fairshape/subdivision/multires_surface.h"
+#include "fairshape/subdivision/subdivider.h"
 #include "test_support.h"
 
 using namespace fairshape;

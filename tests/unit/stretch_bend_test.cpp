@@ -4,10 +4,10 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "energy/divided_differences.h"
-#include "energy/local_quadratic.h"
-#include "io/mesh_io.h"
-#include "subdivision/subdivider.h"
+#include "fairshape/energy/divided_differences.h"
+#include "fairshape/energy/local_quadratic.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/subdivision/subdivider.h"
 #include "test_support.h"
 
 using namespace fairshape;

@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 
-#include "io/mesh_io.h"
-#include "mesh/mesh_stats.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/mesh/mesh_stats.h"
 #include "test_support.h"
 
 using namespace fairshape;

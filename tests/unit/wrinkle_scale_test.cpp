@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "curve_design/wrinkle_scale.h"
+#include "fairshape/curve_design/wrinkle_scale.h"
 
 using namespace fairshape;
 

@@ -3,7 +3,7 @@
 
 #include <memory>
 
-#include "experiment/run_kind.h"
+#include "fairshape/experiment/run_kind.h"
 
 namespace fairshape {
 

@@ -1,5 +1,5 @@
-#include "core/error.h"
-#include "experiment/kinds/kinds.h"
+#include "fairshape/core/error.h"
+#include "fairshape/experiment/kinds/kinds.h"
 
 namespace fairshape {
 

@@ -1,9 +1,9 @@
 // Sauvage et al.'s length-preserving curve edits as a run kind.
-#include "core/error.h"
-#include "curve_design/editing_loop.h"
-#include "experiment/kinds/curve/curve_run.h"
-#include "experiment/kinds/kinds.h"
-#include "experiment/kinds/thread_limit.h"
+#include "fairshape/core/error.h"
+#include "fairshape/curve_design/editing_loop.h"
+#include "fairshape/experiment/kinds/curve/curve_run.h"
+#include "fairshape/experiment/kinds/kinds.h"
+#include "fairshape/experiment/kinds/thread_limit.h"
 
 namespace fairshape {
 namespace {

@@ -1,22 +1,22 @@
-#include "experiment/kinds/curve/curve_run.h"
+#include "fairshape/experiment/kinds/curve/curve_run.h"
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 
-#include "core/summary.h"
-#include "core/config.h"
-#include "core/timer.h"
-#include "curve_design/curve_metrics.h"
-#include "curve_design/edit_support.h"
-#include "curves/curve_sampling.h"
-#include "curve_design/wrinkle_scale.h"
-#include "curves/multires_polyline.h"
-#include "experiment/metric_format.h"
-#include "io/constraint_overlay.h"
-#include "io/mesh_io.h"
-#include "experiment/vtk_policy.h"
-#include "io/vtk_io.h"
+#include "fairshape/core/summary.h"
+#include "fairshape/core/config.h"
+#include "fairshape/core/timer.h"
+#include "fairshape/curve_design/curve_metrics.h"
+#include "fairshape/curve_design/edit_support.h"
+#include "fairshape/curves/curve_sampling.h"
+#include "fairshape/curve_design/wrinkle_scale.h"
+#include "fairshape/curves/multires_polyline.h"
+#include "fairshape/experiment/metric_format.h"
+#include "fairshape/io/constraint_overlay.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/experiment/vtk_policy.h"
+#include "fairshape/io/vtk_io.h"
 
 namespace fairshape {
 namespace fs = std::filesystem;

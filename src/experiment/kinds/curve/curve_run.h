@@ -9,10 +9,10 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "curve_design/editing_loop.h"
-#include "experiment/run_outputs.h"
-#include "experiment/vtk_policy.h"
-#include "experiment/run_basics.h"
+#include "fairshape/curve_design/editing_loop.h"
+#include "fairshape/experiment/run_outputs.h"
+#include "fairshape/experiment/vtk_policy.h"
+#include "fairshape/experiment/run_basics.h"
 
 namespace fairshape {
 

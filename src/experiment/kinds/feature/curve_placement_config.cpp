@@ -1,9 +1,9 @@
-#include "experiment/kinds/feature/curve_placement_config.h"
+#include "fairshape/experiment/kinds/feature/curve_placement_config.h"
 
 #include <cmath>
 
-#include "experiment/kinds/feature/feature_run.h"
-#include "experiment/run_basics.h"
+#include "fairshape/experiment/kinds/feature/feature_run.h"
+#include "fairshape/experiment/run_basics.h"
 
 namespace fairshape {
 namespace {

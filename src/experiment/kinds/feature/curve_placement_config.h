@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "core/config.h"
-#include "feature/curve_placement.h"
+#include "fairshape/core/config.h"
+#include "fairshape/feature/curve_placement.h"
 
 namespace fairshape {
 

@@ -1,12 +1,12 @@
-#include "experiment/kinds/feature/feature_exports.h"
+#include "fairshape/experiment/kinds/feature/feature_exports.h"
 
 #include <filesystem>
 #include <utility>
 
-#include "experiment/metric_format.h"
-#include "feature/level_attachment.h"
-#include "io/vtk_io.h"
-#include "subdivision/limit.h"
+#include "fairshape/experiment/metric_format.h"
+#include "fairshape/feature/level_attachment.h"
+#include "fairshape/io/vtk_io.h"
+#include "fairshape/subdivision/limit.h"
 
 namespace fairshape {
 namespace fs = std::filesystem;

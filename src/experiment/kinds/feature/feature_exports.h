@@ -5,8 +5,8 @@
 // finer one.
 #pragma once
 
-#include "experiment/run_outputs.h"
-#include "feature/featured_surface.h"
+#include "fairshape/experiment/run_outputs.h"
+#include "fairshape/feature/featured_surface.h"
 
 namespace fairshape {
 

@@ -2,13 +2,13 @@
 #include <filesystem>
 #include <map>
 
-#include "core/error.h"
-#include "experiment/kinds/feature/feature_exports.h"
-#include "experiment/kinds/feature/feature_run.h"
-#include "experiment/kinds/feature/feature_steps.h"
-#include "experiment/kinds/feature/sparse_run.h"
-#include "experiment/kinds/kinds.h"
-#include "experiment/kinds/thread_limit.h"
+#include "fairshape/core/error.h"
+#include "fairshape/experiment/kinds/feature/feature_exports.h"
+#include "fairshape/experiment/kinds/feature/feature_run.h"
+#include "fairshape/experiment/kinds/feature/feature_steps.h"
+#include "fairshape/experiment/kinds/feature/sparse_run.h"
+#include "fairshape/experiment/kinds/kinds.h"
+#include "fairshape/experiment/kinds/thread_limit.h"
 
 namespace fairshape {
 namespace {

@@ -1,6 +1,6 @@
-#include "experiment/kinds/feature/feature_run.h"
+#include "fairshape/experiment/kinds/feature/feature_run.h"
 
-#include "experiment/kinds/feature/feature_exports.h"
+#include "fairshape/experiment/kinds/feature/feature_exports.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,28 +9,28 @@
 #include <limits>
 #include <map>
 
-#include "core/summary.h"
-#include "core/config.h"
-#include "core/timer.h"
-#include "experiment/kinds/feature/curve_placement_config.h"
-#include "experiment/kinds/feature/feature_exports.h"
-#include "experiment/components.h"
-#include "experiment/kinds/feature/feature_steps.h"
-#include "experiment/kinds/feature/sparse_run.h"
-#include "core/memory.h"
-#include "experiment/kinds/sheet/constraint_schedule.h"
-#include "experiment/kinds/surface_edit/edited_hierarchy.h"
-#include "experiment/kinds/surface_edit/run_one.h"
-#include "experiment/metric_format.h"
-#include "feature/adaptive_mesh.h"
-#include "feature/featured_surface.h"
-#include "feature/profile_measure.h"
-#include "io/constraint_overlay.h"
-#include "io/contour_lines.h"
-#include "io/mesh_io.h"
-#include "experiment/vtk_policy.h"
-#include "io/vtk_io.h"
-#include "mesh/polyline.h"
+#include "fairshape/core/summary.h"
+#include "fairshape/core/config.h"
+#include "fairshape/core/timer.h"
+#include "fairshape/experiment/kinds/feature/curve_placement_config.h"
+#include "fairshape/experiment/kinds/feature/feature_exports.h"
+#include "fairshape/experiment/components.h"
+#include "fairshape/experiment/kinds/feature/feature_steps.h"
+#include "fairshape/experiment/kinds/feature/sparse_run.h"
+#include "fairshape/core/memory.h"
+#include "fairshape/experiment/kinds/sheet/constraint_schedule.h"
+#include "fairshape/experiment/kinds/surface_edit/edited_hierarchy.h"
+#include "fairshape/experiment/kinds/surface_edit/run_one.h"
+#include "fairshape/experiment/metric_format.h"
+#include "fairshape/feature/adaptive_mesh.h"
+#include "fairshape/feature/featured_surface.h"
+#include "fairshape/feature/profile_measure.h"
+#include "fairshape/io/constraint_overlay.h"
+#include "fairshape/io/contour_lines.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/experiment/vtk_policy.h"
+#include "fairshape/io/vtk_io.h"
+#include "fairshape/mesh/polyline.h"
 
 namespace fairshape {
 namespace fs = std::filesystem;

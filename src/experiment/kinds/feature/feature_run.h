@@ -10,14 +10,14 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "experiment/run_outputs.h"
-#include "experiment/run_basics.h"
-#include "experiment/kinds/sheet/sheet_run.h"
-#include "feature/base_edit.h"
-#include "feature/curve_placement.h"
-#include "feature/feature_curve.h"
-#include "feature/featured_surface.h"
-#include "subdivision/scheme.h"
+#include "fairshape/experiment/run_outputs.h"
+#include "fairshape/experiment/run_basics.h"
+#include "fairshape/experiment/kinds/sheet/sheet_run.h"
+#include "fairshape/feature/base_edit.h"
+#include "fairshape/feature/curve_placement.h"
+#include "fairshape/feature/feature_curve.h"
+#include "fairshape/feature/featured_surface.h"
+#include "fairshape/subdivision/scheme.h"
 
 namespace fairshape {
 

@@ -1,13 +1,13 @@
-#include "experiment/kinds/feature/feature_steps.h"
+#include "fairshape/experiment/kinds/feature/feature_steps.h"
 
 #include <algorithm>
 #include <filesystem>
 #include <utility>
 
-#include "core/error.h"
-#include "core/timer.h"
-#include "experiment/metric_format.h"
-#include "io/vtk_io.h"
+#include "fairshape/core/error.h"
+#include "fairshape/core/timer.h"
+#include "fairshape/experiment/metric_format.h"
+#include "fairshape/io/vtk_io.h"
 
 namespace fairshape {
 namespace fs = std::filesystem;

@@ -4,7 +4,7 @@
 // and reported in steps.csv with how much of the surface it changed.
 #pragma once
 
-#include "experiment/kinds/feature/feature_run.h"
+#include "fairshape/experiment/kinds/feature/feature_run.h"
 
 namespace fairshape {
 

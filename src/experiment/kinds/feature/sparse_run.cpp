@@ -1,20 +1,20 @@
-#include "experiment/kinds/feature/sparse_run.h"
+#include "fairshape/experiment/kinds/feature/sparse_run.h"
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 
-#include "core/timer.h"
-#include "experiment/kinds/feature/curve_placement_config.h"
-#include "experiment/metric_format.h"
-#include "feature/adaptive_evaluation.h"
-#include "feature/level_attachment.h"
-#include "feature/perturbation.h"
-#include "feature/profile_measure.h"
-#include "feature/sparse_measure.h"
-#include "feature/triangle_surface.h"
-#include "io/mesh_io.h"
-#include "mesh/polyline.h"
+#include "fairshape/core/timer.h"
+#include "fairshape/experiment/kinds/feature/curve_placement_config.h"
+#include "fairshape/experiment/metric_format.h"
+#include "fairshape/feature/adaptive_evaluation.h"
+#include "fairshape/feature/level_attachment.h"
+#include "fairshape/feature/perturbation.h"
+#include "fairshape/feature/profile_measure.h"
+#include "fairshape/feature/sparse_measure.h"
+#include "fairshape/feature/triangle_surface.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/mesh/polyline.h"
 
 namespace fairshape {
 namespace fs = std::filesystem;

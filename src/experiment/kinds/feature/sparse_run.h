@@ -8,7 +8,7 @@
 // refused at load (FeatureRunSpec::from_config) or written as "nan" (the limit columns).
 #pragma once
 
-#include "experiment/kinds/feature/feature_run.h"
+#include "fairshape/experiment/kinds/feature/feature_run.h"
 
 namespace fairshape {
 

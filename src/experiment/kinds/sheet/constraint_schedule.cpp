@@ -1,6 +1,6 @@
-#include "experiment/kinds/sheet/constraint_schedule.h"
+#include "fairshape/experiment/kinds/sheet/constraint_schedule.h"
 
-#include "experiment/run_basics.h"
+#include "fairshape/experiment/run_basics.h"
 
 namespace fairshape {
 

@@ -4,8 +4,8 @@
 
 #include <vector>
 
-#include "core/config.h"
-#include "experiment/kinds/sheet/sheet_run.h"
+#include "fairshape/core/config.h"
+#include "fairshape/experiment/kinds/sheet/sheet_run.h"
 
 namespace fairshape {
 

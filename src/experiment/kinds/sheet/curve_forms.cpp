@@ -1,4 +1,4 @@
-#include "experiment/kinds/sheet/curve_forms.h"
+#include "fairshape/experiment/kinds/sheet/curve_forms.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,9 +8,9 @@
 
 #include <Eigen/Geometry>
 
-#include "core/message_format.h"
-#include "core/types.h"
-#include "curves/curve_sampling.h"
+#include "fairshape/core/message_format.h"
+#include "fairshape/core/types.h"
+#include "fairshape/curves/curve_sampling.h"
 
 namespace fairshape {
 namespace {

@@ -28,7 +28,7 @@
 
 #include <Eigen/Core>
 
-#include "core/config.h"
+#include "fairshape/core/config.h"
 
 namespace fairshape {
 

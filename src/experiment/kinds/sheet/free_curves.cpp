@@ -1,14 +1,14 @@
-#include "experiment/kinds/sheet/free_curves.h"
+#include "fairshape/experiment/kinds/sheet/free_curves.h"
 
 #include <algorithm>
 #include <array>
 #include <numeric>
 
-#include "core/message_format.h"
-#include "experiment/kinds/sheet/constraint_schedule.h"
-#include "experiment/metric_format.h"
-#include "experiment/run_basics.h"
-#include "qp/range_space_solver.h"
+#include "fairshape/core/message_format.h"
+#include "fairshape/experiment/kinds/sheet/constraint_schedule.h"
+#include "fairshape/experiment/metric_format.h"
+#include "fairshape/experiment/run_basics.h"
+#include "fairshape/qp/range_space_solver.h"
 
 namespace fairshape {
 

@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "bspline/joined_design.h"
-#include "core/config.h"
-#include "experiment/kinds/sheet/sheet_run.h"
-#include "io/constraint_overlay.h"
+#include "fairshape/bspline/joined_design.h"
+#include "fairshape/core/config.h"
+#include "fairshape/experiment/kinds/sheet/sheet_run.h"
+#include "fairshape/io/constraint_overlay.h"
 
 namespace fairshape {
 

@@ -1,11 +1,11 @@
-#include "experiment/kinds/sheet/sheet_files.h"
+#include "fairshape/experiment/kinds/sheet/sheet_files.h"
 
 #include <filesystem>
 #include <memory>
 
-#include "bspline/sheet_file.h"
-#include "core/error.h"
-#include "experiment/run_outputs.h"
+#include "fairshape/bspline/sheet_file.h"
+#include "fairshape/core/error.h"
+#include "fairshape/experiment/run_outputs.h"
 
 namespace fairshape {
 namespace fs = std::filesystem;

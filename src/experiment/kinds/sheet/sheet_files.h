@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "core/config.h"
-#include "experiment/kinds/sheet/sheet_run.h"
+#include "fairshape/core/config.h"
+#include "fairshape/experiment/kinds/sheet/sheet_run.h"
 
 namespace fairshape {
 

@@ -1,8 +1,8 @@
 // Welch & Witkin's variational sheets as a run kind.
-#include "experiment/kinds/kinds.h"
-#include "experiment/kinds/sheet/sheet_files.h"
-#include "experiment/kinds/sheet/sheet_run.h"
-#include "experiment/kinds/thread_limit.h"
+#include "fairshape/experiment/kinds/kinds.h"
+#include "fairshape/experiment/kinds/sheet/sheet_files.h"
+#include "fairshape/experiment/kinds/sheet/sheet_run.h"
+#include "fairshape/experiment/kinds/thread_limit.h"
 
 namespace fairshape {
 namespace {

@@ -1,4 +1,4 @@
-#include "experiment/kinds/sheet/sheet_run.h"
+#include "fairshape/experiment/kinds/sheet/sheet_run.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,22 +8,22 @@
 
 #include <Eigen/Geometry>
 
-#include "core/summary.h"
-#include "core/config.h"
-#include "core/timer.h"
-#include "experiment/kinds/sheet/constraint_schedule.h"
-#include "experiment/kinds/sheet/curve_forms.h"
-#include "experiment/kinds/sheet/free_curves.h"
-#include "experiment/kinds/sheet/sheet_files.h"
-#include "experiment/metric_format.h"
-#include "io/constraint_overlay.h"
-#include "io/mesh_io.h"
-#include "experiment/vtk_policy.h"
-#include "io/vtk_io.h"
-#include "mesh/disjoint_union.h"
-#include "mesh/polyline.h"
-#include "mesh/surface_mesh.h"
-#include "qp/range_space_solver.h"
+#include "fairshape/core/summary.h"
+#include "fairshape/core/config.h"
+#include "fairshape/core/timer.h"
+#include "fairshape/experiment/kinds/sheet/constraint_schedule.h"
+#include "fairshape/experiment/kinds/sheet/curve_forms.h"
+#include "fairshape/experiment/kinds/sheet/free_curves.h"
+#include "fairshape/experiment/kinds/sheet/sheet_files.h"
+#include "fairshape/experiment/metric_format.h"
+#include "fairshape/io/constraint_overlay.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/experiment/vtk_policy.h"
+#include "fairshape/io/vtk_io.h"
+#include "fairshape/mesh/disjoint_union.h"
+#include "fairshape/mesh/polyline.h"
+#include "fairshape/mesh/surface_mesh.h"
+#include "fairshape/qp/range_space_solver.h"
 
 namespace fairshape {
 namespace fs = std::filesystem;

@@ -11,14 +11,14 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "bspline/sheet_geometry.h"
-#include "bspline/uniform_basis.h"
-#include "bspline/variational_curve.h"
-#include "bspline/variational_sheet.h"
-#include "experiment/run_outputs.h"
-#include "experiment/vtk_policy.h"
-#include "experiment/run_basics.h"
-#include "qp/qp_solver.h"
+#include "fairshape/bspline/sheet_geometry.h"
+#include "fairshape/bspline/uniform_basis.h"
+#include "fairshape/bspline/variational_curve.h"
+#include "fairshape/bspline/variational_sheet.h"
+#include "fairshape/experiment/run_outputs.h"
+#include "fairshape/experiment/vtk_policy.h"
+#include "fairshape/experiment/run_basics.h"
+#include "fairshape/qp/qp_solver.h"
 
 namespace fairshape {
 

@@ -1,6 +1,6 @@
-#include "experiment/kinds/surface_edit/constraint_overlay.h"
+#include "fairshape/experiment/kinds/surface_edit/constraint_overlay.h"
 
-#include "io/constraint_overlay.h"
+#include "fairshape/io/constraint_overlay.h"
 
 namespace fairshape {
 

@@ -3,8 +3,8 @@
 
 #include <string>
 
-#include "constraint/constraint.h"
-#include "subdivision/multires_surface.h"
+#include "fairshape/constraint/constraint.h"
+#include "fairshape/subdivision/multires_surface.h"
 
 namespace fairshape {
 

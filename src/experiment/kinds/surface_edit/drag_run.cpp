@@ -1,10 +1,10 @@
-#include "experiment/kinds/surface_edit/drag_run.h"
+#include "fairshape/experiment/kinds/surface_edit/drag_run.h"
 
 #include <filesystem>
 
-#include "core/config.h"
-#include "experiment/metric_format.h"
-#include "problem/constrained_system.h"
+#include "fairshape/core/config.h"
+#include "fairshape/experiment/metric_format.h"
+#include "fairshape/problem/constrained_system.h"
 
 namespace fairshape {
 

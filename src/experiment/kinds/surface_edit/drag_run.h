@@ -7,8 +7,8 @@
 #include <functional>
 #include <vector>
 
-#include "design/multilevel_edit.h"
-#include "experiment/kinds/surface_edit/run_one.h"
+#include "fairshape/design/multilevel_edit.h"
+#include "fairshape/experiment/kinds/surface_edit/run_one.h"
 
 namespace fairshape {
 

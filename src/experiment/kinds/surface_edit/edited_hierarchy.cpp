@@ -1,6 +1,6 @@
-#include "experiment/kinds/surface_edit/edited_hierarchy.h"
+#include "fairshape/experiment/kinds/surface_edit/edited_hierarchy.h"
 
-#include "core/error.h"
+#include "fairshape/core/error.h"
 
 namespace fairshape {
 

@@ -3,9 +3,9 @@
 // curves of Khodakovsky & Schröder, which ride on the edited surface).
 #pragma once
 
-#include "core/summary.h"
-#include "experiment/kinds/surface_edit/surface_edit_spec.h"
-#include "subdivision/multires_surface.h"
+#include "fairshape/core/summary.h"
+#include "fairshape/experiment/kinds/surface_edit/surface_edit_spec.h"
+#include "fairshape/subdivision/multires_surface.h"
 
 namespace fairshape {
 

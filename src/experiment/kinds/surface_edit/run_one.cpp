@@ -1,26 +1,26 @@
-#include "experiment/kinds/surface_edit/run_one.h"
+#include "fairshape/experiment/kinds/surface_edit/run_one.h"
 
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <random>
 
-#include "core/error.h"
-#include "core/memory.h"
-#include "core/timer.h"
-#include "design/edit_assembly.h"
-#include "design/regional_edit.h"
-#include "experiment/kinds/surface_edit/constraint_overlay.h"
-#include "experiment/kinds/surface_edit/drag_run.h"
-#include "experiment/metric_format.h"
-#include "io/mesh_io.h"
-#include "io/vtk_io.h"
-#include "design/edit_solve.h"
-#include "problem/constrained_system.h"
-#include "problem/least_squares.h"
-#include "remesh/remesh.h"
-#include "subdivision/feature_creases.h"
-#include "subdivision/subdivider.h"
+#include "fairshape/core/error.h"
+#include "fairshape/core/memory.h"
+#include "fairshape/core/timer.h"
+#include "fairshape/design/edit_assembly.h"
+#include "fairshape/design/regional_edit.h"
+#include "fairshape/experiment/kinds/surface_edit/constraint_overlay.h"
+#include "fairshape/experiment/kinds/surface_edit/drag_run.h"
+#include "fairshape/experiment/metric_format.h"
+#include "fairshape/io/mesh_io.h"
+#include "fairshape/io/vtk_io.h"
+#include "fairshape/design/edit_solve.h"
+#include "fairshape/problem/constrained_system.h"
+#include "fairshape/problem/least_squares.h"
+#include "fairshape/remesh/remesh.h"
+#include "fairshape/subdivision/feature_creases.h"
+#include "fairshape/subdivision/subdivider.h"
 
 namespace fairshape {
 namespace fs = std::filesystem;

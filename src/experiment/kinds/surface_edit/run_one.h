@@ -5,10 +5,10 @@
 #include <memory>
 #include <string>
 
-#include "experiment/run_outputs.h"
-#include "experiment/kinds/surface_edit/surface_edit_spec.h"
-#include "remesh/remesh.h"
-#include "subdivision/multires_surface.h"
+#include "fairshape/experiment/run_outputs.h"
+#include "fairshape/experiment/kinds/surface_edit/surface_edit_spec.h"
+#include "fairshape/remesh/remesh.h"
+#include "fairshape/subdivision/multires_surface.h"
 
 namespace fairshape {
 

@@ -2,12 +2,12 @@
 #include <filesystem>
 #include <set>
 
-#include "core/error.h"
-#include "design/regional_edit.h"
-#include "experiment/components.h"
-#include "experiment/kinds/kinds.h"
-#include "experiment/kinds/surface_edit/run_one.h"
-#include "experiment/kinds/thread_limit.h"
+#include "fairshape/core/error.h"
+#include "fairshape/design/regional_edit.h"
+#include "fairshape/experiment/components.h"
+#include "fairshape/experiment/kinds/kinds.h"
+#include "fairshape/experiment/kinds/surface_edit/run_one.h"
+#include "fairshape/experiment/kinds/thread_limit.h"
 
 namespace fairshape {
 namespace {

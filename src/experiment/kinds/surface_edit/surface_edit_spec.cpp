@@ -1,11 +1,11 @@
-#include "experiment/kinds/surface_edit/surface_edit_spec.h"
+#include "fairshape/experiment/kinds/surface_edit/surface_edit_spec.h"
 
 #include <cmath>
 #include <filesystem>
 
-#include "core/config.h"
-#include "experiment/vtk_policy.h"
-#include "qp/qp_solver.h"
+#include "fairshape/core/config.h"
+#include "fairshape/experiment/vtk_policy.h"
+#include "fairshape/qp/qp_solver.h"
 
 namespace fairshape {
 namespace fs = std::filesystem;

@@ -9,16 +9,16 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "core/backend.h"
-#include "design/edit_assembly.h"
-#include "design/edit_solve.h"
-#include "design/multilevel_edit.h"
-#include "design/regional_edit.h"
-#include "design/rotation_aware_edit.h"
-#include "experiment/components.h"
-#include "experiment/run_basics.h"
-#include "subdivision/scheme.h"
-#include "experiment/vtk_policy.h"
+#include "fairshape/core/backend.h"
+#include "fairshape/design/edit_assembly.h"
+#include "fairshape/design/edit_solve.h"
+#include "fairshape/design/multilevel_edit.h"
+#include "fairshape/design/regional_edit.h"
+#include "fairshape/design/rotation_aware_edit.h"
+#include "fairshape/experiment/components.h"
+#include "fairshape/experiment/run_basics.h"
+#include "fairshape/subdivision/scheme.h"
+#include "fairshape/experiment/vtk_policy.h"
 
 namespace fairshape {
 

@@ -7,6 +7,8 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <string>
+#include <vector>
 
 #include <tbb/global_control.h>
 
@@ -143,8 +145,69 @@ void BM_EvaluateHierarchy(benchmark::State& state) {
   state.counters["finest_vertices"] = static_cast<double>(h.mesh(4).n_vertices());
 }
 
+// A design step (issue 24 part 4): the sheet of BM_EvaluateHierarchy (263,169 finest vertices,
+// 351,153 over its 5 levels) with the wave on level 2 and two short ridges away from it, one on
+// the finest level and one on level 2; each iteration moves one of the ridges by a tenth of its
+// radius (back and forth) and evaluates the step, the whole hierarchy or its region.
+// Args: {0 the finest-level ridge moves, 1 the level-2 one} × {0 whole, 1 region} ×
+// {0 drawn_level, 2 limit}.
+FeatureCurve sheet_curve(const MultiresSurface& h, int level, const std::vector<Vec3>& xy, double radius, double height,
+                         const std::string& name) {
+  const SurfaceMesh& m = h.mesh(level);
+  const TriangleSurface s(m, loop_limit_normals(m));
+  MatrixX3 P(static_cast<Eigen::Index>(xy.size()), 3);
+  for (std::size_t k = 0; k < xy.size(); ++k) {
+    const double x = xy[k].x(), y = xy[k].y();
+    P.row(static_cast<Eigen::Index>(k)) << x, y, 0.12 * (x * x - 0.5 * y * y);
+  }
+  FeatureCurve c;
+  c.name = name;
+  c.level = level;
+  c.points = project_to_surface(s, P, 0.01, "benchmark curve");
+  c.params.radius = radius;
+  c.params.height = height;
+  return c;
+}
+
+void BM_DesignStep(benchmark::State& state) {
+  static const MultiresSurface h(curved_sheet(32), loop(), 4, Backend::Optimized);
+  const ProfileTarget targets[] = {ProfileTarget::DrawnLevel, ProfileTarget::Finest, ProfileTarget::Limit};
+  const bool coarse = state.range(0) == 1;
+  FeaturedSurface surface(h, Backend::Optimized, targets[state.range(2)]);
+  surface.set_region_evaluation(state.range(1) == 1);
+  std::vector<Vec3> wave;
+  for (int k = 0; k <= 20; ++k) {
+    const double x = -0.8 + 1.6 * k / 20.0;
+    wave.emplace_back(x, 0.3 * std::sin(3 * x), 0);
+  }
+  surface.add(sheet_curve(h, 2, wave, 4 * 2.0 / (32 << 2), 0.004, "wave"));
+  const double fine_r = 6 * 2.0 / (32 << 4), coarse_r = 3 * 2.0 / (32 << 2);
+  const auto fine_at = [&](double dy) {
+    return sheet_curve(h, 4, {Vec3(0.4, -0.7 + dy, 0), Vec3(0.6, -0.72 + dy, 0)}, fine_r, 0.5 * fine_r, "fine");
+  };
+  const auto coarse_at = [&](double dy) {
+    return sheet_curve(h, 2, {Vec3(-0.6, -0.7 + dy, 0), Vec3(-0.3, -0.72 + dy, 0)}, coarse_r, 0.3 * coarse_r, "coarse");
+  };
+  const FeatureCurve moves[2] = {coarse ? coarse_at(0) : fine_at(0), coarse ? coarse_at(0.1 * coarse_r) : fine_at(0.1 * fine_r)};
+  const int fine_id = surface.add(fine_at(0)), coarse_id = surface.add(coarse_at(0));
+  const int moved = coarse ? coarse_id : fine_id;
+  benchmark::DoNotOptimize(surface.result().mesh(4).positions().data());
+  long long recomputed = 0, steps = 0;
+  for (auto _ : state) {
+    surface.replace(moved, moves[(++steps) % 2]);
+    benchmark::DoNotOptimize(surface.result().mesh(4).positions().data());
+    recomputed += surface.last_evaluation().vertices_recomputed;
+  }
+  long long total = 0;
+  for (int k = 0; k <= h.levels(); ++k) total += h.mesh(k).n_vertices();
+  state.counters["finest_vertices"] = static_cast<double>(h.mesh(4).n_vertices());
+  state.counters["hierarchy_vertices"] = static_cast<double>(total);
+  state.counters["recomputed"] = static_cast<double>(recomputed) / static_cast<double>(std::max(1LL, steps));
+}
+
 }  // namespace
 
+BENCHMARK(BM_DesignStep)->ArgsProduct({{0, 1}, {0, 1}, {0, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_EvaluateHierarchy)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_ApplyFeature_Optimized)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_ApplyFeature_Reference)->Arg(1)->Iterations(1)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -15,6 +15,7 @@ int FeaturedSurface::add(FeatureCurve curve) {
                        " does not exist (the hierarchy has levels 0.." + std::to_string(original_.levels()) + ")");
   features_[next_id_] = std::move(curve);
   dirty_ = true;
+  changed(next_id_);
   return next_id_++;
 }
 
@@ -22,35 +23,37 @@ void FeaturedSurface::replace(int id, FeatureCurve curve) {
   if (!features_.count(id)) throw InvalidInput("no feature with id " + std::to_string(id));
   features_[id] = std::move(curve);
   dirty_ = true;
+  changed(id);
 }
 
 void FeaturedSurface::remove(int id) {
   if (!features_.erase(id)) throw InvalidInput("no feature with id " + std::to_string(id));
   dirty_ = true;
+  changed(id);
 }
 
 const MultiresSurface& FeaturedSurface::result() {
-  if (dirty_) evaluate();
+  if (dirty_) evaluate_or_update();
   return result_;
 }
 
 const LevelPerturbation& FeaturedSurface::perturbation(int level) {
-  if (dirty_) evaluate();
+  if (dirty_) evaluate_or_update();
   return perturbations_.at(static_cast<std::size_t>(level));
 }
 
 const std::map<int, BaseCurve>& FeaturedSurface::base_curves() {
-  if (dirty_) evaluate();
+  if (dirty_) evaluate_or_update();
   return base_curves_;
 }
 
 const std::vector<LevelOperator>& FeaturedSurface::operators() {
-  if (dirty_) evaluate();
+  if (dirty_) evaluate_or_update();
   return operators_;
 }
 
 const VisibleTargets& FeaturedSurface::visible_targets() {
-  if (dirty_) evaluate();
+  if (dirty_) evaluate_or_update();
   return visible_;
 }
 
@@ -77,7 +80,18 @@ void FeaturedSurface::check_coarsest_features() const {
     }
 }
 
+void FeaturedSurface::evaluate_or_update() {
+  if (region_evaluation_ && evaluated_ && !original_changed_) {
+    evaluate_region();
+    return;
+  }
+  evaluate();
+}
+
 void FeaturedSurface::evaluate() {
+  evaluated_ = false;  // until it has finished (a throw leaves the next evaluation whole)
+  limit_fit_.resize(0, 3);
+  limit_moving_.clear();
   result_ = original_;
   base_curves_.clear();
   operators_.clear();
@@ -91,8 +105,8 @@ void FeaturedSurface::evaluate() {
     LevelOperator op;
     op.level = level;
     op.ids = ids;
-    op.mesh = std::make_shared<const SurfaceMesh>(result_.mesh(level));
-    op.surface = std::make_shared<const TriangleSurface>(*op.mesh, loop_limit_normals(*op.mesh));
+    op.mesh = std::make_shared<SurfaceMesh>(result_.mesh(level));
+    op.surface = std::make_shared<TriangleSurface>(*op.mesh, loop_limit_normals(*op.mesh));
     for (int id : ids) op.curves.push_back(build_base_curve(*op.surface, features_.at(id)));
     LevelPerturbation& d = perturbations_[static_cast<std::size_t>(level)];
     d = compute_perturbation(*op.surface, op.curves, backend_);
@@ -105,11 +119,19 @@ void FeaturedSurface::evaluate() {
     const int finest = original_.levels();
     visible_ = compose_visible_targets(original_.mesh(finest), original_.options(), operators_, backend_);
     if (target_ == ProfileTarget::Finest) result_.set_level_positions(finest, visible_.fine.back());
-    if (target_ == ProfileTarget::Limit)
-      result_.set_level_positions(finest, control_points_for_limit(original_.mesh(finest), visible_.limit_matrix,
-                                                                   visible_.fine.front(),
-                                                                   visible_.limit.back() - visible_.limit.front()));
+    if (target_ == ProfileTarget::Limit) {
+      const MatrixX3 moved = visible_.limit.back() - visible_.limit.front();
+      limit_fit_ = control_points_for_limit(original_.mesh(finest), visible_.limit_matrix, visible_.fine.front(), moved);
+      limit_moving_.assign(static_cast<std::size_t>(moved.rows()), 0);
+      for (int v = 0; v < static_cast<int>(moved.rows()); ++v) limit_moving_[static_cast<std::size_t>(v)] = moved.row(v).squaredNorm() > 0;
+      result_.set_level_positions(finest, limit_fit_);
+    }
   }
+  report_ = {};
+  for (int level = 0; level <= result_.levels(); ++level) report_.vertices_recomputed += result_.mesh(level).n_vertices();
+  pending_.clear();
+  original_changed_ = false;
+  evaluated_ = true;
   dirty_ = false;
 }
 

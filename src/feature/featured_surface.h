@@ -11,6 +11,7 @@
 #pragma once
 
 #include <map>
+#include <set>
 #include <vector>
 
 #include "fairshape/feature/perturbation.h"
@@ -18,6 +19,14 @@
 #include "fairshape/subdivision/multires_surface.h"
 
 namespace fairshape::feature {
+
+//! What the last evaluation recomputed (a design step's cost): the whole hierarchy, or the
+//! region the changed features reach (FeaturedSurface::set_region_evaluation).
+struct EvaluationReport {
+  bool region = false;                   // false: the whole hierarchy was evaluated
+  std::vector<std::vector<int>> vertices;  // per level, the vertices recomputed (region only)
+  long long vertices_recomputed = 0;     // over all levels (the whole hierarchy's count when full)
+};
 
 class FeaturedSurface {
  public:
@@ -31,7 +40,8 @@ class FeaturedSurface {
   const std::map<int, FeatureCurve>& features() const { return features_; }
 
   //! The surface without features (edit it, e.g. set_base_positions + synthesize, through this).
-  MultiresSurface& original() { dirty_ = true; return original_; }
+  //! The next evaluation is then of the whole hierarchy.
+  MultiresSurface& original() { dirty_ = true; original_changed_ = true; return original_; }
   const MultiresSurface& original() const { return original_; }
 
   //! The surface with every feature applied. \throw InvalidInput / FlatnessError for a feature
@@ -53,6 +63,18 @@ class FeaturedSurface {
   const std::vector<LevelOperator>& operators();
   const VisibleTargets& visible_targets();
 
+  //! Region-limited re-evaluation (default on): after an evaluation, when only features were
+  //! added, replaced or removed, the next one recomputes only what they reach — on the level of
+  //! a changed feature its old and new neighbourhoods (every vertex within its reach, the
+  //! largest feature height and three of its own longest edges of the curve), on each finer level the
+  //! vertices whose subdivision stencil and local frame read a recomputed one, there the
+  //! features whose neighbourhood meets them (rebuilt on the changed surface, their old and new
+  //! neighbourhoods added), and for the limit target the blocks of the least-squares fit those
+  //! rows meet. Every other vertex of every level keeps its value bit for bit; the recomputed
+  //! ones equal a whole evaluation to rounding. Off: every evaluation is of the whole hierarchy.
+  void set_region_evaluation(bool on) { region_evaluation_ = on; }
+  const EvaluationReport& last_evaluation() const { return report_; }
+
  private:
   // The base curves of features `ids` on `mesh` (one level) and the perturbation they make.
   struct LevelFeatures {
@@ -60,7 +82,10 @@ class FeaturedSurface {
     LevelPerturbation perturbation;
   };
   LevelFeatures apply_on(const SurfaceMesh& mesh, const std::vector<int>& ids) const;
+  void evaluate_or_update();
   void evaluate();
+  void evaluate_region();
+  void changed(int id) { pending_.insert(id); }
   std::vector<int> features_on(int level) const;
   MultiresSurface original_, result_;
   Backend backend_;
@@ -72,6 +97,13 @@ class FeaturedSurface {
   std::vector<LevelPerturbation> perturbations_;
   int next_id_ = 0;
   bool dirty_ = true;
+  // Region evaluation: features changed since the last evaluation, whether the original was
+  // (then the next evaluation is whole), the limit fit and which limit points it moved.
+  bool region_evaluation_ = true, original_changed_ = true, evaluated_ = false;
+  std::set<int> pending_;
+  MatrixX3 limit_fit_;
+  std::vector<char> limit_moving_;
+  EvaluationReport report_;
 };
 
 }  // namespace fairshape::feature

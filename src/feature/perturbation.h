@@ -50,6 +50,11 @@ std::optional<SegmentOffset> segment_offset(const TriangleSurface& s, const Base
 LevelPerturbation compute_perturbation(const TriangleSurface& s, const std::vector<BaseCurve>& curves,
                                        Backend backend);
 
+//! compute_perturbation at the given vertices only (the region a design step changed): the same
+//! offsets there, the cost of the vertices given. The result lists those a segment moves, sorted.
+LevelPerturbation perturb_vertices(const TriangleSurface& s, const std::vector<BaseCurve>& curves,
+                                   std::vector<int> vertices, Backend backend);
+
 //! The features' displacement (OffsetMeaning::Displacement, combined as on the level) of
 //! arbitrary points near the level: the vertices of a finer level or their limit points.
 //! `vertices` of the result index the rows of `points`. Same back ends, same exact agreement.

@@ -18,6 +18,10 @@ LevelPerturbation displace_points_reference(const TriangleSurface& s, const std:
                                             const MatrixX3& points);
 LevelPerturbation displace_points_tbb(const TriangleSurface& s, const std::vector<BaseCurve>& curves,
                                       const MatrixX3& points);
+LevelPerturbation perturb_vertices_reference(const TriangleSurface& s, const std::vector<BaseCurve>& curves,
+                                             const std::vector<int>& vertices);
+LevelPerturbation perturb_vertices_tbb(const TriangleSurface& s, const std::vector<BaseCurve>& curves,
+                                       const std::vector<int>& vertices);
 //! The rows of `moved` whose `touched` flag is set, as a LevelPerturbation.
 LevelPerturbation collect_moved(const std::vector<int>& ids, const std::vector<Vec3>& moved, const std::vector<char>& touched);
 

@@ -25,6 +25,23 @@ LevelPerturbation perturbation_reference(const TriangleSurface& s, const std::ve
   return out;
 }
 
+LevelPerturbation perturb_vertices_reference(const TriangleSurface& s, const std::vector<BaseCurve>& curves,
+                                             const std::vector<int>& vertices) {
+  std::vector<Vec3> moved(vertices.size(), Vec3::Zero());
+  std::vector<char> touched(vertices.size(), 0);
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    OffsetCombiner combined;
+    for (const BaseCurve& curve : curves)
+      for (int k = 0; k < static_cast<int>(curve.segments.size()); ++k)
+        if (const auto o = segment_offset(s, curve, k, s.vertex(vertices[i]))) {
+          combined.add(*o);
+          touched[i] = 1;
+        }
+    moved[i] = combined.displacement();
+  }
+  return collect_moved(vertices, moved, touched);
+}
+
 LevelPerturbation displace_points_reference(const TriangleSurface& s, const std::vector<BaseCurve>& curves,
                                             const MatrixX3& points) {
   const auto n = static_cast<std::size_t>(points.rows());

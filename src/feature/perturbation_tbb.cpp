@@ -60,6 +60,32 @@ class SegmentGrid {
   std::vector<SegmentRef> empty_;
 };
 
+// The offsets of the listed vertices (in parallel), each against its grid cell's segments.
+LevelPerturbation perturb_listed(const TriangleSurface& s, const std::vector<BaseCurve>& curves, const SegmentGrid& grid,
+                                 const std::vector<int>& vertices) {
+  const std::size_t n = vertices.size();
+  std::vector<Vec3> moved(n);
+  std::vector<char> touched(n, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 64), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const Vec3 p = s.vertex(vertices[i]);
+      OffsetCombiner combined;
+      for (const SegmentRef& ref : grid.near(p)) {
+        const BaseCurve& curve = curves[static_cast<std::size_t>(ref.curve)];
+        // segment_offset's own first test, inlined: most listed segments are out of reach.
+        const double reach = std::max(curve.params.radius, curve.params.right_radius());
+        if (curve.segments[static_cast<std::size_t>(ref.segment)].squared_distance(p) >= reach * reach) continue;
+        if (const auto o = segment_offset(s, curve, ref.segment, p)) {
+          combined.add(*o);
+          touched[i] = 1;
+        }
+      }
+      moved[i] = combined.displacement();
+    }
+  });
+  return collect_moved(vertices, moved, touched);
+}
+
 }  // namespace
 
 LevelPerturbation perturbation_tbb(const TriangleSurface& s, const std::vector<BaseCurve>& curves) {
@@ -109,27 +135,12 @@ LevelPerturbation perturbation_tbb(const TriangleSurface& s, const std::vector<B
     for (const auto& part : next_parts) frontier.insert(frontier.end(), part.begin(), part.end());
   }
   std::sort(region.begin(), region.end());
-  const std::size_t n = region.size();
-  std::vector<Vec3> moved(n);
-  std::vector<char> touched(n, 0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 64), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      const Vec3 p = s.vertex(region[i]);
-      OffsetCombiner combined;
-      for (const SegmentRef& ref : grid.near(p)) {
-        const BaseCurve& curve = curves[static_cast<std::size_t>(ref.curve)];
-        // segment_offset's own first test, inlined: most listed segments are out of reach.
-        const double r = std::max(curve.params.radius, curve.params.right_radius());
-        if (curve.segments[static_cast<std::size_t>(ref.segment)].squared_distance(p) >= r * r) continue;
-        if (const auto o = segment_offset(s, curve, ref.segment, p)) {
-          combined.add(*o);
-          touched[i] = 1;
-        }
-      }
-      moved[i] = combined.displacement();
-    }
-  });
-  return collect_moved(region, moved, touched);
+  return perturb_listed(s, curves, grid, region);
+}
+
+LevelPerturbation perturb_vertices_tbb(const TriangleSurface& s, const std::vector<BaseCurve>& curves,
+                                       const std::vector<int>& vertices) {
+  return perturb_listed(s, curves, SegmentGrid(curves, s.longest_edge()), vertices);
 }
 
 // Points are not vertices of the level: no region walk, each point looks up its grid cell (the
@@ -164,6 +175,14 @@ LevelPerturbation displace_points_tbb(const TriangleSurface& s, const std::vecto
 LevelPerturbation compute_perturbation(const TriangleSurface& s, const std::vector<BaseCurve>& curves,
                                        Backend backend) {
   return backend == Backend::Reference ? perturbation_reference(s, curves) : perturbation_tbb(s, curves);
+}
+
+LevelPerturbation perturb_vertices(const TriangleSurface& s, const std::vector<BaseCurve>& curves,
+                                   std::vector<int> vertices, Backend backend) {
+  std::sort(vertices.begin(), vertices.end());
+  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  return backend == Backend::Reference ? perturb_vertices_reference(s, curves, vertices)
+                                       : perturb_vertices_tbb(s, curves, vertices);
 }
 
 LevelPerturbation displace_points(const TriangleSurface& s, const std::vector<BaseCurve>& curves,

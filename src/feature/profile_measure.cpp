@@ -90,8 +90,26 @@ struct Surfaces {
   const FinestFaces& below;
 };
 
+// Samples of the curve for its height: about one per finest edge — the longest edge of the face a
+// segment lies in on its drawn level, halved for each level between it and the finest (Loop
+// halves the edges). Local, so that a run that computes only the curve's region (a sparse run)
+// samples exactly where the uniform run does.
+std::vector<std::pair<int, double>> height_samples(const TriangleSurface& level, const BaseCurve& curve, int levels_to_finest) {
+  std::vector<std::pair<int, double>> at;
+  const double shrink = std::ldexp(1.0, -levels_to_finest);
+  for (int k = 0; k < static_cast<int>(curve.segments.size()); ++k) {
+    const BaseSegment& seg = curve.segments[static_cast<std::size_t>(k)];
+    const auto& c = level.corners(seg.face);
+    double edge = 0;
+    for (int i = 0; i < 3; ++i) edge = std::max(edge, (level.vertex(c[(i + 1) % 3]) - level.vertex(c[i])).norm());
+    const int n = std::max(1, static_cast<int>(std::ceil(seg.length / (edge * shrink))));
+    for (int i = 0; i < n; ++i) at.emplace_back(k, (i + 0.5) / n);
+  }
+  return at;
+}
+
 ProfileMeasure measure_one(const SurfaceMesh& finest, const Surfaces& x, const TriangleSurface& level,
-                           const BaseCurve& curve, const Others& others, double scale) {
+                           const BaseCurve& curve, const Others& others, double scale, int levels_to_finest) {
   ProfileMeasure m;
   const double reach = reach_of(curve);
   // Profile error and widths over the finest vertices near the curve.
@@ -124,11 +142,7 @@ ProfileMeasure measure_one(const SurfaceMesh& finest, const Surfaces& x, const T
   m.width_left = width[0], m.width_right = width[1];
   // Heights at samples of the base curve, about one per finest edge, in the finest face below.
   const TriangleSurface& faces = x.below.faces;
-  std::vector<std::pair<int, double>> at;
-  for (int k = 0; k < static_cast<int>(curve.segments.size()); ++k) {
-    const int n = std::max(1, static_cast<int>(std::ceil(curve.segments[static_cast<std::size_t>(k)].length / faces.longest_edge())));
-    for (int i = 0; i < n; ++i) at.emplace_back(k, (i + 0.5) / n);
-  }
+  const std::vector<std::pair<int, double>> at = height_samples(level, curve, levels_to_finest);
   MatrixX3 samples(static_cast<Eigen::Index>(at.size()), 3);
   for (std::size_t i = 0; i < at.size(); ++i)
     samples.row(static_cast<Eigen::Index>(i)) = frame_at(level, curve, at[i].first, at[i].second).b.transpose();
@@ -173,11 +187,12 @@ std::string miss(const char* where, const ProfileMeasure& m, const FeatureParams
 
 ProfileMeasure measure_on_mesh(const SurfaceMesh& mesh, const MatrixX3& reference, const MatrixX3& requested,
                                const MatrixX3& achieved, const TriangleSurface& level, const BaseCurve& curve,
-                               const std::vector<const BaseCurve*>& others) {
+                               const std::vector<const BaseCurve*>& others, int levels_to_finest) {
   const FinestFaces below(mesh, reference);
   Others near;
   for (const BaseCurve* c : others) near.push_back({c, Box(*c, reach_of(*c))});
-  return measure_one(mesh, {reference, requested, achieved, below}, level, curve, near, error_scale(curve.params));
+  return measure_one(mesh, {reference, requested, achieved, below}, level, curve, near, error_scale(curve.params),
+                     levels_to_finest);
 }
 
 std::string profile_miss(const char* where, const ProfileMeasure& m, const FeatureParams& q) { return miss(where, m, q); }
@@ -207,8 +222,11 @@ std::vector<FeatureMeasure> measure_features(FeaturedSurface& surface) {
       f.id = ops[k].ids[j];
       f.name = curve.name;
       f.level = ops[k].level;
-      f.fine = measure_one(finest, {targets.fine[k], targets.fine.back(), achieved_fine, fine_below}, *ops[k].surface, curve, others, scale);
-      f.limit = measure_one(finest, {targets.limit[k], targets.limit.back(), achieved_limit, limit_below}, *ops[k].surface, curve, others, scale);
+      const int below = result.levels() - ops[k].level;
+      f.fine = measure_one(finest, {targets.fine[k], targets.fine.back(), achieved_fine, fine_below}, *ops[k].surface, curve,
+                           others, scale, below);
+      f.limit = measure_one(finest, {targets.limit[k], targets.limit.back(), achieved_limit, limit_below}, *ops[k].surface,
+                            curve, others, scale, below);
       f.why = miss("finest level", f.fine, q);
       if (f.why.empty()) f.why = miss("limit", f.limit, q);
       f.within_tolerance = f.why.empty();

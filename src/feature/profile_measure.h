@@ -3,7 +3,8 @@
 // each side and the deviation from the requested cross-section. Definitions (all relative to the
 // surface the feature was applied to — the original, or the coarser features' visible target):
 //   height      the displacement along the curve's normal at samples of the base curve (about
-//               one per finest edge), interpolated linearly in the finest face below the sample;
+//               one per finest edge: the longest edge of the segment's face on the drawn level,
+//               halved per finer level), interpolated linearly in the finest face below the sample;
 //               samples within another feature's reach are skipped (its height is theirs too);
 //   profile     max over the finest vertices within the feature's reach (outside every other
 //               feature's reach) of |achieved − requested position|; requested = the profile as
@@ -43,10 +44,10 @@ struct FeatureMeasure {
 //! run's finest level as a patch, feature/sparse_loop.h: the vertices outside it have no
 //! displacement and change nothing): positions per vertex of `mesh` of the surface the curve
 //! was applied to, of what was asked and of what was achieved; `level` the surface the curve
-//! was built on, `others` the run's other curves.
+//! was built on (`levels_to_finest` levels coarser than `mesh`), `others` the run's other curves.
 ProfileMeasure measure_on_mesh(const SurfaceMesh& mesh, const MatrixX3& reference, const MatrixX3& requested,
                                const MatrixX3& achieved, const TriangleSurface& level, const BaseCurve& curve,
-                               const std::vector<const BaseCurve*>& others);
+                               const std::vector<const BaseCurve*>& others, int levels_to_finest = 0);
 //! The first tolerance `m` misses ("<where>: profile error … > profile_tolerance …"), or "".
 std::string profile_miss(const char* where, const ProfileMeasure& m, const FeatureParams& q);
 

@@ -70,6 +70,14 @@ class TriangleSurface {
     return c[0] == v ? 0 : c[1] == v ? 1 : c[2] == v ? 2 : -1;
   }
   double longest_edge() const { return longest_edge_; }
+  //! After the mesh's positions changed at `moved` (and nowhere else): the normals of `moved`
+  //! and their one-ring (a limit normal reads the ring), the faces around `moved` and the longest
+  //! edge become what a new TriangleSurface with loop_limit_normals would have (the same numbers);
+  //! the closest-point tree is dropped. Costs the region, and a scan of the faces only when the
+  //! longest edge may have shrunk.
+  void refresh(const std::vector<int>& moved);
+  //! The same surface on another mesh with the same connectivity and positions (a copy of it).
+  void rebind(const SurfaceMesh& mesh) { mesh_ = &mesh; locator_.reset(); }
   //! Closest points on this level (a CGAL AABB tree, built on first use and kept).
   const ClosestPointQuery& locator() const;
 
@@ -77,6 +85,7 @@ class TriangleSurface {
   const SurfaceMesh* mesh_;
   MatrixX3 normals_, face_normals_;
   std::vector<std::array<int, 3>> corners_, across_;
+  std::vector<double> face_longest_;
   double longest_edge_ = 0;
   mutable std::shared_ptr<const ClosestPointQuery> locator_;
 };

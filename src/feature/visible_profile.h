@@ -9,6 +9,7 @@
 // control points (ProfileTarget::Limit).
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -30,8 +31,9 @@ const NameTable<ProfileTarget>& profile_target_names();
 struct LevelOperator {
   int level = 0;
   std::vector<int> ids;  // feature ids, in the order of `curves`
-  std::shared_ptr<const SurfaceMesh> mesh;
-  std::shared_ptr<const TriangleSurface> surface;
+  // Not const: a region re-evaluation (FeaturedSurface) updates them where a coarser level moved.
+  std::shared_ptr<SurfaceMesh> mesh;
+  std::shared_ptr<TriangleSurface> surface;
   std::vector<BaseCurve> curves;
 };
 
@@ -40,6 +42,7 @@ struct LevelOperator {
 struct VisibleTargets {
   std::vector<MatrixX3> fine, limit;
   SparseMatrix limit_matrix;  // finest control points -> limit points of the finest vertices
+  Eigen::SparseMatrix<double, Eigen::RowMajor> limit_by_rows;  // the same by rows (the fit reads rows)
 };
 
 //! Applies the operators in order (coarse levels first, as the hierarchy does) as displacements
@@ -53,5 +56,20 @@ VisibleTargets compose_visible_targets(const SurfaceMesh& finest_original, const
 //! those vertices plus one more ring). \throw SolverError when the solve fails.
 MatrixX3 control_points_for_limit(const SurfaceMesh& mesh, const SparseMatrix& limit_matrix, const MatrixX3& reference,
                                   const MatrixX3& limit_displacement, int rings = 2);
+
+//! The limit displacement of a finest vertex, row by row (a step reads only its region).
+using LimitDisplacement = std::function<Vec3(int)>;
+
+//! control_points_for_limit after a design step changed `limit_displacement` only on the rows
+//! `changed`: X (the previous fit) is re-solved on the blocks of the fit those rows meet (the
+//! fit separates into blocks of moving vertices more than 2 rings + 2 apart: their unknowns
+//! share no row) and kept elsewhere. `was_moving`: per vertex, a nonzero limit displacement
+//! before the step. Returns the rows of X rewritten. The same X as control_points_for_limit
+//! gives (to rounding: the blocks are solved apart). \throw SolverError when the solve fails.
+std::vector<int> refit_control_points_for_limit(const SurfaceMesh& mesh,
+                                                const Eigen::SparseMatrix<double, Eigen::RowMajor>& limit_by_rows,
+                                                const MatrixX3& reference, const LimitDisplacement& limit_displacement,
+                                                const std::vector<char>& was_moving, const std::vector<int>& changed,
+                                                MatrixX3& X, int rings = 2);
 
 }  // namespace fairshape::feature

@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "fairshape/core/error.h"
 #include "fairshape/subdivision/crease_rules.h"
 #include "fairshape/subdivision/subdivider.h"
 
@@ -194,6 +195,66 @@ MatrixX3 limit_positions(const SurfaceMesh& mesh, const SubdivisionOptions& opt)
   return limit_matrix(mesh, opt) * mesh.positions();
 }
 
+namespace {
+
+// The two limit tangents of one vertex (zero for an isolated one): limit_tangents' per-vertex
+// rule, shared with limit_normal_at so that both give the same numbers.
+void vertex_limit_tangents(const SurfaceMesh& mesh, const SubdivisionOptions& opt, int v, Vec3& a, Vec3& b) {
+  a = Vec3::Zero(), b = Vec3::Zero();
+  if (mesh.is_isolated(v)) return;
+  const auto hs = mesh.outgoing_halfedges(v);
+  const int n = static_cast<int>(hs.size());
+  if (mesh.has_sharpness()) {  // tagged creases and corners (boundaries keep their own frame below)
+    const VertexRule rule = vertex_rule(mesh, v, opt.boundary);
+    const bool pinned = mesh.is_boundary_vertex(v) && n == 2 && opt.boundary == BoundaryMode::EdgeAndCorner;
+    const bool own_frame = rule == VertexRule::Corner ? !pinned
+                                                      : rule == VertexRule::Crease && !mesh.is_boundary_vertex(v);
+    if (own_frame) {
+      if (rule == VertexRule::Corner) corner_tangents(mesh, v, hs, a, b);
+      else crease_tangents(mesh, v, hs, opt.scheme, a, b);
+      return;
+    }
+  }
+  if (mesh.is_boundary_vertex(v)) {
+    // Along the boundary curve (the cubic B-spline's derivative), then across it, with the
+    // pair ordered so that t1 × t2 points to the side the faces face.
+    const BoundaryFan fan = boundary_fan(mesh, hs);
+    a = 0.5 * (fan.e.back() - fan.e.front());
+    b = boundary_across(fan, mesh.position(v), opt.scheme);
+    if (a.cross(b).dot(face_normal(mesh, fan.first_face)) < 0) b = -b;
+    return;
+  }
+  if (n == 2 && opt.scheme == SchemeType::CatmullClark) {  // the corner frame, as the limit above
+    a = mesh.position(mesh.to_vertex(hs[0])) - mesh.position(v);
+    b = mesh.position(mesh.to_vertex(hs[1])) - mesh.position(v);
+    if (a.cross(b).dot(face_normal(mesh, mesh.face(hs[0]))) < 0) std::swap(a, b);
+    return;
+  }
+  for (int i = 0; i < n; ++i) {
+    const double c0 = std::cos(2 * M_PI * i / n), s0 = std::sin(2 * M_PI * i / n);
+    const Vec3 e = mesh.position(mesh.to_vertex(hs[i]));
+    if (opt.scheme == SchemeType::Loop) {
+      a += c0 * e;
+      b += s0 * e;
+      continue;
+    }
+    // Catmull-Clark eigenvector masks (Halstead, Kass, DeRose 1993).
+    const double An = 1 + std::cos(2 * M_PI / n) + std::cos(M_PI / n) * std::sqrt(2 * (9 + std::cos(2 * M_PI / n)));
+    const double c1 = std::cos(2 * M_PI * (i + 1) / n), s1 = std::sin(2 * M_PI * (i + 1) / n);
+    const Vec3 d = mesh.position(diagonal(mesh, hs[i]));
+    a += An * c0 * e + (c0 + c1) * d;
+    b += An * s0 * e + (s0 + s1) * d;
+  }
+}
+
+Vec3 unit_cross(const Vec3& a, const Vec3& b) {
+  const Vec3 c = a.cross(b);
+  const double len = c.norm();
+  return len > 0 ? Vec3(c / len) : Vec3::Zero();
+}
+
+}  // namespace
+
 void limit_tangents(const SurfaceMesh& mesh, const SubdivisionOptions& opt, MatrixX3& t1, MatrixX3& t2) {
   if (opt.scheme == SchemeType::CatmullClark && !all_quads(mesh)) {
     const SurfaceMesh fine = subdivide_once(mesh, opt, Backend::Optimized);
@@ -206,70 +267,25 @@ void limit_tangents(const SurfaceMesh& mesh, const SubdivisionOptions& opt, Matr
   t1.setZero(mesh.n_vertices(), 3);
   t2.setZero(mesh.n_vertices(), 3);
   for (int v = 0; v < mesh.n_vertices(); ++v) {
-    if (mesh.is_isolated(v)) continue;
-    const auto hs = mesh.outgoing_halfedges(v);
-    const int n = static_cast<int>(hs.size());
-    Vec3 a = Vec3::Zero(), b = Vec3::Zero();
-    if (mesh.has_sharpness()) {  // tagged creases and corners (boundaries keep their own frame below)
-      const VertexRule rule = vertex_rule(mesh, v, opt.boundary);
-      const bool pinned = mesh.is_boundary_vertex(v) && n == 2 && opt.boundary == BoundaryMode::EdgeAndCorner;
-      const bool own_frame = rule == VertexRule::Corner ? !pinned
-                                                        : rule == VertexRule::Crease && !mesh.is_boundary_vertex(v);
-      if (own_frame) {
-        if (rule == VertexRule::Corner) corner_tangents(mesh, v, hs, a, b);
-        else crease_tangents(mesh, v, hs, opt.scheme, a, b);
-        t1.row(v) = a.transpose();
-        t2.row(v) = b.transpose();
-        continue;
-      }
-    }
-    if (mesh.is_boundary_vertex(v)) {
-      // Along the boundary curve (the cubic B-spline's derivative), then across it, with the
-      // pair ordered so that t1 × t2 points to the side the faces face.
-      const BoundaryFan fan = boundary_fan(mesh, hs);
-      a = 0.5 * (fan.e.back() - fan.e.front());
-      b = boundary_across(fan, mesh.position(v), opt.scheme);
-      if (a.cross(b).dot(face_normal(mesh, fan.first_face)) < 0) b = -b;
-      t1.row(v) = a.transpose();
-      t2.row(v) = b.transpose();
-      continue;
-    }
-    if (n == 2 && opt.scheme == SchemeType::CatmullClark) {  // the corner frame, as the limit above
-      a = mesh.position(mesh.to_vertex(hs[0])) - mesh.position(v);
-      b = mesh.position(mesh.to_vertex(hs[1])) - mesh.position(v);
-      if (a.cross(b).dot(face_normal(mesh, mesh.face(hs[0]))) < 0) std::swap(a, b);
-      t1.row(v) = a.transpose();
-      t2.row(v) = b.transpose();
-      continue;
-    }
-    for (int i = 0; i < n; ++i) {
-      const double c0 = std::cos(2 * M_PI * i / n), s0 = std::sin(2 * M_PI * i / n);
-      const Vec3 e = mesh.position(mesh.to_vertex(hs[i]));
-      if (opt.scheme == SchemeType::Loop) {
-        a += c0 * e;
-        b += s0 * e;
-        continue;
-      }
-      // Catmull-Clark eigenvector masks (Halstead, Kass, DeRose 1993).
-      const double An = 1 + std::cos(2 * M_PI / n) + std::cos(M_PI / n) * std::sqrt(2 * (9 + std::cos(2 * M_PI / n)));
-      const double c1 = std::cos(2 * M_PI * (i + 1) / n), s1 = std::sin(2 * M_PI * (i + 1) / n);
-      const Vec3 d = mesh.position(diagonal(mesh, hs[i]));
-      a += An * c0 * e + (c0 + c1) * d;
-      b += An * s0 * e + (s0 + s1) * d;
-    }
+    Vec3 a, b;
+    vertex_limit_tangents(mesh, opt, v, a, b);
     t1.row(v) = a.transpose();
     t2.row(v) = b.transpose();
   }
 }
 
+Vec3 limit_normal_at(const SurfaceMesh& mesh, const SubdivisionOptions& opt, int v) {
+  if (opt.scheme == SchemeType::CatmullClark && !all_quads(mesh))
+    throw InvalidInput("limit_normal_at: a Catmull-Clark mesh with non-quad faces (refine it once first)");
+  Vec3 a, b;
+  vertex_limit_tangents(mesh, opt, v, a, b);
+  return unit_cross(a, b);
+}
+
 MatrixX3 limit_normals(const SurfaceMesh& mesh, const SubdivisionOptions& opt) {
   MatrixX3 t1, t2, n(mesh.n_vertices(), 3);
   limit_tangents(mesh, opt, t1, t2);
-  for (int v = 0; v < mesh.n_vertices(); ++v) {
-    const Vec3 c = Vec3(t1.row(v)).cross(Vec3(t2.row(v)));
-    const double len = c.norm();
-    n.row(v) = (len > 0 ? Vec3(c / len) : Vec3::Zero()).transpose();
-  }
+  for (int v = 0; v < mesh.n_vertices(); ++v) n.row(v) = unit_cross(Vec3(t1.row(v)), Vec3(t2.row(v))).transpose();
   return n;
 }
 

@@ -30,5 +30,8 @@ bool vertex_limit_mask_exact(const SurfaceMesh& mesh, int v);
 void limit_tangents(const SurfaceMesh& mesh, const SubdivisionOptions& opt, MatrixX3& t1, MatrixX3& t2);
 //! Unit normals t1 × t2, oriented with the faces.
 MatrixX3 limit_normals(const SurfaceMesh& mesh, const SubdivisionOptions& opt);
+//! Row v of limit_normals (the same numbers), for updating a few vertices of a large mesh.
+//! \throw InvalidInput for a Catmull-Clark mesh with non-quad faces (refined internally there).
+Vec3 limit_normal_at(const SurfaceMesh& mesh, const SubdivisionOptions& opt, int v);
 
 }  // namespace fairshape

@@ -31,22 +31,33 @@ MatrixX3 to_world(const Frames& f, const MatrixX3& d) {
 
 }  // namespace
 
+namespace {
+
+// The frame (t1, t2, n) of vertex v from its limit normal n: local_frames' per-vertex rule,
+// shared with the region synthesis so that both give the same numbers.
+void vertex_frame(const SurfaceMesh& mesh, int v, Vec3 n, Vec3& t1, Vec3& t2, Vec3& normal) {
+  Vec3 t = Vec3::UnitX();
+  if (n.squaredNorm() < 0.5) n = Vec3::UnitZ();  // no normal (isolated vertex): world axes
+  else if (!mesh.is_isolated(v)) t = mesh.position(mesh.to_vertex(mesh.halfedge(v))) - mesh.position(v);
+  t -= t.dot(n) * n;
+  if (t.norm() < 1e-300) t = n.unitOrthogonal();
+  t.normalize();
+  normal = n, t1 = t, t2 = n.cross(t);
+}
+
+}  // namespace
+
 Frames local_frames(const SurfaceMesh& mesh, const SubdivisionOptions& opt) {
   Frames f;
   f.n = limit_normals(mesh, opt);
   f.t1.resize(mesh.n_vertices(), 3);
   f.t2.resize(mesh.n_vertices(), 3);
   for (int v = 0; v < mesh.n_vertices(); ++v) {
-    Vec3 n = f.n.row(v).transpose();
-    Vec3 t = Vec3::UnitX();
-    if (n.squaredNorm() < 0.5) n = Vec3::UnitZ();  // no normal (isolated vertex): world axes
-    else if (!mesh.is_isolated(v)) t = mesh.position(mesh.to_vertex(mesh.halfedge(v))) - mesh.position(v);
-    t -= t.dot(n) * n;
-    if (t.norm() < 1e-300) t = n.unitOrthogonal();
-    t.normalize();
+    Vec3 t1, t2, n;
+    vertex_frame(mesh, v, f.n.row(v).transpose(), t1, t2, n);
     f.n.row(v) = n.transpose();
-    f.t1.row(v) = t.transpose();
-    f.t2.row(v) = n.cross(t).transpose();
+    f.t1.row(v) = t1.transpose();
+    f.t2.row(v) = t2.transpose();
   }
   return f;
 }
@@ -108,6 +119,18 @@ void MultiresSurface::set_level_positions(int level, const MatrixX3& X) {
   meshes_[level].positions() = X;
 }
 
+void MultiresSurface::set_level_rows(int level, const std::vector<int>& rows, const MatrixX3& X) {
+  if (level < 0 || level > levels())
+    throw InvalidInput("set_level_rows: level " + std::to_string(level) + " outside [0, " + std::to_string(levels()) + "]");
+  if (X.rows() != static_cast<Eigen::Index>(rows.size()) || !X.allFinite())
+    throw InvalidInput("set_level_rows: " + std::to_string(rows.size()) + " finite rows needed");
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (rows[i] < 0 || rows[i] >= meshes_[level].n_vertices())
+      throw InvalidInput("set_level_rows: vertex " + std::to_string(rows[i]) + " is not on level " + std::to_string(level));
+    meshes_[level].positions().row(rows[i]) = X.row(static_cast<Eigen::Index>(i));
+  }
+}
+
 SparseMatrix MultiresSurface::prolongation(int from, int to) const {
   if (from < 0 || to > levels() || from > to)
     throw InvalidInput("prolongation: levels " + std::to_string(from) + " -> " + std::to_string(to) + " outside the hierarchy");
@@ -135,6 +158,74 @@ void MultiresSurface::synthesize_from(int level, DetailSpace keep) {
     else local_[l + 1] = to_local(frames, world_[l + 1]);
     fine.positions() = predicted + world_[l + 1];
   }
+}
+
+std::vector<std::vector<int>> MultiresSurface::synthesize_region_from(int level, const std::vector<int>& changed,
+                                                                       DetailSpace keep, int through) {
+  std::vector<std::vector<int>> region(static_cast<std::size_t>(levels() + 1));
+  region[static_cast<std::size_t>(level)] = changed;
+  if (through < 0 || through > levels()) through = levels();
+  for (int l = level; l < through; ++l) {
+    const SurfaceMesh& coarse = meshes_[l];
+    SurfaceMesh& fine = meshes_[l + 1];
+    const int n = fine.n_vertices();
+    // The children whose stencil reads a changed vertex (S is column-major: a column lists the
+    // children of one parent), then one ring more: a vertex's local frame reads the predicted
+    // positions of its one-ring (its limit normal, its first edge).
+    std::vector<char> in(static_cast<std::size_t>(n), 0);
+    std::vector<int> moved;
+    for (int p : region[static_cast<std::size_t>(l)])
+      for (SparseMatrix::InnerIterator it(S_[l], p); it; ++it)
+        if (!in[static_cast<std::size_t>(it.row())]) in[static_cast<std::size_t>(it.row())] = 1, moved.push_back(static_cast<int>(it.row()));
+    std::vector<int> out = moved;
+    const auto grow = [&](const std::vector<int>& from, std::vector<int>& into, std::vector<char>& mark) {
+      std::vector<int> added;
+      for (int v : from)
+        fine.for_each_outgoing(v, [&](int h) {
+          const int w = fine.to_vertex(h);
+          if (!mark[static_cast<std::size_t>(w)]) mark[static_cast<std::size_t>(w)] = 1, added.push_back(w);
+        });
+      into.insert(into.end(), added.begin(), added.end());
+      return added;
+    };
+    (void)grow(moved, out, in);
+    // Predicted positions on the region and its one-ring (the normals read them), the old
+    // positions of that ring kept to be put back exactly.
+    std::vector<char> ring_mark = in;
+    std::vector<int> ring;
+    (void)grow(out, ring, ring_mark);
+    if (S_rows_.size() <= static_cast<std::size_t>(l)) S_rows_.resize(static_cast<std::size_t>(levels()));
+    if (S_rows_[l].rows() == 0) S_rows_[l] = S_[l];
+    const auto predict = [&](int v) {
+      Vec3 p = Vec3::Zero();
+      for (RowMajorSparse::InnerIterator it(S_rows_[l], v); it; ++it) p += it.value() * coarse.positions().row(it.col()).transpose();
+      return p;
+    };
+    MatrixX3 kept(static_cast<Eigen::Index>(ring.size()), 3);
+    for (std::size_t i = 0; i < ring.size(); ++i) kept.row(static_cast<Eigen::Index>(i)) = fine.positions().row(ring[i]);
+    MatrixX3 predicted(static_cast<Eigen::Index>(out.size()), 3);
+    for (std::size_t i = 0; i < out.size(); ++i) predicted.row(static_cast<Eigen::Index>(i)) = predict(out[i]).transpose();
+    for (std::size_t i = 0; i < out.size(); ++i) fine.positions().row(out[i]) = predicted.row(static_cast<Eigen::Index>(i));
+    for (int v : ring) fine.positions().row(v) = predict(v).transpose();
+    MatrixX3 world(static_cast<Eigen::Index>(out.size()), 3);
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      const int v = out[i];
+      Vec3 t1, t2, nrm;
+      vertex_frame(fine, v, limit_normal_at(fine, opt_, v), t1, t2, nrm);
+      if (keep == DetailSpace::Local) {
+        const Vec3 d = local_[l + 1].row(v).transpose();
+        world_[l + 1].row(v) = (t1 * d.x() + t2 * d.y() + nrm * d.z()).transpose();
+      } else {
+        const Vec3 d = world_[l + 1].row(v).transpose();
+        local_[l + 1].row(v) << t1.dot(d), t2.dot(d), nrm.dot(d);
+      }
+    }
+    for (std::size_t i = 0; i < ring.size(); ++i) fine.positions().row(ring[i]) = kept.row(static_cast<Eigen::Index>(i));
+    for (std::size_t i = 0; i < out.size(); ++i)
+      fine.positions().row(out[i]) = predicted.row(static_cast<Eigen::Index>(i)) + world_[l + 1].row(out[i]);
+    region[static_cast<std::size_t>(l + 1)] = std::move(out);
+  }
+  return region;
 }
 
 void MultiresSurface::save(const std::string& vtm_path) const {

@@ -50,11 +50,22 @@ class MultiresSurface {
   //! Replaces the positions of one level (an edit made there); synthesize_from(level, ...)
   //! then rebuilds the finer levels on top of it.
   void set_level_positions(int level, const MatrixX3& X);
+  //! Replaces the positions of the vertices `rows` of one level (row i of X for rows[i]).
+  void set_level_rows(int level, const std::vector<int>& rows, const MatrixX3& X);
   void set_details(int level, const MatrixX3& d, DetailSpace space);
   //! Recomputes levels 1..L from the base, keeping the details of `keep` fixed (the other
   //! representation is updated to match).
   void synthesize(DetailSpace keep) { synthesize_from(0, keep); }
   void synthesize_from(int level, DetailSpace keep);
+  //! synthesize_from(level, keep) restricted to what a change of the vertices `changed` of
+  //! `level` reaches: on each finer level the vertices whose subdivision stencil reads a
+  //! changed vertex of the level above, and their one-ring (the local frames read it). Their
+  //! positions and details become what synthesize_from gives (to rounding: the rows are summed
+  //! in another order); every other vertex is left untouched, bit for bit. Returns the vertices
+  //! recomputed per level (entry `level` = `changed`, coarser entries empty). Stops at level
+  //! `through` (−1: the finest).
+  std::vector<std::vector<int>> synthesize_region_from(int level, const std::vector<int>& changed, DetailSpace keep,
+                                                       int through = -1);
   //! The operator mapping positions of level `from` to level `to` ≥ from: S_{to-1} ··· S_from.
   SparseMatrix prolongation(int from, int to) const;
 
@@ -77,6 +88,8 @@ class MultiresSurface {
   std::vector<SurfaceMesh> meshes_;
   std::vector<SparseMatrix> S_;
   std::vector<MatrixX3> world_, local_;  // index = level; entry 0 unused
+  using RowMajorSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+  std::vector<RowMajorSparse> S_rows_;   // S_ by rows, made on the first region synthesis
 };
 
 //! Boier-Martin et al.'s claim as a number: the RMS change of the local-frame detail vectors

@@ -93,18 +93,30 @@ YAML
 } > "$SCRATCH/at_once.yaml"
 "$FS" run "$SCRATCH/steps.yaml" --out "$SCRATCH/steps" 2>/dev/null || fail "the stepped feature session failed"
 "$FS" run "$SCRATCH/at_once.yaml" --out "$SCRATCH/at_once" 2>/dev/null || fail "the same features at once failed"
+"$FS" run "$SCRATCH/steps.yaml" --out "$SCRATCH/steps_whole" --set step_evaluation=whole 2>/dev/null || fail "the stepped session evaluated whole failed"
 [ "$(ls "$SCRATCH/steps/vtk/"*_step*.vtp | wc -l)" -eq 4 ] || fail "expected a VTK per design step"
-$PY - "$SCRATCH/steps" "$SCRATCH/at_once" <<'PYEOF' || fail "the session's steps are not reported, or it does not end where the same features placed at once end"
+$PY - "$SCRATCH/steps" "$SCRATCH/at_once" "$SCRATCH/steps_whole" <<'PYEOF' || fail "the session's steps are not reported, or it does not end where the same features placed at once end"
 import csv, sys
 steps = list(csv.DictReader(open(sys.argv[1] + "/steps.csv")))
 ok = [r["step"] for r in steps] == ["0", "1", "2", "3"] and steps[1]["moved"] == "groove" and steps[2]["added"] == "late"
 ok = ok and steps[2]["changed"] == "ridge_b" and steps[3]["removed"] == "ridge_a" and all(int(r["vertices_changed"]) > 0 for r in steps[1:])
 ok = ok and len(list(csv.DictReader(open(sys.argv[1] + "/features.csv")))) == 3
-a, b = ([[float(x) for x in l.split()[1:4]] for l in open(d + "/final.obj") if l.startswith("v ")] for d in sys.argv[1:3])
+# Region-limited steps: the first evaluates the whole hierarchy, the later ones their region
+# (fewer vertices than the whole, more than the step changed on the finest level); evaluated
+# whole, every step reports the whole hierarchy and the session ends on the same surface.
+whole = list(csv.DictReader(open(sys.argv[3] + "/steps.csv")))
+total = int(steps[0]["vertices_recomputed"])
+ok = ok and steps[0]["evaluation"] == "whole" and all(r["evaluation"] == "region" for r in steps[1:])
+ok = ok and all(int(r["vertices_changed"]) <= int(r["vertices_recomputed"]) < total for r in steps[1:])
+ok = ok and all(r["evaluation"] == "whole" and int(r["vertices_recomputed"]) == total for r in whole)
+a, b, c = ([[float(x) for x in l.split()[1:4]] for l in open(d + "/final.obj") if l.startswith("v ")] for d in sys.argv[1:4])
 ok = ok and len(a) == len(b) and max(abs(x - y) for p, q in zip(a, b) for x, y in zip(p, q)) <= 1e-12
+ok = ok and len(a) == len(c) and max(abs(x - y) for p, q in zip(a, c) for x, y in zip(p, q)) <= 1e-12
 sys.exit(0 if ok else 1)
 PYEOF
 expect_error 2 "features\[0\].moves: only a feature given by world .points. is moved" -- "$FS" run configs/khodakovsky-schroder/fig17.yaml --set 'features.0.moves=[{step: 1, by: [0, 0, 0.1]}]' --out "$SCRATCH/x"
+expect_error 2 "step_evaluation: unknown value 'partial' (valid: region, whole)" -- "$FS" run "$SCRATCH/steps.yaml" --set step_evaluation=partial --out "$SCRATCH/x"
+expect_error 2 "step_evaluation: the features schedule no design step after the first" -- "$FS" run $C --set step_evaluation=whole --out "$SCRATCH/x"
 expect_error 2 "features\[1\].until: 0 must come after step 0" -- "$FS" run $C --set features.1.until=0 --out "$SCRATCH/x"
 expect_error 2 "features\[1\].changes\[0\].height" -- "$FS" run $C --set 'features.1.changes=[{step: 1, height: nan}]' --out "$SCRATCH/x"
 # The radial bump of the base mesh (base_edit) still carries the features (at 3 levels the grooves,
@@ -131,12 +143,14 @@ expect_error 2 "feature 'crest': the surface turns by [0-9]* degrees within radi
 # finest level), writes the adaptive mesh as final.obj, and measures each feature as the uniform
 # run does: the same placement (faces, barycentric coordinates), the same vertices (a sparse
 # vertex is the uniform one, sparse_loop.h) and the same measurement on the support, so
-# features.csv's finest-level columns agree to rounding (1e-9; the values are O(0.1) or less).
+# features.csv's finest-level and limit columns agree to rounding (1e-9; the values are O(0.1)
+# or less): the limit points of the finest sparse vertices whose one-ring is present
+# (feature/sparse_measure.h; the unit test compares them to 1e-10 unrounded).
 # The features are drawn on level 2, so levels 2 makes them finest-level features.
 S="--set input.levels=2 --set profile_on=drawn_level --set output.vtk=none --set feature_defaults.profile_tolerance=0.5 --set feature_defaults.width_tolerance=0.5"
 "$FS" run $C --out "$SCRATCH/sparse" $S --set adaptive.evaluation=sparse 2>/dev/null || fail "sparse run failed"
 "$FS" run $C --out "$SCRATCH/sparse_u" $S 2>/dev/null || fail "uniform run for the sparse comparison failed"
-$PY - "$SCRATCH/sparse" "$SCRATCH/sparse_u" <<'PYEOF' || fail "sparse run: expected the uniform run's finest-level profile, no uniform level built, final.obj = the adaptive mesh"
+$PY - "$SCRATCH/sparse" "$SCRATCH/sparse_u" <<'PYEOF' || fail "sparse run: expected the uniform run's finest-level and limit profile, no uniform level built, final.obj = the adaptive mesh"
 import csv, math, sys
 s, u = sys.argv[1], sys.argv[2]
 r = list(csv.DictReader(open(s + "/runs.csv")))[0]
@@ -146,13 +160,14 @@ ok = ok and int(r["n_fine"]) < int(list(csv.DictReader(open(u + "/runs.csv")))[0
 ok = ok and sum(1 for l in open(s + "/final.obj") if l.startswith("f ")) == int(r["triangles_adaptive"]) > 0
 fs = {x["feature"]: x for x in csv.DictReader(open(s + "/features.csv"))}
 fu = {x["feature"]: x for x in csv.DictReader(open(u + "/features.csv"))}
-cols = ["height_min_fine", "height_max_fine", "width_left_fine", "width_right_fine", "height_error_fine", "width_error_fine", "profile_error_fine"]
+cols = [c + s for s in ("_fine", "_limit") for c in ("height_min", "height_max", "width_left", "width_right", "height_error", "width_error", "profile_error")]
 ok = ok and len(fs) == 3 and fs.keys() == fu.keys()
 for f in fs:
     for c in cols:
         a, b = float(fs[f][c]), float(fu[f][c])
         if not (abs(a - b) <= 1e-9 or (math.isnan(a) and math.isnan(b))): print(f, c, a, b); ok = False
-    ok = ok and fs[f]["profile_error_limit"] == "nan"
+    ok = ok and math.isfinite(float(fs[f]["profile_error_limit"])) and fs[f]["within_tolerance"] == fu[f]["within_tolerance"]
+ok = ok and r["worst_profile_error_limit"] != "" and abs(float(r["worst_profile_error_limit"]) - float(list(csv.DictReader(open(u + "/runs.csv")))[0]["worst_profile_error_limit"])) <= 1e-9
 sa = [x for x in csv.DictReader(open(s + "/attachments.csv"))]
 ua = [x for x in csv.DictReader(open(u + "/attachments.csv"))]
 key = lambda x: (x["feature"], x["level"], x["point"], x["face"])

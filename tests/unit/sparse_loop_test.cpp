@@ -10,6 +10,9 @@
 
 #include "fairshape/feature/adaptive_evaluation.h"
 #include "fairshape/feature/featured_surface.h"
+#include "fairshape/feature/profile_measure.h"
+#include "fairshape/feature/sparse_measure.h"
+#include "feature_test_meshes.h"
 #include "fairshape/io/mesh_io.h"
 #include "test_support.h"
 
@@ -251,5 +254,65 @@ TEST_CASE("sparse Loop levels on the knot and the cow, flatness everywhere", "[f
     CHECK(b.vertices_moved == static_cast<int>(fs.perturbation(2).vertices.size()));
     check_against_uniform(b, fs.result(), 1e-12 * diagonal(m));
     check_crack_free(b, fs.result(), m, 1e-12 * diagonal(m));
+  }
+}
+
+namespace {
+
+// Every number of two measures, equal to `tol` (NaN on both sides counts as equal).
+void check_same_measure(const ProfileMeasure& a, const ProfileMeasure& b, double tol, const char* where) {
+  const double x[] = {a.height_min, a.height_max, a.height_error, a.width_left, a.width_right, a.width_error, a.profile_error};
+  const double y[] = {b.height_min, b.height_max, b.height_error, b.width_left, b.width_right, b.width_error, b.profile_error};
+  for (int i = 0; i < 7; ++i) {
+    INFO(where << " value " << i << ": sparse " << x[i] << ", uniform " << y[i]);
+    CHECK((std::abs(x[i] - y[i]) <= tol || (std::isnan(x[i]) && std::isnan(y[i]))));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("a sparse evaluation measures its features as the uniform one, finest level and limit", "[feature][sparse][profile]") {
+  struct Case {
+    const char* name;
+    SurfaceMesh base;
+    int levels;
+    Vec3 a, b;
+    double radius, height;
+  };
+  const std::vector<Case> cases{
+      {"helmet", read_mesh(test::data_path("helmet.off")), 3, Vec3(-0.05, 0.0, 0.332), Vec3(0.06, 0.0026, 0.3437), 0.04, -0.008},
+      {"plane", test::plane_grid(6, 1.0), 3, Vec3(0.3, 0.45, 0), Vec3(0.7, 0.55, 0), 0.12, 0.03}};
+  for (const Case& k : cases) {
+    INFO(k.name);
+    const MultiresSurface plain(k.base, loop_options(), k.levels, Backend::Optimized);
+    const FeatureCurve c = feature_between(plain, k.levels, k.a, k.b, k.radius, k.height, 3.0, "f");
+    FeaturedSurface uniform(plain, Backend::Optimized, ProfileTarget::DrawnLevel);
+    uniform.add(c);
+    const std::vector<FeatureMeasure> u = measure_features(uniform);
+    const AdaptiveEvaluation e = evaluate_adaptive(k.base, loop_options(), k.levels, {c}, {});
+    const std::vector<SparseFeatureMeasure> s = measure_sparse_features(e, k.levels, loop_options(), Backend::Optimized);
+    REQUIRE(u.size() == 1);
+    REQUIRE(s.size() == 1);
+    // The sparse level is smaller than the uniform one, and the measure is not trivial.
+    CHECK(e.levels[k.levels].n_local_vertices() < plain.mesh(k.levels).n_vertices());
+    CHECK(std::abs(u[0].limit.height_max) > 0.5 * std::abs(k.height));
+    INFO(s[0].limit_note);
+    REQUIRE(s[0].limit_measured);
+    CHECK(s[0].limit_note.empty());
+    check_same_measure(s[0].fine, u[0].fine, 1e-10, "finest level");
+    check_same_measure(s[0].limit, u[0].limit, 1e-10, "limit");
+
+    // A vertex next to the curve without its one-ring: the limit is not measured, and said so.
+    AdaptiveEvaluation cut = e;
+    SparseLevel& S = cut.levels[static_cast<std::size_t>(k.levels)];
+    const Vec3 mid = 0.5 * (e.curves[0].segments.front().a + e.curves[0].segments.back().b);
+    int nearest = 0;
+    for (int v = 1; v < S.n_local_vertices(); ++v)
+      if ((cut.unperturbed[k.levels].row(v).transpose() - mid).norm() < (cut.unperturbed[k.levels].row(nearest).transpose() - mid).norm())
+        nearest = v;
+    S.complete[static_cast<std::size_t>(nearest)] = 0;
+    const std::vector<SparseFeatureMeasure> partial = measure_sparse_features(cut, k.levels, loop_options(), Backend::Optimized);
+    CHECK_FALSE(partial[0].limit_measured);
+    CHECK_THAT(partial[0].limit_note, Catch::Contains("limit not measured") && Catch::Contains("one-ring"));
   }
 }

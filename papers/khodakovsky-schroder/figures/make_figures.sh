@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Figures 11, 14, 15, 16 and 17 of Khodakovsky & Schröder and the sparse adaptive helmet: runs each config under
+# Figures 11 (on the patch and on the helmet), 14, 15, 16 and 17 of Khodakovsky & Schröder and the sparse adaptive helmet: runs each config under
 # configs/khodakovsky-schroder/, renders it (scripts/panels.py, VTK offscreen, coloured by the
 # signed normal displacement) into papers/khodakovsky-schroder/figures/ and keeps its runs.csv in
 # papers/khodakovsky-schroder/data/.
@@ -22,6 +22,14 @@ run fig11
   --label "{vertices_moved:.0f} vertices moved, max {max_displacement:.3f}" --render "${patch_view[@]}"
 build/bin/fairshape render "$out-fig11/adaptive/$(tail -1 $out-fig11/runs.csv | cut -d, -f1).obj" $figs/fig11_adaptive.png \
   --edges --flat --up z --view top --zoom 1.3 --width 900 --height 700 --title "Figure 11: the adaptive mesh"
+# Figure 11 on the helmet, the paper's subject: seen from above the crown, curves drawn, the
+# features' neighbourhoods outlined, signed colouring (ridges warm, grooves cool).
+run fig11_helmet
+/usr/bin/python3 scripts/panels.py --allow-unmet $out-fig11_helmet $figs/fig11_helmet.png --rest data/helmet.off \
+  --title "Figure 11 on the helmet: three overlapping feature lines drawn on level 2 (two ridges, one groove), level 4 shown" \
+  --label "{vertices_moved:.0f} vertices moved, max {max_displacement:.4f}" \
+  --render --view top --up z --focus 0.04 0.0 0.33 --radius 0.2 --width 900 --height 700 --component normal \
+  --colour-label "normal displacement"
 run fig16
 /usr/bin/python3 scripts/panels.py --allow-unmet $out-fig16 $figs/fig16.png --columns 3 \
   --title "Figure 16: one parameter at a time (radius, crease, groove, left/right ratio, end height ratio)" \

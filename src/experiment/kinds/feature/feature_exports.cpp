@@ -1,6 +1,7 @@
 #include "fairshape/experiment/kinds/feature/feature_exports.h"
 
 #include <filesystem>
+#include <utility>
 
 #include "fairshape/experiment/metric_format.h"
 #include "fairshape/feature/level_attachment.h"
@@ -61,7 +62,7 @@ LimitSurface export_levels_and_limit(feature::FeaturedSurface& surface, const Ru
   for (int level = 0; level <= finest; ++level) {
     SurfaceMesh m = result.mesh(level);
     m.vertex_data["feature_displacement"] = surface.perturbation(level).dense(m.n_vertices());
-    m.vertex_data["displacement"] = m.positions() - surface.original().mesh(level).positions();
+    m.vertex_data["displacement"] = m.positions() - std::as_const(surface).original().mesh(level).positions();
     write_vtp(m, (fs::path(out.dir) / "levels" / (out.run_id + "_level" + std::to_string(level) + ".vtp")).string());
   }
   LimitSurface limit{limit_positions(result.mesh(finest), result.options()), limit_normals(result.mesh(finest), result.options())};

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <utility>
 #include <limits>
 #include <map>
 
@@ -174,6 +175,11 @@ FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const s
   s.profile_target = root.get_enum("profile_on", feature::ProfileTarget::Limit, feature::profile_target_names(),
                                    "where the profile is exact: limit (the limit surface at the finest vertices), "
                                    "finest (the finest control points) or drawn_level (the paper: the drawn level's control points)");
+  static const NameTable<bool> step_evaluations{{true, "region"}, {false, "whole"}};
+  const bool step_key = root.has("step_evaluation");
+  s.region_steps = root.get_enum("step_evaluation", true, step_evaluations,
+                                 "design steps: region (recompute what the step's features reach) or whole (the whole "
+                                 "hierarchy every step)");
   Config ac = root.child("adaptive", "adaptive output mesh (§2.5): {enabled, evaluation, surface_angle_deg}");
   s.adaptive = ac.get<bool>("enabled", true, "write adaptive/<run>.obj refined by the features' flatness thresholds");
   static const NameTable<bool> evaluations{{false, "uniform"}, {true, "sparse"}};
@@ -204,6 +210,11 @@ FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const s
   oc.check_no_unknown_keys();
   root.check_no_unknown_keys();
   if (s.adaptive_sparse) check_sparse_run(s);
+  if (step_key && s.adaptive_sparse)
+    throw InvalidConfig("step_evaluation: a sparse run has no design steps (valid with adaptive.evaluation: uniform)");
+  if (step_key && feature_step_count(s) == 1)
+    throw InvalidConfig("step_evaluation: the features schedule no design step after the first (give a feature "
+                        "step, until, moves or changes), so nothing is re-evaluated");
   return s;
 }
 
@@ -278,6 +289,7 @@ void place_features(FeatureRunSpec& spec, feature::FeaturedSurface& surface, boo
 
 feature::FeaturedSurface placed_features(FeatureRunSpec& spec, MultiresSurface original) {
   feature::FeaturedSurface surface(std::move(original), spec.implementation, spec.profile_target);
+  surface.set_region_evaluation(spec.region_steps);
   const double diag = bounding_diagonal(surface.original().mesh(spec.levels));
   place_features(spec, surface, false);
   // The curves are attached to the unedited levels (face, barycentric coordinates), so a base
@@ -379,7 +391,7 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
     row["apply_s"] = num(run_feature_steps(spec, surface, out));
     const MultiresSurface& result = surface.result();
     SurfaceMesh fine = result.mesh(spec.levels);
-    const MatrixX3 d = fine.positions() - surface.original().mesh(spec.levels).positions();
+    const MatrixX3 d = fine.positions() - std::as_const(surface).original().mesh(spec.levels).positions();
     const Eigen::VectorXd norms = d.rowwise().norm();
     fine.vertex_data["displacement"] = d;
     fine.vertex_data["displacement_norm"] = norms;

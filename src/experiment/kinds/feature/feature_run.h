@@ -68,6 +68,9 @@ struct FeatureRunSpec : RunBasics {
   bool adaptive_sparse = false;
   double adaptive_surface_angle_deg = 0;
   feature::ProfileTarget profile_target = feature::ProfileTarget::Limit;  // `profile_on`
+  //! step_evaluation: region (default; a design step recomputes only what its features reach)
+  //! or whole (every step evaluates the whole hierarchy).
+  bool region_steps = true;
   bool vtk = true;
   bool vtk_every_step = false;       // output.vtk: all — vtk/<run>_step<k>.vtp after every design step
   //! \throw InvalidConfig naming the key.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <utility>
 
 #include "fairshape/core/error.h"
 #include "fairshape/core/timer.h"
@@ -13,7 +14,8 @@ namespace fs = std::filesystem;
 
 const TableSchema& feature_step_table() {
   static const TableSchema t{"steps",
-                             {"step", "features", "added", "moved", "changed", "removed", "apply_s", "vertices_changed", "max_change"}};
+                             {"step", "features", "added", "moved", "changed", "removed", "vertices_changed", "evaluation",
+                              "apply_s", "vertices_recomputed", "max_change"}};
   return t;
 }
 
@@ -95,13 +97,15 @@ double run_feature_steps(FeatureRunSpec& spec, feature::FeaturedSurface& surface
     const Eigen::VectorXd change = before.size() ? Eigen::VectorXd((now - before).rowwise().norm()) : Eigen::VectorXd();
     const double diag = (now.colwise().maxCoeff() - now.colwise().minCoeff()).norm();
     const int active = static_cast<int>(std::count_if(spec.features.begin(), spec.features.end(), [](const FeatureSpec& f) { return f.id >= 0; }));
+    const feature::EvaluationReport& how = surface.last_evaluation();
     out.add_row("steps", {std::to_string(step), std::to_string(active), joined(added), joined(moved), joined(changed), joined(removed),
-                          num(apply_s), change.size() ? std::to_string((change.array() > 1e-12 * diag).count()) : "",
+                          change.size() ? std::to_string((change.array() > 1e-12 * diag).count()) : "",
+                          how.region ? "region" : "whole", num(apply_s), std::to_string(how.vertices_recomputed),
                           change.size() ? num(change.maxCoeff()) : ""});
     before = now;
     if (spec.vtk_every_step && steps > 1) {
       SurfaceMesh m = result.mesh(spec.levels);
-      m.vertex_data["displacement"] = m.positions() - surface.original().mesh(spec.levels).positions();
+      m.vertex_data["displacement"] = m.positions() - std::as_const(surface).original().mesh(spec.levels).positions();
       write_vtp(m, (fs::path(out.dir) / "vtk" / (out.run_id + "_step" + std::to_string(step) + ".vtp")).string());
     }
   }

@@ -8,8 +8,10 @@
 
 namespace fairshape {
 
-//! steps.csv's columns: step, features, added, moved, changed, removed, apply_s,
-//! vertices_changed (finest vertices the step moved), max_change.
+//! steps.csv's columns: step, features, added, moved, changed, removed, vertices_changed (finest
+//! vertices the step moved), evaluation (region: only what the step's features reach was
+//! recomputed, FeaturedSurface::set_region_evaluation; whole), apply_s (its time),
+//! vertices_recomputed (vertices of all levels recomputed), max_change.
 const TableSchema& feature_step_table();
 
 //! The number of design steps the features schedule (1 + the latest step, until, move or change).

@@ -11,6 +11,7 @@
 #include "fairshape/feature/level_attachment.h"
 #include "fairshape/feature/perturbation.h"
 #include "fairshape/feature/profile_measure.h"
+#include "fairshape/feature/sparse_measure.h"
 #include "fairshape/feature/triangle_surface.h"
 #include "fairshape/io/mesh_io.h"
 #include "fairshape/mesh/polyline.h"
@@ -178,26 +179,17 @@ void execute_sparse_feature_run(FeatureRunSpec& spec, const RunOutputs& out, Met
   write_mesh(a.mesh, (fs::path(out.dir) / "adaptive" / (out.run_id + ".obj")).string());
   write_mesh(a.mesh, out.final_path());
 
-  // The finest level as the patch the features were applied on (positions before them), the
-  // achieved positions beside it, and what was asked: the profile as a displacement of the
-  // level (OffsetMeaning::Displacement), as the uniform run's visible target takes it
-  // (visible_profile.cpp), so both runs measure the same thing.
-  feature::SparseLevel U = S;
-  U.positions = before;
-  const feature::SparsePatch patch = feature::make_patch(U);
-  MatrixX3 achieved(patch.mesh.n_vertices(), 3);
-  for (int v = 0; v < patch.mesh.n_vertices(); ++v) achieved.row(v) = S.positions.row(patch.local[static_cast<std::size_t>(v)]);
-  const feature::TriangleSurface drawn(patch.mesh, feature::loop_limit_normals(patch.mesh));
-  const MatrixX3 requested =
-      patch.mesh.positions() +
-      feature::displace_points(drawn, a.curves, patch.mesh.positions(), spec.implementation).dense(patch.mesh.n_vertices());
-  std::vector<const feature::BaseCurve*> all;
-  for (const feature::BaseCurve& c : a.curves) all.push_back(&c);
+  // features.csv: the finest level and the limit measured on the finest sparse level
+  // (feature/sparse_measure.h), as the uniform run measures them.
+  SubdivisionOptions opt;
+  opt.scheme = SchemeType::Loop;
+  opt.weights = spec.loop_weights;
+  const std::vector<feature::SparseFeatureMeasure> measured = feature::measure_sparse_features(a, L, opt, spec.implementation);
   fs::create_directories(fs::path(out.dir) / "curves");
   int segments = 0, within = 0;
-  double fine = 0, height = 0, width = 0;
+  double fine = 0, limit = 0, height = 0, width = 0;
+  bool any_limit = false;
   std::string first_miss;
-  const std::string nan = "nan";  // the limit columns: the limit needs the whole finest level
   for (std::size_t i = 0; i < a.curves.size(); ++i) {
     const feature::BaseCurve& bc = a.curves[i];
     const feature::FeatureParams& q = curves[i].params;
@@ -207,18 +199,25 @@ void execute_sparse_feature_run(FeatureRunSpec& spec, const RunOutputs& out, Met
     if (!bc.closed) X.row(X.rows() - 1) = bc.segments.back().b.transpose();
     write_polyline(Polyline{X, bc.closed},
                    (fs::path(out.dir) / "curves" / (out.run_id + "_" + file_name_part(curves[i].name) + ".obj")).string());
-    std::vector<const feature::BaseCurve*> others;
-    for (const feature::BaseCurve* c : all)
-      if (c != &bc) others.push_back(c);
-    const feature::ProfileMeasure m =
-        feature::measure_on_mesh(patch.mesh, patch.mesh.positions(), requested, achieved, drawn, bc, others);
-    const std::string why = feature::profile_miss("finest level", m, q);
+    const feature::SparseFeatureMeasure& f = measured[i];
+    const feature::ProfileMeasure& m = f.fine;
+    const feature::ProfileMeasure& b = f.limit;
+    // A limit not measured (the support not refined completely) is a miss, said in the row:
+    // the tolerance asks for the limit too.
+    std::string why = feature::profile_miss("finest level", m, q);
+    if (why.empty()) why = f.limit_measured ? feature::profile_miss("limit", b, q) : f.limit_note;
+    const auto at_limit = [&](double x) { return f.limit_measured ? num(x) : std::string("nan"); };
     out.add_row("features", {curves[i].name, std::to_string(L), num(q.height), num(q.radius), num(q.right_radius()),
                              num(m.height_min), num(m.height_max), num(m.width_left), num(m.width_right), num(m.height_error),
-                             num(m.width_error), num(m.profile_error), nan, nan, nan, nan, nan, nan, nan,
-                             why.empty() ? "1" : "0", why});
+                             num(m.width_error), num(m.profile_error), at_limit(b.height_min), at_limit(b.height_max),
+                             at_limit(b.width_left), at_limit(b.width_right), at_limit(b.height_error),
+                             at_limit(b.width_error), at_limit(b.profile_error), why.empty() ? "1" : "0", why});
     within += why.empty() ? 1 : 0;
     fine = std::max(fine, m.profile_error), height = std::max(height, m.height_error), width = std::max(width, m.width_error);
+    if (f.limit_measured) {
+      any_limit = true;
+      limit = std::max(limit, b.profile_error), height = std::max(height, b.height_error), width = std::max(width, b.width_error);
+    }
     if (!why.empty() && first_miss.empty()) first_miss = "feature '" + curves[i].name + "' (level " + std::to_string(L) + "), " + why;
     // attachments.csv: the curve on its level (the finest), on the result there.
     const auto per_level = feature::attachments_per_level(on_uniform_faces(bc, S), L, L);
@@ -232,7 +231,7 @@ void execute_sparse_feature_run(FeatureRunSpec& spec, const RunOutputs& out, Met
   row["segments"] = std::to_string(segments);
   row["features_within_tolerance"] = std::to_string(within);
   row["worst_profile_error_fine"] = num(fine);
-  row["worst_profile_error_limit"] = "";  // runs.csv holds finite numbers or nothing
+  row["worst_profile_error_limit"] = any_limit ? num(limit) : "";  // runs.csv holds finite numbers or nothing
   row["worst_height_error"] = num(height);
   row["worst_width_error"] = num(width);
   if (!first_miss.empty()) {

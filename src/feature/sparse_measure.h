@@ -1,0 +1,37 @@
+// What each feature achieves on a sparse Loop hierarchy (adaptive_evaluation.h, issue 24): the
+// measurement of profile_measure.h taken on the finest sparse level, at its control points and
+// at the limit points of its vertices, so that a sparse run reports what a uniform run reports.
+//
+// The finest level is measured as a patch of its present faces (sparse_loop.h, make_patch); the
+// vertices outside it have no displacement and change nothing. The limit point of a vertex is
+// exact only where its whole one-ring is present ("complete"); the limit is measured on the
+// vertices that are complete; the others keep their control point with no displacement (they change
+// nothing). That needs every vertex the measure reads complete: those within the curve's reach,
+// give or take twice the longest edge around them (a limit point lies in the hull of its
+// one-ring; a moved control point moves its ring's limit points) — the feature's support refined
+// completely. Where it is not, the limit is not measured and `limit_note` says why (a run
+// reports it in its row as a miss, never a silent NaN).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "fairshape/feature/adaptive_evaluation.h"
+#include "fairshape/feature/profile_measure.h"
+
+namespace fairshape::feature {
+
+struct SparseFeatureMeasure {
+  ProfileMeasure fine, limit;
+  bool limit_measured = false;
+  std::string limit_note;  // why the limit is not measured ("" when it is)
+};
+
+//! One entry per feature of `a` (input order). Every feature must be drawn on the finest level
+//! `levels` (what a sparse run allows: the sparse levels keep the surface a feature was applied
+//! to only on its own level). `opt` as the hierarchy was refined with (weights, boundary).
+//! \throw std::logic_error when `a` lacks the finest level's positions before the features.
+std::vector<SparseFeatureMeasure> measure_sparse_features(const AdaptiveEvaluation& a, int levels,
+                                                          const SubdivisionOptions& opt, Backend backend);
+
+}  // namespace fairshape::feature

@@ -39,7 +39,7 @@ std::string valid_options(const CLI::App& command) {
   std::string names;
   for (const CLI::Option* o : command.get_options()) {
     const std::string n = o->get_name(false, false);
-    if (n.rfind("--", 0) == 0) names += (names.empty() ? "" : " ") + n;
+    if (n.rfind("--", 0) == 0 && n.rfind("--help", 0) != 0) names += (names.empty() ? "" : " ") + n;
   }
   return command.get_name() + ": valid options: " + names + "\n";
 }

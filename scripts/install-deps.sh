@@ -11,6 +11,7 @@ PACKAGES=(
   libosd-dev libcgal-dev libembree-dev libmeshoptimizer-dev
   libssl-dev python3-matplotlib python3-pandas python3-vtk9 xvfb xauth  # python3-vtk9: tests read VTP arrays
   clang libclang-rt-14-dev
+  slurm-wlm munge  # tests/cli/slurm_array.sh starts a single-node cluster of its own (no service is started)
 )
 
 missing=()

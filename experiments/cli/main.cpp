@@ -8,6 +8,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "submit_command.h"
 #include "fairshape/core/error.h"
 #include "fairshape/experiment/run_metadata.h"
 
@@ -33,6 +34,15 @@ CLI::Validator finite_at_least(double lo, bool strict) {
 }
 // Any finite number (angles, coordinates, colour ranges).
 CLI::Validator finite_number() { return finite_at_least(-std::numeric_limits<double>::max(), false); }
+// CLI11 names an unexpected option but not the ones there are: say them.
+std::string valid_options(const CLI::App& command) {
+  std::string names;
+  for (const CLI::Option* o : command.get_options()) {
+    const std::string n = o->get_name(false, false);
+    if (n.rfind("--", 0) == 0 && n.rfind("--help", 0) != 0) names += (names.empty() ? "" : " ") + n;
+  }
+  return command.get_name() + ": valid options: " + names + "\n";
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -132,6 +142,27 @@ int main(int argc, char** argv) {
   c_run->add_flag("--smoke", run.smoke, "run the config's CI-sized variant: its smoke: block of key.path: value overrides");
   c_run->add_option("--worker", worker, "internal: set for processes started by --jobs")->group("");
 
+  SubmitArgs subm;
+  auto* c_submit = app.add_subcommand(
+      "submit", "write (and with --now submit) a sweep as a cluster job array: one `fairshape run --shard i/N --resume`\n"
+                "per task and a merge job that waits for them; scripts and results go into --out only");
+  c_submit->add_option("config", subm.config, "experiment YAML file")->required();
+  c_submit->add_flag("--slurm", subm.slurm, "the scheduler: Slurm (sbatch job array, #SBATCH --requeue)");
+  c_submit->add_option("--array-size", subm.array_size,
+                       "N, the tasks of the array and the shards of the sweep (1 .. its points; default: min(points, " +
+                           std::to_string(kDefaultArraySize) + "))");
+  c_submit->add_option("--partition", subm.resources.partition, "sbatch --partition (default: the cluster's)");
+  c_submit->add_option("--time", subm.resources.time, "sbatch --time per task: M, M:S, H:M:S, D-H, D-H:M, D-H:M:S");
+  c_submit->add_option("--cpus-per-task", subm.resources.cpus_per_task, "sbatch --cpus-per-task")
+      ->check(CLI::Range(1, 4096));
+  c_submit->add_option("--mem", subm.resources.mem, "sbatch --mem per task: megabytes, or with K, M, G, T (16G)");
+  c_submit->add_option("--out", subm.out, "output folder, new or empty (default results/<name>/<timestamp>_<commit>): "
+                                          "slurm/ scripts and logs, shards/<i>/, the merged tables");
+  c_submit->add_option("--set", subm.sets, "override a key in every task, as for run (value is YAML)");
+  c_submit->add_flag("--smoke", subm.smoke, "the config's CI-sized variant, as for run");
+  c_submit->add_flag("--now", subm.now, "submit with sbatch --parsable (the merge with --dependency=afterok) and print "
+                                        "the job ids");
+
   SubdivideArgs sub;
   auto* c_sub = app.add_subcommand("subdivide", "uniform Catmull-Clark or Loop subdivision (all levels into a .vtm)");
   c_sub->add_option("--scheme", sub.scheme, "subdivision scheme")->required()->check(CLI::IsMember({"catmull-clark", "loop"}));
@@ -199,7 +230,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;  // --help is a success; bad arguments are invalid input (2)
+    const int status = app.exit(e) == 0 ? 0 : 2;  // --help is a success; bad arguments are invalid input (2)
+    if (status != 0 && *c_submit) std::cerr << valid_options(*c_submit);
+    return status;
   }
   try {
     if (*c_info) return cmd_info(info);
@@ -215,6 +248,7 @@ int main(int argc, char** argv) {
       if (run.resume && run.out_dir.empty()) throw fairshape::InvalidConfig("--resume needs --out DIR");
       return fairshape::run_sweep(run);
     }
+    if (*c_submit) return cmd_submit(subm);
     if (*c_list) return cmd_list();
     if (*c_sub) return cmd_subdivide(sub);
     if (*c_rem) return cmd_remesh(rem);

@@ -36,6 +36,16 @@ YAML::Node parse_file(const fs::path& path) {
 // One load of a config and everything it includes: each file is read and merged once (a
 // diamond of includes is linear, not exponential), and a file that includes itself, directly
 // or not, is refused with the chain.
+// deep_merge without copying `over`: its subtrees move into `base`. For a file just parsed,
+// which nothing else holds, so a large sweep is not copied once more.
+void merge_sharing(YAML::Node base, const YAML::Node& over) {
+  for (const auto& kv : over) {
+    const std::string key = kv.first.as<std::string>();
+    if (kv.second.IsMap() && base[key] && base[key].IsMap()) merge_sharing(base[key], kv.second);
+    else base[key] = kv.second;
+  }
+}
+
 class DefaultsLoader {
  public:
   YAML::Node load(const fs::path& path) {
@@ -60,8 +70,11 @@ class DefaultsLoader {
       node.remove("defaults");
     }
     chain_.pop_back();
-    YAML::Node out = deep_merge(merged, node);
-    loaded_.emplace(key, YAML::Clone(out));
+    merge_sharing(merged, node);
+    YAML::Node out = merged;
+    // Only included files can be asked for again; the experiment file itself (with its sweep,
+    // possibly large) is not kept twice.
+    if (!chain_.empty()) loaded_.emplace(key, YAML::Clone(out));
     return out;
   }
 

@@ -29,6 +29,8 @@ void forward_and_stop(int sig) {
     if (g_workers[i] > 0) ::kill(g_workers[i], SIGTERM);
 }
 
+bool is_stop_signal(int sig) { return sig == SIGTERM || sig == SIGINT || sig == SIGHUP; }
+
 pid_t spawn(const std::vector<std::string>& args) {
   std::vector<std::string> env_storage;
   for (char** e = environ; *e; ++e)
@@ -104,6 +106,13 @@ SupervisorResult supervise_workers(int jobs, const std::function<std::vector<std
       continue;
     }
     if (g_signal) continue;  // stopped on purpose: its run is not done and runs again on resume
+    // A scheduler cancelling or requeueing a job signals every process of it, so a worker's
+    // SIGTERM may come before the supervisor's own: it is the same stop, never a crash row
+    // (which a resume would take for a finished run).
+    if (WIFSIGNALED(status) && is_stop_signal(WTERMSIG(status))) {
+      forward_and_stop(WTERMSIG(status));
+      continue;
+    }
     const std::string run = run_in_progress(w);
     if (run.empty()) {  // it failed outside any run: starting it again would fail the same way
       std::cerr << "fairshape: worker " << w << " " << describe(status) << " outside any run\n";

@@ -429,4 +429,9 @@ Slice Slice::parse(const std::string& text, const std::string& option) {
 
 int run_sweep(const SweepOptions& opt) { return opt.is_worker ? run_worker(opt) : supervise(opt); }
 
+SweepCheck check_sweep(const SweepOptions& opt) {
+  const Plan plan = make_plan(opt, true);
+  return {plan.name, plan.kind->name(), plan.space->size(), plan.selected.size()};
+}
+
 }  // namespace fairshape

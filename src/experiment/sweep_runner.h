@@ -7,6 +7,7 @@
 //   1  an internal error outside any run; 128+N  interrupted by signal N.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,17 @@ struct SweepOptions {
 
 //! \return the exit status above. \throw InvalidConfig for invalid input (exit 2).
 int run_sweep(const SweepOptions& opt);
+
+//! What `fairshape run --dry-run` checks, without printing or writing anything: the config
+//! loads and every point the options select (shard, filters) validates.
+struct SweepCheck {
+  std::string name;             // the experiment's `name`
+  std::string kind;             // its run kind
+  std::size_t sweep_points = 0; // points of the whole sweep
+  std::size_t selected = 0;     // points the options select
+};
+//! \throw InvalidConfig naming every problem and the points that have it (exit 2).
+SweepCheck check_sweep(const SweepOptions& opt);
 
 //! `fairshape merge OUT IN...`: the shards' output folders joined into OUT (every table, and
 //! a run.json naming each shard); or, given CSV files, those tables joined into OUT.csv. A

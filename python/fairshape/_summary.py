@@ -40,3 +40,7 @@ class RunFailed(Error):
     def __init__(self, message, runs):
         super().__init__(message)
         self.runs = runs
+
+
+for _cls in (Summary, SolveFailed, RunFailed):
+    _cls.__module__ = "fairshape"

@@ -150,23 +150,28 @@ void bind_hierarchy(py::module_& m) {
   m.def(
       "subdivide",
       [](const SurfaceMesh& mesh, int levels, const std::string& scheme, const std::string& boundary,
-         const std::string& weights, const std::string& crease, const std::string& implementation) {
+         const std::string& weights, const std::string& crease, const std::string& implementation,
+         bool operators) -> py::object {
         const SubdivisionOptions opt = subdivision_arg(scheme, boundary, weights, crease);
         const Backend b = backend_arg(implementation);
         std::vector<SparseMatrix> S;
         std::vector<SurfaceMesh> out;
         {
           py::gil_scoped_release release;
-          out = refine_uniform(mesh, opt, levels, b, {}, &S);
+          out = refine_uniform(mesh, opt, levels, b, {}, operators ? &S : nullptr);
         }
-        py::list operators;
-        for (const auto& s : S) operators.append(csr(s));
-        return py::make_tuple(out, operators);
+        if (!operators) return py::cast(std::move(out));
+        py::list ops;
+        for (const auto& s : S) ops.append(csr(s));
+        return py::make_tuple(std::move(out), ops);
       },
       py::arg("mesh"), py::arg("levels"), FAIRSHAPE_SCHEME_ARGS, py::arg("implementation") = "optimized",
-      (std::string("`levels` uniform subdivision steps (as `fairshape subdivide`). Returns (meshes, operators): "
-                   "levels + 1 Meshes (the input first) and the csr_matrix operators S_0..S_{levels-1}, S_l "
-                   "n_{l+1}×n_l, rows summing to 1. ") + kSchemeArgsDoc).c_str());
+      py::arg("operators") = false,
+      (std::string("`levels` uniform subdivision steps: a list of levels + 1 Meshes, the input first. "
+                   "operators=True returns (meshes, [S_0, ..., S_{levels-1}]), S_l a csr_matrix n_{l+1}×n_l whose "
+                   "rows sum to 1. Without operators the positions are `fairshape subdivide`'s bit for bit (stencils "
+                   "applied on the fly); with them they are S_l X_l, equal to rounding. ") +
+       kSchemeArgsDoc).c_str());
   m.def(
       "limit_positions",
       [](const SurfaceMesh& mesh, const std::string& scheme, const std::string& boundary, const std::string& weights,

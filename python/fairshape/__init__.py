@@ -10,7 +10,7 @@ from ._fairshape import (  # noqa: F401  (the public API)
     __version__,
     Error, InvalidInput, InvalidConfig, TopologyError, SolverError, IOError, ParseError, OutputError,
     Mesh, read_mesh, write_mesh, read_arrays,
-    MultiresSurface, subdivide, limit_positions, limit_normals, limit_matrix, relative_detail_change,
+    MultiresSurface, remesh, subdivide, limit_positions, limit_normals, limit_matrix, relative_detail_change,
     stretch_bend_hessian, energy_hessian, components, constraint_modes,
 )
 from ._summary import Summary, SolveFailed, RunFailed  # noqa: F401

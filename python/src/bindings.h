@@ -13,5 +13,6 @@ void bind_energy(pybind11::module_& m);
 void bind_edit(pybind11::module_& m);
 void bind_linear_solve(pybind11::module_& m);
 void bind_experiment(pybind11::module_& m);
+void bind_remesh(pybind11::module_& m);
 
 }  // namespace fairshape::python

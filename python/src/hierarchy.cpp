@@ -145,7 +145,8 @@ void bind_hierarchy(py::module_& m) {
 
   m.def("relative_detail_change", &relative_detail_change, py::arg("before"), py::arg("after"),
         "RMS change of the local detail vectors from `before` to `after`, relative to their RMS size before "
-        "(runs.csv's detail_change; NaN without details).");
+        "(NaN without details). runs.csv's detail_change is this with after = MultiresSurface.analyze(base, "
+        "edited finest positions, levels): the edit analysed again.");
 
   m.def(
       "subdivide",

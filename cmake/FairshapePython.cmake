@@ -35,7 +35,12 @@ if(FAIRSHAPE_WITH_PYTHON)
     set(FAIRSHAPE_PYTHON ON)
   endif()
 else()
-  message(STATUS "fairshape: Python module off (FAIRSHAPE_WITH_PYTHON=OFF; pybind11 found: ${pybind11_FOUND})")
+  if(fairshape_python_default)
+    message(STATUS "fairshape: Python module off (FAIRSHAPE_WITH_PYTHON=OFF)")
+  else()
+    message(STATUS "fairshape: Python module not built: pybind11 (Debian: pybind11-dev) or the Python 3 headers "
+                   "(python3-dev) were not found")
+  endif()
 endif()
 
 # Where `cmake --install` puts the package, relative to the prefix. Debian's python3 reads

@@ -15,5 +15,6 @@ void bind_linear_solve(pybind11::module_& m);
 void bind_experiment(pybind11::module_& m);
 void bind_remesh(pybind11::module_& m);
 void bind_curves(pybind11::module_& m);
+void bind_sheets(pybind11::module_& m);
 
 }  // namespace fairshape::python

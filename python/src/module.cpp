@@ -14,4 +14,5 @@ PYBIND11_MODULE(_fairshape, m) {
   fairshape::python::bind_experiment(m);
   fairshape::python::bind_remesh(m);
   fairshape::python::bind_curves(m);
+  fairshape::python::bind_sheets(m);
 }

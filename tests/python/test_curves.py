@@ -115,3 +115,21 @@ def test_gil_is_released_during_the_curve_edit():
         ticks += 1
     t.join()
     assert ticks > 1000, ticks
+
+
+def test_drag_steps_and_pins_equal_cli(tmp_path):
+    config = """name: py-drag
+input: {curve: data/curves/wave129.obj}
+edits: [{level: 3, wrinkle_level: 4, drag_steps: 3, moves: [{index: 4, by: [0.0, 0.25]}]}]
+optimization:
+  beta: 0.1
+  constraints: [{type: segment_lengths}, {type: pin, points: endpoints}]
+  solver: {type: linearized, max_solves: 500, linearized: {linearization: newton}}
+output: {vtk: none}
+"""
+    expected = cli_curve(tmp_path, "drag", config)
+    r = fairshape.edit_curve(wave(), 3, [4], [0.0, 0.25], wrinkle_level=4, drag_steps=3, beta=0.1,
+                             constraints=[{"type": "pin", "points": "endpoints"}], max_solves=500,
+                             linearization="newton", check=False)
+    assert np.abs(r.points3 - expected).max() < 1e-10
+    assert r.metrics["drag_steps_done"] == 3 or not r.summary.succeeded

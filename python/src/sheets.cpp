@@ -94,6 +94,18 @@ py::array_t<double> grid(const Sheet& s, int per_span) {
   return out;
 }
 
+// A surface curve promoted to a space curve (Figure 1): a sheet config's `from_surface` curve.
+Eigen::MatrixXd trace(const Sheet& s, const Eigen::Ref<const Eigen::MatrixXd>& uv, int samples) {
+  if (uv.cols() != 2 || uv.rows() < 2) throw InvalidInput("Sheet.trace: expected an m×2 array of (u, v), m ≥ 2");
+  if (samples < 2 || samples > 100000) throw InvalidInput("Sheet.trace: samples must be in [2, 100000]");
+  std::vector<Eigen::Vector2d> at;
+  for (Eigen::Index i = 0; i < uv.rows(); ++i) at.push_back(s.spans(uv(i, 0), uv(i, 1), "Sheet.trace, point " + std::to_string(i)));
+  const std::vector<Vec3> pts = bspline::surface_curve(s.sheet.surface(), s.sheet.coefficients(), at, samples);
+  Eigen::MatrixXd X(static_cast<Eigen::Index>(pts.size()), 3);
+  for (std::size_t i = 0; i < pts.size(); ++i) X.row(static_cast<Eigen::Index>(i)) = pts[i].transpose();
+  return X;
+}
+
 Eigen::Matrix2d weights_arg(py::handle w, const Eigen::Matrix2d& isotropic, const char* name) {
   if (py::isinstance<py::float_>(w) || py::isinstance<py::int_>(w)) return w.cast<double>() * isotropic;
   const auto m = py::cast<Eigen::MatrixXd>(py::module_::import("numpy").attr("asarray")(w, "float64"));
@@ -206,6 +218,10 @@ void bind_sheets(py::module_& m) {
       .def_property_readonly("coefficients", [](const Sheet& s) { return Eigen::MatrixXd(s.sheet.coefficients()); },
                              "dofs×3 control points (a copy)")
       .def("evaluate", &evaluate, py::arg("uv"), "Points of the surface at k (u, v) (a k×2 array, design units): k×3.")
+      .def("trace", &trace, py::arg("uv"), py::arg("samples") = 65,
+           "The space curve the surface traces along an m×2 (u, v) polyline (design units), at `samples` equally "
+           "spaced t: samples×3 (a sheet config's `from_surface` curve; move it and hold the sheet to it with "
+           "design_sheet(curves=[(uv, points)])).")
       .def("grid", &grid, py::arg("samples_per_span") = 6,
            "The surface at n samples per base span: a (su·n + 1)×(sv·n + 1)×3 array, G[i, j] = x(i·w/(su·n), "
            "j·h/(sv·n)); G.reshape(-1, 3) is the vertex list of a sheet run's final.obj.")

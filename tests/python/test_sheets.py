@@ -96,3 +96,31 @@ def test_gil_is_released_during_the_sheet_solve():
         ticks += 1
     t.join()
     assert ticks > 1000, ticks
+
+
+def test_traced_curve_moved_equals_cli(tmp_path):
+    """A `from_surface` curve with an edit (a cosine bump in t), traced and bumped in Python."""
+    arc_uv = [[0.375, 0.5], [0.625, 0.9], [1, 1.05], [1.375, 0.9], [1.625, 0.5]]
+    path = tmp_path / "arc.yaml"
+    path.write_text(f"""name: py-arc
+sheets: [{{name: s, spans: [8, 8], size: [2, 2]}}]
+energy: {{alpha: 0.01, beta: 1}}
+curves:
+  - {{name: arc, from_surface: {{sheet: s, uv: {arc_uv}}}, samples: 65, edits: [{{step: 0, t: 0.5, radius: 0.6, by: [0, 0, 0.6]}}]}}
+constraints:
+{chr(10).join(f"  - {{type: point, uv: {c}, by: [0, 0, 0]}}" for c in CORNERS)}
+  - {{type: curve, curve: arc}}
+solver: {{type: kkt}}
+output: {{samples_per_span: 4, vtk: none}}
+""")
+    cli("run", path, "--out", tmp_path / "arc")
+    expected = obj_vertices(tmp_path / "arc" / "final.obj")
+    sheet = fairshape.Sheet(spans=(8, 8), size=(2, 2))
+    X = sheet.trace(arc_uv, 65)
+    assert X.shape == (65, 3)
+    t = np.linspace(0, 1, 65)
+    d = np.abs(t - 0.5) / 0.6
+    X += np.where(d < 1, 0.5 * (1 + np.cos(np.pi * d)), 0)[:, None] * [0, 0, 0.6]
+    r = fairshape.design_sheet(sheet, CORNERS, np.zeros((4, 3)), relative=True, curves=[(arc_uv, X)], alpha=0.01,
+                               samples_per_span=4)
+    assert np.abs(r.grid.reshape(-1, 3) - expected).max() < 1e-10

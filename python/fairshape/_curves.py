@@ -15,7 +15,7 @@ class Curve:
     2^L·k + 1 points, a closed one of 2^L·k with k ≥ 3, has levels 0..L).
 
     .points is a read-only copy of the input (n×d); .level(j) the control points of level j
-    (m_j×d, a new array; level(levels) is the curve itself).
+    (m_j×d, a new array; level(levels) is the curve itself); .details(j) the details d^j.
     """
 
     def __init__(self, points, closed=False, levels=-1, implementation="optimized"):
@@ -45,6 +45,12 @@ class Curve:
         """Control points of level j (0 = coarsest .. levels): an m_j×d array."""
         X = _fairshape._curve_level(self.points, self.closed, self.levels, j, self.implementation)
         return X[:, :self.dim]
+
+    def details(self, j):
+        """Details d^j (j = 0 .. levels−1) of the lazy-wavelet analysis: level j+1's odd points
+        minus the midpoints of level j's (an m×d array, m the number of level-(j+1) odd points)."""
+        D = _fairshape._curve_details(self.points, self.closed, self.levels, j, self.implementation)
+        return D[:, :self.dim]
 
     def __repr__(self):
         return f"Curve({self.n_points} points, {'closed' if self.closed else 'open'}, {self.levels} levels, {self.dim}-D)"

@@ -56,6 +56,16 @@ Eigen::MatrixXd curve_level(const Eigen::Ref<const Eigen::MatrixXd>& points, boo
   return reconstruct(decompose(c, L, backend), level, backend).points;
 }
 
+Eigen::MatrixXd curve_details(const Eigen::Ref<const Eigen::MatrixXd>& points, bool closed, int levels, int level,
+                              const std::string& implementation) {
+  const Backend backend = backend_arg(implementation);
+  const Polyline c = polyline_arg(points, closed);
+  const int L = levels_arg(c, levels);
+  if (level < 0 || level >= L)
+    throw InvalidInput("curve details " + std::to_string(level) + ": the hierarchy has d^0..d^" + std::to_string(L - 1));
+  return decompose(c, L, backend).details[static_cast<std::size_t>(level)];
+}
+
 // curve_run.cpp's drag(): one edit as `steps` loops, each an equal share of the move.
 std::vector<CurveEdit> drag(const CurveEdit& whole, int steps) {
   std::vector<CurveEdit> out;
@@ -273,6 +283,8 @@ void bind_curves(py::module_& m) {
         "Levels a curve of n_points allows: open 2^L·k + 1 points (k ≥ 1), closed 2^L·k (k ≥ 3).");
   m.def("_curve_level", &curve_level, py::arg("points"), py::arg("closed"), py::arg("levels"), py::arg("level"),
         py::arg("implementation"), "The curve hierarchy's level as points; call fairshape.Curve.level().");
+  m.def("_curve_details", &curve_details, py::arg("points"), py::arg("closed"), py::arg("levels"), py::arg("level"),
+        py::arg("implementation"), "The curve hierarchy's details d^j; call fairshape.Curve.details().");
   m.def("_edit_curve", &edit_curve, py::arg("points"), py::arg("closed"), py::arg("levels"), py::arg("level"),
         py::arg("wrinkle_level"), py::arg("indices"), py::arg("offsets"), py::arg("chord_scales"), py::arg("drag_steps"),
         py::arg("smoothness"), py::arg("beta"), py::arg("constraints"), py::arg("solver"), py::arg("solver_options"),

@@ -80,6 +80,16 @@ output: {vtk: none}
     assert r.length_constraint == "total_length" and r.total_length_error < 1e-8
 
 
+def test_levels_and_details_reconstruct():
+    c = fairshape.Curve(wave(), levels=3)
+    coarse, d = c.level(2), c.details(2)
+    fine = c.level(3)
+    assert np.abs(fine[0::2] - coarse).max() == 0
+    assert np.abs(fine[1::2] - (d + 0.5 * (coarse[:-1] + coarse[1:]))).max() < 1e-15
+    with pytest.raises(fairshape.InvalidInput, match="d\\^0..d\\^2"):
+        c.details(3)
+
+
 def test_curve_options_are_checked():
     c = fairshape.Curve(wave())
     with pytest.raises(fairshape.InvalidConfig, match=r"unknown key.*linearization"):

@@ -14,7 +14,11 @@ fails loudly if a result changes (ctest python.tutorial runs it):
    arrays, the energies by name, the solve and the detail change, equal to step 1's;
 3. one small result of each other paper through fairshape.run: Sauvage et al.'s
    length-preserving curve edit (Figure 3), Welch & Witkin's variational sheet (Figure 1),
-   Khodakovsky & Schröder's feature curves on a Loop hierarchy (Figure 11).
+   Khodakovsky & Schröder's feature curves on a Loop hierarchy (Figure 11);
+4. the same papers through their direct bindings, on NumPy arrays: the Figure 3 curve edit
+   (fairshape.edit_curve, equal to step 3's final curve), a variational sheet under point and
+   curve constraints (fairshape.design_sheet) and a ridge on a Loop hierarchy
+   (fairshape.apply_features) with its achieved profile.
 Re-running into the same --out replaces its results (force=True).
 """
 
@@ -83,4 +87,35 @@ features = fairshape.run("configs/khodakovsky-schroder/fig11.yaml", out=os.path.
                          smoke=True, force=True)
 print(features[["run_id", "features", "n_fine", "vertices_moved", "max_displacement", "termination"]].to_string())
 assert (features["termination"] == "converged").all() and (features["vertices_moved"] > 0).all()
+
+# --- 4. The same papers through their direct bindings -------------------------------------
+# Figure 3's edit (its first sweep point, wrinkle_level 3) on the curve as an n×2 array.
+wave = np.array([[float(t) for t in line.split()[1:3]] for line in open("data/curves/wave129.obj") if line.startswith("v ")])
+c = fairshape.Curve(wave)  # 129 points: 7 levels; c.level(2) is the 5-point polygon moved
+r = fairshape.edit_curve(c, level=2, indices=[3, 4], offsets=[[-0.06, 0.03], [-0.3, 0.0]], wrinkle_level=3, beta=0.01,
+                         solver="trust_region", length_tolerance=1e-12, stationarity_tolerance=1e-8, max_solves=2000)
+print(f"edit_curve: {r.summary.termination} after {r.solves} solves, length error {r.length_error_max:.2e}")
+run_id = curve.loc[curve["edits.0.wrinkle_level"] == 3, "run_id"].iloc[0]
+final = np.array([[float(t) for t in line.split()[1:4]] for line in open(os.path.join(out, "sauvage", "final", f"{run_id}.obj"))
+                  if line.startswith("v ")])
+assert np.abs(r.points3 - final).max() < 1e-10  # the run's final curve
+
+# A sheet held at its corners, a point lifted and a ridge curve it must follow.
+s = fairshape.Sheet(spans=(8, 8), size=(2, 2))
+corners = [[0.125, 0.125], [1.875, 0.125], [0.125, 1.875], [1.875, 1.875]]
+ridge_uv = [[0.375, 0.5], [1.0, 1.05], [1.625, 0.5]]
+ridge = s.trace(ridge_uv, 33) + np.outer(np.sin(np.linspace(0, np.pi, 33)), [0, 0, 0.5])
+d = fairshape.design_sheet(s, corners + [[1.0, 1.6]], np.vstack([np.zeros((4, 3)), [0, 0, -0.2]]), relative=True,
+                           curves=[(ridge_uv, ridge)], alpha=0.01, solver="kkt")
+print(f"design_sheet: {d.summary.termination}, grid {d.grid.shape}, constraint error {d.max_constraint_error:.3g}")
+assert d.summary.succeeded and d.constraint_residual < 1e-9
+
+# A ridge on the Loop hierarchy of a patch: the limit surface shows its profile.
+patch = fairshape.MultiresSurface(fairshape.read_mesh("data/ks_patch.off"), 4, scheme="loop")  # (3 levels: the finest level misses)
+f = fairshape.apply_features(patch, [fairshape.feature([[-0.85, -0.3, 0.0813], [0.0, 0.05, -0.0002], [0.85, 0.3, 0.0813]],
+                                                       level=1, name="ridge", radius=0.45, height=0.12, quadratic=True,
+                                                       profile_tolerance=0.06)])
+ridge = f.features[0]
+print(f"apply_features: {f.positions.shape[0]} finest vertices, limit height error {ridge['limit']['height_error']:.2e}")
+assert f.within_tolerance and np.abs(f.positions - patch.positions()).max() > 0.1 * 0.12
 print("tutorial: ok")

@@ -12,9 +12,13 @@ from ._fairshape import (  # noqa: F401  (the public API)
     Mesh, read_mesh, write_mesh, read_arrays,
     MultiresSurface, remesh, subdivide, limit_positions, limit_normals, limit_matrix, relative_detail_change,
     stretch_bend_hessian, energy_hessian, components, constraint_modes,
+    curve_components, curve_max_levels, Sheet, qp_solvers,
 )
 from ._summary import Summary, SolveFailed, RunFailed  # noqa: F401
 from ._constraints import constraint, fixed, position, energy  # noqa: F401
 from ._edit import edit, EditResult  # noqa: F401
 from ._solve import solve  # noqa: F401
 from ._run import run  # noqa: F401
+from ._curves import Curve, CurveEditResult, edit_curve  # noqa: F401
+from ._sheets import SheetResult, design_sheet  # noqa: F401
+from ._features import FeatureResult, feature, apply_features  # noqa: F401

@@ -14,5 +14,8 @@ void bind_edit(pybind11::module_& m);
 void bind_linear_solve(pybind11::module_& m);
 void bind_experiment(pybind11::module_& m);
 void bind_remesh(pybind11::module_& m);
+void bind_curves(pybind11::module_& m);
+void bind_sheets(pybind11::module_& m);
+void bind_features(pybind11::module_& m);
 
 }  // namespace fairshape::python

@@ -13,4 +13,7 @@ PYBIND11_MODULE(_fairshape, m) {
   fairshape::python::bind_linear_solve(m);
   fairshape::python::bind_experiment(m);
   fairshape::python::bind_remesh(m);
+  fairshape::python::bind_curves(m);
+  fairshape::python::bind_sheets(m);
+  fairshape::python::bind_features(m);
 }

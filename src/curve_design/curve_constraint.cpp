@@ -199,7 +199,7 @@ void TotalLength::add_row_hessian(int /*row*/, double scale, const MatrixX3& X, 
   }
 }
 
-double TotalLength::relative_error(const MatrixX3& X) const {
+double TotalLength::length_error(const MatrixX3& X) const {
   return std::abs(segment_lengths(X, closed_).sum() - target_) / target_;
 }
 

@@ -142,7 +142,7 @@ class TotalLength final : public CurveConstraint {
   double target() const { return target_; }
   bool closed() const { return closed_; }
   //! |L(X) − L| / L.
-  double relative_error(const MatrixX3& X) const;
+  double length_error(const MatrixX3& X) const;
 
  private:
   double target_;

@@ -101,7 +101,7 @@ double LengthProblem::row_scale(int row) const {
 }
 
 double LengthProblem::max_relative_length_error(const MatrixX3& X) const {
-  if (total_) return total_->relative_error(X);
+  if (total_) return total_->length_error(X);
   const Eigen::VectorXd l = segment_lengths(X, closed_);
   return ((l - lengths_->lengths()).cwiseAbs().cwiseQuotient(lengths_->lengths())).maxCoeff();
 }

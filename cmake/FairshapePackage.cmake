@@ -2,7 +2,7 @@
 # CMake package (fairshapeConfig.cmake, its version file, the exported targets) so another
 # project can find_package(fairshape) — tested by tests/cli/package_consumer.sh.
 include(CMakePackageConfigHelpers)
-if(TARGET fairshape)  # the command line (a full build: VTK, CGAL and Ceres)
+if(TARGET fairshape)  # the command line (a full build: VTK, CGAL, Ceres and TBB)
   install(TARGETS fairshape RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endif()
 

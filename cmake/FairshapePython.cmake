@@ -28,9 +28,9 @@ if(FAIRSHAPE_WITH_PYTHON)
   elseif(NOT pybind11_FOUND)
     message(WARNING "fairshape: FAIRSHAPE_WITH_PYTHON is ON but pybind11 was not found (Debian: pybind11-dev): "
                     "the Python module is not built")
-  elseif(NOT (FAIRSHAPE_WITH_VTK AND FAIRSHAPE_WITH_CGAL AND FAIRSHAPE_WITH_CERES))
-    # fairshape.run and the registries come from the experiment library, which needs all three.
-    message(STATUS "fairshape: the Python module needs VTK, CGAL and Ceres (the experiment library): not built")
+  elseif(NOT (FAIRSHAPE_WITH_VTK AND FAIRSHAPE_WITH_CGAL AND FAIRSHAPE_WITH_CERES AND FAIRSHAPE_WITH_TBB))
+    # fairshape.run and the registries come from the experiment library, which needs all four.
+    message(STATUS "fairshape: the Python module needs VTK, CGAL, Ceres and TBB (the experiment library): not built")
   else()
     set(FAIRSHAPE_PYTHON ON)
   endif()

@@ -1,5 +1,13 @@
 # Helpers that give every fairshape target the same language level and warnings.
 
+# FAIRSHAPE_TBB: TBB::tbb in a build with TBB (FAIRSHAPE_WITH_TBB), else nothing; a module's
+# optimized back end (its *_tbb.cpp) is compiled only with it.
+if(FAIRSHAPE_WITH_TBB)
+  set(FAIRSHAPE_TBB TBB::tbb)
+else()
+  set(FAIRSHAPE_TBB "")
+endif()
+
 function(fairshape_set_flags target)
   target_compile_features(${target} PUBLIC cxx_std_20)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic)

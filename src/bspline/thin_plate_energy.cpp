@@ -1,7 +1,10 @@
 #include "fairshape/bspline/thin_plate_energy.h"
 
+#include "fairshape/core/backend.h"
+#if FAIRSHAPE_WITH_TBB
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#endif
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
@@ -114,6 +117,7 @@ void cell_block(const HierarchicalSurface& s, const SpanId& cell, const GaussRul
   }
 }
 
+#if FAIRSHAPE_WITH_TBB  // the optimized back end
 SparseMatrix hessian_optimized(const HierarchicalSurface& s, const TensionWeights& w) {
   const GaussRule g = gauss_legendre(s.degree() + 1);
   const TermRows terms = term_rows(w);
@@ -142,6 +146,7 @@ SparseMatrix hessian_optimized(const HierarchicalSurface& s, const TensionWeight
   H.setFromTriplets(all.begin(), all.end());
   return H;
 }
+#endif
 
 }  // namespace
 
@@ -161,7 +166,12 @@ TensionWeights in_span_units(const TensionWeights& w, const Eigen::Vector2d& spa
 SparseMatrix thin_plate_hessian(const HierarchicalSurface& s, const TensionWeights& design, Backend backend) {
   validate(design);
   const TensionWeights w = in_span_units(design, s.shape().span_size);
+  require_backend(backend);
+#if FAIRSHAPE_WITH_TBB
   return backend == Backend::Reference ? hessian_reference(s, w) : hessian_optimized(s, w);
+#else
+  return hessian_reference(s, w);
+#endif
 }
 
 SparseMatrix thin_plate_square_root(const HierarchicalSurface& s, const TensionWeights& design) {

@@ -94,7 +94,7 @@ std::unique_ptr<Constraint> make_fixed(Config& cfg) { return make(cfg, false); }
 std::unique_ptr<Constraint> make_position(Config& cfg) { return make(cfg, true); }
 
 void register_constraints(ConstraintRegistry& r) {
-  for (Backend b : {Backend::Reference, Backend::Optimized}) {
+  for (Backend b : built_backends()) {
     r.add("fixed", b, "selected vertices (or a point of the limit surface: at, nearest_on_limit) keep their rest position (ΔP = 0)", make_fixed);
     r.add("position", b, "selected vertices (or a point of the limit surface: at, nearest_on_limit) move by a given offset (ΔP = offset)", make_position);
     r.add("normal", b, "the surface normal at selected vertices (or at a point of the limit surface) becomes a given direction (§4.2)",

@@ -11,6 +11,15 @@ const NameTable<Backend>& backend_names() {
 
 std::string_view to_string(Backend b) { return backend_names().name(b); }
 
-Backend backend_from_string(std::string_view s) { return backend_names().value(s, "implementation"); }
+Backend backend_from_string(std::string_view s) {
+  const Backend b = backend_names().value(s, "implementation");
+  require_backend(b);
+  return b;
+}
+
+void require_backend(Backend b) {
+  if (b == Backend::Optimized && !kOptimizedBackendBuilt)
+    throw InvalidConfig("fairshape was built without TBB (FAIRSHAPE_WITH_TBB=OFF): only the reference back end exists");
+}
 
 }  // namespace fairshape

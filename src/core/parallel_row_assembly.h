@@ -3,12 +3,16 @@
 // product PᵀAP (solver/parallel_kernels). A dense accumulator per thread sums a row's
 // contributions in the order gather() makes them, so the result is bitwise the same for any
 // thread count; a pattern pass sizes the arrays, a value pass fills them (no triplets, no
-// per-chunk buffers to join). Header-only; its users link TBB.
+// per-chunk buffers to join). Header-only; its users link TBB, in a build with it (without TBB,
+// FAIRSHAPE_WITH_TBB=0, the rows are gathered serially by one accumulator: the same matrix).
 #pragma once
 
+#include "fairshape/core/backend.h"
+#if FAIRSHAPE_WITH_TBB
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#endif
 
 #include <algorithm>
 #include <numeric>
@@ -22,14 +26,18 @@ namespace fairshape {
 //! same order; `values` is false in the pattern pass, where the value is not read. The matrix
 //! must be symmetric: its row-compressed arrays are returned as the column-compressed ones.
 template <class Gather>
-SparseMatrix assemble_symmetric_by_rows(int n, int grain, const Gather& gather) {
+SparseMatrix assemble_symmetric_by_rows(int n, [[maybe_unused]] int grain, const Gather& gather) {
   struct Accumulator {
     std::vector<double> sum;
     std::vector<int> seen_in_row;
     std::vector<int> cols;
   };
+#if FAIRSHAPE_WITH_TBB
   tbb::enumerable_thread_specific<Accumulator> accumulators(
       [n] { return Accumulator{std::vector<double>(n), std::vector<int>(n, -1), {}}; });
+#else
+  Accumulator serial{std::vector<double>(n), std::vector<int>(n, -1), {}};
+#endif
   const auto gather_row = [&](int i, Accumulator& acc, bool values) {
     acc.cols.clear();
     gather(
@@ -47,19 +55,14 @@ SparseMatrix assemble_symmetric_by_rows(int n, int grain, const Gather& gather) 
   SparseMatrix H(n, n);
   int* outer = H.outerIndexPtr();
   outer[0] = 0;
-  tbb::parallel_for(tbb::blocked_range<int>(0, n, grain), [&](const tbb::blocked_range<int>& r) {
-    Accumulator& acc = accumulators.local();
-    for (int i = r.begin(); i != r.end(); ++i) {
+  const auto pattern_rows = [&](int begin, int end, Accumulator& acc) {
+    for (int i = begin; i != end; ++i) {
       gather_row(i, acc, false);
       outer[i + 1] = static_cast<int>(acc.cols.size());
     }
-  });
-  for (auto& acc : accumulators) std::fill(acc.seen_in_row.begin(), acc.seen_in_row.end(), -1);
-  std::partial_sum(outer, outer + n + 1, outer);
-  H.resizeNonZeros(outer[n]);
-  tbb::parallel_for(tbb::blocked_range<int>(0, n, grain), [&](const tbb::blocked_range<int>& r) {
-    Accumulator& acc = accumulators.local();
-    for (int i = r.begin(); i != r.end(); ++i) {
+  };
+  const auto value_rows = [&](int begin, int end, Accumulator& acc) {
+    for (int i = begin; i != end; ++i) {
       gather_row(i, acc, true);
       std::sort(acc.cols.begin(), acc.cols.end());
       int q = outer[i];
@@ -68,7 +71,23 @@ SparseMatrix assemble_symmetric_by_rows(int n, int grain, const Gather& gather) 
         H.valuePtr()[q++] = acc.sum[col];
       }
     }
-  });
+  };
+#if FAIRSHAPE_WITH_TBB
+  tbb::parallel_for(tbb::blocked_range<int>(0, n, grain),
+                    [&](const tbb::blocked_range<int>& r) { pattern_rows(r.begin(), r.end(), accumulators.local()); });
+  for (auto& acc : accumulators) std::fill(acc.seen_in_row.begin(), acc.seen_in_row.end(), -1);
+#else
+  pattern_rows(0, n, serial);
+  std::fill(serial.seen_in_row.begin(), serial.seen_in_row.end(), -1);
+#endif
+  std::partial_sum(outer, outer + n + 1, outer);
+  H.resizeNonZeros(outer[n]);
+#if FAIRSHAPE_WITH_TBB
+  tbb::parallel_for(tbb::blocked_range<int>(0, n, grain),
+                    [&](const tbb::blocked_range<int>& r) { value_rows(r.begin(), r.end(), accumulators.local()); });
+#else
+  value_rows(0, n, serial);
+#endif
   return H;
 }
 

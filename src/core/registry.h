@@ -51,6 +51,7 @@ class Registry {
   // Builds the component from its options in `cfg`. The caller finishes with
   // cfg.check_no_unknown_keys(), after any other reads of the same block.
   std::unique_ptr<Base> create(const std::string& name, Backend backend, Config& cfg) const {
+    require_backend(backend);  // a build without TBB registers no optimized back end
     const Entry* e = find(name, backend);
     if (!e) throw_unknown(name, backend);
     return e->make(cfg);

@@ -132,7 +132,7 @@ class TangentKind final : public CurveConstraintKind {
 }  // namespace
 
 void register_curve_constraints(CurveConstraintRegistry& r) {
-  for (Backend b : {Backend::Reference, Backend::Optimized}) {
+  for (Backend b : built_backends()) {
     r.add("segment_lengths", b, "Sauvage et al. §2: |c[i+1] - c[i]|² = l[i]² for every segment of the reference",
           [](Config&) { return std::make_unique<SegmentLengthsKind>(); });
     r.add("total_length", b,

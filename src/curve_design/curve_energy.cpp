@@ -49,7 +49,7 @@ CurveEnergyRegistry::Factory plain() {
 
 void register_curve_energies(CurveEnergyRegistry& r) {
   // One implementation serves both back ends: these build stencil lists, never the hot loop.
-  for (Backend b : {Backend::Reference, Backend::Optimized}) {
+  for (Backend b : built_backends()) {
     r.add("bending", b, "Sauvage et al. §3: Σ|¼(c[i-1] - 2c[i] + c[i+1])|²", plain<Bending>());
     r.add("stretching", b, "Σ|c[i+1] - c[i]|² (first differences)", plain<Stretching>());
     r.add("attractor_distance", b, "Sauvage et al. §3: D = Σ|c[i] - a[i]|²", plain<AttractorDistance>());

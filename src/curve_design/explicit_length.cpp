@@ -1,7 +1,10 @@
 #include "fairshape/curve_design/explicit_length.h"
 
+#include "fairshape/core/backend.h"
+#if FAIRSHAPE_WITH_TBB
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
+#endif
 
 #include <Eigen/Geometry>
 #include <cmath>
@@ -67,7 +70,9 @@ ExplicitLengthReport preserve_lengths_explicitly(MatrixX3& coarse, MatrixX3& det
   FAIRSHAPE_ASSERT(target.size() == 2 * segments, "two target lengths per level-w segment");
   FAIRSHAPE_ASSERT(anchor >= 0 && anchor < coarse.rows(), "anchor on the level-w polygon");
   ExplicitLengthReport rep;
+  require_backend(backend);
   rep.shortened_segments = shorten_stretched_segments(coarse, target, closed, anchor);
+#if FAIRSHAPE_WITH_TBB
   if (backend == Backend::Reference) {
     for (int i = 0; i < segments; ++i) rep.moved_midpoints += place_midpoint(coarse, detail, target, i);
   } else {
@@ -79,6 +84,9 @@ ExplicitLengthReport preserve_lengths_explicitly(MatrixX3& coarse, MatrixX3& det
         },
         std::plus<int>());
   }
+#else
+  for (int i = 0; i < segments; ++i) rep.moved_midpoints += place_midpoint(coarse, detail, target, i);
+#endif
   return rep;
 }
 

@@ -1,7 +1,10 @@
 #include "fairshape/curve_design/kkt_factor.h"
 
+#include "fairshape/core/backend.h"
+#if FAIRSHAPE_WITH_TBB
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#endif
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
@@ -12,9 +15,11 @@
 namespace fairshape {
 namespace {
 
+#if FAIRSHAPE_WITH_TBB
 int last_point(const ConstraintRow& r) { return r.size == 2 ? std::max(r.points[0], r.points[1]) : r.points[0]; }
 
 constexpr int kDense = -1;  // position_ of a dense row's multiplier: outside the band
+#endif
 
 // Reference: a plain transcription, everything rebuilt every step (dense rows included as they
 // are: SparseLU takes any pattern).
@@ -68,6 +73,7 @@ class BlockKkt final : public KktFactor {
   Eigen::MINRES<SparseMatrix, Eigen::Lower | Eigen::Upper, Eigen::IdentityPreconditioner> minres_;
 };
 
+#if FAIRSHAPE_WITH_TBB  // the optimized back end
 // Optimized: banded ordering, fixed pattern, value offsets computed once — for the rows'
 // structure (which points each row touches): rows of another structure get a new pattern and
 // symbolic analysis, never slots computed for other rows. Dense rows are bordered (kkt_factor.h).
@@ -308,12 +314,18 @@ class BandedKkt final : public KktFactor {
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::NaturalOrdering<int>> ldlt_;
   Eigen::MINRES<SparseMatrix, Eigen::Lower, Eigen::IdentityPreconditioner> minres_;
 };
+#endif
 
 }  // namespace
 
 std::unique_ptr<KktFactor> make_kkt_factor(const LengthProblem& p, Backend backend, KktMethod method, double tol) {
+  require_backend(backend);
+#if FAIRSHAPE_WITH_TBB
   if (backend == Backend::Reference) return std::make_unique<BlockKkt>(p, method, tol);
   return std::make_unique<BandedKkt>(p, method, tol);
+#else
+  return std::make_unique<BlockKkt>(p, method, tol);
+#endif
 }
 
 }  // namespace fairshape

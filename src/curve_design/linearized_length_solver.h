@@ -31,7 +31,7 @@ struct LinearizedOptions {
   int stall_window = 1000;
   KktMethod kkt = KktMethod::Direct;
   double minres_tolerance = 1e-13;
-  Backend backend = Backend::Optimized;
+  Backend backend = kFastestBackend;
 };
 
 class LinearizedLengthSolver final : public LengthSolver {

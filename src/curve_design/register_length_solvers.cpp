@@ -66,15 +66,19 @@ LengthSolverRegistry::Factory trust_region(Backend backend) {
 void register_length_solvers(LengthSolverRegistry& r) {
   r.add("linearized", Backend::Reference, "Sauvage et al. §3: linearized Lagrange loop, block KKT + SparseLU per solve",
         linearized(Backend::Reference));
+#if FAIRSHAPE_WITH_TBB  // the optimized back ends (banded KKT, TBB assembly)
   r.add("linearized", Backend::Optimized,
         "Sauvage et al. §3: linearized Lagrange loop, banded KKT order, one analysis, LDL^T + refinement",
         linearized(Backend::Optimized));
+#endif
   r.add("trust_region", Backend::Reference,
         "globalized (not in the paper): trust-region Newton on the lengths, inertia-controlled, negative-curvature steps; block KKT + SparseLU",
         trust_region(Backend::Reference));
+#if FAIRSHAPE_WITH_TBB
   r.add("trust_region", Backend::Optimized,
         "globalized (not in the paper): trust-region Newton on the lengths, inertia-controlled, negative-curvature steps; banded LDL^T",
         trust_region(Backend::Optimized));
+#endif
 #if FAIRSHAPE_WITH_CERES  // configured with Ceres (FAIRSHAPE_WITH_CERES)
   const auto ceres = [](Config& c) {
     CeresOptions o;
@@ -86,7 +90,7 @@ void register_length_solvers(LengthSolverRegistry& r) {
     own.check_no_unknown_keys();
     return std::make_unique<CeresLengthSolver>(o);
   };
-  for (Backend b : {Backend::Reference, Backend::Optimized})
+  for (Backend b : built_backends())
     r.add("ceres", b, "exact: augmented Lagrangian over Ceres (SPARSE_NORMAL_CHOLESKY, SuiteSparse)", ceres);
 #endif
   const auto projection = [](Config& c) {
@@ -99,7 +103,7 @@ void register_length_solvers(LengthSolverRegistry& r) {
     own.check_no_unknown_keys();
     return std::make_unique<ProjectionLengthSolver>(o);
   };
-  for (Backend b : {Backend::Reference, Backend::Optimized})
+  for (Backend b : built_backends())
     r.add("projection", b, "baseline, not the paper's: ShapeOp-style local-global projection with penalty weights", projection);
 }
 

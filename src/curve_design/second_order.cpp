@@ -54,7 +54,7 @@ SecondOrderCheck check_second_order(const LengthProblem& p, const MatrixX3& X) {
 int reduced_hessian_negative_count(const LengthProblem& p, const MatrixX3& X, double shift) {
   const Eigen::VectorXd lambda = least_squares_multipliers(p, X);
   if (!lambda.allFinite()) return -1;
-  const auto kkt = make_kkt_factor(p, Backend::Optimized, KktMethod::Direct, 1e-13);
+  const auto kkt = make_kkt_factor(p, kFastestBackend, KktMethod::Direct, 1e-13);
   if (shift < 0) shift = kSecondOrderTolerance * p.objective_hessian().diagonal().cwiseAbs().maxCoeff();
   if (!kkt->factor(X, p.rows(X), &lambda, shift)) return -1;
   const int negative = kkt->negative_pivots();

@@ -41,7 +41,7 @@ struct TrustRegionOptions {
   //! has positive curvature, which is weaker; the message says which).
   int dense_limit = 300;
   KktMethod kkt = KktMethod::Direct;
-  Backend backend = Backend::Optimized;
+  Backend backend = kFastestBackend;
 };
 
 class TrustRegionLengthSolver final : public LengthSolver {

@@ -1,7 +1,10 @@
 #include "fairshape/curves/multires_polyline.h"
 
+#include "fairshape/core/backend.h"
+#if FAIRSHAPE_WITH_TBB
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#endif
 
 #include "fairshape/core/error.h"
 
@@ -25,6 +28,7 @@ MatrixX3 synthesis_reference(const MatrixX3& c, const MatrixX3& d, bool closed) 
   return f;
 }
 
+#if FAIRSHAPE_WITH_TBB
 // Optimized: the same arithmetic, split over TBB threads (every output row is independent).
 void analysis_parallel(const MatrixX3& f, bool closed, MatrixX3& c, MatrixX3& d) {
   const Eigen::Index n = f.rows(), m = closed ? n / 2 : (n - 1) / 2;
@@ -49,6 +53,7 @@ MatrixX3 synthesis_parallel(const MatrixX3& c, const MatrixX3& d, bool closed) {
   });
   return f;
 }
+#endif
 
 }  // namespace
 
@@ -63,13 +68,23 @@ int max_polyline_levels(int n, bool closed) {
 }
 
 void analysis_step(const MatrixX3& fine, bool closed, MatrixX3& coarse, MatrixX3& detail, Backend backend) {
+  require_backend(backend);
+#if FAIRSHAPE_WITH_TBB
   if (backend == Backend::Reference) analysis_reference(fine, closed, coarse, detail);
   else analysis_parallel(fine, closed, coarse, detail);
+#else
+  analysis_reference(fine, closed, coarse, detail);
+#endif
 }
 
 MatrixX3 synthesis_step(const MatrixX3& coarse, const MatrixX3& detail, bool closed, Backend backend) {
+  require_backend(backend);
+#if FAIRSHAPE_WITH_TBB
   return backend == Backend::Reference ? synthesis_reference(coarse, detail, closed)
                                        : synthesis_parallel(coarse, detail, closed);
+#else
+  return synthesis_reference(coarse, detail, closed);
+#endif
 }
 
 PolylineHierarchy decompose(const Polyline& curve, int levels, Backend backend) {

@@ -69,7 +69,7 @@ PreparedEdit::PreparedEdit(const EditProblem& p, ConstraintMode mode, Solver& so
   } else {
     const std::string name(constraint_mode_names().name(mode));
     const auto& registry = qp::qp_solver_registry();
-    qp_ = registry.create(name, registry.has(name, backend) ? backend : Backend::Optimized, qp_options);
+    qp_ = registry.create(name, registry.has(name, backend) ? backend : kFastestBackend, qp_options);
   }
   qp::QuadraticProgram program{s.H, s.g, s.constraints.A, Eigen::MatrixXd::Zero(s.constraints.A.rows(), s.g.cols()), {}, {}};
   program.levels = s.levels;

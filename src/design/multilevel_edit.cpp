@@ -24,6 +24,7 @@ Accuracy accuracy_from_string(std::string_view s) {
 MultilevelEdit::MultilevelEdit(const EditLadder& ladder, Accuracy accuracy, const SolverFactory& direct,
                                const SolverFactory& relaxer, Solver& finest, Backend backend, ConstraintMode coarse_mode)
     : ladder_(ladder), accuracy_(accuracy), backend_(backend) {
+  require_backend(backend);
   Timer setup;
   const std::size_t levels = ladder.problems.size();
   if (levels == 0) throw InvalidInput("multilevel edit: no level to solve on");
@@ -69,17 +70,19 @@ void MultilevelEdit::restart_with_linear_terms(const std::vector<Eigen::MatrixXd
 }
 
 Eigen::MatrixXd MultilevelEdit::prolongate(std::size_t from, std::size_t to, const Eigen::MatrixXd& x) const {
-  if (backend_ == Backend::Reference) {
-    Eigen::MatrixXd y = x;
-    for (std::size_t k = from; k < to; ++k) y = ladder_.prolongations[k] * y;
+#if FAIRSHAPE_WITH_TBB
+  if (backend_ == Backend::Optimized) {
+    RowBlock y = x, next;
+    for (std::size_t k = from; k < to; ++k) {
+      next.resize(rows_[k].rows(), y.cols());
+      parallel_multiply(rows_[k], y, next);
+      std::swap(y, next);
+    }
     return y;
   }
-  RowBlock y = x, next;
-  for (std::size_t k = from; k < to; ++k) {
-    next.resize(rows_[k].rows(), y.cols());
-    parallel_multiply(rows_[k], y, next);
-    std::swap(y, next);
-  }
+#endif
+  Eigen::MatrixXd y = x;
+  for (std::size_t k = from; k < to; ++k) y = ladder_.prolongations[k] * y;
   return y;
 }
 
@@ -107,10 +110,14 @@ EditSolution MultilevelEdit::solve(double scale, const IterationCallback& cb) {
       case Accuracy::Interactive:
         out.delta = prolongate(0, last, current_[0]);
         out.summary = {Termination::ScheduleCompleted, 0, -1, "interactive: coarse solve subdivided to the edit level"};
+#if FAIRSHAPE_WITH_TBB
         out.constraint_residual =
             backend_ == Backend::Reference
                 ? (ladder_.problems[last].constraints.A * out.delta - targets(last)).norm()
                 : parallel_residual_norm(edit_rows_, out.delta, scale, ladder_.problems[last].constraints.C);
+#else
+        out.constraint_residual = (ladder_.problems[last].constraints.A * out.delta - targets(last)).norm();
+#endif
         break;
       case Accuracy::Improved:
         for (std::size_t k = 1; k <= last; ++k) {

@@ -1,8 +1,10 @@
 #include "fairshape/energy/local_quadratic.h"
 #include "fairshape/energy/ring_coupling.h"
 
+#if FAIRSHAPE_WITH_TBB
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#endif
 
 #include <cmath>
 
@@ -47,11 +49,13 @@ void add_vertex_block(const SurfaceMesh& mesh, int v, const StretchBendWeights& 
 void add_stretch_bend_hessian(const SurfaceMesh& mesh, const StretchBendWeights& w, double scale, Triplets& out,
                               Backend backend) {
   check_ring_coupling(mesh, "stretch + bend energy");
+  require_backend(backend);
   const int nv = mesh.n_vertices();
   if (backend == Backend::Reference) {
     for (int v = 0; v < nv; ++v) add_vertex_block(mesh, v, w, scale, out);
     return;
   }
+#if FAIRSHAPE_WITH_TBB
   constexpr int kChunk = 1024;
   const int chunks = (nv + kChunk - 1) / kChunk;
   std::vector<Triplets> parts(chunks);
@@ -60,11 +64,14 @@ void add_stretch_bend_hessian(const SurfaceMesh& mesh, const StretchBendWeights&
       for (int v = c * kChunk; v < std::min(nv, (c + 1) * kChunk); ++v) add_vertex_block(mesh, v, w, scale, parts[c]);
   });
   for (auto& p : parts) out.insert(out.end(), p.begin(), p.end());  // chunk order: deterministic
+#endif
 }
 
 SparseMatrix stretch_bend_hessian(const SurfaceMesh& mesh, const StretchBendWeights& w, double scale,
                                   Backend backend) {
   check_ring_coupling(mesh, "stretch + bend energy");
+  require_backend(backend);
+#if FAIRSHAPE_WITH_TBB
   if (backend == Backend::Optimized) {
     // Fits in parallel chunks (each its own flat factor list, joined in chunk order), then
     // the rows of H gathered in parallel: no triplets, no serial sort.
@@ -90,6 +97,7 @@ SparseMatrix stretch_bend_hessian(const SurfaceMesh& mesh, const StretchBendWeig
     for (const auto& p : parts) all.append(p);
     return assemble_gram(nv, all, term_weights(w, scale));
   }
+#endif
   Triplets t;
   add_stretch_bend_hessian(mesh, w, scale, t, backend);
   SparseMatrix H(mesh.n_vertices(), mesh.n_vertices());

@@ -2,9 +2,8 @@
 
 #include <Eigen/LU>
 #include <Eigen/SVD>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
+#include "fairshape/core/parallel_for.h"  // both back ends fit rotations here (serial without TBB)
 #include "fairshape/energy/divided_differences.h"
 
 namespace fairshape {
@@ -14,7 +13,7 @@ LocalRotations::LocalRotations(const SurfaceMesh& rest, const StretchBendWeights
   // One entry per fit of the energy: a vertex, or each side of a sharp crease through it
   // (sector_fits), which then turns on its own.
   std::vector<std::vector<Vertex>> per_vertex(static_cast<std::size_t>(n_));
-  tbb::parallel_for(tbb::blocked_range<int>(0, n_, 512), [&](const tbb::blocked_range<int>& r) {
+  for_each_range(0, n_, 512, [&](const IndexRange<int>& r) {
     for (int v = r.begin(); v != r.end(); ++v) {
       if (rest.is_isolated(v)) continue;
       for (const LocalFit& fit : sector_fits(rest, v)) {
@@ -36,7 +35,7 @@ LocalRotations::LocalRotations(const SurfaceMesh& rest, const StretchBendWeights
 std::vector<Mat3> LocalRotations::fit(const MatrixX3& deformed, RotationFit how) const {
   const Eigen::Vector<double, 5> w = how == RotationFit::Exact ? w_ : Eigen::Vector<double, 5>(1, 1, 0, 0, 0);
   std::vector<Mat3> R(vertices_.size(), Mat3::Identity());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, vertices_.size(), 512), [&](const tbb::blocked_range<std::size_t>& r) {
+  for_each_range(std::size_t{0}, vertices_.size(), 512, [&](const IndexRange<std::size_t>& r) {
     for (std::size_t v = r.begin(); v != r.end(); ++v) {
       const Vertex& x = vertices_[v];
       if (x.ids.empty()) continue;

@@ -8,7 +8,7 @@ void register_stretch_bend(EnergyRegistry& r);
 
 void register_energies(EnergyRegistry& r) {
   // Assembly is cheap and serial for these; both back ends share one implementation.
-  for (Backend b : {Backend::Reference, Backend::Optimized}) {
+  for (Backend b : built_backends()) {
     r.add("membrane", b, "stretch energy: ½ Σ_edges w_ij |u_i − u_j|² (Hessian −L)", make_membrane);
     r.add("umbrella_thin_plate", b, "bending energy: ½ Σ_i |umbrella(u)_i|² (Hessian UᵀU)", make_thin_plate);
   }

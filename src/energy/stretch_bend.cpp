@@ -50,11 +50,12 @@ std::unique_ptr<LocalRotations> Energy::local_rotations(const SurfaceMesh&, doub
 std::unique_ptr<Energy> make_stretch_bend(StretchBendWeights w, StretchBendOf of, Backend backend) {
   if (!(w.alpha >= 0) || !(w.beta >= 0) || (w.alpha == 0 && w.beta == 0))
     throw InvalidInput("stretch + bend energy: alpha and beta must be >= 0 and not both zero");
+  require_backend(backend);
   return std::make_unique<StretchBend>(w, backend, of == StretchBendOf::Positions);
 }
 
 void register_stretch_bend(EnergyRegistry& r) {
-  for (Backend b : {Backend::Reference, Backend::Optimized}) {
+  for (Backend b : built_backends()) {
     r.add("surface_thin_plate", b,
           "α·stretch + β·bend of the deformed surface, local quadratic fits (Boier-Martin et al. §3.4)",
           [b](Config& cfg) { return make_stretch_bend(weights_from(cfg), StretchBendOf::Positions, b); });

@@ -135,7 +135,11 @@ class Evaluator {
       }
       const SparsePatch patch = make_patch(S);
       MatrixX3 Y;
+#if FAIRSHAPE_WITH_TBB
       subdivide_positions_matrix_free(patch.mesh, opt_, patch.mesh.positions(), Y);
+#else
+      Y = subdivide_once(patch.mesh, opt_, Backend::Reference).positions();
+#endif
       std::vector<char> split(S.face.size(), 0);
       bool missing = false;
       const auto want = [&](int f) {

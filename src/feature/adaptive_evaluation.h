@@ -36,7 +36,7 @@ namespace fairshape::feature {
 struct AdaptiveEvaluationOptions {
   int from_level = 0;              // levels below it are quadrisected everywhere
   double surface_angle_deg = 0;    // flatness threshold everywhere; 0: only features' regions refine
-  Backend backend = Backend::Optimized;
+  Backend backend = kFastestBackend;
   //! false: the features only mark their supports (a run places world points on the sparse
   //! levels this makes before the features exist on them).
   bool apply_features = true;

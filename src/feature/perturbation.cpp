@@ -101,4 +101,39 @@ std::optional<SegmentOffset> segment_offset(const TriangleSurface& s, const Base
   return SegmentOffset{target - (p - b).dot(n), n};
 }
 
+// The back ends: perturbation_reference.cpp, and perturbation_tbb.cpp in a build with TBB.
+LevelPerturbation compute_perturbation(const TriangleSurface& s, const std::vector<BaseCurve>& curves,
+                                       Backend backend) {
+  require_backend(backend);
+#if FAIRSHAPE_WITH_TBB
+  return backend == Backend::Reference ? perturbation_reference(s, curves) : perturbation_tbb(s, curves);
+#else
+  return perturbation_reference(s, curves);
+#endif
+}
+
+LevelPerturbation perturb_vertices(const TriangleSurface& s, const std::vector<BaseCurve>& curves,
+                                   std::vector<int> vertices, Backend backend) {
+  require_backend(backend);
+  std::sort(vertices.begin(), vertices.end());
+  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+#if FAIRSHAPE_WITH_TBB
+  return backend == Backend::Reference ? perturb_vertices_reference(s, curves, vertices)
+                                       : perturb_vertices_tbb(s, curves, vertices);
+#else
+  return perturb_vertices_reference(s, curves, vertices);
+#endif
+}
+
+LevelPerturbation displace_points(const TriangleSurface& s, const std::vector<BaseCurve>& curves,
+                                  const MatrixX3& points, Backend backend) {
+  require_backend(backend);
+#if FAIRSHAPE_WITH_TBB
+  return backend == Backend::Reference ? displace_points_reference(s, curves, points)
+                                       : displace_points_tbb(s, curves, points);
+#else
+  return displace_points_reference(s, curves, points);
+#endif
+}
+
 }  // namespace fairshape::feature

@@ -172,23 +172,4 @@ LevelPerturbation displace_points_tbb(const TriangleSurface& s, const std::vecto
   return collect_moved(ids, moved, touched);
 }
 
-LevelPerturbation compute_perturbation(const TriangleSurface& s, const std::vector<BaseCurve>& curves,
-                                       Backend backend) {
-  return backend == Backend::Reference ? perturbation_reference(s, curves) : perturbation_tbb(s, curves);
-}
-
-LevelPerturbation perturb_vertices(const TriangleSurface& s, const std::vector<BaseCurve>& curves,
-                                   std::vector<int> vertices, Backend backend) {
-  std::sort(vertices.begin(), vertices.end());
-  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
-  return backend == Backend::Reference ? perturb_vertices_reference(s, curves, vertices)
-                                       : perturb_vertices_tbb(s, curves, vertices);
-}
-
-LevelPerturbation displace_points(const TriangleSurface& s, const std::vector<BaseCurve>& curves,
-                                  const MatrixX3& points, Backend backend) {
-  return backend == Backend::Reference ? displace_points_reference(s, curves, points)
-                                       : displace_points_tbb(s, curves, points);
-}
-
 }  // namespace fairshape::feature

@@ -148,6 +148,7 @@ std::unique_ptr<Factorization> factor_optimized(const SparseMatrix& A) {
 }  // namespace
 
 MinNormLeastSquares::MinNormLeastSquares(const SparseMatrix& A, Backend backend) : A_(A) {
+  require_backend(backend);
   for (int c = 0; c < A.outerSize(); ++c)
     for (SparseMatrix::InnerIterator it(A, c); it; ++it)
       if (!std::isfinite(it.value())) throw InvalidInput("least squares: a constraint coefficient is not finite");

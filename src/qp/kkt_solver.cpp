@@ -129,7 +129,9 @@ struct KktSolver::System {
   bool singular = false;
 };
 
-KktSolver::KktSolver(Backend backend, ConstraintPolicy policy) : backend_(backend), policy_(policy) {}
+KktSolver::KktSolver(Backend backend, ConstraintPolicy policy) : backend_(backend), policy_(policy) {
+  require_backend(backend);
+}
 KktSolver::~KktSolver() = default;
 
 std::unique_ptr<KktSolver::System> KktSolver::build(CompressedRows rows, std::unique_ptr<LuFactor> recycled) {

@@ -32,6 +32,7 @@ SparseMatrix square_root_of(const SparseMatrix& H) {
 }
 
 QrPenaltySolver::QrPenaltySolver(Backend backend, QrPenaltyOptions options) : backend_(backend), options_(options) {
+  require_backend(backend);
   if (!(options.mu > 0) || !std::isfinite(options.mu)) throw InvalidConfig("qr_penalty: mu must be a positive number");
   if (options.refinement_steps < 0) throw InvalidConfig("qr_penalty: refinement_steps must be >= 0");
   if (!(options.max_mu >= options.mu)) throw InvalidConfig("qr_penalty: max_mu must be at least mu");

@@ -41,7 +41,7 @@ const SolverRegistry& linear_solvers() {
 std::unique_ptr<QpSolver> make_split(Backend backend, Config& cfg) {
   Config fc = cfg.child("free_solver", "the free unknowns' linear solver: {type, tolerance, max_iterations, <type>: {...}}");
   const std::string type = fc.get_choice("type", "cholesky", linear_solvers().names(), "linear solver name");
-  auto free = linear_solvers().create(type, linear_solvers().has(type, backend) ? backend : Backend::Optimized, fc);
+  auto free = linear_solvers().create(type, linear_solvers().has(type, backend) ? backend : kFastestBackend, fc);
   fc.check_no_unknown_keys();
   return std::make_unique<SplitSolver>(std::move(free), backend);
 }
@@ -49,7 +49,7 @@ std::unique_ptr<QpSolver> make_split(Backend backend, Config& cfg) {
 }  // namespace
 
 void register_qp_solvers(QpSolverRegistry& r) {
-  for (const Backend backend : {Backend::Reference, Backend::Optimized}) {
+  for (const Backend backend : built_backends()) {
     const bool ref = backend == Backend::Reference;
     r.add("kkt", backend,
           ref ? "Lagrange system (eq. 9): dependent rows dropped by a rank-revealing QR (dense pivoted, Eigen SparseQR when large), "
@@ -72,10 +72,12 @@ void register_qp_solvers(QpSolverRegistry& r) {
                 "A' / SuiteSparseQR), then fixed; the others by free_solver (the paper's answer, not the minimizer)",
           [backend](Config& cfg) { return make_split(backend, cfg); });
   }
+#if FAIRSHAPE_WITH_TBB  // a build without TBB has the reference back ends alone
   r.add("range_space", Backend::Optimized,
         "CHOLMOD on H + rho A'A and the dense Schur complement of the constraints; added rows border it, removed ones "
         "downdate the factor (cholmod_updown)",
         [](Config& cfg) -> std::unique_ptr<QpSolver> { return std::make_unique<RangeSpaceSolver>(read_constraint_policy(cfg)); });
+#endif
 }
 
 const QpSolverRegistry& qp_solver_registry() {

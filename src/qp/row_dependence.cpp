@@ -38,17 +38,20 @@ SparseMatrix rows_from(const SparseMatrix& S, Eigen::Index cols, const std::func
 // step of a drag).
 std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)> compressed_targets(const SparseMatrix& R11t, const SparseMatrix& AP1,
                                                                           Backend backend) {
-  if (backend == Backend::Reference) {
-    const SparseMatrix AP1t = AP1.transpose();
-    return [R11t, AP1t](const Eigen::MatrixXd& b) {
-      return Eigen::MatrixXd(R11t.triangularView<Eigen::Lower>().solve(Eigen::MatrixXd(AP1t * b)));
+#if FAIRSHAPE_WITH_TBB
+  if (backend == Backend::Optimized) {
+    const RowSparseMatrix AP1_rows(AP1);
+    return [R11t, AP1_rows](const Eigen::MatrixXd& b) {
+      RowBlock y;
+      parallel_transpose_multiply(AP1_rows, RowBlock(b), y);
+      return Eigen::MatrixXd(R11t.triangularView<Eigen::Lower>().solve(Eigen::MatrixXd(y)));
     };
   }
-  const RowSparseMatrix AP1_rows(AP1);
-  return [R11t, AP1_rows](const Eigen::MatrixXd& b) {
-    RowBlock y;
-    parallel_transpose_multiply(AP1_rows, RowBlock(b), y);
-    return Eigen::MatrixXd(R11t.triangularView<Eigen::Lower>().solve(Eigen::MatrixXd(y)));
+#endif
+  require_backend(backend);
+  const SparseMatrix AP1t = AP1.transpose();
+  return [R11t, AP1t](const Eigen::MatrixXd& b) {
+    return Eigen::MatrixXd(R11t.triangularView<Eigen::Lower>().solve(Eigen::MatrixXd(AP1t * b)));
   };
 }
 

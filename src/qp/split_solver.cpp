@@ -11,9 +11,13 @@
 
 namespace fairshape::qp {
 
-SplitSolver::SplitSolver(Solver& free_solver, Backend backend) : free_(free_solver), backend_(backend) {}
+SplitSolver::SplitSolver(Solver& free_solver, Backend backend) : free_(free_solver), backend_(backend) {
+  require_backend(backend);
+}
 SplitSolver::SplitSolver(std::unique_ptr<Solver> free_solver, Backend backend)
-    : owned_(std::move(free_solver)), free_(*owned_), backend_(backend) {}
+    : owned_(std::move(free_solver)), free_(*owned_), backend_(backend) {
+  require_backend(backend);
+}
 SplitSolver::~SplitSolver() = default;
 
 void SplitSolver::analyze(const QuadraticProgram& qp) {

@@ -4,13 +4,12 @@
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Simple_cartesian.h>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <atomic>
 #include <limits>
 
 #include "fairshape/core/error.h"
+#include "fairshape/core/parallel_for.h"  // serial without TBB
 
 namespace fairshape {
 
@@ -47,7 +46,7 @@ ClosestPointQuery::~ClosestPointQuery() = default;
 MatrixX3 ClosestPointQuery::closest_points(const MatrixX3& points, std::vector<int>* faces) const {
   MatrixX3 out(points.rows(), 3);
   if (faces) faces->assign(static_cast<std::size_t>(points.rows()), -1);
-  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, points.rows(), 512), [&](const auto& r) {
+  for_each_range(Eigen::Index{0}, points.rows(), 512, [&](const auto& r) {
     for (Eigen::Index i = r.begin(); i != r.end(); ++i) {
       const auto hit = impl_->tree.closest_point_and_primitive(Kernel::Point_3(points(i, 0), points(i, 1), points(i, 2)));
       const auto& q = hit.first;
@@ -65,7 +64,7 @@ MatrixX3 ClosestPointQuery::facing_points(const MatrixX3& points, const MatrixX3
   if (reach <= 0) return closest_points(points);
   MatrixX3 out(points.rows(), 3);
   std::atomic<int> stuck{0};
-  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, points.rows(), 256), [&](const auto& r) {
+  for_each_range(Eigen::Index{0}, points.rows(), 256, [&](const auto& r) {
     std::vector<Hit> hits;
     for (Eigen::Index i = r.begin(); i != r.end(); ++i) {
       const Kernel::Point_3 p(points(i, 0), points(i, 1), points(i, 2));

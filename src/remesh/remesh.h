@@ -52,7 +52,7 @@ struct RemeshOptions {
   SubdivisionOptions subdivision;
   int base_faces = 500;
   int levels = 3;
-  Backend backend = Backend::Optimized;
+  Backend backend = kFastestBackend;
   // Tangential relaxation + re-projection rounds per level, before each of the two feature-pin
   // passes and after the last (so 1.5x as many in all). Unguarded, more was not better on thin
   // parts: each round drifted vertices along a tail or a horn (cow, 600 faces, 4 levels: edge

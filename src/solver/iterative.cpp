@@ -1,7 +1,10 @@
 #include "fairshape/solver/iterative.h"
 
+#include "fairshape/core/backend.h"
+#if FAIRSHAPE_WITH_TBB  // both back ends' monitors: serial without TBB
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
+#endif
 
 #include <cmath>
 #include <cstdio>
@@ -42,6 +45,7 @@ SystemEnergy system_energy(const SparseMatrix& A, const Eigen::MatrixXd& b) {
   // ½ xᵀAx − bᵀx column by column (A is symmetric: column j of A times x is (Ax)_j), in parallel
   // with a deterministic reduction: monitors evaluate it at every check of million-row solves.
   return [&A, &b](const Eigen::MatrixXd& x) {
+#if FAIRSHAPE_WITH_TBB
     return tbb::parallel_deterministic_reduce(
         tbb::blocked_range<Eigen::Index>(0, A.outerSize(), 4096), 0.0,
         [&](const tbb::blocked_range<Eigen::Index>& r, double acc) {
@@ -56,6 +60,17 @@ SystemEnergy system_energy(const SparseMatrix& A, const Eigen::MatrixXd& b) {
           return acc;
         },
         std::plus<double>());
+#else
+    double acc = 0.0;
+    Eigen::VectorXd Ax(x.cols());
+    for (Eigen::Index j = 0; j != A.outerSize(); ++j) {
+      Ax.setZero();
+      for (SparseMatrix::InnerIterator it(A, j); it; ++it)
+        for (Eigen::Index c = 0; c < x.cols(); ++c) Ax[c] += it.value() * x(it.row(), c);
+      for (Eigen::Index c = 0; c < x.cols(); ++c) acc += x(j, c) * (0.5 * Ax[c] - b(j, c));
+    }
+    return acc;
+#endif
   };
 }
 

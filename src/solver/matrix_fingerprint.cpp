@@ -1,7 +1,6 @@
 #include "fairshape/solver/matrix_fingerprint.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
+#include "fairshape/core/parallel_for.h"  // both back ends' solvers hash (serial without TBB)
 
 #include <algorithm>
 #include <bit>
@@ -113,8 +112,7 @@ MatrixFingerprint::MatrixFingerprint(const SparseMatrix& A)
           hash_columns(A, k * kColumnsPerBlock, std::min(n, (k + 1) * kColumnsPerBlock));
   };
   if (nonzeros_ >= kParallelEntries)
-    tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, blocks),
-                      [&](const tbb::blocked_range<Eigen::Index>& r) { hash_blocks(r.begin(), r.end()); });
+    for_each_range(Eigen::Index{0}, blocks, 1, [&](const IndexRange<Eigen::Index>& r) { hash_blocks(r.begin(), r.end()); });
   else
     hash_blocks(0, blocks);
   Lanes pattern(0), values(1);

@@ -10,6 +10,7 @@ std::unique_ptr<Solver> make_parallel_multigrid(Config& cfg);
 std::unique_ptr<Solver> make_parallel_multigrid_cg(Config& cfg);
 
 void register_solvers(SolverRegistry& r) {
+#if FAIRSHAPE_WITH_TBB  // without TBB only the reference solvers (reference/solver) exist
   r.add("cholesky", Backend::Optimized, "sparse Cholesky, CHOLMOD supernodal LLᵀ (factored once)",
         make_cholmod_cholesky);
   r.add("gauss_seidel", Backend::Optimized, "multicolour Gauss-Seidel, TBB-parallel per colour",
@@ -22,6 +23,9 @@ void register_solvers(SolverRegistry& r) {
         make_parallel_multigrid);
   r.add("multigrid_cg", Backend::Optimized, "CG preconditioned by one symmetric multigrid cycle, TBB kernels",
         make_parallel_multigrid_cg);
+#else
+  (void)r;
+#endif
 }
 
 }  // namespace fairshape

@@ -179,7 +179,7 @@ bool vertex_limit_mask_exact(const SurfaceMesh& m, int v) {
 SparseMatrix limit_matrix(const SurfaceMesh& mesh, const SubdivisionOptions& opt) {
   if (opt.scheme == SchemeType::CatmullClark && !all_quads(mesh)) {
     SparseMatrix S;
-    const SurfaceMesh fine = subdivide_once(mesh, opt, Backend::Optimized, &S);
+    const SurfaceMesh fine = subdivide_once(mesh, opt, kFastestBackend, &S);
     const SparseMatrix L = limit_matrix(fine, opt);
     return SparseMatrix(L.topRows(mesh.n_vertices())) * S;  // vertex children keep their ids
   }
@@ -257,7 +257,7 @@ Vec3 unit_cross(const Vec3& a, const Vec3& b) {
 
 void limit_tangents(const SurfaceMesh& mesh, const SubdivisionOptions& opt, MatrixX3& t1, MatrixX3& t2) {
   if (opt.scheme == SchemeType::CatmullClark && !all_quads(mesh)) {
-    const SurfaceMesh fine = subdivide_once(mesh, opt, Backend::Optimized);
+    const SurfaceMesh fine = subdivide_once(mesh, opt, kFastestBackend);
     MatrixX3 f1, f2;
     limit_tangents(fine, opt, f1, f2);
     t1 = f1.topRows(mesh.n_vertices());

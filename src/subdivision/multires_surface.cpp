@@ -64,6 +64,7 @@ Frames local_frames(const SurfaceMesh& mesh, const SubdivisionOptions& opt) {
 
 MultiresSurface::MultiresSurface(const SurfaceMesh& base, const SubdivisionOptions& opt, int levels, Backend backend)
     : opt_(opt), backend_(backend) {
+  require_backend(backend);
   meshes_ = levels == 0 ? std::vector<SurfaceMesh>{base} : refine_uniform(base, opt, levels, backend, {}, &S_);
   world_.resize(levels + 1);
   local_.resize(levels + 1);

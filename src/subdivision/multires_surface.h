@@ -84,7 +84,7 @@ class MultiresSurface {
  private:
   MultiresSurface() = default;
   SubdivisionOptions opt_;
-  Backend backend_ = Backend::Optimized;
+  Backend backend_ = kFastestBackend;
   std::vector<SurfaceMesh> meshes_;
   std::vector<SparseMatrix> S_;
   std::vector<MatrixX3> world_, local_;  // index = level; entry 0 unused

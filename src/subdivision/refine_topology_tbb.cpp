@@ -5,8 +5,12 @@
 // Child edges: parent edge e splits into child edges 2e (from the half-edge 2e's origin to
 // the edge point) and 2e + 1 (edge point to its end); then each face adds one interior edge
 // per corner (Catmull-Clark: edge point -> face point; Loop: edge point -> previous edge point).
+// Both back ends use it: without TBB (FAIRSHAPE_WITH_TBB=0) the loops run serially.
+#include "fairshape/core/backend.h"
+#if FAIRSHAPE_WITH_TBB
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#endif
 
 #include "fairshape/subdivision/crease_rules.h"
 #include "fairshape/subdivision/subdivider.h"
@@ -20,9 +24,13 @@ inline int second_half(int h) { const int e = h >> 1, s = h & 1; return 2 * (2 *
 
 template <class F>
 void parallel_range(int n, const F& body) {
+#if FAIRSHAPE_WITH_TBB
   tbb::parallel_for(tbb::blocked_range<int>(0, n, 2048), [&](const tbb::blocked_range<int>& r) {
     for (int i = r.begin(); i != r.end(); ++i) body(i);
   });
+#else
+  for (int i = 0; i < n; ++i) body(i);
+#endif
 }
 
 }  // namespace

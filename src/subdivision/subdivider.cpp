@@ -13,14 +13,21 @@ SurfaceMesh subdivide_once(const SurfaceMesh& coarse, const SubdivisionOptions& 
   // Connectivity is shared bookkeeping (so vertex ids agree across back ends); the
   // arithmetic, S and its application, is each back end's own. The optimized back end
   // builds no operator unless the caller wants it.
+  require_backend(backend);
   SurfaceMesh fine = refine_topology(coarse, opt.scheme, opt.crease);
+#if FAIRSHAPE_WITH_TBB
   if (backend == Backend::Optimized && !S_out) {
     subdivide_positions_matrix_free(coarse, opt, coarse.positions(), fine.positions());
     return fine;
   }
+#endif
   Refinement r = make_subdivider(backend)->refine(coarse, opt);
+#if FAIRSHAPE_WITH_TBB
   if (backend == Backend::Optimized) apply_stencils(r.S, coarse.positions(), fine.positions());
   else fine.positions() = r.S * coarse.positions();
+#else
+  fine.positions() = r.S * coarse.positions();
+#endif
   if (S_out) *S_out = std::move(r.S);
   return fine;
 }

@@ -1,12 +1,16 @@
 # fairshape without its optional dependencies (issue 26, part 1): configured with
 # FAIRSHAPE_WITH_VTK, _CGAL and _CERES off, the libraries that do not need them are generated and
 # none of the subdivision, energy and design chain's compile or link commands names VTK, CGAL or
-# Ceres; io (with its VTK stand-in) is built. Set by tests/CMakeLists.txt: SOURCE_DIR.
+# Ceres; io (with its VTK stand-in) is built. Then with FAIRSHAPE_WITH_TBB off as well, inside a
+# small project (tests/package/reference_only, add_subdirectory): TBB is not searched for, no
+# command of subdivision, energy or design names it, both libraries build, a program gets the
+# reference back end's answers and another the error for Backend::Optimized.
+# Set by tests/CMakeLists.txt: SOURCE_DIR.
 source "$(dirname "$0")/lib.sh"
 S="$SCRATCH"
 cmake -S "$SOURCE_DIR" -B "$S/build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DFAIRSHAPE_WITH_VTK=OFF \
   -DFAIRSHAPE_WITH_CGAL=OFF -DFAIRSHAPE_WITH_CERES=OFF > "$S/cmake.txt" 2>&1 || { tail -30 "$S/cmake.txt" >&2; fail "configure"; }
-grep -q "tests, benchmarks and fuzzers need VTK, CGAL and Ceres: not built" "$S/cmake.txt" || fail "configure did not say what it leaves out"
+grep -q "tests, benchmarks and fuzzers need VTK, CGAL, Ceres and TBB: not built" "$S/cmake.txt" || fail "configure did not say what it leaves out"
 targets=$(ninja -C "$S/build" -t targets all | cut -d: -f1)
 for t in libfairshape_subdivision.a libfairshape_energy.a libfairshape_design.a libfairshape_curve_design.a; do
   echo "$targets" | grep -q "$t" || fail "$t is not built without the optional dependencies"
@@ -19,4 +23,25 @@ for t in fairshape_subdivision fairshape_energy fairshape_design fairshape_curve
   if ninja -C "$S/build" -t commands "$t" | sed 's/FAIRSHAPE_WITH_[A-Z]*=[01]//g; s/vtk_io_without_vtk//g' | grep -iqE "vtk|cgal|ceres"; then fail "$t's commands name VTK, CGAL or Ceres"; fi
 done
 cmake --build "$S/build" -j 2 --target fairshape_io > "$S/build.txt" 2>&1 || { tail -30 "$S/build.txt" >&2; fail "build io"; }
+
+# Without TBB: the reference back ends alone.
+T="$S/no-tbb"
+cmake -S "$SOURCE_DIR/tests/package/reference_only" -B "$T" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DFAIRSHAPE_SOURCE="$SOURCE_DIR" -DFAIRSHAPE_WITH_TBB=OFF -DFAIRSHAPE_WITH_VTK=OFF -DFAIRSHAPE_WITH_CGAL=OFF \
+  -DFAIRSHAPE_WITH_CERES=OFF -DFAIRSHAPE_WARNINGS_AS_ERRORS=ON > "$S/cmake-no-tbb.txt" 2>&1 \
+  || { tail -30 "$S/cmake-no-tbb.txt" >&2; fail "configure without TBB"; }
+if grep -qE '^TBB_DIR:' "$T/CMakeCache.txt"; then fail "TBB was searched for with FAIRSHAPE_WITH_TBB=OFF"; fi
+targets=$(ninja -C "$T" -t targets all | cut -d: -f1)
+for t in libfairshape_subdivision.a libfairshape_energy.a libfairshape_design.a libfairshape_solver.a; do
+  echo "$targets" | grep -q "$t" || fail "$t is not generated without TBB"
+done
+for t in fairshape_subdivision fairshape_energy fairshape_design; do
+  # (paths, the FAIRSHAPE_WITH_*=0 definitions and refine_topology_tbb.cpp, shared by both back ends, aside)
+  if ninja -C "$T" -t commands "$t" | sed "s|$SOURCE_DIR||g; s|$T||g; s/FAIRSHAPE_WITH_[A-Z]*=[01]//g; s/refine_topology_tbb//g" \
+       | grep -iq tbb; then fail "$t's commands name TBB without it"; fi
+done
+cmake --build "$T" -j 2 --target fairshape_subdivision fairshape_energy reference_cube optimized_refused > "$S/build-no-tbb.txt" 2>&1 \
+  || { tail -30 "$S/build-no-tbb.txt" >&2; fail "build subdivision and energy without TBB"; }
+"$T/bin/reference_cube" > "$S/reference_cube.txt" || { cat "$S/reference_cube.txt" >&2; fail "the reference back end without TBB"; }
+"$T/bin/optimized_refused" > "$S/optimized_refused.txt" || { cat "$S/optimized_refused.txt" >&2; fail "Backend::Optimized without TBB"; }
 echo "minimal_deps: ok"

@@ -1,5 +1,8 @@
 # The two commands of the README: `make demo` and `make test`. Everything else is a helper.
 JOBS ?= $(shell nproc)
+# ccache hashes compile commands with paths relative to the checkout, so clones and worktrees in
+# other folders (CI's fresh clone among them) share one cache.
+export CCACHE_BASEDIR ?= $(CURDIR)
 FUZZ_RUNS ?= 100000
 BUILD_DIR := build
 FAIRSHAPE := $(BUILD_DIR)/bin/fairshape

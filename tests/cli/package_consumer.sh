@@ -51,6 +51,22 @@ worst = max(abs(a - b) for p, q in zip(cli, lib) for a, b in zip(p, q))
 assert worst < 1e-12, f"library and command line differ by {worst}"
 PYEOF
 
+# The demo itself (its CI size): the installed CLI's detail-preserving run and the library's.
+"$S/consumer/demo_edit" data/cow.off 200 2 "$S/demo_lib.obj" > /dev/null 2>&1 || fail "consumer: demo_edit"
+"$PREFIX/bin/fairshape" run configs/demo.yaml --smoke --out "$S/demo" > /dev/null 2>&1 || fail "the installed CLI's demo failed"
+$PY - "$S" <<'PYEOF'
+import csv, sys
+d = sys.argv[1]
+def vertices(path):
+    return [tuple(map(float, l.split()[1:4])) for l in open(path) if l.startswith("v ")]
+row = [r for r in csv.DictReader(open(f"{d}/demo/runs.csv")) if "detail_preserving" in r["param.energy"]][0]
+assert row["termination"] == "converged", row
+cli, lib = vertices(f"{d}/demo/final/{row['run_id']}.obj"), vertices(f"{d}/demo_lib.obj")
+assert len(cli) == len(lib) and len(lib) > 1000, (len(cli), len(lib))
+worst = max(abs(a - b) for p, q in zip(cli, lib) for a, b in zip(p, q))
+assert worst < 1e-12, f"the library's demo edit and the command line's differ by {worst}"
+PYEOF
+
 # fairshape inside another project's tree.
 cmake -S "$SOURCE_DIR/tests/package/subproject" -B "$S/subproject" -DCMAKE_BUILD_TYPE=Release \
   -DFAIRSHAPE_SOURCE="$SOURCE_DIR" > "$S/sub_cmake.txt" 2>&1 || { tail -30 "$S/sub_cmake.txt" >&2; fail "subproject: configure"; }

@@ -66,23 +66,6 @@ Eigen::MatrixXd curve_details(const Eigen::Ref<const Eigen::MatrixXd>& points, b
   return decompose(c, L, backend).details[static_cast<std::size_t>(level)];
 }
 
-// curve_run.cpp's drag(): one edit as `steps` loops, each an equal share of the move.
-std::vector<CurveEdit> drag(const CurveEdit& whole, int steps) {
-  std::vector<CurveEdit> out;
-  for (int i = 1; i <= steps; ++i) {
-    CurveEdit e = whole;
-    e.drag_step = i;
-    e.drag_steps = steps;
-    for (CurveMove& m : e.moves) {
-      m.offset /= steps;
-      if (m.chord_scale > 0)
-        m.chord_scale = (1 + (m.chord_scale - 1) * i / steps) / (1 + (m.chord_scale - 1) * (i - 1) / steps);
-    }
-    out.push_back(std::move(e));
-  }
-  return out;
-}
-
 EditingOptions editing_arg(const std::string& step, const std::string& details, const std::string& region) {
   const auto bad = [](const char* key, const std::string& v, const char* valid) {
     return InvalidConfig(std::string(key) + " '" + v + "': expected " + valid);
@@ -217,7 +200,7 @@ py::dict edit_curve(const Eigen::Ref<const Eigen::MatrixXd>& points, bool closed
   Polyline current = curve;
   {
     py::gil_scoped_release release;
-    for (const CurveEdit& step : drag(e, drag_steps)) {
+    for (const CurveEdit& step : fairshape::drag_steps(e, drag_steps)) {
       last = run_editing_loop(current, L, step, objective, *solver, backend);
       if (done == 0) first = last;
       ++done;

@@ -136,4 +136,20 @@ EditStages run_editing_loop(const Polyline& reference, int levels, const CurveEd
   return std::move(out);
 }
 
+std::vector<CurveEdit> drag_steps(const CurveEdit& whole, int steps) {
+  std::vector<CurveEdit> out;
+  for (int i = 1; i <= steps; ++i) {
+    CurveEdit e = whole;
+    e.drag_step = i;
+    e.drag_steps = steps;
+    for (CurveMove& m : e.moves) {
+      m.offset /= steps;
+      if (m.chord_scale > 0)
+        m.chord_scale = (1 + (m.chord_scale - 1) * i / steps) / (1 + (m.chord_scale - 1) * (i - 1) / steps);
+    }
+    out.push_back(std::move(e));
+  }
+  return out;
+}
+
 }  // namespace fairshape

@@ -45,6 +45,11 @@ struct CurveEdit {
   int drag_step = 1, drag_steps = 1;  // this loop's place in a drag split into drag_steps loops
 };
 
+//! One edit as `steps` editing loops, each moving its handles by an equal share of the whole
+//! move from the curve the previous one left (a designer's drag): offsets divided, chord scales
+//! so the chord grows by equal amounts.
+std::vector<CurveEdit> drag_steps(const CurveEdit& whole, int steps);
+
 struct CurveObjective {
   const CurveEnergy* smoothness = nullptr;  // the paper's bending, or another registered energy
   double beta = 0.5;                        // (1−β)·smoothness + β·D

@@ -27,25 +27,6 @@ int polygon_points(int n_points, bool closed, int levels, int level) {
   return closed ? segments : segments + 1;
 }
 
-// One edit of the config as `drag_steps` editing loops, each moving its handles by an equal
-// share of the whole move from the curve the previous one left (a designer's drag): offsets
-// divided, chord scales so the chord grows by equal amounts.
-std::vector<CurveEdit> drag(const CurveEdit& whole, int steps) {
-  std::vector<CurveEdit> out;
-  for (int i = 1; i <= steps; ++i) {
-    CurveEdit e = whole;
-    e.drag_step = i;
-    e.drag_steps = steps;
-    for (CurveMove& m : e.moves) {
-      m.offset /= steps;
-      if (m.chord_scale > 0)
-        m.chord_scale = (1 + (m.chord_scale - 1) * i / steps) / (1 + (m.chord_scale - 1) * (i - 1) / steps);
-    }
-    out.push_back(std::move(e));
-  }
-  return out;
-}
-
 std::vector<CurveEdit> read_edit(Config& ec, const CurveRunSpec& s) {
   CurveEdit e;
   const std::string counts = "an open curve of 2^L·k + 1 points (a closed one of 2^L·k, k ≥ 3) has levels 0..L; " +
@@ -81,7 +62,7 @@ std::vector<CurveEdit> read_edit(Config& ec, const CurveRunSpec& s) {
   const int steps = ec.get_int("drag_steps", 1, 1, 100000,
                                "editing loops the moves are split into, each from the curve the previous one left");
   ec.check_no_unknown_keys();
-  return drag(e, steps);
+  return drag_steps(e, steps);
 }
 
 // The solver block: common tolerances, then one sub-block per solver name; every present

@@ -52,6 +52,7 @@ class SegmentGrid {
     }
   }
   double distance(const Vec3& p) const {
+    if (cells_.empty() || !p.allFinite()) return std::numeric_limits<double>::infinity();
     const Eigen::Array3i k = key(p);
     const auto it = cells_.find(hash(k[0], k[1], k[2]));
     double d = std::numeric_limits<double>::infinity();
@@ -62,7 +63,12 @@ class SegmentGrid {
   double cell() const { return cell_; }
 
  private:
-  Eigen::Array3i key(const Vec3& p) const { return (p.array() / cell_).floor().cast<int>(); }
+  // Clamped before the cast, which is undefined beyond int's range (far cells share a key: the
+  // distance test below stays exact).
+  Eigen::Array3i key(const Vec3& p) const {
+    constexpr double kLimit = 1 << 20;
+    return (p.array() / cell_).floor().max(-kLimit).min(kLimit).cast<int>();
+  }
   static std::int64_t hash(int x, int y, int z) {
     return (std::int64_t(x) * 73856093) ^ (std::int64_t(y) * 19349663) ^ (std::int64_t(z) * 83492791);
   }

@@ -42,14 +42,17 @@ class SegmentGrid {
   }
   //! Segments that may reach p, in curve and segment order (empty if none).
   const std::vector<SegmentRef>& near(const Vec3& p) const {
+    if (cells_.empty() || !p.allFinite()) return empty_;  // no segment (every feature removed): cell_ is 0
     const Eigen::Vector3i c = cell_of(p);
     const auto it = cells_.find(key(c.x(), c.y(), c.z()));
     return it == cells_.end() ? empty_ : it->second;
   }
 
  private:
+  // Clamped before the cast, which is undefined beyond int's range (the key keeps 21 bits anyway).
   Eigen::Vector3i cell_of(const Vec3& p) const {
-    return (p / cell_).array().floor().cast<int>();
+    constexpr double kLimit = 1 << 20;
+    return (p / cell_).array().floor().max(-kLimit).min(kLimit).cast<int>().matrix();
   }
   static std::uint64_t key(int x, int y, int z) {
     const auto u = [](int v) { return static_cast<std::uint64_t>(static_cast<std::uint32_t>(v) & 0x1fffff); };

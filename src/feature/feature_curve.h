@@ -4,6 +4,8 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -65,6 +67,14 @@ struct BaseCurve {
   double total_length = 0;
   FeatureParams params;
   bool closed = false;
+  //! How far from the curve its profile reaches: the wider of its two sides.
+  double reach() const { return std::max(params.radius, params.right_radius()); }
+  //! Distance from p to the nearest of its segments.
+  double distance_to(const Vec3& p) const {
+    double d2 = std::numeric_limits<double>::infinity();
+    for (const BaseSegment& s : segments) d2 = std::min(d2, s.squared_distance(p));
+    return std::sqrt(d2);
+  }
 };
 
 //! The polygon split at every edge of the level (and, when params.quadratic, replaced by the

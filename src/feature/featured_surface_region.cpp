@@ -22,14 +22,6 @@
 namespace fairshape::feature {
 namespace {
 
-double reach_of(const BaseCurve& c) { return std::max(c.params.radius, c.params.right_radius()); }
-
-double distance_to(const BaseCurve& c, const Vec3& p) {
-  double d2 = std::numeric_limits<double>::infinity();
-  for (const BaseSegment& s : c.segments) d2 = std::min(d2, s.squared_distance(p));
-  return std::sqrt(d2);
-}
-
 // The longest edge at vertex v.
 double edge_at(const SurfaceMesh& m, int v) {
   double e = 0;
@@ -55,7 +47,7 @@ std::vector<int> near_curve(const TriangleSurface& s, const BaseCurve& c, double
         if (seen[static_cast<std::size_t>(w)]) return;
         seen[static_cast<std::size_t>(w)] = 1;
         tested.push_back(w);
-        if (distance_to(c, s.vertex(w)) < margin + 3 * edge_at(m, w)) next.push_back(w);
+        if (c.distance_to(s.vertex(w)) < margin + 3 * edge_at(m, w)) next.push_back(w);
       });
     frontier = std::move(next);
   }
@@ -136,8 +128,8 @@ void FeaturedSurface::evaluate_region() {
         if (d.count(op.ids[j])) continue;
         const BaseCurve& c = op.curves[j];
         for (int v : carried)
-          if (const double margin = reach_of(c) + heights + 3 * std::max(edge_at(*op.mesh, v), edge_at(result_.mesh(m), v));
-              distance_to(c, op.mesh->position(v)) < margin || distance_to(c, result_.mesh(m).position(v)) < margin) {
+          if (const double margin = c.reach() + heights + 3 * std::max(edge_at(*op.mesh, v), edge_at(result_.mesh(m), v));
+              c.distance_to(op.mesh->position(v)) < margin || c.distance_to(result_.mesh(m).position(v)) < margin) {
             d.insert(op.ids[j]);
             break;
           }
@@ -146,7 +138,7 @@ void FeaturedSurface::evaluate_region() {
       std::vector<char> seen(static_cast<std::size_t>(nm), 0);
       for (std::size_t j = 0; j < op.ids.size(); ++j)
         if (d.count(op.ids[j]))
-          append_unique(changed_here, near_curve(*op.surface, op.curves[j], reach_of(op.curves[j]) + heights, seen), mark);
+          append_unique(changed_here, near_curve(*op.surface, op.curves[j], op.curves[j].reach() + heights, seen), mark);
       // The level's surface before its features, where it changed.
       for (int v : carried) op.mesh->positions().row(v) = result_.mesh(m).positions().row(v);
       op.surface->refresh(carried);
@@ -167,7 +159,7 @@ void FeaturedSurface::evaluate_region() {
         }
         op.curves.push_back(build_base_curve(*op.surface, features_.at(id)));
         const BaseCurve& c = op.curves.back();
-        append_unique(changed_here, near_curve(*op.surface, c, reach_of(c) + heights, seen), mark);
+        append_unique(changed_here, near_curve(*op.surface, c, c.reach() + heights, seen), mark);
       }
       // The level's perturbation at the changed vertices, against all its features.
       const LevelPerturbation now = perturb_vertices(*op.surface, op.curves, changed_here, backend_);

@@ -7,14 +7,6 @@
 namespace fairshape::feature {
 namespace {
 
-double reach_of(const BaseCurve& c) { return std::max(c.params.radius, c.params.right_radius()); }
-
-double distance_to(const BaseCurve& c, const Vec3& p) {
-  double d2 = std::numeric_limits<double>::infinity();
-  for (const BaseSegment& s : c.segments) d2 = std::min(d2, s.squared_distance(p));
-  return std::sqrt(d2);
-}
-
 // The vertices whose limit point the sparse level cannot give (not complete) but the measure
 // of curve c needs: within its reach, give or take twice the longest edge around them (a limit
 // point lies in the hull of its one-ring; the requested displacement is nonzero within the
@@ -25,7 +17,7 @@ int incomplete_near(const SurfaceMesh& patch, const std::vector<char>& complete,
     if (complete[static_cast<std::size_t>(v)]) continue;
     double edge = 0;
     patch.for_each_outgoing(v, [&](int h) { edge = std::max(edge, (patch.position(patch.to_vertex(h)) - patch.position(v)).norm()); });
-    if (distance_to(c, patch.position(v)) < reach_of(c) + 2 * edge) ++n;
+    if (c.distance_to(patch.position(v)) < c.reach() + 2 * edge) ++n;
   }
   return n;
 }

@@ -19,31 +19,13 @@ namespace py = pybind11;
 namespace fairshape::python {
 namespace {
 
-// feature_run.cpp's read_params, with FeatureParams' defaults.
-feature::FeatureParams read_params(Config& c) {
-  const feature::FeatureParams d;
-  feature::FeatureParams p;
-  p.radius = c.get_number("radius", d.radius, 1e-12, 1e12, "neighbourhood size r (left of the curve), world units");
-  p.left_right_ratio = c.get_number("left_right_ratio", d.left_right_ratio, 1e-3, 1e3, "r_left / r_right (§2.7)");
-  p.height = c.get_number("height", d.height, -1e12, 1e12, "profile height at the curve (negative: groove)");
-  p.crease = c.get_number("crease", d.crease, -1e3, 1e3, "profile slope at the curve (0: smooth)");
-  p.end_height_ratio = c.get_number("end_height_ratio", d.end_height_ratio, 0, 1e3, "height at the end / at the start");
-  p.flatness_angle_deg = c.get_number("flatness_angle_deg", d.flatness_angle_deg, 1e-3, 89.9, "adaptive refinement threshold");
-  p.max_turn_deg = c.get_number("max_turn_deg", d.max_turn_deg, 1, 179, "largest turn of the normal within the radius");
-  p.quadratic = c.get<bool>("quadratic", d.quadratic, "frames on the quadratic spline of the polygon (§2.4)");
-  p.quadratic_samples = c.get_int("quadratic_samples", d.quadratic_samples, 1, 256, "straight pieces per quadratic span");
-  p.profile_tolerance = c.get_number("profile_tolerance", d.profile_tolerance, 1e-6, 1, "height / profile error tolerance");
-  p.width_tolerance = c.get_number("width_tolerance", d.width_tolerance, 1e-6, 1, "width error tolerance");
-  return p;
-}
-
 FeatureSpec read_feature(Config& c, const std::string& where, int levels) {
   FeatureSpec f;
   f.key = where;
   f.curve.name = c.get<std::string>("name", where, "name in messages and results");
   f.curve.level = c.get_int("level", 0, 0, levels, "the hierarchy level the curve is drawn on");
   f.curve.closed = c.get<bool>("closed", false, "the polygon returns to its first point");
-  f.curve.params = read_params(c);
+  f.curve.params = read_feature_params(c, feature::FeatureParams{});
   f.max_distance = c.get_number("max_distance", 0.02, 0, 1, "× bounding-box diagonal: farther points leave the surface");
   const auto points = c.get<std::vector<std::vector<double>>>("points", {}, "k×3 world points, projected onto the level");
   const auto faces = c.get<std::vector<int>>("faces", {}, "k faces of the level (with bary)");

@@ -37,27 +37,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Feature parameters: the config's `feature_defaults`, overridden per feature.
-feature::FeatureParams read_params(Config& c, const feature::FeatureParams& d) {
-  feature::FeatureParams p;
-  p.radius = c.get_number("radius", d.radius, 1e-12, 1e12, "neighbourhood size r (left of the curve), world units");
-  p.left_right_ratio = c.get_number("left_right_ratio", d.left_right_ratio, 1e-3, 1e3, "r_left / r_right (§2.7)");
-  p.height = c.get_number("height", d.height, -1e12, 1e12, "profile height at the curve (negative: groove)");
-  p.crease = c.get_number("crease", d.crease, -1e3, 1e3, "profile slope at the curve (0: smooth)");
-  p.end_height_ratio = c.get_number("end_height_ratio", d.end_height_ratio, 0, 1e3, "height at the end / at the start");
-  p.flatness_angle_deg = c.get_number("flatness_angle_deg", d.flatness_angle_deg, 1e-3, 89.9,
-                                      "adaptive refinement threshold in degrees (§2.5)");
-  p.max_turn_deg = c.get_number("max_turn_deg", d.max_turn_deg, 1, 179,
-                                "largest turn of the surface normal within the radius before the feature is refused");
-  p.quadratic = c.get<bool>("quadratic", d.quadratic, "frames on the quadratic spline of the polygon (§2.4)");
-  p.quadratic_samples = c.get_int("quadratic_samples", d.quadratic_samples, 1, 256, "straight pieces per quadratic span");
-  // Visible profile (issue 24): how closely the finest level and the limit must show it.
-  p.profile_tolerance = c.get_number("profile_tolerance", d.profile_tolerance, 1e-6, 1,
-                                     "largest height / profile error as a fraction of |height| (finest level and limit)");
-  p.width_tolerance = c.get_number("width_tolerance", d.width_tolerance, 1e-6, 1,
-                                   "largest width error as a fraction of the radius (finest level and limit)");
-  return p;
-}
 
 // The surface-edit keys an `edit` block passes through (experiment/kinds/surface_edit).
 const std::vector<std::string> kEditKeys{"energy", "constraints", "problem", "solver"};
@@ -101,6 +80,27 @@ void read_editor(Config& root, const std::vector<std::string>& dirs, FeatureRunS
 
 }  // namespace
 
+feature::FeatureParams read_feature_params(Config& c, const feature::FeatureParams& d) {
+  feature::FeatureParams p;
+  p.radius = c.get_number("radius", d.radius, 1e-12, 1e12, "neighbourhood size r (left of the curve), world units");
+  p.left_right_ratio = c.get_number("left_right_ratio", d.left_right_ratio, 1e-3, 1e3, "r_left / r_right (§2.7)");
+  p.height = c.get_number("height", d.height, -1e12, 1e12, "profile height at the curve (negative: groove)");
+  p.crease = c.get_number("crease", d.crease, -1e3, 1e3, "profile slope at the curve (0: smooth)");
+  p.end_height_ratio = c.get_number("end_height_ratio", d.end_height_ratio, 0, 1e3, "height at the end / at the start");
+  p.flatness_angle_deg = c.get_number("flatness_angle_deg", d.flatness_angle_deg, 1e-3, 89.9,
+                                      "adaptive refinement threshold in degrees (§2.5)");
+  p.max_turn_deg = c.get_number("max_turn_deg", d.max_turn_deg, 1, 179,
+                                "largest turn of the surface normal within the radius before the feature is refused");
+  p.quadratic = c.get<bool>("quadratic", d.quadratic, "frames on the quadratic spline of the polygon (§2.4)");
+  p.quadratic_samples = c.get_int("quadratic_samples", d.quadratic_samples, 1, 256, "straight pieces per quadratic span");
+  // Visible profile (issue 24): how closely the finest level and the limit must show it.
+  p.profile_tolerance = c.get_number("profile_tolerance", d.profile_tolerance, 1e-6, 1,
+                                     "largest height / profile error as a fraction of |height| (finest level and limit)");
+  p.width_tolerance = c.get_number("width_tolerance", d.width_tolerance, 1e-6, 1,
+                                   "largest width error as a fraction of the radius (finest level and limit)");
+  return p;
+}
+
 bool is_feature_config(const YAML::Node& c) { return c.IsMap() && c["features"].IsDefined(); }
 
 FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const std::vector<std::string>& dirs) {
@@ -118,7 +118,7 @@ FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const s
   in.check_no_unknown_keys();
   read_editor(root, dirs, s);
   Config dc = root.child("feature_defaults", "parameters every feature starts from (sweepable: feature_defaults.height)");
-  const feature::FeatureParams defaults = read_params(dc, feature::FeatureParams{});
+  const feature::FeatureParams defaults = read_feature_params(dc, feature::FeatureParams{});
   dc.check_no_unknown_keys();
   int k = 0;
   for (Config c : root.child_list("features", "feature curves [{name, level, points | surface_points, ...}]")) {
@@ -126,7 +126,7 @@ FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const s
     FeatureSpec f;
     f.curve.name = c.get<std::string>("name", where, "name in outputs and messages");
     f.curve.level = c.get_int("level", 0, 0, s.levels, "the hierarchy level the curve is drawn on");
-    f.curve.params = read_params(c, defaults);
+    f.curve.params = read_feature_params(c, defaults);
     f.max_distance = c.get_number("max_distance", 0.02, 0, 1, "× bounding-box diagonal: farther points leave the surface");
     f.after_edit = c.get<bool>("after_edit", false, "drawn on the surface the edit made (default: before it, carried by it)");
     read_schedule(c, f.step, f.until);
@@ -137,7 +137,7 @@ FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const s
     for (Config ch : c.child_list("changes", "its parameters from a later step on: [{step, height, radius, crease, ...}]")) {
       FeatureChange change;
       change.step = ch.get_int("step", 1, 1, 1000, "design step from which the parameters apply");
-      change.params = read_params(ch, f.changes.empty() ? f.curve.params : f.changes.back().params);
+      change.params = read_feature_params(ch, f.changes.empty() ? f.curve.params : f.changes.back().params);
       ch.check_no_unknown_keys();
       if (change.step <= f.step || (!f.changes.empty() && change.step <= f.changes.back().step))
         throw InvalidConfig(ch.key_path("step") + ": " + std::to_string(change.step) +

@@ -29,6 +29,10 @@ struct FeatureChange {
   feature::FeatureParams params;
 };
 
+//! A feature's profile parameters from its config block (or `feature_defaults`), each key
+//! defaulting to `defaults`; out-of-range values are errors naming the key.
+feature::FeatureParams read_feature_params(Config& c, const feature::FeatureParams& defaults);
+
 struct FeatureSpec {
   feature::FeatureCurve curve;       // points filled in when the run projects `world_points`
   bool after_edit = false;           // drawn on the surface the `edit` made (else before it, carried by it)

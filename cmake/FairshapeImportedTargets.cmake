@@ -35,3 +35,21 @@ endif()
 add_library(OpenSubdiv::cpu INTERFACE IMPORTED)
 target_include_directories(OpenSubdiv::cpu SYSTEM INTERFACE ${OPENSUBDIV_INCLUDE_DIR})
 target_link_libraries(OpenSubdiv::cpu INTERFACE ${OPENSUBDIV_CPU_LIBRARY})
+
+# PETSc (the `petsc_*` solvers, issue 27): Debian's petsc-dev has a pkg-config file but no CMake
+# package, and its headers include mpi.h without adding OpenMPI's include path.
+if(FAIRSHAPE_WITH_PETSC OR fairshape_WITH_PETSC)
+  find_package(PkgConfig QUIET)
+  if(PkgConfig_FOUND)
+    pkg_check_modules(PETSC QUIET IMPORTED_TARGET PETSc)
+  endif()
+  set(MPI_CXX_SKIP_MPICXX TRUE)  # the C API only (the C++ bindings are deprecated)
+  find_package(MPI QUIET COMPONENTS CXX)
+  if(NOT PETSC_FOUND OR NOT MPI_CXX_FOUND)
+    message(FATAL_ERROR "fairshape: PETSc (pkg-config PETSc) with MPI not found: install the Debian packages "
+                        "'petsc-dev libhypre-dev openmpi-bin' (or run scripts/install-deps.sh), or configure with "
+                        "-DFAIRSHAPE_WITH_PETSC=OFF")
+  endif()
+  add_library(PETSc::petsc_fs INTERFACE IMPORTED)
+  target_link_libraries(PETSc::petsc_fs INTERFACE PkgConfig::PETSC MPI::MPI_CXX)
+endif()

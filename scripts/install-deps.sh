@@ -13,6 +13,7 @@ PACKAGES=(
   pybind11-dev python3-pybind11 python3-dev python3-numpy python3-scipy python3-pytest  # the Python module and its tests
   clang libclang-rt-14-dev
   slurm-wlm munge  # tests/cli/slurm_array.sh starts a single-node cluster of its own (no service is started)
+  petsc-dev libhypre-dev openmpi-bin  # the PETSc/hypre solver peers and the mpirun -np 2 test (issue 27)
 )
 
 missing=()

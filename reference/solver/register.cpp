@@ -1,4 +1,7 @@
 #include "fairshape/solver/solver.h"
+#if FAIRSHAPE_WITH_PETSC
+#include "fairshape/solver/petsc_solvers.h"
+#endif
 
 namespace fairshape::reference {
 
@@ -17,6 +20,9 @@ void register_solvers(SolverRegistry& r) {
   r.add("multigrid", Backend::Reference, "multigrid on the hierarchy's levels, serial Eigen kernels", make_multigrid);
   r.add("multigrid_cg", Backend::Reference, "CG preconditioned by one symmetric multigrid cycle, serial",
         make_multigrid_cg);
+#if FAIRSHAPE_WITH_PETSC
+  fairshape::register_petsc_solvers(r, Backend::Reference);  // the same external peer under both names
+#endif
 }
 
 }  // namespace fairshape::reference

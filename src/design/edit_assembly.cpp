@@ -21,6 +21,7 @@ EditProblem assemble_edit_problem(const EditTerms& terms, const MultiresSurface&
     auto ops = std::make_shared<LevelOperators>();
     for (int l = 0; l < level; ++l) ops->prolongation.push_back(h.subdivision_operator(l));
     for (int l = 0; l <= level; ++l) ops->singular.push_back(extraordinary_vertices(h.mesh(l), h.options().scheme));
+    ops->positions = rest.positions();
     ops->reassemble = [energies = terms.energies, &h](int l) {
       SparseMatrix H(h.mesh(l).n_vertices(), h.mesh(l).n_vertices());
       for (const WeightedEnergy& e : energies) H += e.energy->hessian(h.mesh(l), e.weight);

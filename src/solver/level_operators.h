@@ -7,6 +7,8 @@
 #include <functional>
 #include <vector>
 
+#include <Eigen/Dense>
+
 #include "fairshape/core/types.h"
 
 namespace fairshape {
@@ -22,6 +24,9 @@ struct LevelOperators {
   //! reproduction (extraordinary vertices of a subdivision scheme). Multigrid adds patch
   //! smoothing around them; may be empty.
   std::vector<std::vector<int>> singular;
+  //! The vertex positions of the level the system lives on (n × 3), for solvers that need the
+  //! geometry (an algebraic multigrid's near-null space: constants and linear functions); may be empty.
+  Eigen::MatrixXd positions;
   int coarse_levels() const { return static_cast<int>(prolongation.size()); }
 };
 

@@ -9,7 +9,7 @@
 source "$(dirname "$0")/lib.sh"
 S="$SCRATCH"
 cmake -S "$SOURCE_DIR" -B "$S/build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DFAIRSHAPE_WITH_VTK=OFF \
-  -DFAIRSHAPE_WITH_CGAL=OFF -DFAIRSHAPE_WITH_CERES=OFF > "$S/cmake.txt" 2>&1 || { tail -30 "$S/cmake.txt" >&2; fail "configure"; }
+  -DFAIRSHAPE_WITH_CGAL=OFF -DFAIRSHAPE_WITH_CERES=OFF -DFAIRSHAPE_WITH_PETSC=OFF > "$S/cmake.txt" 2>&1 || { tail -30 "$S/cmake.txt" >&2; fail "configure"; }
 grep -q "tests, benchmarks and fuzzers need VTK, CGAL, Ceres and TBB: not built" "$S/cmake.txt" || fail "configure did not say what it leaves out"
 targets=$(ninja -C "$S/build" -t targets all | cut -d: -f1)
 for t in libfairshape_subdivision.a libfairshape_energy.a libfairshape_design.a libfairshape_curve_design.a; do
@@ -28,7 +28,7 @@ cmake --build "$S/build" -j 2 --target fairshape_io > "$S/build.txt" 2>&1 || { t
 T="$S/reference-only"
 cmake -S "$SOURCE_DIR/tests/package/reference_only" -B "$T" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DFAIRSHAPE_SOURCE="$SOURCE_DIR" -DFAIRSHAPE_WITH_TBB=OFF -DFAIRSHAPE_WITH_VTK=OFF -DFAIRSHAPE_WITH_CGAL=OFF \
-  -DFAIRSHAPE_WITH_CERES=OFF -DFAIRSHAPE_WARNINGS_AS_ERRORS=ON > "$S/cmake-no-tbb.txt" 2>&1 \
+  -DFAIRSHAPE_WITH_CERES=OFF -DFAIRSHAPE_WITH_PETSC=OFF -DFAIRSHAPE_WARNINGS_AS_ERRORS=ON > "$S/cmake-no-tbb.txt" 2>&1 \
   || { tail -30 "$S/cmake-no-tbb.txt" >&2; fail "configure without TBB"; }
 if grep -qE '^TBB_DIR:' "$T/CMakeCache.txt"; then fail "TBB was searched for with FAIRSHAPE_WITH_TBB=OFF"; fi
 targets=$(ninja -C "$T" -t targets all | cut -d: -f1)

@@ -46,6 +46,7 @@ const GridHierarchy& grid_hierarchy() {
     for (int l = 0; l < levels; ++l) out.ops->prolongation.push_back(surface.subdivision_operator(l));
     for (int l = 0; l <= levels; ++l)
       out.ops->singular.push_back(extraordinary_vertices(surface.mesh(l), SchemeType::CatmullClark));
+    out.ops->positions = surface.mesh(levels).positions();  // petsc_gamg's linear near-null space
     return out;
   }();
   return h;

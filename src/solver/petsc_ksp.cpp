@@ -1,0 +1,74 @@
+#include "fairshape/solver/petsc_ksp.h"
+
+#include <atomic>
+#include <sstream>
+
+#include "fairshape/core/error.h"
+#include "fairshape/core/timer.h"
+
+namespace fairshape::petsc {
+
+std::string unique_prefix() {
+  static std::atomic<int> next{0};
+  return "fs" + std::to_string(next++) + "_";
+}
+
+std::string ConfiguredKsp::reason_name(KSPConvergedReason r) {
+  // KSPConvergedReasons is indexed by the reason itself, negative ones included.
+  if (r < KSP_DIVERGED_PC_FAILED || r > KSP_CONVERGED_ATOL_NORMAL || !KSPConvergedReasons[r])
+    return "reason " + std::to_string(static_cast<int>(r));
+  return KSPConvergedReasons[r];
+}
+
+ConfiguredKsp::ConfiguredKsp(MPI_Comm comm, const Settings& s, Mat A, const std::vector<Mat>& prolongations,
+                             const std::vector<Vec>& near_null_space) {
+  const Timer timer;
+  const std::string prefix = unique_prefix();
+  const int levels = std::max<int>(1, static_cast<int>(prolongations.size()));
+  const std::string options = s.option_string(prefix, levels);
+  FS_PETSC(PetscOptionsInsertString(nullptr, options.c_str()));
+  // PETSc 3.18's options database holds at most 512 entries: this solver's leave it once read.
+  struct Forget {
+    const std::string& options;
+    const std::string& prefix;
+    ~Forget() {
+      std::istringstream words(options);
+      for (std::string w; words >> w;)
+        if (w.rfind("-" + prefix, 0) == 0) PetscOptionsClearValue(nullptr, w.c_str());
+    }
+  } forget{options, prefix};
+  if (!near_null_space.empty()) {
+    Handle<MatNullSpace, MatNullSpaceDestroy> space;
+    FS_PETSC(MatNullSpaceCreate(comm, PETSC_FALSE, static_cast<PetscInt>(near_null_space.size()), near_null_space.data(),
+                                space.out()));
+    FS_PETSC(MatSetNearNullSpace(A, space.get()));
+  }
+  FS_PETSC(KSPCreate(comm, ksp_.out()));
+  FS_PETSC(KSPSetOptionsPrefix(ksp_.get(), prefix.c_str()));
+  FS_PETSC(KSPSetOperators(ksp_.get(), A, A));
+  FS_PETSC(KSPSetFromOptions(ksp_.get()));
+  if (s.preconditioner == Preconditioner::Mg) {
+    PC pc = nullptr;
+    FS_PETSC(KSPGetPC(ksp_.get(), &pc));
+    for (int l = 1; l < levels; ++l) FS_PETSC(PCMGSetInterpolation(pc, l, prolongations[static_cast<std::size_t>(l)]));
+    for (int l = 1; l < levels; ++l) {  // the level smoothers read their options here (created by -pc_mg_levels)
+      KSP smoother = nullptr;
+      FS_PETSC(PCMGGetSmoother(pc, l, &smoother));
+      FS_PETSC(KSPSetFromOptions(smoother));
+    }
+    KSP coarse = nullptr;
+    FS_PETSC(PCMGGetCoarseSolve(pc, &coarse));
+    FS_PETSC(KSPSetFromOptions(coarse));
+  }
+  FS_PETSC(KSPSetUp(ksp_.get()));
+  for (const std::string& name : s.extra_option_names(prefix)) {
+    PetscBool used = PETSC_FALSE;  // an every-level option ("mg_levels_…") counts once any level read it
+    FS_PETSC(PetscOptionsUsed(nullptr, name.c_str(), &used));
+    if (!used)
+      throw InvalidConfig("petsc.options: -" + name.substr(prefix.size()) + " was not used by " + s.solver_name() +
+                          " (misspelt, or not an option of this preconditioner)");
+  }
+  setup_s_ = timer.seconds();
+}
+
+}  // namespace fairshape::petsc

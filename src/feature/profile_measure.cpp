@@ -4,6 +4,7 @@
 #include <limits>
 #include <sstream>
 
+#include "fairshape/feature/feature_scale.h"
 #include "fairshape/remesh/closest_point.h"
 
 namespace fairshape::feature {
@@ -229,6 +230,9 @@ std::vector<FeatureMeasure> measure_features(FeaturedSurface& surface) {
                             curve, others, scale, below);
       f.why = miss("finest level", f.fine, q);
       if (f.why.empty()) f.why = miss("limit", f.limit, q);
+      // A profile met exactly is still not a fine feature when it dwarfs the surface there.
+      const std::string too_tall = feature_scale_miss(feature_scale(*ops[k].surface, curve));
+      if (!too_tall.empty()) f.why = too_tall + (f.why.empty() ? "" : "; " + f.why);
       f.within_tolerance = f.why.empty();
       out.push_back(std::move(f));
     }

@@ -95,4 +95,27 @@ MatrixX3 ClosestPointQuery::facing_points(const MatrixX3& points, const MatrixX3
   return out;
 }
 
+Eigen::VectorXd ClosestPointQuery::ray_distances(const MatrixX3& points, const MatrixX3& directions, double skip) const {
+  using Ray = Kernel::Ray_3;
+  using Hit = Tree::Intersection_and_primitive_id<Ray>::Type;
+  Eigen::VectorXd out = Eigen::VectorXd::Constant(points.rows(), std::numeric_limits<double>::infinity());
+  for_each_range(Eigen::Index{0}, points.rows(), 64, [&](const auto& r) {
+    std::vector<Hit> hits;
+    for (Eigen::Index i = r.begin(); i != r.end(); ++i) {
+      const Kernel::Point_3 p(points(i, 0), points(i, 1), points(i, 2));
+      const Kernel::Vector_3 d(directions(i, 0), directions(i, 1), directions(i, 2));
+      if (d.squared_length() == 0) continue;
+      hits.clear();
+      impl_->tree.all_intersections(Ray(p, d), std::back_inserter(hits));
+      for (const Hit& h : hits) {
+        const auto* x = boost::get<Kernel::Point_3>(&h.first);
+        if (!x) continue;  // a ray along a face: no crossing
+        const double t = std::sqrt(CGAL::squared_distance(p, *x));
+        if (t > skip) out[i] = std::min(out[i], t);
+      }
+    }
+  });
+  return out;
+}
+
 }  // namespace fairshape

@@ -25,6 +25,9 @@ class ClosestPointQuery {
   //! neighbouring points land apart. A point with no such crossing takes its closest point;
   //! `*unmoved` counts those. With reach ≤ 0: plain closest points.
   MatrixX3 facing_points(const MatrixX3& points, const MatrixX3& normals, double reach, int* unmoved = nullptr) const;
+  //! Per row: the distance from the point along its direction (any length) to the nearest
+  //! crossing of the surface farther than `skip`; +infinity where the ray leaves the surface.
+  Eigen::VectorXd ray_distances(const MatrixX3& points, const MatrixX3& directions, double skip) const;
 
  private:
   struct Impl;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <map>
 
+#include "fairshape/feature/feature_scale.h"
 #include "fairshape/feature/featured_surface.h"
 #include "fairshape/feature/profile_measure.h"
 #include "fairshape/io/mesh_io.h"
@@ -154,4 +155,63 @@ TEST_CASE("visible profile: reference and optimized back ends agree exactly", "[
   ref.add(curve), opt.add(curve);
   CHECK((ref.result().mesh(2).positions() - opt.result().mesh(2).positions()).norm() == 0.0);
   CHECK((ref.result().mesh(2).positions() - ref.original().mesh(2).positions()).norm() > 0.5 * std::abs(c.params.height));
+}
+
+namespace {
+
+// The local scale (feature/feature_scale.h) of a feature on one surface drawn through `points`.
+FeatureScale scale_of(const SurfaceMesh& mesh, const std::vector<Vec3>& points, double height) {
+  const TriangleSurface s(mesh, loop_limit_normals(mesh));
+  MatrixX3 m(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t i = 0; i < points.size(); ++i) m.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
+  FeatureParams q;
+  q.radius = 0.1, q.height = height;
+  return feature_scale(s, build_base_curve(s, {"f", 0, project_to_surface(s, m, 0.2, "test curve"), q}));
+}
+
+}  // namespace
+
+TEST_CASE("a feature taller than the local scale of the surface is a miss that says which scale", "[feature][profile]") {
+  const SurfaceMesh ball = loop_hierarchy(sphere(4), 2).mesh(2);
+  const std::vector<Vec3> on_ball{Vec3(-0.3, 0.1, 1).normalized(), Vec3(0, 0, 1), Vec3(0.3, -0.1, 1).normalized()};
+  // A groove into the unit sphere folds past its radius of curvature; a fine one does not.
+  const FeatureScale deep = scale_of(ball, on_ball, -1.3);
+  CHECK(deep.exceeded());
+  CHECK(deep.limit == "curvature");
+  CHECK(deep.scale == Approx(1.0).epsilon(0.15));
+  CHECK_THAT(feature_scale_miss(deep), Catch::Contains("exceeds the local scale") && Catch::Contains("curvature"));
+  CHECK_FALSE(scale_of(ball, on_ball, -0.05).exceeded());
+  CHECK(feature_scale_miss(scale_of(ball, on_ball, -0.05)).empty());
+  // A ridge on it bends away from the centre: only the sphere's size (2√3) bounds it.
+  const FeatureScale tall = scale_of(ball, on_ball, 1.3);
+  CHECK_FALSE(tall.exceeded());
+  CHECK(tall.limit == "size");
+  // On a flat patch of side 1 the size bounds any height.
+  const std::vector<Vec3> on_plane{Vec3(0.25, 0.45, 0), Vec3(0.5, 0.5, 0), Vec3(0.75, 0.55, 0)};
+  const FeatureScale flat = scale_of(plane_grid(8, 1.0), on_plane, 5.0);
+  CHECK(flat.exceeded());
+  CHECK(flat.limit == "size");
+  CHECK(flat.scale == Approx(std::sqrt(2.0)).epsilon(1e-9));
+  // Two parallel sheets 0.05 apart: a groove pushed towards the other reaches it.
+  SurfaceMesh slab = plane_grid(8, 1.0), other = plane_grid(8, 1.0);
+  other.positions().col(2).array() -= 0.05;
+  MatrixX3 V(slab.n_vertices() + other.n_vertices(), 3);
+  V << slab.positions(), other.positions();
+  PolygonList faces = slab.polygons();
+  for (auto f : other.polygons()) {
+    for (int& v : f) v += slab.n_vertices();
+    faces.push_back(f);
+  }
+  const FeatureScale through = scale_of(SurfaceMesh::from_polygons(V, faces), on_plane, -0.08);
+  CHECK(through.exceeded());
+  CHECK(through.limit == "thickness");
+  CHECK(through.scale == Approx(0.05).epsilon(1e-6));
+}
+
+TEST_CASE("a run's features.csv marks a feature taller than the surface's scale, naming it", "[feature][profile]") {
+  Case c = cases()[0];  // the plane of side 1
+  c.params.height = -3.0;
+  const FeatureMeasure m = measured(c, 2, ProfileTarget::Limit);
+  CHECK_FALSE(m.within_tolerance);
+  CHECK_THAT(m.why, Catch::Contains("exceeds the local scale"));
 }

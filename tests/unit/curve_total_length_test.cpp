@@ -334,3 +334,28 @@ TEST_CASE("total length: bad values and combinations it cannot take are refused,
   CHECK(ceres.summary.termination == Termination::InvalidInput);
   CHECK_THAT(ceres.summary.message, Contains("solvers that do: linearized, trust_region"));
 }
+
+TEST_CASE("pins no curve of the reference lengths can meet: trust_region ends infeasible, saying so", "[sauvage][infeasible]") {
+  // The first two points pinned half their segment's length apart: the segment cannot keep its
+  // length. (Pins farther apart than the curve between them are refused before any solve.)
+  const int n = 17;
+  const MatrixX3 X = wavy(n, false);
+  const Eigen::VectorXd l = segment_lengths(X, false);
+  std::vector<WeightedStencils> energies{{"bending", 1.0, bending_stencils(n, false)}};
+  std::vector<std::unique_ptr<CurveConstraint>> constraints;
+  MatrixX3 ends(2, 3);
+  ends << X.row(0), X.row(0) + 0.5 * (X.row(1) - X.row(0));
+  constraints.push_back(std::make_unique<PinnedPoints>(std::vector<int>{0, 1}, ends));
+  constraints.push_back(std::make_unique<SegmentLengths>(l, false));
+  const LengthProblem p(X, false, std::move(energies), std::move(constraints), l);
+  for (Backend b : {Backend::Reference, Backend::Optimized}) {
+    const auto solver = make_solver("trust_region", b, "{length_tolerance: 1.0e-10, max_solves: 500}");
+    const LengthSolveReport rep = solver->solve(p, X);
+    INFO(to_string(b) << ": " << rep.summary.message);
+    CHECK(rep.summary.termination == Termination::Infeasible);
+    CHECK_FALSE(rep.summary.succeeded());
+    CHECK_THAT(rep.summary.message, Contains("no curve of the reference lengths"));
+    CHECK(std::max(rep.length_error, rep.pin_error) > 1e-3);  // not passed off as meeting lengths and pins
+    CHECK(rep.points.allFinite());
+  }
+}

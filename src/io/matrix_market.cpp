@@ -26,6 +26,18 @@ void write_matrix_market(const SparseMatrix& A, const std::string& path, bool sy
   });
 }
 
+void write_matrix_market(const Eigen::MatrixXd& M, const std::string& path) {
+  write_atomically(path, [&](std::ostream& os) {
+    os << "%%MatrixMarket matrix array real general\n% written by fairshape\n" << M.rows() << ' ' << M.cols() << '\n';
+    char buf[64];
+    for (Eigen::Index c = 0; c < M.cols(); ++c)
+      for (Eigen::Index r = 0; r < M.rows(); ++r) {
+        std::snprintf(buf, sizeof buf, "%.17g", M(r, c));
+        os << buf << '\n';
+      }
+  });
+}
+
 SparseMatrix read_matrix_market(const std::string& path) {
   const std::string text = io::internal::read_whole_file(path);
   if (text.rfind("%%MatrixMarket", 0) != 0) throw ParseError(path, 1, "missing '%%MatrixMarket' banner");

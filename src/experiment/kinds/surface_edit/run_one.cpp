@@ -13,6 +13,7 @@
 #include "fairshape/design/regional_edit.h"
 #include "fairshape/experiment/kinds/surface_edit/constraint_overlay.h"
 #include "fairshape/experiment/kinds/surface_edit/drag_run.h"
+#include "fairshape/experiment/kinds/surface_edit/system_export.h"
 #include "fairshape/experiment/metric_format.h"
 #include "fairshape/io/mesh_io.h"
 #include "fairshape/io/vtk_io.h"
@@ -235,6 +236,9 @@ void execute_regional(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
       spec.accuracy.multilevel() ? std::optional<PassLadder>(pass_ladder(spec, spec.solver.get())) : std::nullopt;
   const double before_solve_mb = trimmed_rss_mb();
   reset_peak_rss();
+  if (spec.output.system)
+    throw InvalidInput("output.system: an edit with regions of influence solves one system per pass (design/regional_edit.h); "
+                       "writing them is not supported: set output.system: false");
   const RegionalEditResult r =
       solve_regional_edit(terms, rest, level, spec.constraint_mode, *spec.solver, spec.implementation, spec.qp_config(),
                           spec.constraint_tolerance, ladder ? &*ladder : nullptr);
@@ -447,6 +451,12 @@ MetricRow execute_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
     }
     sink.finish();
     const double solve_peak_mb = peak_rss_mb();
+    if (spec.output.system) {
+      // The reduced system is the single-level paper split's: the ladder and rotation rounds solve others.
+      const bool split = spec.constraint_mode == ConstraintMode::Paper && !spec.accuracy.multilevel() &&
+                         spec.rotations.iterations == 0 && sol.delta.allFinite() && is_success(sol.summary.termination);
+      write_edit_system(problem, rest, level, (fs::path(out.dir) / "system" / out.run_id).string(), split ? &sol.delta : nullptr);
+    }
     row["peak_rss_mb"] = num(solve_peak_mb);
     row["solve_extra_mb"] = num(solve_peak_mb - before_solve_mb);
     row["analyze_s"] = num(sol.analyze_s);

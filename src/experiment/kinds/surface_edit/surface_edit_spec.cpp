@@ -181,6 +181,9 @@ void read_output(Config& root, SurfaceEditSpec& s) {
   o.final_mesh = oc.get<bool>("final_mesh", o.final_mesh, "write final.obj (final/<run_id>.obj in sweeps)");
   o.reference_solution = oc.get<bool>("reference_solution", o.reference_solution,
                                       "compute error_vs_reference against CHOLMOD's solution of the same system");
+  o.system = oc.get<bool>("system", o.system,
+                          "write the assembled problem as Matrix Market in system/<run_id>/ (H, g, constraint rows, "
+                          "prolongations; paper mode: the reduced system and the constrained set)");
   oc.check_no_unknown_keys();
 }
 

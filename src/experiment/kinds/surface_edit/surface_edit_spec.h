@@ -46,6 +46,7 @@ struct OutputOptions {
   bool iterations = true;
   bool final_mesh = true;
   bool reference_solution = true;  // error_vs_reference against a tight direct solve
+  bool system = false;             // the assembled problem as Matrix Market (system_export.h)
 };
 
 // problem.accuracy: Boier-Martin et al. §5's ladder (design/multilevel_edit.h), or the

@@ -28,6 +28,8 @@
 #include "fairshape/problem/least_squares.h"
 #include "fairshape/solver/independent_columns.h"
 #include "fairshape/solver/level_operators.h"
+#include "fairshape/core/timer.h"
+#include <Eigen/SparseCholesky>
 #include "fairshape/problem/least_squares.h"
 
 namespace fairshape {
@@ -217,6 +219,63 @@ void BM_SplitSolve_BlockOfThree(benchmark::State& s) { run_right_hand_sides(s, f
 void BM_SplitSolve_IndependentColumns(benchmark::State& s) { run_right_hand_sides(s, true); }
 BENCHMARK(BM_SplitSolve_BlockOfThree)->Arg(3)->Iterations(1)->Repetitions(3)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_SplitSolve_IndependentColumns)->Arg(3)->Iterations(1)->Repetitions(3)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Issue 27's peers in one run: the level-L split system's x column (the handle's right-hand side
+// has rank 1) solved from scratch — set-up (factorization, hierarchy, PETSc's PCMG/GAMG/hypre
+// set-up) and solve — to a 1e-10 relative residual, each solver by its registered name, one
+// thread for the peers as PETSc runs here. Counters: setup_s, solve_s, iterations, and the
+// relative error against CHOLMOD's solution of the same column.
+const Eigen::VectorXd& direct_column(int level) {
+  static std::map<int, Eigen::VectorXd> cache;
+  if (auto it = cache.find(level); it != cache.end()) return it->second;
+  const SplitSystem& s = split_system(level);
+  Config none;
+  auto chol = components().solvers.create("cholesky", Backend::Optimized, none);
+  Eigen::MatrixXd x = Eigen::MatrixXd::Zero(s.reduced.A.rows(), 1);
+  chol->solve(s.reduced.A, s.reduced.b.leftCols(1), x);
+  return cache[level] = x.col(0);
+}
+
+void run_peer(benchmark::State& state, const std::string& solver) {
+  const int level = static_cast<int>(state.range(0));
+  const SplitSystem& s = split_system(level);
+  const Eigen::VectorXd& exact = direct_column(level);
+  const Eigen::MatrixXd b = s.reduced.b.leftCols(1);
+  double setup_s = 0, solve_s = 0;
+  SolveSummary summary;
+  Eigen::MatrixXd x;
+  for (auto _ : state) {
+    Config cfg(YAML::Load("{tolerance: 1.0e-10, max_iterations: 5000}"), "solver");
+    auto sol = components().solvers.create(solver, Backend::Optimized, cfg);
+    const Timer setup;
+    if (sol->uses_levels()) sol->set_levels(s.levels, {s.reduced.free, 1});
+    sol->analyze(s.reduced.A);
+    setup_s = setup.seconds();
+    x = Eigen::MatrixXd::Zero(s.reduced.A.rows(), 1);
+    const Timer solve;
+    summary = sol->solve(s.reduced.A, b, x);
+    solve_s = solve.seconds();
+    benchmark::DoNotOptimize(x.data());
+  }
+  state.counters["setup_s"] = setup_s;
+  state.counters["solve_s"] = solve_s;
+  state.counters["iterations"] = summary.iterations;
+  state.counters["converged"] = summary.termination == Termination::Converged ? 1 : 0;
+  state.counters["error_vs_cholmod"] = (x.col(0) - exact).norm() / exact.norm();
+  state.counters["unknowns"] = static_cast<double>(s.reduced.A.rows());
+}
+void BM_Peer_CHOLMOD(benchmark::State& s) { run_peer(s, "cholesky"); }
+void BM_Peer_MultigridCG(benchmark::State& s) { run_peer(s, "multigrid_cg"); }
+BENCHMARK(BM_Peer_CHOLMOD)->Arg(2)->Arg(3)->Iterations(1)->Repetitions(3)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Peer_MultigridCG)->Arg(2)->Arg(3)->Iterations(1)->Repetitions(3)->Unit(benchmark::kMillisecond)->UseRealTime();
+#if FAIRSHAPE_WITH_PETSC
+void BM_Peer_PetscMG(benchmark::State& s) { run_peer(s, "petsc_mg"); }
+void BM_Peer_PetscGAMG(benchmark::State& s) { run_peer(s, "petsc_gamg"); }
+void BM_Peer_BoomerAMG(benchmark::State& s) { run_peer(s, "petsc_boomeramg"); }
+BENCHMARK(BM_Peer_PetscMG)->Arg(2)->Arg(3)->Iterations(1)->Repetitions(3)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Peer_PetscGAMG)->Arg(2)->Arg(3)->Iterations(1)->Repetitions(3)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Peer_BoomerAMG)->Arg(2)->Arg(3)->Iterations(1)->Repetitions(3)->Unit(benchmark::kMillisecond)->UseRealTime();
+#endif
 
 }  // namespace
 }  // namespace fairshape

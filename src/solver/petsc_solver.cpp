@@ -7,6 +7,7 @@
 // residual in the summary is ‖b − A x‖ / ‖b‖ recomputed from A, not PETSc's own report.
 #include <Eigen/QR>
 
+#include <cstdio>
 #include <memory>
 
 #include "fairshape/core/error.h"
@@ -110,11 +111,14 @@ class PetscSolver : public Solver {
     if (!x.allFinite()) {
       s.termination = Termination::NumericalFailure;
       s.message = s_.solver_name() + " produced non-finite values";
-    } else if (s.termination == Termination::Converged && s_.iterative.tolerance > 0 && s.residual > 10 * s_.iterative.tolerance) {
-      // PETSc's recursive residual can drift from the true one: the true one decides.
+    } else if (s.termination == Termination::Converged && s_.iterative.tolerance > 0 && s.residual > 2 * s_.iterative.tolerance) {
+      // PETSc's recursive residual drifts from the true one (measured: 6.3e-10 true at rtol 1e-10 on
+      // 2 ranks, level 5): the true one decides, with a factor 2 for rounding.
       s.termination = Termination::NumericalFailure;
-      s.message = s_.solver_name() + ": PETSc reported convergence, but the true relative residual is " +
-                  std::to_string(s.residual);
+      char text[96];
+      std::snprintf(text, sizeof text, "%.3g, above the tolerance %.3g", s.residual, s_.iterative.tolerance);
+      s.message = s_.solver_name() + ": PETSc reported convergence, but the true relative residual is " + text +
+                  " (its recursive residual drifted)";
     }
     return s;
   }

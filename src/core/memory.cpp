@@ -35,8 +35,10 @@ double status_mb(const std::string& field) {
 
 double peak_rss_mb() { return status_mb("VmHWM:"); }
 
+void release_free_memory() { malloc_trim(0); }
+
 double trimmed_rss_mb() {
-  malloc_trim(0);
+  release_free_memory();
   return status_mb("VmRSS:");
 }
 

@@ -10,5 +10,8 @@ double peak_rss_mb();
 // Resident set size now, in MiB (VmRSS), after returning the allocator's free memory to the
 // system (so memory freed by an earlier step does not hide the next step's growth).
 double trimmed_rss_mb();
+// Returns the allocator's free memory to the system (glibc keeps freed pages of a large,
+// fragmented heap resident: a supervisor that validated a level-5 sweep held 2.2 GB it had freed).
+void release_free_memory();
 
 }  // namespace fairshape

@@ -13,6 +13,7 @@
 #include "fairshape/core/atomic_file.h"
 #include "fairshape/core/config.h"
 #include "fairshape/core/error.h"
+#include "fairshape/core/memory.h"
 #include "fairshape/core/summary.h"
 #include "fairshape/experiment/config_loader.h"
 #include "fairshape/experiment/output_folder.h"
@@ -145,6 +146,9 @@ Plan make_plan(const SweepOptions& opt, bool validate) {
     }
   }
   for (auto& kind : plan.kinds) kind->validation_done();
+  // Validation may have built hierarchies as large as a run's; a supervisor must not hold them
+  // (freed but resident) while its workers run.
+  release_free_memory();
   if (!problems.empty()) {
     std::string msg = opt.config_path + ": " + std::to_string(problems.size()) + " problem(s), nothing was run:";
     for (const auto& [problem, points] : problems) {

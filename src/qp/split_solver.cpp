@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <limits>
-#include <optional>
 
 #include "fairshape/core/error.h"
 #include "fairshape/core/timer.h"
@@ -23,17 +22,19 @@ SplitSolver::~SplitSolver() = default;
 void SplitSolver::analyze(const QuadraticProgram& qp) {
   validate(qp);
   const Timer timer;
-  H_ = qp.H;
+  n_ = qp.H.rows();
   A_ = qp.A;
   touched_ = reached_columns(A_);
   if (touched_.empty()) throw InvalidInput("paper: no constraint row reaches an unknown: the split has nothing to fix");
-  ls_ = std::make_unique<MinNormLeastSquares>(A_ * row_picker(A_.cols(), touched_), backend_);
-  red_ = reduce({H_, qp.f, touched_, Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(touched_.size()), qp.f.cols())});
+  const SparseMatrix pick = row_picker(A_.cols(), touched_);
+  ls_ = std::make_unique<MinNormLeastSquares>(A_ * pick, backend_);
+  H_cc_ = SparseMatrix(pick.transpose()) * qp.H * pick;
+  red_ = reduce({qp.H, qp.f, touched_, Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(touched_.size()), qp.f.cols())});
   if (!red_.free.empty()) {
     if (free_.uses_levels()) {
       if (!qp.levels) throw InvalidInput("paper: a multilevel solver needs a hierarchy below the edit level");
       // The solver sees the reduced system: its finest unknowns are the free ones.
-      free_.set_levels(qp.levels, {red_.free, static_cast<int>(H_.rows() / qp.levels->prolongation.back().rows())});
+      free_.set_levels(qp.levels, {red_.free, static_cast<int>(n_ / qp.levels->prolongation.back().rows())});
     }
     free_.analyze(red_.A);
   }
@@ -44,7 +45,7 @@ QpReport SplitSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) 
 
 QpReport SplitSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b, const QpSolveOptions& o) {
   FAIRSHAPE_ASSERT(ls_, "SplitSolver::solve before analyze");
-  if (f.rows() != H_.rows() || b.rows() != A_.rows() || b.cols() != f.cols() || (o.initial && o.initial->rows() != H_.rows()))
+  if (f.rows() != n_ || b.rows() != A_.rows() || b.cols() != f.cols() || (o.initial && o.initial->rows() != n_))
     throw InvalidInput("paper solve: right-hand sides or start do not match the analyzed program");
   // Minimum norm: the paper's A⁺b. Nearest to the start: start + A⁺(b − A·start), the
   // smallest change that satisfies the rows.
@@ -66,13 +67,14 @@ QpReport SplitSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b, 
     out.summary = {Termination::Converged, 0, 0.0, "every unknown is constrained"};
   } else {
     // Callers see the whole n × k iterate. The reduced energy differs from the full one by a
-    // constant (the fixed unknowns' part): measured once, so a check costs no product with H.
+    // constant, the fixed unknowns' own part, so a check costs no product with H.
+    Eigen::MatrixXd f_fixed(fixed.rows(), f.cols());
+    for (std::size_t k = 0; k < touched_.size(); ++k) f_fixed.row(static_cast<Eigen::Index>(k)) = f.row(touched_[k]);
+    const double energy_offset = quadratic_energy(H_cc_, f_fixed, fixed);
     Eigen::MatrixXd full;
-    std::optional<double> energy_offset;
     const IterationCallback expanded = [&](const IterationRecord& r) {
       full = red_.expand(*r.x);
-      if (!std::isnan(r.energy) && !energy_offset) energy_offset = quadratic_energy(H_, f, full) - r.energy;
-      return o.callback({r.iteration, r.residual, r.seconds, r.energy + energy_offset.value_or(0.0), &full});
+      return o.callback({r.iteration, r.residual, r.seconds, r.energy + energy_offset, &full});
     };
     // A single handle's right-hand side has rank 1: only its independent columns are solved.
     out.summary = solve_independent_columns(free_, red_.A, red_.b, x, o.callback ? expanded : IterationCallback());

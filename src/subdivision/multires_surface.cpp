@@ -4,11 +4,11 @@
 #include <limits>
 
 #include <Eigen/Geometry>
-#include <Eigen/SparseCholesky>
 #include <filesystem>
 
 #include "fairshape/io/json_io.h"
 #include "fairshape/io/vtk_io.h"
+#include "fairshape/subdivision/detail_fit.h"
 #include "fairshape/subdivision/limit.h"
 #include "fairshape/subdivision/subdivider.h"
 
@@ -84,11 +84,12 @@ MultiresSurface MultiresSurface::analyze(const SurfaceMesh& base, const MatrixX3
   MatrixX3 X = finest;
   for (int l = levels - 1; l >= 0; --l) {
     const SparseMatrix& S = h.S_[l];
-    const SparseMatrix StS = SparseMatrix(S.transpose()) * S;
-    const Eigen::SimplicialLDLT<SparseMatrix> fit(StS);
-    if (fit.info() != Eigen::Success)
-      throw InvalidInput("analyze: the least-squares fit of level " + std::to_string(l) + " is singular");
-    const MatrixX3 coarse = fit.solve(SparseMatrix(S.transpose()) * X);
+    MatrixX3 coarse;
+    try {
+      coarse = fit_coarse_points(S, X, backend);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(std::string(e.what()) + " (level " + std::to_string(l) + ")");
+    }
     h.world_[l + 1] = X - S * coarse;
     h.meshes_[l + 1].positions() = X;
     X = coarse;

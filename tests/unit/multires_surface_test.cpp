@@ -152,3 +152,23 @@ TEST_CASE("a synthesis restricted to what a change reaches equals the whole synt
     }
   }
 }
+
+TEST_CASE("the detail fit is the least-squares one: its residual is orthogonal to every coarse basis function",
+          "[multires]") {
+  // Normal equations Sᵀ(X − S c) = 0 on each level: the optimized back end iterates (CG on
+  // SᵀS), the reference factors SᵀS; both must reach the factorization's accuracy.
+  for (const auto& c : cases()) {
+    INFO(c.file << " " << to_string(c.opt.scheme));
+    const SurfaceMesh base = read_mesh(test::data_path(c.file));
+    const MatrixX3 fine = detailed_fine(base, c.opt, 0.05);
+    for (Backend b : {Backend::Reference, Backend::Optimized}) {
+      const MultiresSurface h = MultiresSurface::analyze(base, fine, c.opt, 2, b);
+      for (int l = 0; l < 2; ++l) {
+        const SparseMatrix& S = h.subdivision_operator(l);
+        const MatrixX3 finer = h.mesh(l + 1).positions();
+        const MatrixX3 normal = S.transpose() * (finer - S * h.mesh(l).positions());
+        CHECK(normal.norm() <= 1e-12 * MatrixX3(S.transpose() * finer).norm());
+      }
+    }
+  }
+}

@@ -32,7 +32,16 @@ SolveSummary conjugate_gradient(const Multiply& A_times, const Eigen::VectorXd& 
     for (Eigen::Index c = 0; c < x.cols(); ++c) alpha[c] = pAp[c] != 0 ? rz[c] / pAp[c] : 0.0;
     x += p * alpha.asDiagonal();
     r -= Ap * alpha.asDiagonal();
-    if (monitor.should_check(it) && !monitor.record(it, r.norm() / b_norm, x)) break;
+    if (monitor.should_check(it) && !monitor.record(it, r.norm() / b_norm, x)) {
+      // The recursive residual drifts from b − Ax: the true one decides (a restart from it).
+      const Eigen::MatrixXd true_r = b - A_times(x);
+      if (!monitor.confirm_residual(it, true_r.norm() / b_norm)) break;
+      r = true_r;
+      z = inv_diag.asDiagonal() * r;
+      p = z;
+      rz = r.cwiseProduct(z).colwise().sum();
+      continue;
+    }
     if (monitor.estimates_error()) {
       error.push(alpha.dot(rz));
       if (error.ready() && !monitor.record_error(it, error.estimate(x.cwiseProduct(b - r).sum()))) break;

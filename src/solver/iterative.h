@@ -59,6 +59,12 @@ class IterationMonitor {
   //! the error tolerance (and the residual tolerance, when one was asked for too).
   bool record_error(int iteration, double relative_error);
   bool estimates_error() const { return opt_.error_tolerance > 0; }
+  //! A Krylov solver whose recursive residual met the tolerance (record() returned false with
+  //! `converged`) gives the true relative residual ‖b − Ax‖/‖b‖ here: true when it misses the
+  //! tolerance and a restart from it may still reach it (the caller replaces its residual by
+  //! the true one and restarts its directions); false to stop — converged if the true residual
+  //! meets the tolerance, otherwise `stalled`, saying where the true residual floors.
+  bool confirm_residual(int iteration, double true_residual);
   //! Whether record() looks at x (energy rule or a callback): solvers that keep their own
   //! layout convert their iterate only then.
   bool wants_iterate() const {
@@ -92,6 +98,8 @@ class IterationMonitor {
   Eigen::MatrixXd previous_x_;  // stationary solvers with an error tolerance: the last check's iterate
   double previous_step_ = -1;
   double first_energy_ = 0, last_energy_ = 0;
+  int replacements_ = 0;             // confirm_residual's restarts so far
+  double replaced_residual_ = -1;    // the true residual at the last restart
   SolveSummary summary_;
 };
 

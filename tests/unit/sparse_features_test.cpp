@@ -1,0 +1,199 @@
+// Features drawn below the finest level on a sparse Loop hierarchy (issue 24; Khodakovsky &
+// Schröder, "Fine level feature editing for subdivision surfaces", §2.5): whatever level a
+// feature is drawn on and wherever its profile is made exact (profile_on), the sparse
+// evaluation equals the uniform one (FeaturedSurface) on every vertex it computes, computes
+// every finest vertex the features change, measures every feature as the uniform run does, is
+// crack free on a closed model, and computes a region, not the whole surface.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "fairshape/feature/adaptive_evaluation.h"
+#include "fairshape/feature/featured_surface.h"
+#include "fairshape/feature/profile_measure.h"
+#include "fairshape/feature/sparse_measure.h"
+#include "fairshape/io/mesh_io.h"
+#include "feature_test_meshes.h"
+#include "test_support.h"
+
+using namespace fairshape;
+using namespace fairshape::feature;
+
+namespace {
+
+SubdivisionOptions loop_options() {
+  SubdivisionOptions opt;
+  opt.scheme = SchemeType::Loop;
+  return opt;
+}
+
+double diagonal(const SurfaceMesh& m) {
+  return (m.positions().colwise().maxCoeff() - m.positions().colwise().minCoeff()).norm();
+}
+
+struct Model {
+  const char* name;
+  SurfaceMesh base;
+  int levels;
+  std::vector<Vec3> points;  // near the surface, projected on the drawn level
+  double radius, height;
+};
+
+std::vector<Model> models() {
+  std::vector<Model> out;
+  // The helmet (closed, genus 3): the crown, where feature_profile_test draws on every level.
+  out.push_back({"helmet", read_mesh(test::data_path("helmet.off")), 3,
+                 {Vec3(-0.05, 0.0, 0.332), Vec3(0.06, 0.0026, 0.3437), Vec3(0.16, 0.0, 0.334)}, 0.1, -0.02});
+  // The open patch z = 0.12 (x² − ½y²) on [−1, 1]² (12 × 12 cells): a ridge across its middle,
+  // its region reaching towards the boundary.
+  const auto z = [](double x, double y) { return 0.12 * (x * x - 0.5 * y * y); };
+  out.push_back({"patch", read_mesh(test::data_path("ks_patch.off")), 3,
+                 {Vec3(-0.5, -0.2, z(-0.5, -0.2)), Vec3(0.1, 0.1, z(0.1, 0.1)), Vec3(0.5, 0.3, z(0.5, 0.3))}, 0.3, 0.05});
+  return out;
+}
+
+FeatureCurve feature_on(const MultiresSurface& h, int level, const Model& m) {
+  const SurfaceMesh& mesh = h.mesh(level);
+  const TriangleSurface s(mesh, loop_limit_normals(mesh));
+  MatrixX3 pts(static_cast<Eigen::Index>(m.points.size()), 3);
+  for (std::size_t i = 0; i < m.points.size(); ++i) pts.row(static_cast<Eigen::Index>(i)) = m.points[i].transpose();
+  FeatureParams q;
+  q.radius = m.radius;
+  q.height = m.height;
+  return {"f", level, project_to_surface(s, pts, 0.05 * diagonal(mesh), "f"), q};
+}
+
+// Every kept vertex of every sparse level where the uniform result has it.
+double worst_position(const AdaptiveEvaluation& a, const MultiresSurface& u) {
+  double worst = 0;
+  for (int k = 0; k <= u.levels(); ++k) {
+    const SparseLevel& s = a.levels[static_cast<std::size_t>(k)];
+    for (int v = 0; v < s.n_local_vertices(); ++v)
+      worst = std::max(worst, (s.positions.row(v) - u.mesh(k).positions().row(static_cast<int>(s.vertex[v]))).norm());
+  }
+  return worst;
+}
+
+// Finest vertices the features change in the uniform result that the sparse level lacks.
+int changed_but_absent(const AdaptiveEvaluation& a, const MultiresSurface& result, const MultiresSurface& plain) {
+  const int L = plain.levels();
+  const SparseLevel& s = a.levels[static_cast<std::size_t>(L)];
+  int n = 0;
+  for (int v = 0; v < plain.mesh(L).n_vertices(); ++v)
+    if ((result.mesh(L).positions().row(v) - plain.mesh(L).positions().row(v)).squaredNorm() > 0 && s.vertex_of(v) < 0) ++n;
+  return n;
+}
+
+void check_same(const ProfileMeasure& a, const ProfileMeasure& b, double tol, const char* where) {
+  const double x[] = {a.height_min, a.height_max, a.height_error, a.width_left, a.width_right, a.width_error, a.profile_error};
+  const double y[] = {b.height_min, b.height_max, b.height_error, b.width_left, b.width_right, b.width_error, b.profile_error};
+  for (int i = 0; i < 7; ++i) {
+    INFO(where << " value " << i << ": sparse " << x[i] << ", uniform " << y[i]);
+    CHECK((std::abs(x[i] - y[i]) <= tol || (std::isnan(x[i]) && std::isnan(y[i]))));
+  }
+}
+
+void check_crack_free(const AdaptiveEvaluation& a, const SurfaceMesh& base) {
+  CHECK(a.mesh.boundary_loops().size() == base.boundary_loops().size());
+  const auto euler = [](const SurfaceMesh& m) { return m.n_vertices() - m.n_edges() + m.n_faces(); };
+  CHECK(euler(a.mesh) == euler(base));
+}
+
+}  // namespace
+
+TEST_CASE("features drawn on any level: sparse equals uniform, positions and measures", "[feature][sparse][profile]") {
+  for (const Model& m : models()) {
+    const MultiresSurface plain(m.base, loop_options(), m.levels, Backend::Optimized);
+    const double tol = 1e-12 * diagonal(m.base);
+    for (int level = 0; level <= m.levels; ++level) {
+      const FeatureCurve c = feature_on(plain, level, m);
+      for (const ProfileTarget target : {ProfileTarget::Limit, ProfileTarget::Finest, ProfileTarget::DrawnLevel}) {
+        // The reference back end once per model (the coarsest feature, the default target).
+        const Backend backend = level == 0 && target == ProfileTarget::Limit ? Backend::Reference : Backend::Optimized;
+        INFO(m.name << ", drawn on level " << level << " of " << m.levels << ", profile_on "
+                    << profile_target_names().name(target) << ", " << to_string(backend));
+        FeaturedSurface uniform(plain, backend, target);
+        uniform.add(c);
+        const MultiresSurface& u = uniform.result();
+        AdaptiveEvaluationOptions o;
+        o.backend = backend;
+        o.target = target;
+        const AdaptiveEvaluation e = evaluate_adaptive(m.base, loop_options(), m.levels, {c}, o);
+        CHECK(worst_position(e, u) <= tol);
+        CHECK(changed_but_absent(e, u, plain) == 0);
+        const std::vector<FeatureMeasure> mu = measure_features(uniform);
+        const std::vector<SparseFeatureMeasure> ms = measure_sparse_features(e, m.levels, loop_options(), backend);
+        REQUIRE(mu.size() == 1);
+        REQUIRE(ms.size() == 1);
+        INFO(ms[0].limit_note);
+        REQUIRE(ms[0].limit_measured);
+        check_same(ms[0].fine, mu[0].fine, 1e-10, "finest level");
+        check_same(ms[0].limit, mu[0].limit, 1e-10, "limit");
+        // Not trivial: the feature is seen at the limit, and only its region is computed.
+        CHECK(std::abs(mu[0].limit.height_max) > 0.5 * std::abs(m.height));
+        CHECK(e.levels[static_cast<std::size_t>(m.levels)].n_local_faces() < plain.mesh(m.levels).n_faces());
+        if (m.base.boundary_loops().empty()) check_crack_free(e, m.base);
+      }
+    }
+  }
+}
+
+TEST_CASE("features on two levels and a finest one, composed as the uniform run composes them", "[feature][sparse][profile]") {
+  const Model helmet = models()[0];
+  const MultiresSurface plain(helmet.base, loop_options(), helmet.levels, Backend::Optimized);
+  Model across = helmet;
+  across.points = {Vec3(0.06, -0.08, 0.33), Vec3(0.06, 0.08, 0.33)};
+  across.radius = 0.04, across.height = 0.01;
+  Model fine = helmet;
+  fine.points = {Vec3(-0.04, 0.02, 0.333), Vec3(0.12, 0.02, 0.336)};
+  fine.radius = 0.02, fine.height = 0.004;
+  const std::vector<FeatureCurve> features{feature_on(plain, 1, helmet), feature_on(plain, 2, across),
+                                           feature_on(plain, 3, fine)};
+  for (const ProfileTarget target : {ProfileTarget::Limit, ProfileTarget::Finest}) {
+    INFO("profile_on " << profile_target_names().name(target));
+    FeaturedSurface uniform(plain, Backend::Optimized, target);
+    for (const FeatureCurve& c : features) uniform.add(c);
+    AdaptiveEvaluationOptions o;
+    o.target = target;
+    const AdaptiveEvaluation e = evaluate_adaptive(helmet.base, loop_options(), helmet.levels, features, o);
+    CHECK(worst_position(e, uniform.result()) <= 1e-12 * diagonal(helmet.base));
+    CHECK(changed_but_absent(e, uniform.result(), plain) == 0);
+    const std::vector<FeatureMeasure> mu = measure_features(uniform);
+    const std::vector<SparseFeatureMeasure> ms = measure_sparse_features(e, helmet.levels, loop_options(), Backend::Optimized);
+    REQUIRE(ms.size() == mu.size());
+    for (std::size_t i = 0; i < mu.size(); ++i) {
+      INFO("feature drawn on level " << features[i].level << ": " << ms[i].limit_note);
+      REQUIRE(ms[i].limit_measured);
+      check_same(ms[i].fine, mu[i].fine, 1e-10, "finest level");
+      check_same(ms[i].limit, mu[i].limit, 1e-10, "limit");
+    }
+    check_crack_free(e, helmet.base);
+  }
+}
+
+TEST_CASE("a coarse feature computes its region, not the whole surface", "[feature][sparse]") {
+  // Homer-like locality on the cow (5,804 faces) refined 4 times: a short ridge drawn on level 1.
+  const SurfaceMesh cow = read_mesh(test::data_path("cow.off"));
+  const int L = 4;
+  const MultiresSurface plain(cow, loop_options(), 1, Backend::Optimized);
+  const int v0 = 0, v1 = cow.to_vertex(cow.halfedge(0));
+  double edge = 0;
+  for (int e = 0; e < cow.n_edges(); ++e) edge += (cow.position(cow.from_vertex(2 * e)) - cow.position(cow.to_vertex(2 * e))).norm();
+  edge /= cow.n_edges();
+  Model m{"cow", cow, L, {cow.position(v0), cow.position(v1)}, edge, 0.2 * edge};
+  const FeatureCurve c = feature_on(plain, 1, m);
+  AdaptiveEvaluationOptions o;
+  o.target = ProfileTarget::Limit;
+  const AdaptiveEvaluation e = evaluate_adaptive(cow, loop_options(), L, {c}, o);
+  const long long uniform_faces = static_cast<long long>(cow.n_faces()) << (2 * L);
+  const int finest = e.levels[static_cast<std::size_t>(L)].n_local_faces();
+  INFO("finest faces computed: " << finest << " of " << uniform_faces << ", all levels " << e.faces_computed() << ", passes "
+                                 << e.passes);
+  CHECK(finest > 0);
+  CHECK(finest < uniform_faces / 50);
+  CHECK(e.faces_computed() < uniform_faces / 20);
+  check_crack_free(e, cow);
+  const std::vector<SparseFeatureMeasure> ms = measure_sparse_features(e, L, loop_options(), Backend::Optimized);
+  REQUIRE(ms.size() == 1);
+  CHECK(ms[0].limit_measured);
+}

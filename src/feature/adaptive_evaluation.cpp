@@ -6,10 +6,13 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
 #include <unordered_set>
 
 #include "fairshape/feature/adaptive_mesh.h"
 #include "fairshape/feature/perturbation.h"
+#include "fairshape/feature/profile_measure.h"
+#include "fairshape/feature/sparse_visible_profile.h"
 #include "fairshape/feature/triangle_surface.h"
 #include "fairshape/subdivision/subdivider.h"
 
@@ -84,6 +87,20 @@ double midpoint_angle(const Vec3& a, const Vec3& b, const Vec3& o, const Vec3& m
   return std::asin(std::min(1.0, std::abs(line.dot(n)) / line.norm()));
 }
 
+// One Loop step of positions X on the patch mesh (rows as subdivide_positions_matrix_free
+// numbers the children).
+MatrixX3 loop_step(const SurfaceMesh& patch, const SubdivisionOptions& opt, const MatrixX3& X) {
+#if FAIRSHAPE_WITH_TBB
+  MatrixX3 Y;
+  subdivide_positions_matrix_free(patch, opt, X, Y);
+  return Y;
+#else
+  SurfaceMesh m = patch;
+  m.positions() = X;
+  return subdivide_once(m, opt, Backend::Reference).positions();
+#endif
+}
+
 class Evaluator {
  public:
   Evaluator(const SurfaceMesh& base, const SubdivisionOptions& opt, int levels, const std::vector<FeatureCurve>& features,
@@ -96,6 +113,11 @@ class Evaluator {
   // faces depend only on the marks of the levels above it).
   AdaptiveEvaluation run() {
     out_.levels.push_back(sparse_base_level(base_));
+    out_.levels[0].original = out_.levels[0].positions;
+    for (const FeatureCurve& c : features_) {
+      out_.feature_level.push_back(c.level);
+      heights_ += std::max(std::abs(c.params.height), std::abs(c.params.height * c.params.end_height_ratio));
+    }
     curves_.assign(features_.size(), {});
     applied_.assign(static_cast<std::size_t>(L_ + 1), 0);
     moved_.assign(static_cast<std::size_t>(L_ + 1), 0);
@@ -130,22 +152,28 @@ class Evaluator {
         applied_[k] = 1;
       }
       if (k == L_) {
+        if (!finish_finest()) return false;
         out_.split.emplace_back(out_.levels[k].face.size(), 0);
         return true;
       }
       SparseLevel& S = out_.levels[k];
       if (S.face.empty()) {  // nothing reached this level: nothing below it either
         out_.split.emplace_back();
-        out_.levels.push_back(refine_sparse(S, SparsePatch{}, MatrixX3(), {}));
+        const MatrixX3 none;
+        out_.levels.push_back(refine_sparse(S, SparsePatch{}, none, {}, &none));
         continue;
       }
       const SparsePatch patch = make_patch(S);
-      MatrixX3 Y;
-#if FAIRSHAPE_WITH_TBB
-      subdivide_positions_matrix_free(patch.mesh, opt_, patch.mesh.positions(), Y);
-#else
-      Y = subdivide_once(patch.mesh, opt_, Backend::Reference).positions();
-#endif
+      const MatrixX3 Y = loop_step(patch.mesh, opt_, patch.mesh.positions());
+      // The same step without the features (the finest targets displace it): the positions
+      // themselves until a feature has moved them.
+      MatrixX3 Y0;
+      const bool featured = !(S.original.array() == S.positions.array()).all();
+      if (featured) {
+        MatrixX3 X0(patch.mesh.n_vertices(), 3);
+        for (int v = 0; v < patch.mesh.n_vertices(); ++v) X0.row(v) = S.original.row(patch.local[static_cast<std::size_t>(v)]);
+        Y0 = loop_step(patch.mesh, opt_, X0);
+      }
       std::vector<char> split(S.face.size(), 0);
       bool missing = false;
       const auto want = [&](int f) {
@@ -162,6 +190,7 @@ class Evaluator {
       if (k < options_.from_level)
         for (int f = 0; f < S.n_local_faces(); ++f) want(f);
       const std::vector<double> angle = mark_supports(k, want, missing);
+      if (featured) mark_changed(k, want, [&](int f) { if (S.refinable(f)) split[f] = 1; }, missing);
       if (missing) return false;
       mark_unflat(S, patch, Y, angle, want);
       for (bool changed = true; changed;) {  // balance: a leaf between three split faces is split
@@ -183,7 +212,7 @@ class Evaluator {
       std::vector<int> refine;
       for (int f = 0; f < S.n_local_faces(); ++f)
         if (split[f]) refine.push_back(f);
-      out_.levels.push_back(refine_sparse(S, patch, Y, refine));
+      out_.levels.push_back(refine_sparse(S, patch, Y, refine, featured ? &Y0 : &Y));
       out_.split.push_back(std::move(split));
     }
     return true;
@@ -217,6 +246,120 @@ class Evaluator {
     bool added = false;
     S.for_faces_around(v, [&](int f) { added |= need_refinable(k, S.face[f]); });
     return added;
+  }
+
+  // A feature drawn on level l changes the finer levels through the subdivision stencils: a
+  // vertex of level k + 1 changes when its stencil reads a changed vertex of level k (its parent
+  // or one of the parent's one-ring, the edge's ends or the two opposite corners), so the
+  // changed vertices of level k + 1 lie in the children of the faces around the changed ones of
+  // level k, and their one-rings in the children of the faces with a corner within one ring of
+  // them: those are quadrisected (required: the changed region of level k + 1 is computed with
+  // its one-rings — what a feature drawn below the finest level touches is computed down to the
+  // finest, nothing far from it). Rings counted on the level adapt to its faces' sizes, however
+  // irregular. Two rings more are quadrisected where they are refinable already (so that the
+  // next level's required faces find their neighbours: each level's ring is half the last
+  // one's), not asked for: a missing one costs a repeated pass, never a wrong position.
+  template <class Want, class Take>
+  void mark_changed(int k, const Want& want, const Take& take_if_refinable, bool& missing) {
+    constexpr int kRequired = 2, kRings = 4;  // vertex rings around the changed ones: faces around them
+    const SparseLevel& S = out_.levels[k];
+    std::vector<char> ring(S.vertex.size(), 0);  // 1 + rings from the changed vertices; 0: farther
+    std::vector<int> layer;
+    for (int v = 0; v < S.n_local_vertices(); ++v)
+      if (!(S.positions.row(v).array() == S.original.row(v).array()).all()) ring[v] = 1, layer.push_back(v);
+    for (int r = 1; r <= kRings && !layer.empty(); ++r) {
+      std::vector<int> next;
+      for (int v : layer) {
+        const bool required = r <= kRequired;
+        if (!S.complete[v]) {
+          if (required) need_ring(k, v), missing = true;  // its faces are not all known yet
+          continue;
+        }
+        S.for_faces_around(v, [&](int f) {
+          if (required) want(f);
+          else take_if_refinable(f);
+          if (r == kRings) return;
+          for (int w : S.corners[f])
+            if (!ring[w]) ring[w] = static_cast<char>(r + 1), next.push_back(w);
+        });
+      }
+      layer = std::move(next);
+    }
+  }
+
+  // The finest level as options_.target asks (sparse_visible_profile.h): the paper's result
+  // (DrawnLevel), the composed displacements (Finest), or the least-squares fit of the limit
+  // points (Limit, visible_profile.h). First every vertex that they and the measure read must be
+  // complete: the present vertices within the measured reach of a curve (profile_measure.h:
+  // its reach plus its edge, plus the features' heights — the targets are displaced by coarser
+  // features — and two edges around the vertex — a limit point lies in its one-ring's hull),
+  // and for the fit the moving vertices and three rings (two of unknowns, one of rows, each row's
+  // limit stencil its one-ring). Where one is not, its ring is asked for (false: run again).
+  bool finish_finest() {
+    if (!options_.apply_features) return true;
+    bool any = false;
+    for (const BaseCurve& c : curves_) any = any || !c.segments.empty();
+    if (!any) return true;
+    SparseLevel& S = out_.levels[L_];
+    const SparseVisibleTargets t =
+        sparse_visible_targets(out_.levels, out_.unperturbed, curves_, out_.feature_level, opt_, options_.backend);
+    const SurfaceMesh& mesh = t.finest.mesh;
+    const int n = mesh.n_vertices();
+    bool missing = false;
+    const auto need = [&](int pv) {
+      need_ring(L_, t.finest.local[static_cast<std::size_t>(pv)]);
+      missing = true;
+    };
+    std::vector<std::pair<const BaseCurve*, double>> reach;
+    for (const LevelOperator& op : t.operators)
+      for (const BaseCurve& c : op.curves) reach.emplace_back(&c, measured_reach(*op.surface, c) + heights_);
+    for (int v = 0; v < n; ++v) {
+      if (t.complete[static_cast<std::size_t>(v)]) continue;
+      double edge = 0;
+      mesh.for_each_outgoing(v, [&](int h) { edge = std::max(edge, (mesh.position(mesh.to_vertex(h)) - mesh.position(v)).norm()); });
+      for (const auto& [c, r] : reach)
+        if (c->distance_to(mesh.position(v)) < r + 2 * edge) { need(v); break; }
+    }
+    if (missing) return false;
+    if (options_.target == ProfileTarget::DrawnLevel) return true;
+    MatrixX3 X;
+    if (options_.target == ProfileTarget::Finest) {
+      X = t.targets.fine.back();
+    } else {
+      const MatrixX3 moved = t.targets.limit.back() - t.targets.limit.front();
+      std::vector<char> seen(static_cast<std::size_t>(n), 0);
+      std::vector<int> layer;
+      for (int v = 0; v < n; ++v)
+        if (moved.row(v).squaredNorm() > 0) seen[static_cast<std::size_t>(v)] = 1, layer.push_back(v);
+      for (int ring = 0; ring <= 3; ++ring) {
+        std::vector<int> next;
+        for (int v : layer) {
+          if (!t.complete[static_cast<std::size_t>(v)]) { need(v); continue; }
+          if (ring < 3)
+            mesh.for_each_outgoing(v, [&](int h) {
+              const int w = mesh.to_vertex(h);
+              if (!seen[static_cast<std::size_t>(w)]) seen[static_cast<std::size_t>(w)] = 1, next.push_back(w);
+            });
+        }
+        layer = std::move(next);
+      }
+      if (missing) return false;
+      X = control_points_for_limit(mesh, t.targets.limit_matrix, mesh.positions(), moved);
+    }
+    for (int v = 0; v < n; ++v) S.positions.row(t.finest.local[static_cast<std::size_t>(v)]) = X.row(v);
+    return true;
+  }
+
+  // Feature i's measured reach on its level (profile_measure.h's measured_reach, its faces'
+  // edges read on the level as it is now: a margin, not a measure).
+  double measured_reach_on(std::size_t i) const {
+    const SparseLevel& A = out_.levels[static_cast<std::size_t>(features_[i].level)];
+    double edge = 0;
+    for (const BaseSegment& seg : curves_[i].segments) {
+      const auto& c = A.corners[static_cast<std::size_t>(seg.face)];
+      for (int j = 0; j < 3; ++j) edge = std::max(edge, (A.positions.row(c[j]) - A.positions.row(c[(j + 1) % 3])).norm());
+    }
+    return curves_[i].reach() + edge;
   }
 
   double support_radius(const FeatureCurve& c) const {
@@ -262,12 +405,23 @@ class Evaluator {
         for (const BaseSegment& s : curves_[i].segments) segments.emplace_back(s.a, s.b);
       }
       if (segments.empty()) continue;
-      const double margin_edges = finer ? 3.0 : 2.0;
+      // A finer feature's support, three of the face's edges around its reach; five for one drawn
+      // below the finest level (its level refines the measured reach and three of its own edges
+      // from there on, below).
+      const double margin_edges = finer ? (fc.level < L_ ? 5.0 : 3.0) : 2.0;
       const double reach = support_radius(fc);
-      const SegmentGrid grid(std::move(segments), reach + margin_edges * h_max + h_max);
+      // Applied on a level l < L: the finest level must hold, with their one-rings, the
+      // vertices the measure and the targets read (finish_finest: within the measured reach,
+      // profile_measure.h, plus the heights): refined towards it on every level from l on, with
+      // three of the face's edges as for a finer feature's support (mark_changed adds what the
+      // stencils change, which this usually covers).
+      const double measured = !finer && k < L_ && options_.apply_features ? measured_reach_on(i) + heights_ : 0.0;
+      const SegmentGrid grid(std::move(segments), std::max(reach, measured) + margin_edges * h_max + 2 * h_max);
       const double feature_angle = fc.params.flatness_angle_deg * kDegree;
       for (int f = 0; f < S.n_local_faces(); ++f) {
-        if (grid.distance(centre[f]) - spread[f] > reach + margin_edges * longest[f]) continue;
+        const double d = grid.distance(centre[f]) - spread[f];
+        if (measured > 0 && d <= measured + 3 * longest[f]) want(f);
+        if (d > reach + margin_edges * longest[f]) continue;
         if (finer) want(f);
         else angle[f] = angle[f] > 0 ? std::min(angle[f], feature_angle) : feature_angle;
       }
@@ -478,6 +632,7 @@ class Evaluator {
   std::vector<char> applied_;                          // per level: its features are applied
   std::vector<int> moved_;                             // per level: vertices its features moved
   int lowest_new_ = 0;                                 // lowest level given a new mark this pass
+  double heights_ = 0;                                 // the features' largest heights, summed
   AdaptiveEvaluation out_;
 };
 

@@ -14,14 +14,19 @@
 // face must be present: where they are not, their parents are marked and the evaluation is run
 // again (a few passes; each pass costs as much as the refined region).
 // Features are applied on their level's faces with the paper's semantics (the level's control
-// points move onto the profile: ProfileTarget::DrawnLevel), then finer levels follow. The output
+// points move onto the profile), then finer levels follow; a feature drawn on level l < L
+// changes the finer levels through the subdivision stencils, and every face with a corner within
+// a ring of a changed vertex is quadrisected, down to L (so what it touches is computed, nothing
+// far from it). The finest level is then set as `target` asks (visible_profile.h): the paper's
+// drawn-level result, the profile on the finest control points, or at the limit by the
+// least-squares fit on the moving vertices and their rings (sparse_visible_profile.h) — after
+// checking that every vertex those and the measure (profile_measure.h) read is complete. The output
 // keeps the leaves; neighbours differ by at most one level (a quadrisected face has all its
 // neighbours on its level), green triangles close the T-junctions (adaptive_mesh.h), and every
 // vertex takes its position on the deepest level that holds it.
 //
 // Restrictions: a plain triangle mesh (no details on finer levels: a hierarchy with details
-// would need its nonzero details' support refined as well), no crease or corner tags, features
-// with ProfileTarget::DrawnLevel only (the finest/limit targets solve on the whole finest level).
+// would need its nonzero details' support refined as well), no crease or corner tags.
 #pragma once
 
 #include <vector>
@@ -29,6 +34,7 @@
 #include "fairshape/core/backend.h"
 #include "fairshape/feature/feature_curve.h"
 #include "fairshape/feature/sparse_loop.h"
+#include "fairshape/feature/visible_profile.h"
 #include "fairshape/subdivision/scheme.h"
 
 namespace fairshape::feature {
@@ -40,10 +46,12 @@ struct AdaptiveEvaluationOptions {
   //! false: the features only mark their supports (a run places world points on the sparse
   //! levels this makes before the features exist on them).
   bool apply_features = true;
+  //! Where the profile is exact (profile_on): what the finest level's positions are.
+  ProfileTarget target = ProfileTarget::DrawnLevel;
 };
 
 struct AdaptiveEvaluation {
-  std::vector<SparseLevel> levels;          // 0..L, the present faces of each
+  std::vector<SparseLevel> levels;          // 0..L, the present faces of each (and `original`)
   std::vector<std::vector<char>> split;     // per level and local face: quadrisected
   SurfaceMesh mesh;                         // the leaves, green closure included
   std::vector<UniformId> mesh_vertex;       // uniform id of each output vertex
@@ -55,6 +63,7 @@ struct AdaptiveEvaluation {
   //! level's features moved them (empty where none): what a run measures the profile against.
   std::vector<BaseCurve> curves;
   std::vector<MatrixX3> unperturbed;
+  std::vector<int> feature_level;           // per feature (input order): the level it is drawn on
   int vertices_moved = 0;                   // control points the features moved (all levels)
   int passes = 0;                           // evaluations run until every mark was refinable
   long long faces_computed() const;         // present faces, all levels

@@ -112,17 +112,17 @@ std::vector<std::pair<int, double>> height_samples(const TriangleSurface& level,
 ProfileMeasure measure_one(const SurfaceMesh& finest, const Surfaces& x, const TriangleSurface& level,
                            const BaseCurve& curve, const Others& others, double scale, int levels_to_finest) {
   ProfileMeasure m;
-  const double reach = reach_of(curve);
   // Profile error and widths over the finest vertices near the curve.
   double sum_a[2] = {0, 0}, moment_a[2] = {0, 0}, sum_t[2] = {0, 0}, moment_t[2] = {0, 0};
-  const Box box(curve, reach + level.longest_edge());
+  const double margin = measured_reach(level, curve);
+  const Box box(curve, margin);
   for (int v = 0; v < finest.n_vertices(); ++v) {
     const Vec3 p = x.reference.row(v).transpose();
     if (!box.contains(p)) continue;
     const NearCurve near = near_curve(curve, p);
     // Other features are tested where the requested surface is: a finer feature's curve lies
     // on this feature's displaced surface, not on the surface it was applied to.
-    if (near.distance >= reach + level.longest_edge() || near_other(others, x.requested.row(v).transpose())) continue;
+    if (near.distance >= margin || near_other(others, x.requested.row(v).transpose())) continue;
     const Vec3 achieved = (x.achieved.row(v) - x.reference.row(v)).transpose();
     const Vec3 requested = (x.requested.row(v) - x.reference.row(v)).transpose();
     m.profile_error = std::max(m.profile_error, (achieved - requested).norm() / scale);
@@ -185,6 +185,15 @@ std::string miss(const char* where, const ProfileMeasure& m, const FeatureParams
 }
 
 }  // namespace
+
+double measured_reach(const TriangleSurface& level, const BaseCurve& curve) {
+  double edge = 0;
+  for (const BaseSegment& seg : curve.segments) {
+    const auto& c = level.corners(seg.face);
+    for (int i = 0; i < 3; ++i) edge = std::max(edge, (level.vertex(c[(i + 1) % 3]) - level.vertex(c[i])).norm());
+  }
+  return reach_of(curve) + edge;
+}
 
 ProfileMeasure measure_on_mesh(const SurfaceMesh& mesh, const MatrixX3& reference, const MatrixX3& requested,
                                const MatrixX3& achieved, const TriangleSurface& level, const BaseCurve& curve,

@@ -6,8 +6,8 @@
 //               one per finest edge: the longest edge of the segment's face on the drawn level,
 //               halved per finer level), interpolated linearly in the finest face below the sample;
 //               samples within another feature's reach are skipped (its height is theirs too);
-//   profile     max over the finest vertices within the feature's reach (outside every other
-//               feature's reach) of |achieved − requested position|; requested = the profile as
+//   profile     max over the finest vertices within the feature's reach plus its curve's edge
+//               (measured_reach: outside every other feature's reach) of |achieved − requested position|; requested = the profile as
 //               a displacement (perturbation.h, OffsetMeaning::Displacement) of that surface;
 //   width       r × (displacement-weighted mean distance from the curve, achieved / requested),
 //               per side: the radius whose profile of the requested shape would spread its
@@ -39,6 +39,12 @@ struct FeatureMeasure {
   bool within_tolerance = true;
   std::string why;  // the first miss: "limit: profile error 0.063 > profile_tolerance 0.02"
 };
+
+//! How far from `curve` the measure reads finest vertices: its reach plus the longest edge of
+//! the faces it crosses on `level` (the level it is drawn on) — the drawn-level profile's
+//! smoothing spills over the reach by about that much. Local to the curve, so that a sparse run,
+//! which holds only the curve's region of the level, reads the same vertices a uniform run does.
+double measured_reach(const TriangleSurface& level, const BaseCurve& curve);
 
 //! The finest-level measure of one curve on any mesh that holds the curve's support (a sparse
 //! run's finest level as a patch, feature/sparse_loop.h: the vertices outside it have no

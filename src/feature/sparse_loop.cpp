@@ -117,19 +117,20 @@ SparsePatch make_patch(const SparseLevel& s) {
   return p;
 }
 
-SparseLevel refine_sparse(const SparseLevel& s, const SparsePatch& p, const MatrixX3& Y, const std::vector<int>& refine) {
+SparseLevel refine_sparse(const SparseLevel& s, const SparsePatch& p, const MatrixX3& Y, const std::vector<int>& refine,
+                          const MatrixX3* Y0) {
   SparseLevel t;
   t.level = s.level + 1;
   t.n_vertices = s.n_vertices + s.n_edges;
   t.n_edges = 2 * s.n_edges + 3 * s.n_faces;
   t.n_faces = 4 * s.n_faces;
-  std::vector<Vec3> positions;
+  std::vector<int> rows;  // the row of Y (and Y0) each new vertex takes
   const auto add_vertex = [&](UniformId id, int faces_around, int row) {
     const auto [it, inserted] = t.local_vertex.try_emplace(id, static_cast<int>(t.vertex.size()));
     if (inserted) {
       t.vertex.push_back(id);
       t.faces_around.push_back(faces_around);
-      positions.push_back(Y.row(row).transpose());
+      rows.push_back(row);
     }
     return it->second;
   };
@@ -162,8 +163,12 @@ SparseLevel refine_sparse(const SparseLevel& s, const SparsePatch& p, const Matr
     child(2, {mid[2], mid[1], corner[2]}, {interior + 4, second_half(H[1]), first_half(H[2])}, {0, bit(1), bit(2)});
     child(3, {mid[0], mid[1], mid[2]}, {interior + 3, interior + 5, interior + 1}, {0, 0, 0});
   }
-  t.positions.resize(static_cast<Eigen::Index>(positions.size()), 3);
-  for (std::size_t i = 0; i < positions.size(); ++i) t.positions.row(static_cast<Eigen::Index>(i)) = positions[i].transpose();
+  t.positions.resize(static_cast<Eigen::Index>(rows.size()), 3);
+  for (std::size_t i = 0; i < rows.size(); ++i) t.positions.row(static_cast<Eigen::Index>(i)) = Y.row(rows[i]);
+  if (Y0) {
+    t.original.resize(t.positions.rows(), 3);
+    for (std::size_t i = 0; i < rows.size(); ++i) t.original.row(static_cast<Eigen::Index>(i)) = Y0->row(rows[i]);
+  }
   t.index();
   return t;
 }

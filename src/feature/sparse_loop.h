@@ -39,6 +39,9 @@ struct SparseLevel {
   std::vector<UniformId> vertex;
   std::vector<int> faces_around;
   MatrixX3 positions;
+  // The same vertices without any feature (the surface the finest/limit targets displace:
+  // visible_profile.h); empty until a feature moved a coarser level (then equal to positions).
+  MatrixX3 original;
 
   // Filled by index(): lookups and each vertex's present faces.
   std::unordered_map<UniformId, int> local_vertex, local_face, face_of_halfedge;
@@ -76,8 +79,9 @@ SparsePatch make_patch(const SparseLevel& level);
 
 //! Level k + 1: the four children of each face in `refine` (local ids, each refinable), with
 //! positions from one Loop step of the patch (`child_positions`, rows as
-//! subdivide_positions_matrix_free numbers them).
+//! subdivide_positions_matrix_free numbers them); `child_original`, when given, the same step of
+//! the positions without features (SparseLevel::original).
 SparseLevel refine_sparse(const SparseLevel& level, const SparsePatch& patch, const MatrixX3& child_positions,
-                          const std::vector<int>& refine);
+                          const std::vector<int>& refine, const MatrixX3* child_original = nullptr);
 
 }  // namespace fairshape::feature

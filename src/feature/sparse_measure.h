@@ -1,6 +1,8 @@
 // What each feature achieves on a sparse Loop hierarchy (adaptive_evaluation.h, issue 24): the
 // measurement of profile_measure.h taken on the finest sparse level, at its control points and
-// at the limit points of its vertices, so that a sparse run reports what a uniform run reports.
+// at the limit points of its vertices, so that a sparse run reports what a uniform run reports,
+// whatever level a feature is drawn on (the requested profile composed as the uniform run
+// composes it: sparse_visible_profile.h).
 //
 // The finest level is measured as a patch of its present faces (sparse_loop.h, make_patch); the
 // vertices outside it have no displacement and change nothing. The limit point of a vertex is
@@ -27,10 +29,11 @@ struct SparseFeatureMeasure {
   std::string limit_note;  // why the limit is not measured ("" when it is)
 };
 
-//! One entry per feature of `a` (input order). Every feature must be drawn on the finest level
-//! `levels` (what a sparse run allows: the sparse levels keep the surface a feature was applied
-//! to only on its own level). `opt` as the hierarchy was refined with (weights, boundary).
-//! \throw std::logic_error when `a` lacks the finest level's positions before the features.
+//! One entry per feature of `a` (input order), drawn on any level: measured against the targets
+//! composed on the finest sparse level (sparse_visible_profile.h), as measure_features measures
+//! a uniform evaluation. `opt` as the hierarchy was refined with (weights, boundary).
+//! \throw std::logic_error when `a` lacks a level, its features' levels, a featured level's
+//! positions before its features or the finest level's positions without features.
 std::vector<SparseFeatureMeasure> measure_sparse_features(const AdaptiveEvaluation& a, int levels,
                                                           const SubdivisionOptions& opt, Backend backend);
 

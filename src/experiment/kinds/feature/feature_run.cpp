@@ -190,13 +190,17 @@ FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const s
   s.adaptive_surface_angle_deg =
       ac.get_number("surface_angle_deg", 0.0, 0.0, 89.9,
                     "sparse: flatness threshold of the surface away from the features (0: not refined there)");
+  const bool placement_key = ac.has("placement_max_faces");
+  s.adaptive_placement_max_faces =
+      ac.get_int("placement_max_faces", s.adaptive_placement_max_faces, 1, 1 << 30,
+                 "sparse: the most faces a level may have for a placement tool (geodesic, section, polyline) to "
+                 "compute it whole and place a curve there");
   ac.check_no_unknown_keys();
+  if (!s.adaptive_sparse && placement_key)
+    throw InvalidConfig("adaptive.placement_max_faces: only with adaptive.evaluation: sparse (a uniform run has every level whole)");
   if (s.adaptive_sparse) {
-    // The sparse levels are the plain mesh's Loop levels with the paper's drawn-level features:
-    // anything else would make adaptive/<run>.obj a different surface from final.obj.
-    if (s.profile_target != feature::ProfileTarget::DrawnLevel)
-      throw InvalidConfig("adaptive.evaluation: sparse needs profile_on: drawn_level (the finest and limit targets "
-                          "solve on the whole finest level)");
+    // The sparse levels are the plain mesh's Loop levels: a hierarchy's details or an edit would
+    // have to be refined wherever they are nonzero (not done).
     if (s.editor) throw InvalidConfig("adaptive.evaluation: sparse needs a plain triangle mesh: no remesh_base_faces, "
                                       "saved hierarchy or edit (their details are not evaluated sparsely)");
     if (s.base_edit.enabled) throw InvalidConfig("adaptive.evaluation: sparse cannot be combined with base_edit");

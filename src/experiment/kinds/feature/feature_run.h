@@ -71,6 +71,9 @@ struct FeatureRunSpec : RunBasics {
   //! threshold, `adaptive.surface_angle_deg` elsewhere).
   bool adaptive_sparse = false;
   double adaptive_surface_angle_deg = 0;
+  //! sparse: the largest level (in faces) a placement tool may have computed whole
+  //! (`adaptive.placement_max_faces`; geodesic, section and polyline need their whole level).
+  int adaptive_placement_max_faces = 300000;
   feature::ProfileTarget profile_target = feature::ProfileTarget::Limit;  // `profile_on`
   //! step_evaluation: region (default; a design step recomputes only what its features reach)
   //! or whole (every step evaluates the whole hierarchy).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 
 #include "fairshape/core/timer.h"
 #include "fairshape/experiment/kinds/feature/curve_placement_config.h"
@@ -15,6 +16,7 @@
 #include "fairshape/feature/triangle_surface.h"
 #include "fairshape/io/mesh_io.h"
 #include "fairshape/mesh/polyline.h"
+#include "fairshape/subdivision/multires_surface.h"
 
 namespace fairshape {
 namespace fs = std::filesystem;
@@ -22,15 +24,6 @@ namespace fs = std::filesystem;
 void check_sparse_run(const FeatureRunSpec& s) {
   const std::string sparse = " with adaptive.evaluation: sparse";
   for (const FeatureSpec& f : s.features) {
-    // features.csv measures a feature on the finest level against the surface it was applied
-    // to; the sparse levels keep that surface only on the level a feature is drawn on.
-    if (f.curve.level != s.levels)
-      throw InvalidConfig(f.key + ".level: " + std::to_string(f.curve.level) + sparse +
-                          " a feature must be drawn on the finest level (valid: " + std::to_string(s.levels) +
-                          " = input.levels), or use adaptive.evaluation: uniform");
-    if (f.placement)
-      throw InvalidConfig(f.key + ": the placement tools (geodesic, section, polyline) work on a whole level;" + sparse +
-                          " give points or surface_points");
     if (f.step > 0 || f.until >= 0 || !f.moves.empty() || !f.changes.empty())
       throw InvalidConfig(f.key + ": design steps (step, until, moves, changes) re-evaluate the uniform hierarchy; not" +
                           sparse);
@@ -101,6 +94,41 @@ void place_world_points(FeatureRunSpec& spec, const SurfaceMesh& base, const Sub
   for (std::size_t i = 0; i < todo.size(); ++i) todo[i]->curve.points = at[i];
 }
 
+// The config key of a feature's placement tool ("features[2].geodesic").
+std::string placement_key(const FeatureSpec& f) {
+  static const char* names[] = {"geodesic", "section", "polyline"};
+  return f.key + "." + names[f.placement->index()];
+}
+
+// The placement tools (geodesic, section, polyline) run on the whole level a curve is drawn on
+// (a geodesic's path and a section's loop may cross any part of it). A sparse run computes that
+// level whole where it is small enough (adaptive.placement_max_faces): the uniform Loop levels up
+// to it — the same level the uniform run places on, so the same faces and coordinates — kept only
+// while placing. Above the limit the run is refused, naming the key and what to do.
+void place_with_tools(FeatureRunSpec& spec, const SurfaceMesh& base, const SubdivisionOptions& opt, double diag) {
+  int deepest = -1;
+  for (const FeatureSpec& f : spec.features) {
+    if (!f.placement) continue;
+    const std::int64_t faces = uniform_faces(base, f.curve.level);
+    if (faces > spec.adaptive_placement_max_faces)
+      throw InvalidConfig(placement_key(f) + ": the tool needs its whole level; level " + std::to_string(f.curve.level) +
+                          " has " + std::to_string(faces) + " faces > adaptive.placement_max_faces " +
+                          std::to_string(spec.adaptive_placement_max_faces) +
+                          " with adaptive.evaluation: sparse (draw the curve on a coarser level, raise "
+                          "adaptive.placement_max_faces, give points or surface_points, or use adaptive.evaluation: uniform)");
+    deepest = std::max(deepest, f.curve.level);
+  }
+  if (deepest < 0) return;
+  const MultiresSurface whole(base, opt, deepest, spec.implementation);
+  std::map<int, feature::TriangleSurface> drawn_on;  // one per level: its normals and AABB tree
+  for (FeatureSpec& f : spec.features) {
+    if (!f.placement) continue;
+    const SurfaceMesh& level = whole.mesh(f.curve.level);
+    const feature::TriangleSurface& s = drawn_on.try_emplace(f.curve.level, level, feature::loop_limit_normals(level)).first->second;
+    place_on_level(s, diag, f);
+  }
+}
+
 // A base curve with its segments' faces as uniform ids (they are local to the level's patch).
 feature::BaseCurve on_uniform_faces(feature::BaseCurve c, const feature::SparseLevel& S) {
   for (feature::BaseSegment& s : c.segments) s.face = static_cast<int>(S.face[static_cast<std::size_t>(s.face)]);
@@ -136,6 +164,7 @@ SparseRunEvaluation evaluate_sparse_run(FeatureRunSpec& spec) {
   // max_distance scales with the base mesh's diagonal (the uniform run takes the finest
   // level's, the same up to the surface's shrinkage).
   const double diag = (base.positions().colwise().maxCoeff() - base.positions().colwise().minCoeff()).norm();
+  place_with_tools(spec, base, opt, diag);
   place_world_points(spec, base, opt, diag);
   for (FeatureSpec& f : spec.features) {
     for (const auto& p : f.curve.points)
@@ -148,6 +177,7 @@ SparseRunEvaluation evaluate_sparse_run(FeatureRunSpec& spec) {
   o.from_level = 0;  // from the base mesh: the features' supports are refined to their levels
   o.surface_angle_deg = spec.adaptive_surface_angle_deg;
   o.backend = spec.implementation;
+  o.target = spec.profile_target;
   const Timer apply;
   e.a = feature::evaluate_adaptive(base, opt, spec.levels, e.curves, o);
   e.apply_s = apply.seconds();
@@ -167,11 +197,16 @@ void execute_sparse_feature_run(FeatureRunSpec& spec, const RunOutputs& out, Met
   const feature::SparseLevel& S = a.levels[static_cast<std::size_t>(L)];
   row["n_fine"] = std::to_string(S.n_local_vertices());  // computed, not the uniform count
   row["triangles_uniform"] = std::to_string(uniform_faces(base, L));
-  row["vertices_moved"] = std::to_string(a.vertices_moved);
-  if (a.unperturbed.size() <= static_cast<std::size_t>(L) || a.unperturbed[static_cast<std::size_t>(L)].rows() != S.positions.rows())
-    throw std::logic_error("sparse run: the finest level's positions before the features are missing");
-  const MatrixX3& before = a.unperturbed[static_cast<std::size_t>(L)];  // every feature is on L
-  row["max_displacement"] = num((S.positions - before).rowwise().norm().maxCoeff());
+  const double diag = (base.positions().colwise().maxCoeff() - base.positions().colwise().minCoeff()).norm();
+  if (S.original.rows() != S.positions.rows())
+    throw std::logic_error("sparse run: the finest level's positions without the features are missing");
+  // Against the surface without features, as the uniform run's (every vertex the features move
+  // is present: adaptive_evaluation.h).
+  const Eigen::VectorXd moved = (S.positions - S.original).rowwise().norm();
+  row["max_displacement"] = num(moved.maxCoeff());
+  // The finest vertices moved, as the uniform run counts them (its threshold scales with the
+  // finest level's diagonal, this one with the base mesh's: the same up to the shrinkage).
+  row["vertices_moved"] = std::to_string((moved.array() > 1e-12 * diag).count());
   row["adaptive_evaluation"] = "sparse";
   row["adaptive_faces_computed"] = std::to_string(a.faces_computed());
   row["triangles_adaptive"] = std::to_string(a.mesh.n_faces());
@@ -207,7 +242,8 @@ void execute_sparse_feature_run(FeatureRunSpec& spec, const RunOutputs& out, Met
     std::string why = feature::profile_miss("finest level", m, q);
     if (why.empty()) why = f.limit_measured ? feature::profile_miss("limit", b, q) : f.limit_note;
     const auto at_limit = [&](double x) { return f.limit_measured ? num(x) : std::string("nan"); };
-    out.add_row("features", {curves[i].name, std::to_string(L), num(q.height), num(q.radius), num(q.right_radius()),
+    const int level = curves[i].level;
+    out.add_row("features", {curves[i].name, std::to_string(level), num(q.height), num(q.radius), num(q.right_radius()),
                              num(m.height_min), num(m.height_max), num(m.width_left), num(m.width_right), num(m.height_error),
                              num(m.width_error), num(m.profile_error), at_limit(b.height_min), at_limit(b.height_max),
                              at_limit(b.width_left), at_limit(b.width_right), at_limit(b.height_error),
@@ -218,14 +254,18 @@ void execute_sparse_feature_run(FeatureRunSpec& spec, const RunOutputs& out, Met
       any_limit = true;
       limit = std::max(limit, b.profile_error), height = std::max(height, b.height_error), width = std::max(width, b.width_error);
     }
-    if (!why.empty() && first_miss.empty()) first_miss = "feature '" + curves[i].name + "' (level " + std::to_string(L) + "), " + why;
-    // attachments.csv: the curve on its level (the finest), on the result there.
-    const auto per_level = feature::attachments_per_level(on_uniform_faces(bc, S), L, L);
-    for (std::size_t j = 0; j < per_level[0].size(); ++j) {
-      const feature::SurfacePoint& p = per_level[0][j];
-      const Vec3 x = point_on(S, p);
-      out.add_row("attachments", {curves[i].name, std::to_string(L), std::to_string(j), std::to_string(p.face), num(p.bary[0]),
-                                  num(p.bary[1]), num(p.bary[2]), num(x.x()), num(x.y()), num(x.z())});
+    if (!why.empty() && first_miss.empty()) first_miss = "feature '" + curves[i].name + "' (level " + std::to_string(level) + "), " + why;
+    // attachments.csv: the curve on its level and every finer one, on the result there (the
+    // faces under the curve are computed on each: the feature changes them).
+    const auto per_level = feature::attachments_per_level(on_uniform_faces(bc, a.levels[static_cast<std::size_t>(level)]), level, L);
+    for (std::size_t k = 0; k < per_level.size(); ++k) {
+      const int at = level + static_cast<int>(k);
+      for (std::size_t j = 0; j < per_level[k].size(); ++j) {
+        const feature::SurfacePoint& p = per_level[k][j];
+        const Vec3 x = point_on(a.levels[static_cast<std::size_t>(at)], p);
+        out.add_row("attachments", {curves[i].name, std::to_string(at), std::to_string(j), std::to_string(p.face), num(p.bary[0]),
+                                    num(p.bary[1]), num(p.bary[2]), num(x.x()), num(x.y()), num(x.z())});
+      }
     }
   }
   row["segments"] = std::to_string(segments);

@@ -1,11 +1,14 @@
 // A feature run on the sparse Loop hierarchy alone (adaptive.evaluation: sparse; issue 24 part 3):
-// Khodakovsky & Schröder §2.5 compute the surface only where it is refined, so a finest-level
-// feature on a large model costs time and memory in proportion to its region. The uniform
-// hierarchy is never built: the curves are placed on sparse levels, final.obj is the adaptive
-// mesh, features.csv is measured on the finest sparse level, attachments.csv comes from the
-// sparse levels. What needs the whole surface (the VTK exports' limit surface and uniform
-// levels, the limit columns of features.csv, design steps re-evaluating the whole hierarchy) is
-// refused at load (FeatureRunSpec::from_config) or written as "nan" (the limit columns).
+// Khodakovsky & Schröder §2.5 compute the surface only where it is refined, so a feature on a
+// large model costs time and memory in proportion to its region, whatever level it is drawn on
+// and wherever its profile is exact (profile_on: the region a coarse feature changes is computed
+// down to the finest level, adaptive_evaluation.h). The uniform hierarchy is never built: the
+// curves are placed on sparse levels (the placement tools on their whole level, computed when it
+// has at most adaptive.placement_max_faces faces), final.obj is the adaptive mesh, features.csv
+// is measured on the finest sparse level, attachments.csv comes from the sparse levels. What
+// needs the whole surface (the VTK exports' limit surface and uniform levels, design steps
+// re-evaluating the whole hierarchy, a placement tool on a larger level) is refused at load
+// (FeatureRunSpec::from_config, or the validation's evaluation), naming the key.
 #pragma once
 
 #include "fairshape/experiment/kinds/feature/feature_run.h"

@@ -138,6 +138,10 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
   while (rep.solves < o_.tolerances.max_solves) {
     const std::vector<ConstraintRow> rows = p.rows(X);
     const Eigen::VectorXd lambda = least_squares_multipliers(p, X);
+    // This iterate, and its smallest-eigenvalue estimate when one is made (the progress stop
+    // returns it, so that the count and the estimate it reports are the returned curve's).
+    const MatrixX3 X_iterate = X;
+    double iterate_min_eig = std::nan("");
     if (!lambda.allFinite()) return finish(Termination::NumericalFailure, "the constraint rows are dependent at iteration " +
                                                                            std::to_string(iterations) + " (a zero-length segment?)");
     const SparseMatrix J = constraint_jacobian(rows, N);
@@ -175,7 +179,7 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
       so = check_second_order(p, X);
       if (so.checked) {
         negative = so.min_eigenvalue < -kSecondOrderTolerance * so.max_abs_eigenvalue;
-        last_min_eig = so.min_eigenvalue;
+        last_min_eig = iterate_min_eig = so.min_eigenvalue;
       }
     }
     bool have_direction = negative && so.checked;
@@ -254,7 +258,7 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
       if (block.rows() != n || block.cols() == 0) block = initial_block(n, o_.block_size);
       ritz = block_inverse_iteration(*kkt, W, block, m, o_.block_steps);
       rep.solves += ritz.solves;
-      if (ritz.values.size() > 0) last_min_eig = ritz.values[0];
+      if (ritz.values.size() > 0) last_min_eig = iterate_min_eig = ritz.values[0];
       if (block.cols() < o_.block_size) {  // refill lost columns so the block keeps its width
         const Eigen::MatrixXd fresh = initial_block(n, o_.block_size);
         Eigen::MatrixXd wider(n, o_.block_size);
@@ -282,7 +286,7 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
           so.checked = true;
           so.min_eigenvalue = rayleigh;
           so.direction = Eigen::Map<const MatrixX3>(v.data(), N, 3);
-          last_min_eig = rayleigh;
+          last_min_eig = iterate_min_eig = rayleigh;
           have_direction = true;
         }
       }
@@ -355,11 +359,12 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
         window_negative = inertia;
         window_start = iterations;
       } else if (iterations - window_start >= o_.progress_window) {
-        rep.min_reduced_hessian_eig = last_min_eig;
+        X = X_iterate;  // the curve the count and the estimate below were measured on
+        rep.min_reduced_hessian_eig = iterate_min_eig;
         return finish(Termination::Stalled,
                       "stalled with negative curvature left: the reduced Hessian has " + std::to_string(inertia) +
                           " negative eigenvalue(s) (LDLT inertia; " +
-                          (last_min_eig < 0 ? "the smallest ≤ " + sci(last_min_eig) + ", a Rayleigh quotient" : std::string("the smallest not estimated")) +
+                          (iterate_min_eig < 0 ? "the smallest ≤ " + sci(iterate_min_eig) + ", a Rayleigh quotient" : std::string("the smallest not estimated")) +
                           "), and over the last " +
                           std::to_string(iterations - window_start) + " iterations F fell by less than " +
                           format_default(100 * o_.progress_decrease) + " %, the stationarity by less than a tenth and the negative count by less than half (trust_region.progress_window, progress_decrease) after " +

@@ -173,7 +173,11 @@ TEST_CASE("Figure 1's edit at 2049 points: one eigenvector per iteration stalls 
   CHECK_FALSE(before.converged());
   CHECK(before.summary.termination == Termination::Stalled);
   CHECK_THAT(before.summary.message, Catch::Contains("negative curvature left"));
-  CHECK(reduced_hessian_negative_count(p, before.points) > 0);  // it did stop short of a minimum
+  // It did stop short of a minimum, and the count it reports is the returned curve's.
+  const int left = reduced_hessian_negative_count(p, before.points);
+  CHECK(left > 0);
+  CHECK_THAT(before.summary.message, Catch::Contains("has " + std::to_string(left) + " negative eigenvalue(s)"));
+  CHECK(before.min_reduced_hessian_eig < 0);
 
   LengthSolveReport after[2];
   int i = 0;

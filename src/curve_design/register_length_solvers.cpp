@@ -56,6 +56,15 @@ LengthSolverRegistry::Factory trust_region(Backend backend) {
                                  "iterations without a decrease of the objective (or stationarity) before 'stalled'");
     o.dense_limit = own.get_int("dense_limit", o.dense_limit, 0, 5000,
                                 "up to this many points the reduced Hessian is formed densely every iteration");
+    o.block_size = own.get_int("block_size", o.block_size, 1, 64,
+                               "above dense_limit: soft modes followed by block inverse iteration, the step exact in their span "
+                               "(1: one eigenvector per iteration, the method before)");
+    o.block_steps = own.get_int("block_steps", o.block_steps, 1, 100, "block inverse-iteration steps per trust-region iteration");
+    o.progress_window = own.get_int("progress_window", o.progress_window, 0, 1000000,
+                                    "with negative curvature left: iterations within which F must fall by progress_decrease, the "
+                                    "stationarity by a tenth or the negative count by half, else 'stalled' (0: off)");
+    o.progress_decrease = own.get_number("progress_decrease", o.progress_decrease, 0, 1,
+                                         "the relative decrease of F that counts as progress within progress_window");
     own.check_no_unknown_keys();
     return std::make_unique<TrustRegionLengthSolver>(o);
   };

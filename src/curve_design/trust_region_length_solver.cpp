@@ -8,6 +8,7 @@
 #include "fairshape/core/timer.h"
 #include "fairshape/curve_design/length_manifold.h"
 #include "fairshape/curve_design/second_order.h"
+#include "fairshape/curve_design/subspace_step.h"
 
 namespace fairshape {
 namespace {
@@ -119,6 +120,11 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
   // solves: KKT systems solved (restoration and steps); inertia checks are factorizations
   // without a solve, counted apart (the message gives them).
   int since_progress = 0, iterations = 0, inertia_checks = 0;
+  Eigen::MatrixXd block;  // the block of soft modes, kept between iterations (block_size > 1)
+  double last_sigma = 0;  // the block path's last shift with the right inertia
+  // The progress window (5a): F, stationarity and negative count where it started.
+  double window_F = F, window_stat = INFINITY;
+  int window_negative = -1, window_start = 0;
 
   const auto finish = [&](Termination t, const std::string& why) {
     rep.points = X;
@@ -132,6 +138,10 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
   while (rep.solves < o_.tolerances.max_solves) {
     const std::vector<ConstraintRow> rows = p.rows(X);
     const Eigen::VectorXd lambda = least_squares_multipliers(p, X);
+    // This iterate, and its smallest-eigenvalue estimate when one is made (the progress stop
+    // returns it, so that the count and the estimate it reports are the returned curve's).
+    const MatrixX3 X_iterate = X;
+    double iterate_min_eig = std::nan("");
     if (!lambda.allFinite()) return finish(Termination::NumericalFailure, "the constraint rows are dependent at iteration " +
                                                                            std::to_string(iterations) + " (a zero-length segment?)");
     const SparseMatrix J = constraint_jacobian(rows, N);
@@ -169,7 +179,7 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
       so = check_second_order(p, X);
       if (so.checked) {
         negative = so.min_eigenvalue < -kSecondOrderTolerance * so.max_abs_eigenvalue;
-        last_min_eig = so.min_eigenvalue;
+        last_min_eig = iterate_min_eig = so.min_eigenvalue;
       }
     }
     bool have_direction = negative && so.checked;
@@ -195,7 +205,37 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
     double sigma = have_direction ? 2 * -so.min_eigenvalue : base_shift;
     if (have_direction && !kkt->factor(X, rows, &lambda, sigma))
       return finish(Termination::NumericalFailure, "the shifted KKT system could not be factored at solve " + std::to_string(rep.solves + 1));
-    if (negative && !have_direction) {
+    const bool use_block = negative && !have_direction && o_.block_size > 1;
+    if (use_block) {
+      // Bracket the smallest power-of-ten multiple of the previous shift with the right
+      // inertia, from a tenth of it: the soft modes change little between iterations, so two
+      // or three factorizations instead of climbing from kFirstShift every time.
+      const double floor = kFirstShift * q_scale;
+      double trial = std::max(floor, (last_sigma > 0 ? last_sigma : floor) / kShiftGrowth), good = 0;
+      for (int attempt = 0;; ++attempt) {
+        if (!kkt->factor(X, rows, &lambda, trial))
+          return finish(Termination::NumericalFailure, "the shifted KKT system could not be factored at solve " + std::to_string(rep.solves + 1));
+        const int left = negative_count(trial);
+        ++inertia_checks;
+        if (left < 0 || attempt >= 2 * kMaxShiftTries)
+          return finish(Termination::NumericalFailure, "no shift up to " + sci(trial) +
+                                                           " made the reduced Hessian positive definite at iteration " +
+                                                           std::to_string(iterations));
+        if (left == 0) {
+          good = trial;
+          if (trial / kShiftGrowth < floor) break;
+          trial /= kShiftGrowth;  // still right: try lower
+        } else if (good > 0) {
+          trial = good;  // the last right one: factor it again
+          if (!kkt->factor(X, rows, &lambda, trial))
+            return finish(Termination::NumericalFailure, "the shifted KKT system could not be factored at solve " + std::to_string(rep.solves + 1));
+          break;
+        } else {
+          trial *= kShiftGrowth;
+        }
+      }
+      sigma = last_sigma = good;
+    } else if (negative && !have_direction) {
       sigma = kFirstShift * q_scale;
       for (int attempt = 0;; ++attempt, sigma *= kShiftGrowth) {
         if (!kkt->factor(X, rows, &lambda, sigma))
@@ -210,7 +250,22 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
       }
     }
     const SparseMatrix W = lagrangian_hessian(p, X, lambda);
-    if (negative && !have_direction) {
+    RitzPairs ritz;
+    if (use_block) {
+      // Above the dense limit, block_size > 1: the k softest modes by block inverse iteration
+      // on the factor just made, warm-started from the previous iteration's block
+      // (subspace_step.h); the step is then the exact trust-region step in span{s_N, block}.
+      if (block.rows() != n || block.cols() == 0) block = initial_block(n, o_.block_size);
+      ritz = block_inverse_iteration(*kkt, W, block, m, o_.block_steps);
+      rep.solves += ritz.solves;
+      if (ritz.values.size() > 0) last_min_eig = iterate_min_eig = ritz.values[0];
+      if (block.cols() < o_.block_size) {  // refill lost columns so the block keeps its width
+        const Eigen::MatrixXd fresh = initial_block(n, o_.block_size);
+        Eigen::MatrixXd wider(n, o_.block_size);
+        wider << block, fresh.rightCols(o_.block_size - block.cols());
+        block = wider;
+      }
+    } else if (negative && !have_direction) {
       // Above the dense limit: the direction by inverse iteration on the tangent space with the
       // factor just made, W + σI = W − μI with μ = −σ ≤ λ_min (σ is the first shift with the
       // right inertia), each iteration one solve [W + σI, Jᵀ; J, 0][w; ·] = [v; 0], so w =
@@ -231,7 +286,7 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
           so.checked = true;
           so.min_eigenvalue = rayleigh;
           so.direction = Eigen::Map<const MatrixX3>(v.data(), N, 3);
-          last_min_eig = rayleigh;
+          last_min_eig = iterate_min_eig = rayleigh;
           have_direction = true;
         }
       }
@@ -244,9 +299,18 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
     if (!s.allFinite()) return finish(Termination::NumericalFailure, "solve " + std::to_string(rep.solves) + " produced NaN or infinite values");
     ++iterations;
 
-    // 3. Into the radius; at negative curvature, the eigenvector fills what is left of it.
+    // 3. Into the radius; at negative curvature, the eigenvector fills what is left of it (or,
+    // with a block, the exact step in span{s, Ritz vectors}).
     bool escape = false;
-    if (s.norm() > radius) {
+    double predicted = 0;
+    if (use_block && ritz.vectors.cols() > 0) {
+      Eigen::MatrixXd basis(n, 1 + ritz.vectors.cols());
+      basis << s, ritz.vectors;
+      const SubspaceStep sub = subspace_trust_region_step(basis, W, g, radius);
+      s = sub.s;
+      predicted = sub.predicted;
+      escape = sub.negative_curvature;
+    } else if (s.norm() > radius) {
       s *= radius / s.norm();
     } else if (have_direction) {
       // Downhill to first order; where ∇F·d is rounding (a planar curve's out-of-plane mode,
@@ -261,7 +325,7 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
       s += tau * d;
       escape = tau > 0;
     }
-    const double predicted = -(g.dot(s) + 0.5 * s.dot(W * s));
+    if (!(use_block && ritz.vectors.cols() > 0)) predicted = -(g.dot(s) + 0.5 * s.dot(W * s));
 
     // 4. Retract and compare the decrease with the model's.
     const MatrixX3 trial = X + Eigen::Map<const MatrixX3>(s.data(), N, 3);
@@ -283,7 +347,32 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
     if (rho < kShrink) radius = kShrink * std::min(radius, step);
     else if (rho > kGrow && step >= 0.9 * radius) radius = std::min(2 * radius, max_radius);
 
-    // 5. Progress: F down by more than rounding, or the stationarity down by a tenth.
+    // 5a. Slow progress with negative curvature left (the glassy tail of a curve with many soft
+    // modes: Figure 1's edit from 8k points up): F down by a fraction progress_decrease, the
+    // stationarity by a tenth or the negative count by half within progress_window iterations,
+    // else stop and say so rather than spend the budget (issue 25; README, *Solvers*).
+    if (o_.progress_window > 0) {
+      if (inertia <= 0 || F < window_F - o_.progress_decrease * std::abs(window_F) || stat < 0.1 * window_stat ||
+          2 * inertia <= window_negative) {
+        window_F = F;
+        window_stat = stat;
+        window_negative = inertia;
+        window_start = iterations;
+      } else if (iterations - window_start >= o_.progress_window) {
+        X = X_iterate;  // the curve the count and the estimate below were measured on
+        rep.min_reduced_hessian_eig = iterate_min_eig;
+        return finish(Termination::Stalled,
+                      "stalled with negative curvature left: the reduced Hessian has " + std::to_string(inertia) +
+                          " negative eigenvalue(s) (LDLT inertia; " +
+                          (iterate_min_eig < 0 ? "the smallest ≤ " + sci(iterate_min_eig) + ", a Rayleigh quotient" : std::string("the smallest not estimated")) +
+                          "), and over the last " +
+                          std::to_string(iterations - window_start) + " iterations F fell by less than " +
+                          format_default(100 * o_.progress_decrease) + " %, the stationarity by less than a tenth and the negative count by less than half (trust_region.progress_window, progress_decrease) after " +
+                          std::to_string(rep.solves) + " solves; max relative length error " + format_default(rep.length_error) +
+                          ", stationarity " + sci(stat) + " (tolerance " + sci(stat_tol) + ")");
+      }
+    }
+    // 5b. Progress: F down by more than rounding, or the stationarity down by a tenth.
     if (F < best_F - 1e-13 * std::abs(best_F) || stat < 0.1 * best_stat) {
       since_progress = 0;
       best_F = std::min(best_F, F);

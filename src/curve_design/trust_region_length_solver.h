@@ -40,6 +40,18 @@ struct TrustRegionOptions {
   //! shift is raised until the optimized LDLᵀ's inertia is right (reference: until the step
   //! has positive curvature, which is weaker; the message says which).
   int dense_limit = 300;
+  //! Above the dense limit: how many soft modes block inverse iteration follows per iteration
+  //! (subspace_step.h); the step is the exact trust-region step in their span with the shifted
+  //! Newton step. 1: one eigenvector by inverse iteration filling what the Newton step leaves
+  //! of the radius (the method before; one negative mode left per iteration).
+  int block_size = 8;
+  //! Block inverse-iteration steps per iteration (the block is warm-started from the last).
+  int block_steps = 3;
+  //! While the inertia finds negative curvature: stop `stalled` (saying so) when within this
+  //! many iterations F fell by less than progress_decrease·|F|, the stationarity by less than a
+  //! tenth and the negative-eigenvalue count by less than half. 0: off (the budget decides).
+  int progress_window = 20;
+  double progress_decrease = 1e-2;
   KktMethod kkt = KktMethod::Direct;
   Backend backend = kFastestBackend;
 };

@@ -66,6 +66,11 @@ import csv, sys
 r = next(csv.DictReader(open(sys.argv[1])))
 sys.exit(0 if r["n_points"] == "289" and r["termination"] == "converged" else 1)
 PYEOF
+# The trust region's large-curve keys are checked (block step, progress window).
+expect_error 2 "optimization.solver.trust_region.block_size: 0 is out of range \[1, 64\]" -- "$FS" run "$C300" --set input.resample=289 \
+  --set optimization.solver.trust_region.block_size=0 --out "$SCRATCH/x"
+expect_error 2 "optimization.solver.trust_region.progress_decrease: 2 is out of range \[0, 1\]" -- "$FS" run "$C300" --set input.resample=289 \
+  --set optimization.solver.trust_region.progress_decrease=2 --out "$SCRATCH/x"
 # Issue 25 parts 3-4: the editing options are checked, and locality is reported.
 expect_error 2 "editing.explicit_step: unknown value 'rope' (valid: local, sweep)" -- "$FS" run $C --set editing.explicit_step=rope --out "$SCRATCH/x"
 expect_error 2 "editing.details: unknown value 'local' (valid: global, local_frames)" -- "$FS" run $C --set editing.details=local --out "$SCRATCH/x"

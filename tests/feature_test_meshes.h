@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "fairshape/mesh/surface_mesh.h"
+#include "fairshape/subdivision/scheme.h"
 
 namespace fairshape::test {
 
@@ -45,6 +46,18 @@ inline SurfaceMesh cylinder(int around, int rings, double R, double H) {
       faces.push_back({a, d, c});
     }
   return SurfaceMesh::from_polygons(V, faces);
+}
+
+// Loop subdivision with the default rules: the scheme of every feature hierarchy.
+inline SubdivisionOptions loop_options() {
+  SubdivisionOptions opt;
+  opt.scheme = SchemeType::Loop;
+  return opt;
+}
+
+// The length of a mesh's bounding-box diagonal: the scale feature tolerances are relative to.
+inline double diagonal(const SurfaceMesh& m) {
+  return (m.positions().colwise().maxCoeff() - m.positions().colwise().minCoeff()).norm();
 }
 
 }  // namespace fairshape::test

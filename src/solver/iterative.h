@@ -63,7 +63,8 @@ class IterationMonitor {
   //! `converged`) gives the true relative residual ‖b − Ax‖/‖b‖ here: true when it misses the
   //! tolerance and a restart from it may still reach it (the caller replaces its residual by
   //! the true one and restarts its directions); false to stop — converged if the true residual
-  //! meets the tolerance, otherwise `stalled`, saying where the true residual floors.
+  //! meets the tolerance (or, at a floor restarts cannot lower, twice the tolerance: rounding, said
+  //! in the message), otherwise `stalled`, saying where the true residual floors.
   bool confirm_residual(int iteration, double true_residual);
   //! Whether record() looks at x (energy rule or a callback): solvers that keep their own
   //! layout convert their iterate only then.

@@ -22,15 +22,8 @@ using namespace fairshape::feature;
 
 namespace {
 
-SubdivisionOptions loop_options() {
-  SubdivisionOptions opt;
-  opt.scheme = SchemeType::Loop;
-  return opt;
-}
-
-double diagonal(const SurfaceMesh& m) {
-  return (m.positions().colwise().maxCoeff() - m.positions().colwise().minCoeff()).norm();
-}
+using test::diagonal;
+using test::loop_options;
 
 struct Model {
   const char* name;

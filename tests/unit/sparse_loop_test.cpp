@@ -21,15 +21,8 @@ using namespace fairshape::feature;
 
 namespace {
 
-SubdivisionOptions loop_options() {
-  SubdivisionOptions opt;
-  opt.scheme = SchemeType::Loop;
-  return opt;
-}
-
-double diagonal(const SurfaceMesh& m) {
-  return (m.positions().colwise().maxCoeff() - m.positions().colwise().minCoeff()).norm();
-}
+using test::diagonal;
+using test::loop_options;
 
 // A feature through two points of `level` of `h` (projected there). The helmet's crown between
 // x = −0.05 and 0.16 is where feature_profile_test draws its curves too.

@@ -38,7 +38,8 @@ class SplitSolver final : public QpSolver {
   Eigen::Index n_ = 0;  // unknowns of the program
   SparseMatrix A_;
   // H restricted to the constrained unknowns: the full energy is the reduced one plus
-  // ½ p_cᵀ H_cc p_c − f_cᵀ p_c, so no copy of the whole H is kept (1.3 GB at 4.5M unknowns).
+  // ½ p_cᵀ H_cc p_c − f_cᵀ p_c, so no copy of the whole H is kept (H is 1.3 GB at 4.5M
+  // unknowns; H_cc is the constrained share of it, a third in the cow's Figure 2 edit).
   SparseMatrix H_cc_;
   std::vector<int> touched_;
   std::unique_ptr<MinNormLeastSquares> ls_;

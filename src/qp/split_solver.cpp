@@ -49,11 +49,14 @@ QpReport SplitSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b, 
     throw InvalidInput("paper solve: right-hand sides or start do not match the analyzed program");
   // Minimum norm: the paper's A⁺b. Nearest to the start: start + A⁺(b − A·start), the
   // smallest change that satisfies the rows.
+  const auto on_touched = [this](const Eigen::MatrixXd& M) {
+    Eigen::MatrixXd out(static_cast<Eigen::Index>(touched_.size()), M.cols());
+    for (std::size_t k = 0; k < touched_.size(); ++k) out.row(static_cast<Eigen::Index>(k)) = M.row(touched_[k]);
+    return out;
+  };
   Eigen::MatrixXd fixed;
   if (o.nearest_to_initial && o.initial) {
-    Eigen::MatrixXd on_touched(static_cast<Eigen::Index>(touched_.size()), o.initial->cols());
-    for (std::size_t k = 0; k < touched_.size(); ++k) on_touched.row(static_cast<Eigen::Index>(k)) = o.initial->row(touched_[k]);
-    fixed = on_touched + ls_->solve(b - A_ * *o.initial).X;
+    fixed = on_touched(*o.initial) + ls_->solve(b - A_ * *o.initial).X;
   } else {
     fixed = ls_->solve(b).X;
   }
@@ -67,10 +70,9 @@ QpReport SplitSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b, 
     out.summary = {Termination::Converged, 0, 0.0, "every unknown is constrained"};
   } else {
     // Callers see the whole n × k iterate. The reduced energy differs from the full one by a
-    // constant, the fixed unknowns' own part, so a check costs no product with H.
-    Eigen::MatrixXd f_fixed(fixed.rows(), f.cols());
-    for (std::size_t k = 0; k < touched_.size(); ++k) f_fixed.row(static_cast<Eigen::Index>(k)) = f.row(touched_[k]);
-    const double energy_offset = quadratic_energy(H_cc_, f_fixed, fixed);
+    // constant, the fixed unknowns' own part, so a check costs no product with H (and without
+    // a callback nothing is measured).
+    const double energy_offset = o.callback ? quadratic_energy(H_cc_, on_touched(f), fixed) : 0.0;
     Eigen::MatrixXd full;
     const IterationCallback expanded = [&](const IterationRecord& r) {
       full = red_.expand(*r.x);

@@ -14,6 +14,7 @@
 #include "fairshape/feature/profile_measure.h"
 #include "fairshape/feature/sparse_measure.h"
 #include "fairshape/io/mesh_io.h"
+#include "feature_test_checks.h"
 #include "feature_test_meshes.h"
 #include "test_support.h"
 
@@ -22,6 +23,7 @@ using namespace fairshape::feature;
 
 namespace {
 
+using test::check_same_measure;
 using test::diagonal;
 using test::loop_options;
 
@@ -78,15 +80,6 @@ int changed_but_absent(const AdaptiveEvaluation& a, const MultiresSurface& resul
   return n;
 }
 
-void check_same(const ProfileMeasure& a, const ProfileMeasure& b, double tol, const char* where) {
-  const double x[] = {a.height_min, a.height_max, a.height_error, a.width_left, a.width_right, a.width_error, a.profile_error};
-  const double y[] = {b.height_min, b.height_max, b.height_error, b.width_left, b.width_right, b.width_error, b.profile_error};
-  for (int i = 0; i < 7; ++i) {
-    INFO(where << " value " << i << ": sparse " << x[i] << ", uniform " << y[i]);
-    CHECK((std::abs(x[i] - y[i]) <= tol || (std::isnan(x[i]) && std::isnan(y[i]))));
-  }
-}
-
 void check_crack_free(const AdaptiveEvaluation& a, const SurfaceMesh& base) {
   CHECK(a.mesh.boundary_loops().size() == base.boundary_loops().size());
   const auto euler = [](const SurfaceMesh& m) { return m.n_vertices() - m.n_edges() + m.n_faces(); };
@@ -121,8 +114,8 @@ TEST_CASE("features drawn on any level: sparse equals uniform, positions and mea
         REQUIRE(ms.size() == 1);
         INFO(ms[0].limit_note);
         REQUIRE(ms[0].limit_measured);
-        check_same(ms[0].fine, mu[0].fine, 1e-10, "finest level");
-        check_same(ms[0].limit, mu[0].limit, 1e-10, "limit");
+        check_same_measure(ms[0].fine, mu[0].fine, 1e-10, "finest level");
+        check_same_measure(ms[0].limit, mu[0].limit, 1e-10, "limit");
         // Not trivial: the feature is seen at the limit, and only its region is computed.
         CHECK(std::abs(mu[0].limit.height_max) > 0.5 * std::abs(m.height));
         CHECK(e.levels[static_cast<std::size_t>(m.levels)].n_local_faces() < plain.mesh(m.levels).n_faces());
@@ -158,8 +151,8 @@ TEST_CASE("features on two levels and a finest one, composed as the uniform run 
     for (std::size_t i = 0; i < mu.size(); ++i) {
       INFO("feature drawn on level " << features[i].level << ": " << ms[i].limit_note);
       REQUIRE(ms[i].limit_measured);
-      check_same(ms[i].fine, mu[i].fine, 1e-10, "finest level");
-      check_same(ms[i].limit, mu[i].limit, 1e-10, "limit");
+      check_same_measure(ms[i].fine, mu[i].fine, 1e-10, "finest level");
+      check_same_measure(ms[i].limit, mu[i].limit, 1e-10, "limit");
     }
     check_crack_free(e, helmet.base);
   }
@@ -251,8 +244,8 @@ TEST_CASE("features below the finest level on the knot, the cow, the open mushro
         REQUIRE(ms.size() == 1);
         INFO(ms[0].limit_note);
         REQUIRE(ms[0].limit_measured);
-        check_same(ms[0].fine, mu[0].fine, 1e-10, "finest level");
-        check_same(ms[0].limit, mu[0].limit, 1e-10, "limit");
+        check_same_measure(ms[0].fine, mu[0].fine, 1e-10, "finest level");
+        check_same_measure(ms[0].limit, mu[0].limit, 1e-10, "limit");
         CHECK(e.levels[static_cast<std::size_t>(k.levels)].n_local_faces() < plain.mesh(k.levels).n_faces() / 4);
         if (m.boundary_loops().empty()) check_crack_free(e, m);
       }

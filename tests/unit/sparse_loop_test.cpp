@@ -12,6 +12,7 @@
 #include "fairshape/feature/featured_surface.h"
 #include "fairshape/feature/profile_measure.h"
 #include "fairshape/feature/sparse_measure.h"
+#include "feature_test_checks.h"
 #include "feature_test_meshes.h"
 #include "fairshape/io/mesh_io.h"
 #include "test_support.h"
@@ -21,6 +22,7 @@ using namespace fairshape::feature;
 
 namespace {
 
+using test::check_same_measure;
 using test::diagonal;
 using test::loop_options;
 
@@ -255,20 +257,6 @@ TEST_CASE("sparse Loop levels on the knot and the cow, flatness everywhere", "[f
     check_crack_free(b, fs.result(), m, 1e-12 * diagonal(m));
   }
 }
-
-namespace {
-
-// Every number of two measures, equal to `tol` (NaN on both sides counts as equal).
-void check_same_measure(const ProfileMeasure& a, const ProfileMeasure& b, double tol, const char* where) {
-  const double x[] = {a.height_min, a.height_max, a.height_error, a.width_left, a.width_right, a.width_error, a.profile_error};
-  const double y[] = {b.height_min, b.height_max, b.height_error, b.width_left, b.width_right, b.width_error, b.profile_error};
-  for (int i = 0; i < 7; ++i) {
-    INFO(where << " value " << i << ": sparse " << x[i] << ", uniform " << y[i]);
-    CHECK((std::abs(x[i] - y[i]) <= tol || (std::isnan(x[i]) && std::isnan(y[i]))));
-  }
-}
-
-}  // namespace
 
 TEST_CASE("a sparse evaluation measures its features as the uniform one, finest level and limit", "[feature][sparse][profile]") {
   struct Case {

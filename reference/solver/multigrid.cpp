@@ -13,9 +13,10 @@ class SerialKernels {
  public:
   using Block = Eigen::MatrixXd;
 
-  void setup(MultigridLevels levels, const MultigridOptions& options) {
+  void setup(const SparseMatrix& A, MultigridLevels levels, const MultigridOptions& options) {
     omega_ = options.omega;
     levels_ = std::move(levels);
+    levels_.back().A = A;  // the reference keeps its own copy of every level
     rows_.clear();
     diagonals_.clear();
     patches_.assign(levels_.size(), {});

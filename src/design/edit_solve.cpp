@@ -71,7 +71,9 @@ PreparedEdit::PreparedEdit(const EditProblem& p, ConstraintMode mode, Solver& so
     const auto& registry = qp::qp_solver_registry();
     qp_ = registry.create(name, registry.has(name, backend) ? backend : kFastestBackend, qp_options);
   }
-  qp::QuadraticProgram program{s.H, s.g, s.constraints.A, Eigen::MatrixXd::Zero(s.constraints.A.rows(), s.g.cols()), {}, {}};
+  // H is lent, not copied: the problem outlives this edit (documented in edit_solve.h).
+  qp::QuadraticProgram program{{}, s.g, s.constraints.A, Eigen::MatrixXd::Zero(s.constraints.A.rows(), s.g.cols()), {}, {}};
+  program.borrowed_H = &s.H;
   program.levels = s.levels;
   qp_->analyze(program);
   constrained_vertices_ = static_cast<int>(reached_columns(s.constraints.A).size());

@@ -4,21 +4,24 @@
 
 namespace fairshape {
 
-ReducedSystem reduce(const ConstrainedSystem& s) {
-  const int n = static_cast<int>(s.H.rows());
-  if (s.H.cols() != n || s.g.rows() != n)
-    throw InvalidInput("reduce: H is " + std::to_string(s.H.rows()) + "×" + std::to_string(s.H.cols()) +
-                       " but g has " + std::to_string(s.g.rows()) + " rows");
-  if (static_cast<Eigen::Index>(s.fixed.size()) != s.fixed_values.rows())
+ReducedSystem reduce(const ConstrainedSystem& s) { return reduce(s.H, s.g, s.fixed, s.fixed_values); }
+
+ReducedSystem reduce(const SparseMatrix& H, const Eigen::MatrixXd& g, const std::vector<int>& fixed,
+                     const Eigen::MatrixXd& fixed_values) {
+  const int n = static_cast<int>(H.rows());
+  if (H.cols() != n || g.rows() != n)
+    throw InvalidInput("reduce: H is " + std::to_string(H.rows()) + "×" + std::to_string(H.cols()) +
+                       " but g has " + std::to_string(g.rows()) + " rows");
+  if (static_cast<Eigen::Index>(fixed.size()) != fixed_values.rows())
     throw InvalidInput("reduce: fixed ids and fixed values differ in count");
-  if (!s.fixed_values.allFinite() || !s.g.allFinite())
+  if (!fixed_values.allFinite() || !g.allFinite())
     throw InvalidInput("reduce: constraint targets or right-hand side are not finite");
   ReducedSystem r;
   r.n_full = n;
-  r.fixed = s.fixed;
+  r.fixed = fixed;
   std::vector<int> slot(n, -1);  // index among free unknowns, or -1 for fixed
   std::vector<char> is_fixed(n, 0);
-  for (int v : s.fixed) {
+  for (int v : fixed) {
     if (v < 0 || v >= n) throw InvalidInput("reduce: fixed vertex " + std::to_string(v) + " out of range");
     is_fixed[v] = 1;
   }
@@ -27,22 +30,36 @@ ReducedSystem reduce(const ConstrainedSystem& s) {
       slot[v] = static_cast<int>(r.free.size());
       r.free.push_back(v);
     }
-  std::vector<int> fixed_slot(n, -1);
-  for (std::size_t k = 0; k < s.fixed.size(); ++k) fixed_slot[s.fixed[k]] = static_cast<int>(k);
-  Triplets t, t_coupling;
-  for (int k = 0; k < s.H.outerSize(); ++k)
-    for (SparseMatrix::InnerIterator it(s.H, k); it; ++it) {
-      if (slot[it.row()] < 0) continue;
-      if (slot[it.col()] >= 0) t.emplace_back(slot[it.row()], slot[it.col()], it.value());
-      else t_coupling.emplace_back(slot[it.row()], fixed_slot[it.col()], it.value());
-    }
+  // H_ff and H_fc column by column straight from H's columns (slots grow with the vertex id, so
+  // each column's rows stay sorted): no triplet list, which at 4.5M unknowns held 2 GB more
+  // than the matrices it built.
   const auto n_free = static_cast<Eigen::Index>(r.free.size());
-  r.A.resize(n_free, n_free);
-  r.A.setFromTriplets(t.begin(), t.end());
-  r.coupling.resize(n_free, static_cast<Eigen::Index>(s.fixed.size()));
-  r.coupling.setFromTriplets(t_coupling.begin(), t_coupling.end());
-  r.g_free = r.restrict_to_free(s.g);
-  r.set_fixed_values(s.fixed_values);
+  // A source column of −1 is empty.
+  const auto columns_of = [&](SparseMatrix& out, const std::vector<int>& source_columns) {
+    Eigen::VectorXi sizes(static_cast<Eigen::Index>(source_columns.size()));
+    for (std::size_t k = 0; k < source_columns.size(); ++k) {
+      int count = 0;
+      if (source_columns[k] >= 0)
+        for (SparseMatrix::InnerIterator it(H, source_columns[k]); it; ++it) count += slot[it.row()] >= 0;
+      sizes[static_cast<Eigen::Index>(k)] = count;
+    }
+    out.resize(n_free, static_cast<Eigen::Index>(source_columns.size()));
+    out.reserve(sizes);
+    for (std::size_t k = 0; k < source_columns.size(); ++k)
+      if (source_columns[k] >= 0)
+        for (SparseMatrix::InnerIterator it(H, source_columns[k]); it; ++it)
+          if (slot[it.row()] >= 0) out.insertBackUncompressed(slot[it.row()], static_cast<Eigen::Index>(k)) = it.value();
+    out.makeCompressed();
+  };
+  columns_of(r.A, r.free);
+  // A vertex listed twice couples through its last listing (its value is that one's).
+  std::vector<int> last_listing(static_cast<std::size_t>(n), -1), coupled(fixed);
+  for (std::size_t k = 0; k < fixed.size(); ++k) last_listing[static_cast<std::size_t>(fixed[k])] = static_cast<int>(k);
+  for (std::size_t k = 0; k < fixed.size(); ++k)
+    if (last_listing[static_cast<std::size_t>(fixed[k])] != static_cast<int>(k)) coupled[k] = -1;
+  columns_of(r.coupling, coupled);
+  r.g_free = r.restrict_to_free(g);
+  r.set_fixed_values(fixed_values);
   return r;
 }
 

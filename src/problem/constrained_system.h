@@ -37,6 +37,9 @@ struct ReducedSystem {
 
 //! \throw InvalidInput when sizes disagree, a fixed id is out of range, or values are not finite.
 ReducedSystem reduce(const ConstrainedSystem& s);
+//! The same from H lent by the caller (no copy of H into a ConstrainedSystem).
+ReducedSystem reduce(const SparseMatrix& H, const Eigen::MatrixXd& g, const std::vector<int>& fixed,
+                     const Eigen::MatrixXd& fixed_values);
 //! ½ Σ_c u_cᵀ H u_c − Σ_c g_cᵀ u_c, the objective of a ConstrainedSystem or an edit problem.
 double quadratic_energy(const SparseMatrix& H, const Eigen::MatrixXd& g, const Eigen::MatrixXd& u);
 //! diag(M, ..., M) with `copies` blocks: M acting on every coordinate of the stacked

@@ -159,7 +159,7 @@ std::unique_ptr<KktSolver::System> KktSolver::build(CompressedRows rows, std::un
 void KktSolver::analyze(const QuadraticProgram& qp) {
   validate(qp);
   const Timer timer;
-  H_ = qp.H;
+  H_ = qp.hessian();
   A_original_ = qp.A;
   scaling_ = scale_rows(qp.A);  // unit rows: one meaning of "dependent" for every kind of row
   A_ = scaling_.scaled;

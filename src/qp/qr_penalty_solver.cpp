@@ -62,12 +62,12 @@ void factor_r(QR& qr, const SparseMatrix& M, SparseMatrix& R, Eigen::VectorXi& p
 void QrPenaltySolver::analyze(const QuadraticProgram& qp) {
   validate(qp);
   const Timer timer;
-  H_ = qp.H;
+  H_ = qp.hessian();
   A_original_ = qp.A;
   scaling_ = scale_rows(qp.A);  // unit rows: μ weighs every kind of row alike
   A_ = scaling_.scaled;
   At_ = A_.transpose();
-  K_ = qp.K.size() ? qp.K : square_root_of(qp.H);
+  K_ = qp.K.size() ? qp.K : square_root_of(qp.hessian());
   factor(options_.mu);
   conditioning_ = constraint_conditioning(H_, A_, options_.policy.rank_tolerance);
   analyze_s_ = timer.seconds();

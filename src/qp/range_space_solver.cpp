@@ -121,13 +121,13 @@ void RangeSpaceSolver::analyze(const QuadraticProgram& qp) {
                        std::to_string(kMaxRows) + "); use kkt or qr_penalty");
   const Timer timer;
   // Same energy, changed constraints (a design step): update the factor instead of refactoring.
-  if (same_matrix(qp.H, H_) && update_rows(qp.A)) {
+  if (same_matrix(qp.hessian(), H_) && update_rows(qp.A)) {
     analyze_s_ = timer.seconds();
     return;
   }
   last_update_.reset();
   order_.clear();
-  H_ = qp.H;
+  H_ = qp.hessian();
   A_original_ = qp.A;
   scaling_ = scale_rows(qp.A);  // unit rows: one meaning of "dependent" for every kind of row
   A_ = scaling_.scaled;

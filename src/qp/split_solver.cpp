@@ -22,14 +22,14 @@ SplitSolver::~SplitSolver() = default;
 void SplitSolver::analyze(const QuadraticProgram& qp) {
   validate(qp);
   const Timer timer;
-  n_ = qp.H.rows();
+  n_ = qp.hessian().rows();
   A_ = qp.A;
   touched_ = reached_columns(A_);
   if (touched_.empty()) throw InvalidInput("paper: no constraint row reaches an unknown: the split has nothing to fix");
   const SparseMatrix pick = row_picker(A_.cols(), touched_);
   ls_ = std::make_unique<MinNormLeastSquares>(A_ * pick, backend_);
-  H_cc_ = SparseMatrix(pick.transpose()) * qp.H * pick;
-  red_ = reduce({qp.H, qp.f, touched_, Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(touched_.size()), qp.f.cols())});
+  H_cc_ = SparseMatrix(pick.transpose()) * qp.hessian() * pick;
+  red_ = reduce(qp.hessian(), qp.f, touched_, Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(touched_.size()), qp.f.cols()));
   if (!red_.free.empty()) {
     if (free_.uses_levels()) {
       if (!qp.levels) throw InvalidInput("paper: a multilevel solver needs a hierarchy below the edit level");

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "fairshape/core/types.h"
+#include "fairshape/solver/symmetric_rows.h"
 
 namespace fairshape {
 
@@ -19,14 +20,14 @@ struct BlockOrdering {
   std::vector<std::vector<std::pair<int, int>>> color_blocks;
 
   //! Blocks of about `block_size` rows. \throw InvalidInput for a non-square matrix.
-  static BlockOrdering build(const RowSparseMatrix& A, int block_size);
+  static BlockOrdering build(const RowSparseRef& A, int block_size);
   //! The block size for `rows` rows: `max_block_size`, or less on small systems so that each
   //! of a handful of colours still has blocks for every thread (at least 64 blocks).
   static int block_size_for(Eigen::Index rows, int max_block_size);
   bool empty() const { return new_of_old.empty(); }
   int colors() const { return static_cast<int>(color_blocks.size()); }
   //! Q A Qᵀ (rows and columns renumbered).
-  RowSparseMatrix permute(const RowSparseMatrix& A) const;
+  RowSparseMatrix permute(const RowSparseRef& A) const;
 };
 
 //! Q_fine P Q_coarseᵀ for a prolongation between two renumbered levels (an empty ordering is

@@ -5,6 +5,7 @@
 
 #include "fairshape/core/error.h"
 #include "fairshape/problem/constrained_system.h"
+#include "fairshape/solver/symmetric_rows.h"
 
 namespace fairshape {
 
@@ -157,14 +158,14 @@ std::vector<std::vector<int>> singular_patches(const SparseMatrix& A, const std:
   const Eigen::Index n_vertices = level == 0 ? ops.prolongation[0].cols() : ops.prolongation[level - 1].rows();
   std::vector<int> local(static_cast<std::size_t>(blocks * n_vertices), -1);
   for (std::size_t i = 0; i < kept.size(); ++i) local[kept[i]] = static_cast<int>(i);
-  const RowSparseMatrix R(A);
+  const auto R = rows_of_symmetric(A);
   std::vector<std::vector<int>> patches;
   for (int b = 0; b < blocks; ++b)
     for (int v : ops.singular[level]) {
       const int row = local[b * n_vertices + v];
       if (row < 0) continue;
       std::vector<int> patch;
-      for (RowSparseMatrix::InnerIterator it(R, row); it; ++it) patch.push_back(static_cast<int>(it.col()));
+      for (SymmetricRows::InnerIterator it(R, row); it; ++it) patch.push_back(static_cast<int>(it.col()));
       patches.push_back(std::move(patch));
     }
   return patches;
@@ -178,12 +179,12 @@ std::vector<std::vector<int>> truncated_patches(const SparseMatrix& A, const Spa
                                                 const std::vector<int>& kept, const SparseMatrix& P) {
   const Eigen::VectorXd full_sums = P_full * Eigen::VectorXd::Ones(P_full.cols());
   const Eigen::VectorXd kept_sums = P * Eigen::VectorXd::Ones(P.cols());
-  const RowSparseMatrix R(A);
+  const auto R = rows_of_symmetric(A);
   std::vector<std::vector<int>> patches;
   for (std::size_t i = 0; i < kept.size(); ++i) {
     if (std::abs(full_sums[kept[i]] - kept_sums[static_cast<Eigen::Index>(i)]) <= 1e-12) continue;
     std::vector<int> patch;
-    for (RowSparseMatrix::InnerIterator it(R, static_cast<Eigen::Index>(i)); it; ++it) patch.push_back(static_cast<int>(it.col()));
+    for (SymmetricRows::InnerIterator it(R, static_cast<Eigen::Index>(i)); it; ++it) patch.push_back(static_cast<int>(it.col()));
     patches.push_back(std::move(patch));
   }
   return patches;
@@ -243,7 +244,8 @@ MultigridLevels build_multigrid_levels(const SparseMatrix& A, const LevelOperato
                          ? MultigridOptions::CoarseSpace::Nested
                          : opt.coarse_space;
   MultigridLevels levels(used + 1);
-  levels[used].A = A;
+  // The finest level's operator is the caller's A, not copied (see MultigridLevel::A).
+  const auto op = [&](int k) -> const SparseMatrix& { return k == used ? A : levels[k].A; };
   for (int k = used; k > 0; --k) {
     const int level = available - (used - k) - 1;  // the hierarchy's level below level k's
     const SparseMatrix P_full = block_diagonal(ops.prolongation[level], selection.blocks);
@@ -257,7 +259,7 @@ MultigridLevels build_multigrid_levels(const SparseMatrix& A, const LevelOperato
     const int nc = static_cast<int>(coarse_kept.size());
     levels[k].P = select(P_full, kept, col_of, nc);
     if (opt.coarse_operator == MultigridOptions::CoarseOperator::Galerkin) {
-      levels[k - 1].A = galerkin(levels[k].A, levels[k].P);
+      levels[k - 1].A = galerkin(op(k), levels[k].P);
     } else {
       const SparseMatrix H = select(block_diagonal(ops.reassemble(level), selection.blocks), coarse_kept, col_of, nc);
       // The re-assembled energy differs from the Galerkin operator by a level-dependent factor
@@ -268,15 +270,15 @@ MultigridLevels build_multigrid_levels(const SparseMatrix& A, const LevelOperato
       const Eigen::VectorXd inv_diag = H.diagonal().cwiseInverse();
       for (int step = 0; step < 30; ++step) v -= 0.5 * inv_diag.cwiseProduct(H * v);
       const Eigen::VectorXd Pv = levels[k].P * v;
-      const double scale = Pv.dot(levels[k].A * Pv) / v.dot(H * v);
+      const double scale = Pv.dot(op(k) * Pv) / v.dot(H * v);
       if (!(scale > 0 && std::isfinite(scale)))
         throw InvalidInput("multigrid: the re-assembled operator of level " + std::to_string(level) +
                            " is not positive on the coarse space");
       levels[k - 1].A = scale * H;
     }
     if (opt.patch_smoothing) {
-      levels[k].patches = singular_patches(levels[k].A, kept, level + 1, ops, selection.blocks);
-      for (auto& patch : truncated_patches(levels[k].A, P_full, kept, levels[k].P)) levels[k].patches.push_back(std::move(patch));
+      levels[k].patches = singular_patches(op(k), kept, level + 1, ops, selection.blocks);
+      for (auto& patch : truncated_patches(op(k), P_full, kept, levels[k].P)) levels[k].patches.push_back(std::move(patch));
       // Where singular vertices are dense (the first levels above a triangle mesh) the patches
       // would cost many sweeps and overlap everywhere: those levels rely on the sweeps alone.
       if (levels[k].patches.size() * 8 > kept.size()) levels[k].patches.clear();

@@ -64,7 +64,9 @@ struct MultigridOptions {
 };
 
 struct MultigridLevel {
-  SparseMatrix A;  // the operator on this level's unknowns
+  //! The operator on this level's unknowns; empty on the finest level, whose operator is the
+  //! system's own matrix (kernels get it beside the levels: a copy is 0.9 GB at 4.5M unknowns).
+  SparseMatrix A;
   SparseMatrix P;  // from the next coarser level (empty on the coarsest)
   std::vector<std::vector<int>> patches;  // unknowns around each singular vertex
 };
@@ -194,7 +196,8 @@ using GalerkinProduct = std::function<SparseMatrix(const SparseMatrix& A, const 
 SparseMatrix serial_galerkin_product(const SparseMatrix& A, const SparseMatrix& P);
 
 //! The levels below A: each prolongation restricted to the kept unknowns (rows) and to the
-//! coarse unknowns it reaches (columns), and the coarse operators.
+//! coarse unknowns it reaches (columns), and the coarse operators; the finest level's A is left
+//! empty (it is A). A must be compressed and symmetric.
 //! \throw InvalidInput when the hierarchy is too shallow (no coarse level), sizes disagree, or
 //! re-assembly is asked for without a re-assembly function.
 MultigridLevels build_multigrid_levels(const SparseMatrix& A, const LevelOperators& ops, const LevelSelection& selection,
@@ -350,7 +353,8 @@ SolveSummary run_multigrid(Kernels& k, const MultigridOptions& mg, const Iterati
 }
 
 //! The solver: builds the levels in analyze() (the hierarchy comes from set_levels), then
-//! runs cycles or preconditioned CG. Kernels also provide setup(levels, options). The levels are
+//! runs cycles or preconditioned CG. Kernels also provide setup(A, levels, options), A the
+//! finest operator (levels.back().A is empty). The levels are
 //! built again when a solve brings another matrix, or after set_levels (solver.h).
 template <class Kernels>
 class MultigridSolver : public Solver {
@@ -370,9 +374,11 @@ class MultigridSolver : public Solver {
     MultigridLevels levels = build_multigrid_levels(A, *ops_, selection_, mg_, galerkin_);
     // Gauss-Seidel needs a positive diagonal on every smoothed level (not the coarsest).
     diagonal_problem_.clear();
-    for (std::size_t l = 1; l < levels.size() && diagonal_problem_.empty(); ++l)
-      diagonal_problem_ = diagonal_problem(levels[l].A.diagonal());
-    kernels_.setup(std::move(levels), mg_);  // the kernels keep what they need, in their own layout
+    for (std::size_t l = 1; l < levels.size() && diagonal_problem_.empty(); ++l) {
+      const SparseMatrix& op = l + 1 == levels.size() ? A : levels[l].A;
+      diagonal_problem_ = diagonal_problem(op.diagonal());
+    }
+    kernels_.setup(A, std::move(levels), mg_);  // the kernels keep what they need, in their own layout
     analyzed_.remember(A);
   }
 

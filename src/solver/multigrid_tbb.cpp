@@ -12,6 +12,7 @@
 #include "fairshape/solver/multigrid.h"
 #include "fairshape/solver/parallel_kernels.h"
 #include "fairshape/solver/row_kernels.h"
+#include "fairshape/solver/symmetric_rows.h"
 
 namespace fairshape {
 namespace {
@@ -44,9 +45,10 @@ class ParallelKernels {
  public:
   using Block = RowBlock;
 
-  // Each level's operator is converted to rows (and renumbered) and its column-major original
-  // released at once: at 1.1M rows every copy of A is ~220 MB.
-  void setup(MultigridLevels levels, const MultigridOptions& options) {
+  // Each level's operator is read as rows (symmetric: no transposed copy), renumbered into
+  // the one copy the kernels keep, and its column-major original released at once; the
+  // finest one is the caller's A (at 4.5M unknowns every copy of it is 0.9 GB).
+  void setup(const SparseMatrix& fine, MultigridLevels levels, const MultigridOptions& options) {
     omega_ = options.omega;
     block_ = options.smoother == MultigridOptions::Smoother::Block;
     const std::size_t n = levels.size();
@@ -57,26 +59,27 @@ class ParallelKernels {
     smoothers_.assign(n, {});
     block_smoothers_.assign(n, {});
     patches_.assign(n, {});
-    for (std::size_t l = 0; l < n; ++l) {
-      A_[l] = levels[l].A;
-      A_[l].makeCompressed();
-      if (l == 0) continue;  // the coarsest level is solved directly, in its own numbering
-      levels[l].A = SparseMatrix();
+    for (std::size_t l = 1; l < n; ++l) {  // the coarsest level is solved directly, in its own numbering
+      const SparseMatrix& op = l + 1 == n ? fine : levels[l].A;
       if (block_) {
-        orderings_[l] = BlockOrdering::build(A_[l], BlockOrdering::block_size_for(A_[l].rows(), options.block_size));
-        A_[l] = orderings_[l].permute(A_[l]);
+        orderings_[l] = BlockOrdering::build(rows_of_symmetric(op), BlockOrdering::block_size_for(op.rows(), options.block_size));
+        A_[l] = orderings_[l].permute(rows_of_symmetric(op));
         block_smoothers_[l].analyze(A_[l], orderings_[l].color_blocks);
       } else {
+        A_[l] = rows_of_symmetric(op);
         smoothers_[l].analyze(A_[l]);
       }
+      levels[l].A = SparseMatrix();
       P_[l] = block_ ? permute_prolongation(levels[l].P, orderings_[l], orderings_[l - 1]) : levels[l].P;
+      levels[l].P = SparseMatrix();
       PT_[l] = RowSparseMatrix(SparseMatrix(P_[l]).transpose());
-      std::vector<std::vector<int>> patches = levels[l].patches;
+      std::vector<std::vector<int>> patches = std::move(levels[l].patches);
       if (block_)
         for (auto& patch : patches)
           for (int& i : patch) i = orderings_[l].new_of_old[static_cast<std::size_t>(i)];
       patches_[l].setup(A_[l], patches);
     }
+    A_[0] = levels[0].A;
     coarse_.compute(levels[0].A, options.coarse_space == MultigridOptions::CoarseSpace::Truncated);
   }
 

@@ -12,6 +12,7 @@
 #include "fairshape/core/parallel_row_assembly.h"
 #include "fairshape/solver/graph_coloring.h"
 #include "fairshape/solver/row_kernels.h"
+#include "fairshape/solver/symmetric_rows.h"
 
 namespace fairshape {
 
@@ -170,11 +171,13 @@ Eigen::VectorXd parallel_column_dots(const RowBlock& a, const RowBlock& c) {
 }
 
 SparseMatrix parallel_galerkin_product(const SparseMatrix& A_in, const SparseMatrix& P_in) {
-  // Row I of PᵀAP = Σ_{i ∈ column I of P} P_iI Σ_j A_ij P_j.
-  const RowSparseMatrix A(A_in), P(P_in), PT(P_in.transpose());
+  // Row I of PᵀAP = Σ_{i ∈ column I of P} P_iI Σ_j A_ij P_j. A is symmetric: its columns are
+  // read as its rows (no row-major copy of the largest operand).
+  const auto A = rows_of_symmetric(A_in);
+  const RowSparseMatrix P(P_in), PT(P_in.transpose());
   return assemble_symmetric_by_rows(static_cast<int>(P.cols()), 512, [&](int I, const auto& add, bool values) {
     for (RowSparseMatrix::InnerIterator pi(PT, I); pi; ++pi)
-      for (RowSparseMatrix::InnerIterator a(A, pi.col()); a; ++a)
+      for (SymmetricRows::InnerIterator a(A, pi.col()); a; ++a)
         for (RowSparseMatrix::InnerIterator pj(P, a.col()); pj; ++pj)
           add(static_cast<int>(pj.col()), values ? pi.value() * a.value() * pj.value() : 0.0);
   });

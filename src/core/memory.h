@@ -13,5 +13,8 @@ double trimmed_rss_mb();
 // Returns the allocator's free memory to the system (glibc keeps freed pages of a large,
 // fragmented heap resident: a supervisor that validated a level-5 sweep held 2.2 GB it had freed).
 void release_free_memory();
+// Memory this process could still take, in MiB: the kernel's MemAvailable plus free swap, capped by
+// the cgroup (v2) limit when one is set; -1 when neither can be read.
+double available_memory_mb();
 
 }  // namespace fairshape

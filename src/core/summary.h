@@ -45,7 +45,8 @@ enum class Termination {
   Infeasible,
   InvalidInput,
   OutputFailed,
-  Crashed
+  Crashed,
+  OutOfMemory
 };
 
 std::string_view to_string(Termination t);

@@ -195,3 +195,34 @@ TEST_CASE("stopping rules: a fixed sweep count, and the energy rule on a monoton
       CHECK(energies.back() - e_min <= 1e-4 * std::abs(energies.front() - e_min));
     }
 }
+
+TEST_CASE("CHOLMOD does not start a factor larger than the memory it may use, and says both sizes",
+          "[solver][conformance]") {
+  const ReducedSystem r = systems().front().r;
+  const auto cholesky = [](const std::string& options) {
+    Config cfg(YAML::Load(options), "solver");
+    return components().solvers.create("cholesky", Backend::Optimized, cfg);
+  };
+  SECTION("a limit below the factor's size: out_of_memory, the start left as it was") {
+    auto s = cholesky("{cholesky: {memory_limit_mb: 0.0001}}");
+    s->analyze(r.A);
+    Eigen::MatrixXd x = Eigen::MatrixXd::Constant(r.A.rows(), 3, 7.0);
+    const SolveSummary summary = s->solve(r.A, r.b, x);
+    CHECK(summary.termination == Termination::OutOfMemory);
+    CHECK_THAT(summary.message, Catch::Contains("needs") && Catch::Contains("solver.cholesky.memory_limit_mb"));
+    CHECK((x.array() == 7.0).all());
+  }
+  SECTION("a limit above it, or the machine's memory: factored and solved, the factor's size said") {
+    for (const char* options : {"{cholesky: {memory_limit_mb: 100000}}", "{}"}) {
+      auto s = cholesky(options);
+      Eigen::MatrixXd x = Eigen::MatrixXd::Zero(r.A.rows(), 3);
+      const SolveSummary summary = s->solve(r.A, r.b, x);
+      CHECK(summary.termination == Termination::Converged);
+      CHECK_THAT(summary.message, Catch::Contains("CHOLMOD factor"));
+      CHECK(relative_residual(r.A, r.b, x) < 1e-12);
+    }
+  }
+  SECTION("a negative limit is refused by name") {
+    CHECK_THROWS_WITH(cholesky("{cholesky: {memory_limit_mb: -1}}"), Catch::Contains("solver.cholesky.memory_limit_mb"));
+  }
+}

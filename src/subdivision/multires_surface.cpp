@@ -62,10 +62,11 @@ Frames local_frames(const SurfaceMesh& mesh, const SubdivisionOptions& opt) {
   return f;
 }
 
-MultiresSurface::MultiresSurface(const SurfaceMesh& base, const SubdivisionOptions& opt, int levels, Backend backend)
+MultiresSurface::MultiresSurface(const SurfaceMesh& base, const SubdivisionOptions& opt, int levels, Backend backend,
+                                 const UniformRefineLimits& limits)
     : opt_(opt), backend_(backend) {
   require_backend(backend);
-  meshes_ = levels == 0 ? std::vector<SurfaceMesh>{base} : refine_uniform(base, opt, levels, backend, {}, &S_);
+  meshes_ = levels == 0 ? std::vector<SurfaceMesh>{base} : refine_uniform(base, opt, levels, backend, limits, &S_);
   world_.resize(levels + 1);
   local_.resize(levels + 1);
   for (int l = 1; l <= levels; ++l) {

@@ -15,6 +15,7 @@
 #include "fairshape/core/error.h"
 #include "fairshape/mesh/surface_mesh.h"
 #include "fairshape/subdivision/scheme.h"
+#include "fairshape/subdivision/subdivider.h"
 
 namespace fairshape {
 
@@ -29,7 +30,9 @@ Frames local_frames(const SurfaceMesh& mesh, const SubdivisionOptions& opt);
 class MultiresSurface {
  public:
   //! Zero details: every level is the subdivision of the one below (levels = 0: just the mesh).
-  MultiresSurface(const SurfaceMesh& base, const SubdivisionOptions& opt, int levels, Backend backend);
+  //! \throw InvalidInput when refine_uniform's estimate exceeds `limits`.
+  MultiresSurface(const SurfaceMesh& base, const SubdivisionOptions& opt, int levels, Backend backend,
+                  const UniformRefineLimits& limits = {});
 
   //! Analysis of a fine semi-regular mesh: `finest` gives the positions of the base refined
   //! `levels` times (vertex ids as subdivide produces them). Each coarser level is the

@@ -54,7 +54,7 @@ std::vector<SurfaceMesh> refine_uniform(const SurfaceMesh& base, const Subdivisi
     os.precision(3);
     os << levels << " levels of " << to_string(opt.scheme) << " on " << base.n_faces() << " faces need about "
        << bytes / (1 << 30) << " GiB, over the limit of " << limits.max_bytes / (1 << 30)
-       << " GiB (raise it with --max-memory-gb)";
+       << " GiB (raise it: `fairshape subdivide --max-memory-gb`, or input.max_memory_gb in a surface-edit config)";
     throw InvalidInput(os.str());
   }
   if (opt.scheme == SchemeType::Loop) require_triangles(base, "subdivide");

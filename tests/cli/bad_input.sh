@@ -52,3 +52,6 @@ grep -q "invalid_input,in the assembled problem: range_space: [0-9]* constraint 
 "$FS" run configs/smoke/cow_nose_pull.yaml --out "$SCRATCH/done" > /dev/null 2>&1 || fail "the smoke run failed"
 expect_error 2 "already holds results" -- "$FS" run configs/smoke/cow_nose_pull.yaml --out "$SCRATCH/done"
 echo "bad_input: ok"
+# A hierarchy over the refinement memory limit is refused naming the key that raises it.
+expect_error 2 "over the limit of .*input.max_memory_gb" -- "$FS" run configs/smoke/cow_nose_pull.yaml --out "$SCRATCH/x" \
+  --set input.representation=catmull-clark --set input.levels=2 --set input.max_memory_gb=0.001

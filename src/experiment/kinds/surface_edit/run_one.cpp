@@ -352,7 +352,8 @@ const MultiresSurface& RunCache::hierarchy(const SurfaceEditSpec& spec, double* 
     if (spec.remesh_triangle_base) ropt.base = RemeshBase::Triangles;
     RemeshReport report;
     MultiresSurface h = spec.remesh_base_faces > 0 ? remesh(input, ropt, &report)
-                                                   : MultiresSurface(input, opt, spec.levels, spec.implementation);
+                                                   : MultiresSurface(input, opt, spec.levels, spec.implementation,
+                                                                     {12, spec.max_memory_gb * double(1ull << 30)});
     if (spec.remesh_base_faces > 0) {
       remesh_reports_[key] = report;
       // The numbers go into runs.csv; a missed quality target is also said, once per remesh.

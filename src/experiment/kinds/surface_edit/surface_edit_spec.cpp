@@ -302,6 +302,9 @@ SurfaceEditSpec SurfaceEditSpec::from_config(const YAML::Node& run_config, const
   s.representation = in.get_enum("representation", Representation::Mesh, representation_names(),
                                  "shape representation: the mesh itself or its subdivision surface");
   s.levels = in.get_int("levels", 0, 0, 8, "uniform subdivision steps; the problem lives on the finest level");
+  s.max_memory_gb = in.get_number("max_memory_gb", s.max_memory_gb, 0.001, 1e6,
+                                  "GiB: refuse uniform refinements whose estimated memory is larger (levels 6 of the "
+                                  "cow: ~9 GiB for the meshes alone)");
   s.boundary = in.get_enum("boundary", BoundaryMode::EdgeOnly, boundary_names(), "subdivision boundary rule");
   s.loop_weights = in.get_enum("weights", LoopWeights::Loop, loop_weight_names(), "Loop vertex weights");
   s.crease_method = in.get_enum("crease_method", CreaseMethod::Uniform, crease_method_names(),
@@ -320,6 +323,8 @@ SurfaceEditSpec SurfaceEditSpec::from_config(const YAML::Node& run_config, const
   in.check_no_unknown_keys();
   if (std::filesystem::path(s.mesh_path).extension() == ".vtm") adopt_saved_hierarchy(in, s);
   s.note_unused(in, "boundary", s.representation != Representation::Mesh);
+  s.note_unused(in, "max_memory_gb", s.representation != Representation::Mesh && s.remesh_base_faces == 0 &&
+                                         std::filesystem::path(s.mesh_path).extension() != ".vtm");
   s.note_unused(in, "weights", s.representation == Representation::Loop);
   s.note_unused(in, "crease_method", s.representation != Representation::Mesh);
   if (s.edit_level > s.levels)

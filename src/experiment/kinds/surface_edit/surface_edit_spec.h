@@ -71,6 +71,7 @@ struct SurfaceEditSpec : RunBasics {
   std::string mesh_path;
   Representation representation = Representation::Mesh;
   int levels = 0;                          // uniform subdivision steps of the input mesh
+  double max_memory_gb = 8.0;              // refuse refinements estimated to need more (refine_uniform)
   int remesh_base_faces = 0;               // > 0: remesh the input into a hierarchy with details
   bool remesh_triangle_base = false;       // remesh_base: triangles (a Catmull-Clark base not paired into quads)
   int edit_level = -1;                     // where the problem is solved (-1: the finest)

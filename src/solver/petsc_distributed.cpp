@@ -157,6 +157,7 @@ DistributedOutcome solve_distributed(const Settings& s, const SparseMatrix& A, c
     x.col(c) = read_vector_file(column_file(dir, "x", c), A.rows());
     out.iterations.push_back(result.at("columns").at(c).at("iterations"));
     out.reasons.push_back(result.at("columns").at(c).at("reason"));
+    out.error_estimates.push_back(result.at("columns").at(c).value("error_estimate", -1.0));
   }
   out.setup_s = result.at("setup_s");
   out.solve_s = result.at("solve_s");
@@ -212,6 +213,17 @@ int run_distributed_job(int argc, char** argv) {
         FS_PETSC(VecSet(x.get(), 0.0));
       }
       FS_PETSC(KSPSetInitialGuessNonzero(ksp.get(), warm ? PETSC_TRUE : PETSC_FALSE));
+      // error_tolerance: the job stops on the error estimate (PETSc's residual test replaced).
+      ErrorStop stop;
+      if (s.iterative.error_tolerance > 0) {
+        stop.error_tolerance = s.iterative.error_tolerance;
+        stop.tolerance = s.iterative.tolerance;
+        stop.max_iterations = s.iterative.max_iterations;
+        FS_PETSC(VecNorm(b.get(), NORM_2, &stop.b_norm));
+        if (!(stop.b_norm > 0)) stop.b_norm = 1;
+        stop.estimate = std::make_unique<IterateErrorEstimate>(A.get(), s.iterative.error_delay);
+        FS_PETSC(KSPSetConvergenceTest(ksp.get(), ErrorStop::test, &stop, nullptr));
+      }
       const Timer t;
       FS_PETSC(KSPSolve(ksp.get(), b.get(), x.get()));
       solve_s += t.seconds();
@@ -220,7 +232,7 @@ int run_distributed_job(int argc, char** argv) {
       FS_PETSC(KSPGetIterationNumber(ksp.get(), &its));
       FS_PETSC(KSPGetConvergedReason(ksp.get(), &reason));
       write_vector(column_file(dir, "x", c), x.get());
-      columns.push_back({{"iterations", its}, {"reason", ConfiguredKsp::reason_name(reason)}});
+      columns.push_back({{"iterations", its}, {"reason", ConfiguredKsp::reason_name(reason)}, {"error_estimate", stop.last_estimate}});
     }
     PetscInt local_rows = 0, local_cols = 0;
     FS_PETSC(MatGetLocalSize(A.get(), &local_rows, &local_cols));

@@ -28,6 +28,7 @@ struct RankReport {
 struct DistributedOutcome {
   std::vector<int> iterations;        // per column
   std::vector<std::string> reasons;   // KSPConvergedReason per column
+  std::vector<double> error_estimates;  // per column, with error_tolerance (else −1)
   double setup_s = 0, solve_s = 0;    // inside the MPI job (KSPSetUp, the KSPSolves)
   double wall_s = 0;                  // the whole job: writing, launching, loading, solving, reading
   std::vector<RankReport> ranks;

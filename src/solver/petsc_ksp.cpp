@@ -1,6 +1,7 @@
 #include "fairshape/solver/petsc_ksp.h"
 
 #include <atomic>
+#include <cmath>
 #include <sstream>
 
 #include "fairshape/core/error.h"
@@ -69,6 +70,51 @@ ConfiguredKsp::ConfiguredKsp(MPI_Comm comm, const Settings& s, Mat A, const std:
                           " (misspelt, or not an option of this preconditioner)");
   }
   setup_s_ = timer.seconds();
+}
+
+double IterateErrorEstimate::push(Vec x) {
+  if (!previous_) {
+    FS_PETSC(VecDuplicate(x, previous_.out()));
+    FS_PETSC(VecDuplicate(x, step_.out()));
+    FS_PETSC(VecDuplicate(x, a_step_.out()));
+    FS_PETSC(VecDuplicate(x, a_x_.out()));
+    FS_PETSC(VecCopy(x, previous_.get()));
+    FS_PETSC(MatMult(A_, x, a_x_.get()));
+    return -1.0;
+  }
+  FS_PETSC(VecWAXPY(step_.get(), -1.0, previous_.get(), x));
+  FS_PETSC(MatMult(A_, step_.get(), a_step_.get()));
+  PetscScalar term = 0, x_a_x = 0;
+  FS_PETSC(VecDot(step_.get(), a_step_.get(), &term));
+  FS_PETSC(VecAXPY(a_x_.get(), 1.0, a_step_.get()));
+  FS_PETSC(VecCopy(x, previous_.get()));
+  terms_.push(term);
+  if (!terms_.ready()) return -1.0;
+  FS_PETSC(VecDot(x, a_x_.get(), &x_a_x));
+  return terms_.estimate(x_a_x);
+}
+
+PetscErrorCode ErrorStop::test(KSP ksp, PetscInt it, PetscReal rnorm, KSPConvergedReason* reason, void* context) {
+  auto* s = static_cast<ErrorStop*>(context);
+  *reason = KSP_CONVERGED_ITERATING;
+  Vec x = nullptr;
+  PetscCall(KSPBuildSolution(ksp, nullptr, &x));
+  try {
+    if (const double e = s->estimate->push(x); e >= 0) s->last_estimate = e;
+  } catch (...) {
+    *reason = KSP_DIVERGED_BREAKDOWN;
+    return 0;
+  }
+  const bool residual_met = s->tolerance == 0 || rnorm <= s->tolerance * s->b_norm;
+  if (s->last_estimate >= 0 && s->last_estimate <= s->error_tolerance && residual_met) {
+    s->stopped_on_error = true;
+    *reason = KSP_CONVERGED_RTOL;
+  } else if (it >= s->max_iterations) {
+    *reason = KSP_DIVERGED_ITS;
+  } else if (!std::isfinite(rnorm)) {
+    *reason = KSP_DIVERGED_NANORINF;
+  }
+  return 0;
 }
 
 }  // namespace fairshape::petsc

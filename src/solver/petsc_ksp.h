@@ -4,9 +4,11 @@
 // near-null space (orthonormal vectors: PETSc requires it).
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "fairshape/solver/iterative.h"
 #include "fairshape/solver/petsc_runtime.h"
 #include "fairshape/solver/petsc_settings.h"
 
@@ -29,6 +31,36 @@ class ConfiguredKsp {
  private:
   KspHandle ksp_;
   double setup_s_ = 0;
+};
+
+//! The Hestenes–Stiefel estimate of CG's relative A-norm error, formed from the iterates: CG's
+//! steps x_{j+1} − x_j are A-orthogonal, so ‖x* − x_k‖²_A = Σ_{j≥k} ‖x_{j+1} − x_j‖²_A, and the
+//! last `delay` steps' sum bounds the error of the iterate `delay` steps back from below (the
+//! estimate fairshape's own CG forms from its step lengths α_j r_jᵀz_j, which PETSc's CG does not
+//! expose). Costs one product with A per iteration; collective on A's communicator.
+class IterateErrorEstimate {
+ public:
+  IterateErrorEstimate(Mat A, int delay) : A_(A), terms_(delay) {}
+  //! After each iteration, with its iterate (the first call: the start). The relative estimate
+  //! once `delay` steps are in, else −1.
+  double push(Vec x);
+
+ private:
+  Mat A_;
+  CgErrorEstimate terms_;
+  VecHandle previous_, step_, a_step_, a_x_;  // a_x_ = A x_k, kept by adding A·step
+};
+
+//! Solves with a KSP, stopping on an IterateErrorEstimate (and the relative residual, when a
+//! tolerance is given too) instead of PETSc's residual test: the distributed job's rule for
+//! `error_tolerance` (the in-process solve asks fairshape's IterationMonitor instead).
+struct ErrorStop {
+  double error_tolerance = 0, tolerance = 0, b_norm = 1;
+  int max_iterations = 0;
+  std::unique_ptr<IterateErrorEstimate> estimate;
+  double last_estimate = -1;
+  bool stopped_on_error = false;
+  static PetscErrorCode test(KSP ksp, PetscInt it, PetscReal rnorm, KSPConvergedReason* reason, void* context);
 };
 
 }  // namespace fairshape::petsc

@@ -45,14 +45,6 @@ Settings Settings::from_config(Config& cfg, Preconditioner preconditioner) {
   s.preconditioner = preconditioner;
   s.iterative = IterativeOptions::from_config(cfg);
   const std::string name = s.solver_name();
-  // PETSc's CG exposes no step lengths, so the Hestenes-Stiefel error estimate of fairshape's
-  // own CG solvers cannot be formed: refusing is honest, ignoring the key would not be.
-  // Refused when this solver runs, not here: every solver reads the solver block (the chosen one
-  // may be another, for which these keys are right).
-  if (s.iterative.error_tolerance > 0)
-    s.refusals.push_back(cfg.key_path("error_tolerance") + ": " + name +
-                        " stops on the relative residual only (PETSc's CG does not expose the steps an error estimate needs); "
-                        "use tolerance, or conjugate_gradient / multigrid_cg / multigrid for error-based stopping");
   if (s.iterative.check_every != 1)
     s.refusals.push_back(cfg.key_path("check_every") + ": " + name + " checks its residual every iteration (PETSc's KSP)");
   // Each solver's own block (petsc_mg: {...}), as sor: and multigrid: are: every registered
@@ -176,6 +168,8 @@ std::string Settings::to_json() const {
   j["preconditioner"] = solver_name();
   j["tolerance"] = iterative.tolerance;
   j["max_iterations"] = iterative.max_iterations;
+  j["error_tolerance"] = iterative.error_tolerance;
+  j["error_delay"] = iterative.error_delay;
   j["smoother_iterations"] = smoother_iterations;
   j["smoother"] = smoother;
   j["cycle"] = cycle;
@@ -199,6 +193,8 @@ Settings Settings::from_json(const std::string& text) {
                                                  : Preconditioner::Mg;
   s.iterative.tolerance = j.at("tolerance");
   s.iterative.max_iterations = j.at("max_iterations");
+  s.iterative.error_tolerance = j.at("error_tolerance");
+  s.iterative.error_delay = j.at("error_delay");
   s.smoother_iterations = j.at("smoother_iterations");
   s.smoother = j.at("smoother");
   s.cycle = j.at("cycle");

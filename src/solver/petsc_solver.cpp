@@ -36,6 +36,7 @@ struct ColumnTest {
   Eigen::Index column;
   double b_norm;
   std::exception_ptr error;  // a throw must not cross PETSc's C frames
+  petsc::IterateErrorEstimate* estimate = nullptr;  // error_tolerance: the estimate the monitor stops on
 
   static PetscErrorCode test(KSP ksp, PetscInt it, PetscReal rnorm, KSPConvergedReason* reason, void* context) {
     auto* t = static_cast<ColumnTest*>(context);
@@ -47,8 +48,14 @@ struct ColumnTest {
           FS_PETSC(KSPBuildSolution(ksp, nullptr, &current));
           petsc::copy_to_column(current, *t->x, t->column);
         });
-      if (!t->monitor->record(static_cast<int>(it), rnorm / t->b_norm, *t->x))
+      if (!t->monitor->record(static_cast<int>(it), rnorm / t->b_norm, *t->x)) {
         *reason = t->monitor->summary().succeeded() ? KSP_CONVERGED_RTOL : KSP_DIVERGED_ITS;
+      } else if (t->estimate) {
+        Vec current = nullptr;
+        FS_PETSC(KSPBuildSolution(ksp, nullptr, &current));
+        if (const double e = t->estimate->push(current); e >= 0 && !t->monitor->record_error(static_cast<int>(it), e))
+          *reason = KSP_CONVERGED_RTOL;
+      }
     } catch (...) {
       t->error = std::current_exception();
       *reason = KSP_DIVERGED_BREAKDOWN;
@@ -64,6 +71,7 @@ void combine(SolveSummary& total, const SolveSummary& column, bool first) {
     if (!column.message.empty()) total.message = column.message;
   }
   total.iterations = std::max(total.iterations, column.iterations);
+  total.error_estimate = std::max(total.error_estimate, column.error_estimate);  // the worst column's
   total.observe_s += column.observe_s;
 }
 
@@ -213,11 +221,14 @@ class PetscSolver : public Solver {
           moved.iteration += offset;
           return cb(moved);
         };
-      IterationMonitor monitor(s_.iterative, shifted, energy);
+      IterationMonitor monitor(s_.iterative, shifted, energy, /*krylov=*/true);
       petsc::VecHandle bv = petsc::to_petsc(b, c), xv = petsc::to_petsc(x, c);
       const bool warm = !x.col(c).isZero(0.0);
       FS_PETSC(KSPSetInitialGuessNonzero(ksp_->get(), warm ? PETSC_TRUE : PETSC_FALSE));
-      ColumnTest test{&monitor, &x, c, b.col(c).norm() > 0 ? b.col(c).norm() : 1.0, nullptr};
+      std::unique_ptr<petsc::IterateErrorEstimate> estimate;
+      if (monitor.estimates_error())
+        estimate = std::make_unique<petsc::IterateErrorEstimate>(here_A_.get(), s_.iterative.error_delay);
+      ColumnTest test{&monitor, &x, c, b.col(c).norm() > 0 ? b.col(c).norm() : 1.0, nullptr, estimate.get()};
       FS_PETSC(KSPSetConvergenceTest(ksp_->get(), ColumnTest::test, &test, nullptr));
       FS_PETSC(KSPSolve(ksp_->get(), bv.get(), xv.get()));
       if (test.error) std::rethrow_exception(test.error);
@@ -247,12 +258,21 @@ class PetscSolver : public Solver {
     for (std::size_t c = 0; c < job.iterations.size(); ++c) {
       SolveSummary column;
       const std::string& r = job.reasons[c];
-      column.termination = r.rfind("CONVERGED", 0) == 0 ? (s_.iterative.tolerance > 0 ? Termination::Converged
-                                                                                       : Termination::ScheduleCompleted)
-                           : r == "DIVERGED_ITS" ? (s_.iterative.tolerance > 0 ? Termination::MaxIterations
-                                                                              : Termination::ScheduleCompleted)
+      const bool stops = s_.iterative.tolerance > 0 || s_.iterative.error_tolerance > 0;
+      column.termination = r.rfind("CONVERGED", 0) == 0 ? (stops ? Termination::Converged : Termination::ScheduleCompleted)
+                           : r == "DIVERGED_ITS" ? (stops ? Termination::MaxIterations : Termination::ScheduleCompleted)
                                                  : Termination::NumericalFailure;
       if (column.termination == Termination::NumericalFailure) column.message = "PETSc: " + r;
+      if (s_.iterative.error_tolerance > 0) {
+        column.error_estimate = job.error_estimates[c];
+        char text[200];
+        std::snprintf(text, sizeof text,
+                      column.termination == Termination::Converged
+                          ? "relative A-norm error estimate %.3g <= %.3g (Hestenes-Stiefel from the iterates, %d iterations late)"
+                          : "the iteration cap came before the error tolerance: error estimate %.3g, asked %.3g (delay %d)",
+                      column.error_estimate, s_.iterative.error_tolerance, s_.iterative.error_delay);
+        if (column.termination != Termination::NumericalFailure) column.message = text;
+      }
       column.iterations = job.iterations[c];
       combine(total, column, c == 0);
       per_column += (c ? ", " : "") + std::to_string(job.iterations[c]);

@@ -43,6 +43,24 @@ for solver in ("petsc_mg", "petsc_gamg"):
           f"2 ranks {distributed[solver]['iterations']} it., error {distributed[solver]['error_vs_reference']}")
 PYEOF
 
+# error_tolerance on 2 ranks: the job stops on the error estimate formed from its iterates and
+# returns it; the error against CHOLMOD is near the one asked (the estimate is a lower bound a few
+# iterations back; relative_error is the 2-norm, the estimate the A-norm: a loose factor).
+"$FS" run $C --out "$S/error_stop" --set 'sweep.input.levels=[2]' --set 'sweep.solver.type=[cholesky,petsc_mg]' \
+  --set solver.error_tolerance=1e-6 --set solver.tolerance=0 --set solver.max_iterations=2000 --set solver.petsc.ranks=2 \
+  --set "solver.petsc.launcher=$LAUNCH" --set "solver.petsc.job_dir=$S/jobs" >"$S/error_stop.log" 2>&1 ||
+  { cat "$S/error_stop.log" >&2; fail "error_stop: the run failed"; }
+$PY - "$S" <<'PYEOF'
+import csv, sys
+r = {r["solver.type"]: r for r in csv.DictReader(open(f"{sys.argv[1]}/error_stop/runs.csv"))}["petsc_mg"]
+assert r["termination"] == "converged", (r["termination"], r["message"])
+assert "error estimate" in r["message"] and "on 2 MPI ranks" in r["message"], r["message"]
+assert 0 <= float(r["error_estimate"]) <= 1e-6, r["error_estimate"]
+assert float(r["error_vs_reference"]) < 1e-4, r["error_vs_reference"]
+print(f"petsc_mg on 2 ranks, error_tolerance 1e-6: {r['iterations']} it., estimate {r['error_estimate']}, "
+      f"error vs CHOLMOD {r['error_vs_reference']}")
+PYEOF
+
 # A launcher that cannot run: the run fails, naming the key and the command.
 rc=0
 "$FS" run $C --out "$S/bad_launcher" --set 'sweep.input.levels=[1]' --set 'sweep.solver.type=[petsc_mg]' \

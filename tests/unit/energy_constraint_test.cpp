@@ -1,5 +1,7 @@
 #include <catch2/catch.hpp>
 
+#include <random>
+
 #include <Eigen/Eigenvalues>
 
 #include "fairshape/constraint/constraint.h"
@@ -149,4 +151,35 @@ TEST_CASE("rigid, normal and curve constraints place what their configs say", "[
     CHECK_THROWS_AS(make_constraint("curve", "{points: [[0, 0, 0], [1, 1, 0]], snap_ratio: 0.9}"), InvalidConfig);
     CHECK_THROWS_AS(make_constraint("rigid", "{vertices: [1], rotation: {axis: [0, 0, 0], angle_deg: 3}}"), InvalidConfig);
   }
+}
+
+TEST_CASE("reduce: H_ff and H_fc are H's blocks, whatever the order of the fixed list", "[problem]") {
+  // An unsymmetric H (reduce must not assume symmetry), fixed ids unsorted and one listed twice
+  // (it couples through its last listing, whose value it takes).
+  const int n = 12;
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      if (i == j || gen() % 3 == 0) dense(i, j) = u(gen);
+  const SparseMatrix H = dense.sparseView(0.0, 0.0);
+  const std::vector<int> fixed{9, 2, 5, 2};
+  Eigen::MatrixXd values(4, 3), g(n, 3);
+  for (Eigen::Index i = 0; i < values.size(); ++i) values.data()[i] = u(gen);
+  for (Eigen::Index i = 0; i < g.size(); ++i) g.data()[i] = u(gen);
+  const ReducedSystem r = reduce(ConstrainedSystem{H, g, fixed, values});
+  const std::vector<int> free{0, 1, 3, 4, 6, 7, 8, 10, 11};
+  REQUIRE(r.free == free);
+  const Eigen::MatrixXd A = r.A, coupling = r.coupling;
+  for (std::size_t a = 0; a < free.size(); ++a) {
+    for (std::size_t c = 0; c < free.size(); ++c) CHECK(A(a, c) == dense(free[a], free[c]));
+    for (std::size_t k = 0; k < fixed.size(); ++k) CHECK(coupling(a, k) == (k == 1 ? 0.0 : dense(free[a], fixed[k])));
+  }
+  Eigen::MatrixXd last_values = values;
+  last_values.row(1).setZero();  // vertex 2's value is its last listing's (row 3)
+  Eigen::MatrixXd g_free(free.size(), 3);
+  for (std::size_t a = 0; a < free.size(); ++a) g_free.row(a) = g.row(free[a]);
+  CHECK((r.b - (g_free - coupling * last_values)).norm() <= 1e-14);
+  CHECK(r.A.isCompressed());
 }

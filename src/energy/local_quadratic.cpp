@@ -92,9 +92,20 @@ SparseMatrix stretch_bend_hessian(const SurfaceMesh& mesh, const StretchBendWeig
         }
       }
     });
+    // Joined into one list sized once, each part freed as soon as it is copied: appending
+    // into a growing list while every part stayed alive held up to three times the factors
+    // (about 7 GB of them at 17.8M vertices, where that join ran the process out of memory).
     GramFactors all;
     all.k = 5;
-    for (const auto& p : parts) all.append(p);
+    std::size_t entries = 0, stencils = 0;
+    for (const auto& p : parts) entries += p.ids.size(), stencils += p.offset.size() - 1;
+    all.ids.reserve(entries);
+    all.factor.reserve(entries * static_cast<std::size_t>(all.k));
+    all.offset.reserve(stencils + 1);
+    for (auto& p : parts) {
+      all.append(p);
+      p = GramFactors();
+    }
     return assemble_gram(nv, all, term_weights(w, scale));
   }
 #endif

@@ -28,7 +28,8 @@ void SplitSolver::analyze(const QuadraticProgram& qp) {
   if (touched_.empty()) throw InvalidInput("paper: no constraint row reaches an unknown: the split has nothing to fix");
   const SparseMatrix pick = row_picker(A_.cols(), touched_);
   ls_ = std::make_unique<MinNormLeastSquares>(A_ * pick, backend_);
-  H_cc_ = SparseMatrix(pick.transpose()) * qp.hessian() * pick;
+  lent_H_ = qp.borrowed_H;
+  H_cc_ = lent_H_ ? SparseMatrix() : SparseMatrix(SparseMatrix(pick.transpose()) * qp.hessian() * pick);
   red_ = reduce(qp.hessian(), qp.f, touched_, Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(touched_.size()), qp.f.cols()));
   if (!red_.free.empty()) {
     if (free_.uses_levels()) {
@@ -42,6 +43,17 @@ void SplitSolver::analyze(const QuadraticProgram& qp) {
 }
 
 QpReport SplitSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) { return solve(f, b, {}); }
+
+double SplitSolver::constrained_energy(const Eigen::MatrixXd& f, const Eigen::MatrixXd& fixed) const {
+  if (!lent_H_) {
+    Eigen::MatrixXd f_c(static_cast<Eigen::Index>(touched_.size()), f.cols());
+    for (std::size_t k = 0; k < touched_.size(); ++k) f_c.row(static_cast<Eigen::Index>(k)) = f.row(touched_[k]);
+    return quadratic_energy(H_cc_, f_c, fixed);
+  }
+  Eigen::MatrixXd p = Eigen::MatrixXd::Zero(n_, f.cols());  // the fixed values in place, zero elsewhere
+  for (std::size_t k = 0; k < touched_.size(); ++k) p.row(touched_[k]) = fixed.row(static_cast<Eigen::Index>(k));
+  return quadratic_energy(*lent_H_, f, p);
+}
 
 QpReport SplitSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b, const QpSolveOptions& o) {
   FAIRSHAPE_ASSERT(ls_, "SplitSolver::solve before analyze");
@@ -72,7 +84,7 @@ QpReport SplitSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b, 
     // Callers see the whole n × k iterate. The reduced energy differs from the full one by a
     // constant, the fixed unknowns' own part, so a check costs no product with H (and without
     // a callback nothing is measured).
-    const double energy_offset = o.callback ? quadratic_energy(H_cc_, on_touched(f), fixed) : 0.0;
+    const double energy_offset = o.callback ? constrained_energy(f, fixed) : 0.0;
     Eigen::MatrixXd full;
     const IterationCallback expanded = [&](const IterationRecord& r) {
       full = red_.expand(*r.x);

@@ -32,14 +32,20 @@ class SplitSolver final : public QpSolver {
   QpReport solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b, const QpSolveOptions& options) override;
 
  private:
+  //! ½ p_cᵀ H_cc p_c − f_cᵀ p_c for the constrained unknowns' values `fixed` (touched_ order).
+  double constrained_energy(const Eigen::MatrixXd& f, const Eigen::MatrixXd& fixed) const;
+
   std::unique_ptr<Solver> owned_;
   Solver& free_;
   Backend backend_;
   Eigen::Index n_ = 0;  // unknowns of the program
   SparseMatrix A_;
-  // H restricted to the constrained unknowns: the full energy is the reduced one plus
-  // ½ p_cᵀ H_cc p_c − f_cᵀ p_c, so no copy of the whole H is kept (H is 1.3 GB at 4.5M
-  // unknowns; H_cc is the constrained share of it, a third in the cow's Figure 2 edit).
+  // The full energy is the reduced one plus ½ p_cᵀ H_cc p_c − f_cᵀ p_c (H_cc: H on the
+  // constrained unknowns). A program that lends its H (borrowed_H: it outlives the solver) is
+  // read through `lent_H_`; an owned one leaves its H_cc here, not a copy of the whole H (H is
+  // 1.3 GB at 4.5M unknowns, H_cc a third of it in the cow's Figure 2 edit; at 17.8M unknowns
+  // forming H_cc by two sparse products was what ran the level-6 set-up out of memory).
+  const SparseMatrix* lent_H_ = nullptr;
   SparseMatrix H_cc_;
   std::vector<int> touched_;
   std::unique_ptr<MinNormLeastSquares> ls_;

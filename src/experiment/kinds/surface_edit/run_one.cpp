@@ -351,9 +351,10 @@ const MultiresSurface& RunCache::hierarchy(const SurfaceEditSpec& spec, double* 
     ropt.backend = spec.implementation;
     if (spec.remesh_triangle_base) ropt.base = RemeshBase::Triangles;
     RemeshReport report;
+    UniformRefineLimits limits;
+    limits.max_bytes = spec.max_memory_gb * double(1ull << 30);
     MultiresSurface h = spec.remesh_base_faces > 0 ? remesh(input, ropt, &report)
-                                                   : MultiresSurface(input, opt, spec.levels, spec.implementation,
-                                                                     {12, spec.max_memory_gb * double(1ull << 30)});
+                                                   : MultiresSurface(input, opt, spec.levels, spec.implementation, limits);
     if (spec.remesh_base_faces > 0) {
       remesh_reports_[key] = report;
       // The numbers go into runs.csv; a missed quality target is also said, once per remesh.

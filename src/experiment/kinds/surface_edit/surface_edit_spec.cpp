@@ -303,7 +303,7 @@ SurfaceEditSpec SurfaceEditSpec::from_config(const YAML::Node& run_config, const
                                  "shape representation: the mesh itself or its subdivision surface");
   s.levels = in.get_int("levels", 0, 0, 8, "uniform subdivision steps; the problem lives on the finest level");
   s.max_memory_gb = in.get_number("max_memory_gb", s.max_memory_gb, 0.001, 1e6,
-                                  "GiB: refuse uniform refinements whose estimated memory is larger (levels 6 of the "
+                                  "GiB: refuse uniform refinements whose estimated memory is larger (level 6 of the "
                                   "cow: ~9 GiB for the meshes alone)");
   s.boundary = in.get_enum("boundary", BoundaryMode::EdgeOnly, boundary_names(), "subdivision boundary rule");
   s.loop_weights = in.get_enum("weights", LoopWeights::Loop, loop_weight_names(), "Loop vertex weights");

@@ -44,6 +44,9 @@ def main():
     ap.add_argument("--sweeps", type=int, default=2)
     ap.add_argument("--iterations", type=int, default=60)
     ap.add_argument("--out", default="")
+    ap.add_argument("--patch-vertex", type=int, default=-1,
+                    help="also solve exactly on the free vertices within --rings mesh rings of this vertex (a test)")
+    ap.add_argument("--rings", type=int, default=2)
     a = ap.parse_args()
     A = symmetric_from_lower(os.path.join(a.system_dir, "A_free.mtx"))
     free = np.loadtxt(os.path.join(a.system_dir, "free.txt"), dtype=int)
@@ -53,10 +56,36 @@ def main():
     lower = sla.splu(sp.tril(A).tocsc(), permc_spec="NATURAL", diag_pivot_thresh=0)
     upper = sla.splu(sp.triu(A).tocsc(), permc_spec="NATURAL", diag_pivot_thresh=0)
 
+    V, F = read_obj(a.mesh)
+    patch, patch_solve = None, None
+    if a.patch_vertex >= 0:
+        neighbours = [set() for _ in range(len(V))]
+        for f in F:
+            for u, v in zip(f, f[1:] + f[:1]):
+                neighbours[u].add(v)
+                neighbours[v].add(u)
+        ring, seen = {a.patch_vertex}, {a.patch_vertex}
+        for _ in range(a.rings):
+            ring = {w for u in ring for w in neighbours[u]} - seen
+            seen |= ring
+        slot = -np.ones(len(V), int)
+        slot[free] = np.arange(len(free))
+        patch = np.array(sorted(slot[v] for v in seen if slot[v] >= 0))
+        patch_solve = sla.splu(A[patch][:, patch].tocsc())
+        print(f"patch: {len(patch)} free unknowns within {a.rings} rings of vertex {a.patch_vertex}")
+
+    def schwarz(e):
+        if patch is not None:
+            e = e.copy()
+            e[patch] -= patch_solve.solve((A @ e)[patch])
+        return e
+
     def cycle(e):  # the error propagation of one symmetric two-grid cycle (zero right-hand side)
         for _ in range(a.sweeps):
             e = e - lower.solve(A @ e)
+        e = schwarz(e)
         e = e - P @ coarse.solve(P.T @ (A @ e))
+        e = schwarz(e)
         for _ in range(a.sweeps):
             e = e - upper.solve(A @ e)
         return e
@@ -68,7 +97,6 @@ def main():
         rho = np.sqrt(e @ (A @ e))
         e /= rho
     print(f"A-norm contraction per two-grid cycle after {a.iterations} power steps: {rho:.4f}")
-    V, F = read_obj(a.mesh)
     valence = np.zeros(len(V), int)
     for f in F:
         for u, v in zip(f, f[1:] + f[:1]):

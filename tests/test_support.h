@@ -39,7 +39,7 @@ struct KnownMesh {
 inline std::vector<KnownMesh> bundled_meshes() {
   return {{"cow.off", 0, 0},           {"mushroom.off", 0, 1}, {"knot.off", 1, 0},
           {"double-torus-example.off", 2, 0}, {"3torus.off", 3, 0}, {"torus_quad.off", 1, 0},
-          {"cross_quad.off", 0, 0},    {"fandisk.off", 0, 0}};
+          {"cross_quad.off", 0, 0},    {"fandisk.off", 0, 0},  {"hand.off", 0, 0}};
 }
 
 // An open (n+1) x (n+1) grid of quads in the z = 0 plane, optionally split into triangles.

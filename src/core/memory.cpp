@@ -18,9 +18,10 @@ bool reset_peak_rss() {
 
 namespace {
 
-// A "Vm...:" field of /proc/self/status in MiB; -1 when absent.
-double status_mb(const std::string& field) {
-  std::ifstream f("/proc/self/status");
+// A "Name:" field (in kB) of a /proc file such as /proc/self/status or /proc/meminfo, in MiB;
+// -1 when absent.
+double proc_field_mb(const char* path, const std::string& field) {
+  std::ifstream f(path);
   std::string key;
   while (f >> key) {
     if (key == field) {
@@ -33,20 +34,8 @@ double status_mb(const std::string& field) {
   return -1.0;
 }
 
-// A "Name:" field of /proc/meminfo in MiB; -1 when absent.
-double meminfo_mb(const std::string& field) {
-  std::ifstream f("/proc/meminfo");
-  std::string key;
-  while (f >> key) {
-    if (key == field) {
-      double kib = 0;
-      f >> kib;
-      return kib / 1024.0;
-    }
-    std::getline(f, key);
-  }
-  return -1.0;
-}
+double status_mb(const std::string& field) { return proc_field_mb("/proc/self/status", field); }
+double meminfo_mb(const std::string& field) { return proc_field_mb("/proc/meminfo", field); }
 
 // The cgroup v2 limit's headroom (memory.max − memory.current) in MiB; -1 without a limit.
 double cgroup_headroom_mb() {

@@ -213,16 +213,18 @@ int run_distributed_job(int argc, char** argv) {
         FS_PETSC(VecSet(x.get(), 0.0));
       }
       FS_PETSC(KSPSetInitialGuessNonzero(ksp.get(), warm ? PETSC_TRUE : PETSC_FALSE));
-      // error_tolerance: the job stops on the error estimate (PETSc's residual test replaced).
-      ErrorStop stop;
+      // error_tolerance: the job stops by fairshape's monitor on the error estimate (PETSc's
+      // residual test replaced); otherwise PETSc's own test with the options' rtol.
+      IterationMonitor monitor(s.iterative, {}, {}, /*krylov=*/true);
+      std::unique_ptr<IterateErrorEstimate> estimate;
+      MonitoredTest test;
+      test.monitor = &monitor;
       if (s.iterative.error_tolerance > 0) {
-        stop.error_tolerance = s.iterative.error_tolerance;
-        stop.tolerance = s.iterative.tolerance;
-        stop.max_iterations = s.iterative.max_iterations;
-        FS_PETSC(VecNorm(b.get(), NORM_2, &stop.b_norm));
-        if (!(stop.b_norm > 0)) stop.b_norm = 1;
-        stop.estimate = std::make_unique<IterateErrorEstimate>(A.get(), s.iterative.error_delay);
-        FS_PETSC(KSPSetConvergenceTest(ksp.get(), ErrorStop::test, &stop, nullptr));
+        FS_PETSC(VecNorm(b.get(), NORM_2, &test.b_norm));
+        if (!(test.b_norm > 0)) test.b_norm = 1;
+        estimate = std::make_unique<IterateErrorEstimate>(A.get(), s.iterative.error_delay);
+        test.estimate = estimate.get();
+        FS_PETSC(KSPSetConvergenceTest(ksp.get(), MonitoredTest::test, &test, nullptr));
       }
       const Timer t;
       FS_PETSC(KSPSolve(ksp.get(), b.get(), x.get()));
@@ -232,7 +234,10 @@ int run_distributed_job(int argc, char** argv) {
       FS_PETSC(KSPGetIterationNumber(ksp.get(), &its));
       FS_PETSC(KSPGetConvergedReason(ksp.get(), &reason));
       write_vector(column_file(dir, "x", c), x.get());
-      columns.push_back({{"iterations", its}, {"reason", ConfiguredKsp::reason_name(reason)}, {"error_estimate", stop.last_estimate}});
+      if (test.error) std::rethrow_exception(test.error);
+      columns.push_back({{"iterations", its},
+                         {"reason", ConfiguredKsp::reason_name(reason)},
+                         {"error_estimate", monitor.summary().error_estimate}});
     }
     PetscInt local_rows = 0, local_cols = 0;
     FS_PETSC(MatGetLocalSize(A.get(), &local_rows, &local_cols));

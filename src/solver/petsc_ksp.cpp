@@ -1,7 +1,6 @@
 #include "fairshape/solver/petsc_ksp.h"
 
 #include <atomic>
-#include <cmath>
 #include <sstream>
 
 #include "fairshape/core/error.h"
@@ -94,25 +93,28 @@ double IterateErrorEstimate::push(Vec x) {
   return terms_.estimate(x_a_x);
 }
 
-PetscErrorCode ErrorStop::test(KSP ksp, PetscInt it, PetscReal rnorm, KSPConvergedReason* reason, void* context) {
-  auto* s = static_cast<ErrorStop*>(context);
+PetscErrorCode MonitoredTest::test(KSP ksp, PetscInt it, PetscReal rnorm, KSPConvergedReason* reason, void* context) {
+  auto* t = static_cast<MonitoredTest*>(context);
   *reason = KSP_CONVERGED_ITERATING;
-  Vec x = nullptr;
-  PetscCall(KSPBuildSolution(ksp, nullptr, &x));
   try {
-    if (const double e = s->estimate->push(x); e >= 0) s->last_estimate = e;
+    if (t->x && t->monitor->wants_iterate())
+      t->monitor->observe([&] {
+        Vec current = nullptr;
+        FS_PETSC(KSPBuildSolution(ksp, nullptr, &current));
+        copy_to_column(current, *t->x, t->column);
+      });
+    static const Eigen::MatrixXd kNotLookedAt;
+    if (!t->monitor->record(static_cast<int>(it), rnorm / t->b_norm, t->x ? *t->x : kNotLookedAt)) {
+      *reason = t->monitor->summary().succeeded() ? KSP_CONVERGED_RTOL : KSP_DIVERGED_ITS;
+    } else if (t->estimate) {
+      Vec current = nullptr;
+      FS_PETSC(KSPBuildSolution(ksp, nullptr, &current));
+      if (const double e = t->estimate->push(current); e >= 0 && !t->monitor->record_error(static_cast<int>(it), e))
+        *reason = KSP_CONVERGED_RTOL;
+    }
   } catch (...) {
+    t->error = std::current_exception();
     *reason = KSP_DIVERGED_BREAKDOWN;
-    return 0;
-  }
-  const bool residual_met = s->tolerance == 0 || rnorm <= s->tolerance * s->b_norm;
-  if (s->last_estimate >= 0 && s->last_estimate <= s->error_tolerance && residual_met) {
-    s->stopped_on_error = true;
-    *reason = KSP_CONVERGED_RTOL;
-  } else if (it >= s->max_iterations) {
-    *reason = KSP_DIVERGED_ITS;
-  } else if (!std::isfinite(rnorm)) {
-    *reason = KSP_DIVERGED_NANORINF;
   }
   return 0;
 }

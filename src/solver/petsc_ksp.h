@@ -4,6 +4,7 @@
 // near-null space (orthonormal vectors: PETSc requires it).
 #pragma once
 
+#include <exception>
 #include <memory>
 #include <string>
 #include <vector>
@@ -51,15 +52,16 @@ class IterateErrorEstimate {
   VecHandle previous_, step_, a_step_, a_x_;  // a_x_ = A x_k, kept by adding A·step
 };
 
-//! Solves with a KSP, stopping on an IterateErrorEstimate (and the relative residual, when a
-//! tolerance is given too) instead of PETSc's residual test: the distributed job's rule for
-//! `error_tolerance` (the in-process solve asks fairshape's IterationMonitor instead).
-struct ErrorStop {
-  double error_tolerance = 0, tolerance = 0, b_norm = 1;
-  int max_iterations = 0;
-  std::unique_ptr<IterateErrorEstimate> estimate;
-  double last_estimate = -1;
-  bool stopped_on_error = false;
+//! What PETSc's convergence test sees of fairshape's stopping rules: every iteration goes
+//! through an IterationMonitor (tolerance, max_iterations, energy_tolerance, the callback and,
+//! with `estimate`, error_tolerance), in this process and in the distributed job alike.
+struct MonitoredTest {
+  IterationMonitor* monitor = nullptr;
+  Eigen::MatrixXd* x = nullptr;  // the whole iterate, this column updated when the monitor looks (null: never)
+  Eigen::Index column = 0;
+  double b_norm = 1;
+  IterateErrorEstimate* estimate = nullptr;  // error_tolerance: the estimate the monitor stops on
+  std::exception_ptr error;                  // a throw must not cross PETSc's C frames
   static PetscErrorCode test(KSP ksp, PetscInt it, PetscReal rnorm, KSPConvergedReason* reason, void* context);
 };
 

@@ -27,43 +27,6 @@ namespace {
 using petsc::Preconditioner;
 using petsc::Settings;
 
-// What PETSc's convergence test sees of fairshape's stopping rules: every iteration goes through
-// the IterationMonitor, so tolerance, max_iterations, energy_tolerance and the callback mean what
-// they mean for fairshape's own solvers.
-struct ColumnTest {
-  IterationMonitor* monitor;
-  Eigen::MatrixXd* x;  // the whole iterate (this column updated when the monitor looks at it)
-  Eigen::Index column;
-  double b_norm;
-  std::exception_ptr error;  // a throw must not cross PETSc's C frames
-  petsc::IterateErrorEstimate* estimate = nullptr;  // error_tolerance: the estimate the monitor stops on
-
-  static PetscErrorCode test(KSP ksp, PetscInt it, PetscReal rnorm, KSPConvergedReason* reason, void* context) {
-    auto* t = static_cast<ColumnTest*>(context);
-    *reason = KSP_CONVERGED_ITERATING;
-    try {
-      if (t->monitor->wants_iterate())
-        t->monitor->observe([&] {
-          Vec current = nullptr;
-          FS_PETSC(KSPBuildSolution(ksp, nullptr, &current));
-          petsc::copy_to_column(current, *t->x, t->column);
-        });
-      if (!t->monitor->record(static_cast<int>(it), rnorm / t->b_norm, *t->x)) {
-        *reason = t->monitor->summary().succeeded() ? KSP_CONVERGED_RTOL : KSP_DIVERGED_ITS;
-      } else if (t->estimate) {
-        Vec current = nullptr;
-        FS_PETSC(KSPBuildSolution(ksp, nullptr, &current));
-        if (const double e = t->estimate->push(current); e >= 0 && !t->monitor->record_error(static_cast<int>(it), e))
-          *reason = KSP_CONVERGED_RTOL;
-      }
-    } catch (...) {
-      t->error = std::current_exception();
-      *reason = KSP_DIVERGED_BREAKDOWN;
-    }
-    return 0;
-  }
-};
-
 // The columns' outcomes as one: the first failure, else the first column's success kind.
 void combine(SolveSummary& total, const SolveSummary& column, bool first) {
   if (first || (total.succeeded() && !column.succeeded())) {
@@ -228,8 +191,8 @@ class PetscSolver : public Solver {
       std::unique_ptr<petsc::IterateErrorEstimate> estimate;
       if (monitor.estimates_error())
         estimate = std::make_unique<petsc::IterateErrorEstimate>(here_A_.get(), s_.iterative.error_delay);
-      ColumnTest test{&monitor, &x, c, b.col(c).norm() > 0 ? b.col(c).norm() : 1.0, nullptr, estimate.get()};
-      FS_PETSC(KSPSetConvergenceTest(ksp_->get(), ColumnTest::test, &test, nullptr));
+      petsc::MonitoredTest test{&monitor, &x, c, b.col(c).norm() > 0 ? b.col(c).norm() : 1.0, estimate.get(), nullptr};
+      FS_PETSC(KSPSetConvergenceTest(ksp_->get(), petsc::MonitoredTest::test, &test, nullptr));
       FS_PETSC(KSPSolve(ksp_->get(), bv.get(), xv.get()));
       if (test.error) std::rethrow_exception(test.error);
       petsc::copy_to_column(xv.get(), x, c);

@@ -44,6 +44,8 @@ ReducedSystem reduce(const SparseMatrix& H, const Eigen::MatrixXd& g, const std:
       sizes[static_cast<Eigen::Index>(k)] = count;
     }
     out.resize(n_free, static_cast<Eigen::Index>(source_columns.size()));
+    // Eigen's makeCompressed reads one entry past a zero-column uncompressed matrix (ASan).
+    if (source_columns.empty()) return;
     out.reserve(sizes);
     for (std::size_t k = 0; k < source_columns.size(); ++k)
       if (source_columns[k] >= 0)

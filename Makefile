@@ -37,8 +37,9 @@ demo: build
 # runs in `make test`; the sanitizers see the remesher through its own unit tests.
 ASAN_SKIP := every config under configs/
 
+# Only the unit tests run under the sanitizers: their binary is all that is built.
 asan-test: deps
-	cmake --preset asan && cmake --build build-asan -j $(JOBS)
+	cmake --preset asan && cmake --build build-asan -j $(JOBS) --target unit_tests
 	cd build-asan && ASAN_OPTIONS=detect_leaks=0 ctest --output-on-failure -j $(JOBS) -L unit -E "$(ASAN_SKIP)"
 
 FUZZ_TARGETS := fuzz_read_obj fuzz_read_off fuzz_read_ply fuzz_read_vtp fuzz_config fuzz_read_sheet

@@ -33,9 +33,10 @@ test-all: build
 demo: build
 	bash scripts/demo.sh
 
-# Validating every shipped config remeshes ten models (40 s in release, 750 s under ASan): it
-# runs in `make test`; the sanitizers see the remesher through its own unit tests.
-ASAN_SKIP := every config under configs/
+# Validating every shipped config remeshes ten models (40 s in release, 750 s under ASan), and the
+# remeshed cow's curve (9 s in release, 155 s under ASan): both run in `make test`; the
+# sanitizers see the remesher and limit-surface curves through their own smaller unit tests.
+ASAN_SKIP := every config under configs/|a curve on the finest level of a remeshed cow
 
 # Only the unit tests run under the sanitizers: their binary is all that is built.
 asan-test: deps

@@ -1,9 +1,38 @@
 #include "fairshape/design/edit_assembly.h"
 
+#include <algorithm>
+
 #include "fairshape/design/multires_constraints.h"
 #include "fairshape/subdivision/subdivider.h"
 
 namespace fairshape {
+namespace {
+
+// Each vertex's star (the vertices of its faces, itself first) and its mean squared distance
+// to them: what multigrid's stiff-star patches need from a level (solver/level_operators.h).
+VertexStars vertex_stars(const SurfaceMesh& mesh) {
+  VertexStars s;
+  const int n = mesh.n_vertices();
+  s.offsets.reserve(static_cast<std::size_t>(n) + 1);
+  s.size2.assign(static_cast<std::size_t>(n), 0.0);
+  s.offsets.push_back(0);
+  std::vector<int> star;
+  for (int v = 0; v < n; ++v) {
+    star.assign(1, v);
+    if (!mesh.is_isolated(v))
+      for (int f : mesh.vertex_faces(v))
+        for (int u : mesh.face_vertices(f))
+          if (std::find(star.begin(), star.end(), u) == star.end()) star.push_back(u);
+    double sum = 0;
+    for (std::size_t k = 1; k < star.size(); ++k) sum += (mesh.position(star[k]) - mesh.position(v)).squaredNorm();
+    s.size2[static_cast<std::size_t>(v)] = star.size() > 1 ? sum / static_cast<double>(star.size() - 1) : 0.0;
+    s.ids.insert(s.ids.end(), star.begin(), star.end());
+    s.offsets.push_back(static_cast<int>(s.ids.size()));
+  }
+  return s;
+}
+
+}  // namespace
 
 EditProblem assemble_edit_problem(const EditTerms& terms, const MultiresSurface& h, int level, DesignConstraints& placed) {
   if (terms.energies.empty()) throw InvalidInput("edit: no energy term");
@@ -24,6 +53,7 @@ EditProblem assemble_edit_problem(const EditTerms& terms, const MultiresSurface&
     auto ops = std::make_shared<LevelOperators>();
     for (int l = 0; l < level; ++l) ops->prolongation.push_back(h.subdivision_operator(l));
     for (int l = 0; l <= level; ++l) ops->singular.push_back(extraordinary_vertices(h.mesh(l), h.options().scheme));
+    ops->stars = [&h](int l) { return vertex_stars(h.mesh(l)); };
     ops->positions = rest.positions();
     ops->reassemble = [energies = terms.energies, &h](int l) {
       SparseMatrix H(h.mesh(l).n_vertices(), h.mesh(l).n_vertices());

@@ -13,6 +13,13 @@
 
 namespace fairshape {
 
+//! Each vertex's star, CSR (`ids[offsets[v] .. offsets[v + 1])`, v itself included), and its
+//! mean squared distance to the star's other vertices (h², a local mesh size).
+struct VertexStars {
+  std::vector<int> offsets, ids;
+  std::vector<double> size2;
+};
+
 // Ids nest: vertex i of level l is vertex i of level l + 1 (subdivision keeps a vertex's id
 // for its vertex point), which tells a solver which coarse unknowns a reduced system keeps.
 struct LevelOperators {
@@ -24,6 +31,10 @@ struct LevelOperators {
   //! reproduction (extraordinary vertices of a subdivision scheme). Multigrid adds patch
   //! smoothing around them; may be empty.
   std::vector<std::vector<int>> singular;
+  //! The stars of level l (for each vertex, the vertices of its faces), with a local mesh size:
+  //! multigrid adds star patches where the energy is far stiffer than that size predicts
+  //! (MultigridOptions::stiff_stars); may be empty.
+  std::function<VertexStars(int level)> stars;
   //! The vertex positions of the level the system lives on (n × 3), for solvers that need the
   //! geometry (an algebraic multigrid's near-null space: constants and linear functions); may be empty.
   Eigen::MatrixXd positions;

@@ -59,6 +59,10 @@ MultigridOptions MultigridOptions::from_config(Config& cfg) {
     throw InvalidConfig(sub.key_path("omega") + ": " + std::to_string(o.omega) + " is outside (0, 2), where SOR diverges");
   o.patch_smoothing = sub.get<bool>("patch_smoothing", o.patch_smoothing,
                                     "exact solves on patches around extraordinary vertices after each sweep set");
+  o.stiff_stars = sub.get_number("stiff_stars", o.stiff_stars, 0.0, 1e12,
+                                  "star patches (a vertex and its faces' vertices) where the diagonal of A times the "
+                                  "local mesh size h⁴ exceeds this multiple of its median: the energy's stiff spots "
+                                  "(0: none; needs patch_smoothing)");
   o.smoother = sub.get_enum(
       "smoother", o.smoother, smoother_names(),
       "optimized back end: block multicolour Gauss-Seidel on a renumbered system (contiguous blocks) or point "
@@ -167,6 +171,50 @@ std::vector<std::vector<int>> singular_patches(const SparseMatrix& A, const std:
       std::vector<int> patch;
       for (SymmetricRows::InnerIterator it(R, row); it; ++it) patch.push_back(static_cast<int>(it.col()));
       patches.push_back(std::move(patch));
+    }
+  return patches;
+}
+
+// Stiff stars (issue 27, part 2). The divided differences of a local quadratic fit on a
+// near-degenerate ring are large, so the energy there is far stiffer than a fourth-order
+// operator on that mesh size (diag ∝ h⁻⁴) would be: on the hand model diag(A)·h⁴ spans four
+// orders of magnitude. Gauss-Seidel and the subdivision coarse space then both leave a band
+// of smooth-looking modes (two-grid contraction 0.991 on the hand, the same at levels 3 and 4);
+// an exact solve on each stiff vertex's star after the sweeps brings it to 0.88 at 11 % of the
+// vertices (papers/boier-martin/README.md, "Stiff stars"). One patch per such vertex and
+// coordinate block, at most a quarter of the level's vertices (the stiffest).
+std::vector<std::vector<int>> stiff_star_patches(const SparseMatrix& A, const std::vector<int>& kept,
+                                                 const VertexStars& stars, int blocks, double ratio) {
+  const auto n_vertices = static_cast<Eigen::Index>(stars.size2.size());
+  if (ratio <= 0 || n_vertices == 0 || static_cast<Eigen::Index>(stars.offsets.size()) != n_vertices + 1) return {};
+  std::vector<int> local(static_cast<std::size_t>(blocks * n_vertices), -1);
+  for (std::size_t i = 0; i < kept.size(); ++i) local[static_cast<std::size_t>(kept[i])] = static_cast<int>(i);
+  std::vector<std::pair<double, int>> stiffness;  // (diag · h⁴, vertex), vertices of the first block kept
+  for (Eigen::Index v = 0; v < n_vertices; ++v)
+    if (const int row = local[static_cast<std::size_t>(v)]; row >= 0)
+      stiffness.emplace_back(A.coeff(row, row) * stars.size2[v] * stars.size2[v], static_cast<int>(v));
+  if (stiffness.empty()) return {};
+  std::vector<std::pair<double, int>> sorted = stiffness;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+  const double threshold = ratio * sorted[sorted.size() / 2].first;
+  std::vector<std::pair<double, int>> stiff;
+  for (const auto& s : stiffness)
+    if (s.first > threshold) stiff.push_back(s);
+  const std::size_t cap = stiffness.size() / 4;
+  if (stiff.size() > cap) {
+    std::nth_element(stiff.begin(), stiff.begin() + static_cast<std::ptrdiff_t>(cap), stiff.end(), std::greater<>());
+    stiff.resize(cap);
+    std::sort(stiff.begin(), stiff.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+  }
+  std::vector<std::vector<int>> patches;
+  for (int b = 0; b < blocks; ++b)
+    for (const auto& s : stiff) {
+      std::vector<int> patch;
+      for (int k = stars.offsets[static_cast<std::size_t>(s.second)]; k < stars.offsets[static_cast<std::size_t>(s.second) + 1]; ++k)
+        if (const int row = local[static_cast<std::size_t>(b * n_vertices + stars.ids[static_cast<std::size_t>(k)])]; row >= 0)
+          patch.push_back(row);
+      std::sort(patch.begin(), patch.end());
+      if (patch.size() > 1) patches.push_back(std::move(patch));
     }
   return patches;
 }
@@ -282,6 +330,9 @@ MultigridLevels build_multigrid_levels(const SparseMatrix& A, const LevelOperato
       // Where singular vertices are dense (the first levels above a triangle mesh) the patches
       // would cost many sweeps and overlap everywhere: those levels rely on the sweeps alone.
       if (levels[k].patches.size() * 8 > kept.size()) levels[k].patches.clear();
+      if (ops.stars)
+        for (auto& patch : stiff_star_patches(op(k), kept, ops.stars(level + 1), selection.blocks, opt.stiff_stars))
+          levels[k].patches.push_back(std::move(patch));
     }
     kept = coarse_kept;
   }

@@ -6,10 +6,7 @@
 #include "fairshape/subdivision/subdivider.h"
 
 namespace fairshape {
-namespace {
 
-// Each vertex's star (the vertices of its faces, itself first) and its mean squared distance
-// to them: what multigrid's stiff-star patches need from a level (solver/level_operators.h).
 VertexStars vertex_stars(const SurfaceMesh& mesh) {
   VertexStars s;
   const int n = mesh.n_vertices();
@@ -31,8 +28,6 @@ VertexStars vertex_stars(const SurfaceMesh& mesh) {
   }
   return s;
 }
-
-}  // namespace
 
 EditProblem assemble_edit_problem(const EditTerms& terms, const MultiresSurface& h, int level, DesignConstraints& placed) {
   if (terms.energies.empty()) throw InvalidInput("edit: no energy term");

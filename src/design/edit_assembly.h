@@ -10,6 +10,7 @@
 #include "fairshape/design/influence.h"
 #include "fairshape/design/multilevel_edit.h"
 #include "fairshape/energy/energy.h"
+#include "fairshape/solver/level_operators.h"
 #include "fairshape/subdivision/multires_surface.h"
 
 namespace fairshape {
@@ -40,6 +41,10 @@ struct EditTerms {
 
 //! `placed` receives the constraints as placed on their own levels.
 //! \throw InvalidInput for an empty energy list or a constraint that cannot be placed.
+//! Each vertex's star (the vertices of its faces, itself first) and its mean squared distance
+//! to them: what multigrid's stiff-star patches need from a level (solver/level_operators.h).
+VertexStars vertex_stars(const SurfaceMesh& mesh);
+
 EditProblem assemble_edit_problem(const EditTerms& terms, const MultiresSurface& h, int level, DesignConstraints& placed);
 
 //! Every check of assemble_edit_ladder(terms, h, coarse, level) that needs the hierarchy but

@@ -56,7 +56,7 @@ struct MultigridOptions {
   bool patch_smoothing = true;  // exact solves on patches around singular vertices
   //! Star patches where diag(A)·h⁴ exceeds this multiple of its median (0: none; see
   //! stiff_star_patches in multigrid.cpp). Only with patch_smoothing and stars from the hierarchy.
-  double stiff_stars = 5.0;
+  double stiff_stars = 20.0;
   //! Optimized back end's smoother: point multicolour over the subdivision numbering, or block
   //! multicolour over a renumbering that keeps blocks contiguous (block_ordering.h).
   enum class Smoother { Multicolor, Block };

@@ -180,9 +180,10 @@ std::vector<std::vector<int>> singular_patches(const SparseMatrix& A, const std:
 // operator on that mesh size (diag ∝ h⁻⁴) would be: on the hand model diag(A)·h⁴ spans four
 // orders of magnitude. Gauss-Seidel and the subdivision coarse space then both leave a band
 // of smooth-looking modes (two-grid contraction 0.991 on the hand, the same at levels 3 and 4);
-// an exact solve on each stiff vertex's star after the sweeps brings it to 0.88 at 11 % of the
-// vertices (papers/boier-martin/README.md, "Stiff stars"). One patch per such vertex and
-// coordinate block, at most a quarter of the level's vertices (the stiffest).
+// an exact solve on each stiff vertex's star after the sweeps brings it to 0.88 (ratio 5, 11 % of
+// the vertices; the default 20 keeps most of the gain at a fraction of the cost: measured in
+// papers/boier-martin/README.md, "Stiff stars"). One patch per such vertex and coordinate block,
+// at most a quarter of the level's vertices (the stiffest).
 std::vector<std::vector<int>> stiff_star_patches(const SparseMatrix& A, const std::vector<int>& kept,
                                                  const VertexStars& stars, int blocks, double ratio) {
   const auto n_vertices = static_cast<Eigen::Index>(stars.size2.size());

@@ -39,12 +39,12 @@ struct EditTerms {
   bool levels = false;
 };
 
-//! `placed` receives the constraints as placed on their own levels.
-//! \throw InvalidInput for an empty energy list or a constraint that cannot be placed.
 //! Each vertex's star (the vertices of its faces, itself first) and its mean squared distance
 //! to them: what multigrid's stiff-star patches need from a level (solver/level_operators.h).
 VertexStars vertex_stars(const SurfaceMesh& mesh);
 
+//! `placed` receives the constraints as placed on their own levels.
+//! \throw InvalidInput for an empty energy list or a constraint that cannot be placed.
 EditProblem assemble_edit_problem(const EditTerms& terms, const MultiresSurface& h, int level, DesignConstraints& placed);
 
 //! Every check of assemble_edit_ladder(terms, h, coarse, level) that needs the hierarchy but

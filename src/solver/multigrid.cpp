@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "fairshape/core/error.h"
 #include "fairshape/problem/constrained_system.h"
@@ -63,6 +64,9 @@ MultigridOptions MultigridOptions::from_config(Config& cfg) {
                                   "star patches (a vertex and its faces' vertices) where the diagonal of A times the "
                                   "local mesh size h⁴ exceeds this multiple of its median: the energy's stiff spots "
                                   "(0: none; needs patch_smoothing)");
+  if (!o.patch_smoothing && o.stiff_stars > 0 && sub.has("stiff_stars") && !sub.documenting())
+    throw InvalidConfig(sub.key_path("stiff_stars") + ": star patches run in the patch smoother, which patch_smoothing: "
+                        "false turns off (set stiff_stars: 0, or patch_smoothing: true)");
   o.smoother = sub.get_enum(
       "smoother", o.smoother, smoother_names(),
       "optimized back end: block multicolour Gauss-Seidel on a renumbered system (contiguous blocks) or point "

@@ -404,6 +404,9 @@ TEST_CASE("stiff-star patches cut multigrid-CG's iterations on a model with stif
         run(t, "multigrid_cg", Backend::Optimized, "{tolerance: 1.0e-8, multigrid: {stiff_stars: 0}}").summary.iterations);
   CHECK_THROWS_WITH(run(t, "multigrid_cg", Backend::Optimized, "{multigrid: {stiff_stars: -1}}"),
                     Catch::Contains("stiff_stars"));
+  // An explicit ratio the patch smoother will not run is refused, not ignored.
+  CHECK_THROWS_WITH(run(t, "multigrid_cg", Backend::Optimized, "{multigrid: {stiff_stars: 10, patch_smoothing: false}}"),
+                    Catch::Contains("patch_smoothing"));
 }
 
 // Stopping on an estimate of the error (solver/iterative.h, issue 27): on a fourth-order system

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "fairshape/design/multires_constraints.h"
+#include "fairshape/energy/divided_differences.h"
 #include "fairshape/subdivision/subdivider.h"
 
 namespace fairshape {
@@ -15,11 +16,11 @@ VertexStars vertex_stars(const SurfaceMesh& mesh) {
   s.offsets.push_back(0);
   std::vector<int> star;
   for (int v = 0; v < n; ++v) {
+    // The ring the energy's local fit is taken over (its faces' vertices), each vertex once.
     star.assign(1, v);
     if (!mesh.is_isolated(v))
-      for (int f : mesh.vertex_faces(v))
-        for (int u : mesh.face_vertices(f))
-          if (std::find(star.begin(), star.end(), u) == star.end()) star.push_back(u);
+      for (int u : ordered_one_ring(mesh, v))
+        if (std::find(star.begin(), star.end(), u) == star.end()) star.push_back(u);
     double sum = 0;
     for (std::size_t k = 1; k < star.size(); ++k) sum += (mesh.position(star[k]) - mesh.position(v)).squaredNorm();
     s.size2[static_cast<std::size_t>(v)] = star.size() > 1 ? sum / static_cast<double>(star.size() - 1) : 0.0;

@@ -42,7 +42,8 @@ struct TestSystem {
 
 // A fourth-order energy on `levels` Catmull-Clark steps of a mesh, with a band of vertices
 // pinned to random values (a Dirichlet region, as the design problems have).
-TestSystem make_system(const std::string& mesh, int levels, Operator op) {
+// `stars`: the hierarchy's vertex stars too, for multigrid's stiff-star patches.
+TestSystem make_system(const std::string& mesh, int levels, Operator op, bool stars = false) {
   auto h = std::make_shared<MultiresSurface>(read_mesh(test::data_path(mesh)), SubdivisionOptions{}, levels,
                                              Backend::Optimized);
   const SurfaceMesh& f = h->mesh(levels);
@@ -58,6 +59,7 @@ TestSystem make_system(const std::string& mesh, int levels, Operator op) {
   for (int l = 0; l < levels; ++l) t.ops->prolongation.push_back(h->subdivision_operator(l));
   for (int l = 0; l <= levels; ++l) t.ops->singular.push_back(extraordinary_vertices(h->mesh(l), SchemeType::CatmullClark));
   t.ops->reassemble = [h, op](int l) { return energy_hessian(h->mesh(l), op); };
+  if (stars) t.ops->stars = [h](int l) { return vertex_stars(h->mesh(l)); };
   return t;
 }
 
@@ -373,19 +375,7 @@ TEST_CASE("multigrid works on Loop hierarchies and on polylines", "[multigrid]")
 // changing the answer; a system without stars (no hierarchy meshes) is left as it was.
 TEST_CASE("stiff-star patches cut multigrid-CG's iterations on a model with stiff fits, to the same answer",
           "[multigrid][stiff_stars]") {
-  const int levels = 2;
-  auto h = std::make_shared<MultiresSurface>(read_mesh(test::data_path("hand.off")), SubdivisionOptions{}, levels,
-                                             Backend::Optimized);
-  const SurfaceMesh& f = h->mesh(levels);
-  ConstrainedSystem s{energy_hessian(f, Operator::StretchBend), Eigen::MatrixXd::Zero(f.n_vertices(), 3), {}, {}};
-  const double lo = f.positions().col(0).minCoeff(), hi = f.positions().col(0).maxCoeff();
-  for (int v = 0; v < f.n_vertices(); ++v)
-    if (f.positions()(v, 0) < lo + 0.3 * (hi - lo)) s.fixed.push_back(v);
-  s.fixed_values = Eigen::MatrixXd::Ones(static_cast<Eigen::Index>(s.fixed.size()), 3);
-  TestSystem t{reduce(s), std::make_shared<LevelOperators>()};
-  for (int l = 0; l < levels; ++l) t.ops->prolongation.push_back(h->subdivision_operator(l));
-  for (int l = 0; l <= levels; ++l) t.ops->singular.push_back(extraordinary_vertices(h->mesh(l), SchemeType::CatmullClark));
-  t.ops->stars = [h](int l) { return vertex_stars(h->mesh(l)); };
+  TestSystem t = make_system("hand.off", 2, Operator::StretchBend, true);
   const Eigen::MatrixXd exact = direct_solution(t.reduced);
   for (Backend backend : {Backend::Reference, Backend::Optimized}) {
     const Outcome plain = run(t, "multigrid_cg", backend, "{tolerance: 1.0e-10, multigrid: {stiff_stars: 0}}");

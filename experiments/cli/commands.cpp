@@ -5,7 +5,9 @@
 #include <filesystem>
 #include <iostream>
 
+#include "fairshape/core/atomic_file.h"
 #include "fairshape/core/error.h"
+#include "fairshape/experiment/config_schema.h"
 #include "fairshape/curve_design/curve_components.h"
 #include "fairshape/qp/qp_solver.h"
 #include "fairshape/experiment/components.h"
@@ -267,6 +269,26 @@ int cmd_list() {
   list_registry("curve constraints (optimization.constraints)", curves.constraints);
   list_registry("length solvers (optimization.solver)", curves.solvers);
   list_registry("constrained solvers (sheet configs: solver; Welch & Witkin eq. 9/10)", qp::qp_solver_registry());
+  return 0;
+}
+
+int cmd_list_keys() {
+  for (const KindKeys& k : experiment_keys()) {
+    std::cout << k.kind << " runs (" << k.marker << "):\n";
+    for (const OptionDoc& d : k.keys) std::cout << "  " << d.key << " = " << d.default_value << "  -- " << d.doc << "\n";
+  }
+  std::cout << "energy, constraint and solver options: `fairshape list`\n";
+  return 0;
+}
+
+int cmd_schema(const std::string& output) {
+  const std::string schema = experiment_schema(experiment_keys());
+  if (output.empty()) {
+    std::cout << schema;
+    return 0;
+  }
+  write_atomically(output, [&](std::ostream& os) { os << schema; });
+  std::cerr << "schema -> " << output << "\n";
   return 0;
 }
 

@@ -31,6 +31,8 @@ int cmd_info(const InfoArgs& a);
 int cmd_convert(const ConvertArgs& a);
 int cmd_render(const RenderArgs& a, int argc, char** argv);  // argv: to re-run under xvfb-run
 int cmd_list();
+int cmd_list_keys();
+int cmd_schema(const std::string& output);  // "": standard output
 int cmd_subdivide(const SubdivideArgs& a);
 struct RemeshArgs {
   std::string input, output, scheme, boundary = "edge-only", weights = "loop";

@@ -218,7 +218,13 @@ int main(int argc, char** argv) {
   c_en->add_option("--implementation", en.implementation, "back end")->capture_default_str()
       ->check(CLI::IsMember({"reference", "optimized"}));
 
+  bool list_keys = false;
   auto* c_list = app.add_subcommand("list", "every registered energy, constraint and solver, with options");
+  c_list->add_flag("--keys", list_keys, "every key of every kind of experiment config instead, with its default");
+  std::string schema_out;
+  auto* c_schema = app.add_subcommand("schema", "the experiment configs' keys as a JSON Schema (draft-07), for editors "
+                                                "to complete and check configs");
+  c_schema->add_option("output", schema_out, "the .json to write (default: standard output)");
 
   std::vector<std::string> merge_in;
   std::string merge_out;
@@ -249,7 +255,8 @@ int main(int argc, char** argv) {
       return fairshape::run_sweep(run);
     }
     if (*c_submit) return cmd_submit(subm);
-    if (*c_list) return cmd_list();
+    if (*c_list) return list_keys ? cmd_list_keys() : cmd_list();
+    if (*c_schema) return cmd_schema(schema_out);
     if (*c_sub) return cmd_subdivide(sub);
     if (*c_rem) return cmd_remesh(rem);
     if (*c_en) return cmd_energy(en);

@@ -1,5 +1,6 @@
 #include "fairshape/core/config.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
@@ -39,8 +40,9 @@ void Config::type_error(const std::string& key, const std::string& expected) con
 
 double Config::get_number(const std::string& key, double fallback, double lo, double hi,
                           const std::string& doc) {
-  const double v = get<double>(key, fallback, doc + " [" + yaml_to_string(YAML::Node(lo)) +
-                                                  ", " + yaml_to_string(YAML::Node(hi)) + "]");
+  const double v = get<double>(key, fallback, documenting() ? doc + " [" + yaml_to_string(YAML::Node(lo)) + ", " +
+                                                                  yaml_to_string(YAML::Node(hi)) + "]"
+                                                            : doc);
   if (!(v >= lo && v <= hi)) {  // also rejects NaN
     std::ostringstream os;
     os << key_path(key) << ": " << v << " is out of range [" << lo << ", " << hi << "]";
@@ -50,8 +52,8 @@ double Config::get_number(const std::string& key, double fallback, double lo, do
 }
 
 int Config::get_int(const std::string& key, int fallback, int lo, int hi, const std::string& doc) {
-  const int v = get<int>(key, fallback, doc + " [" + std::to_string(lo) + ", " +
-                                            std::to_string(hi) + "]");
+  const int v = get<int>(key, fallback,
+                         documenting() ? doc + " [" + std::to_string(lo) + ", " + std::to_string(hi) + "]" : doc);
   if (v < lo || v > hi) {
     throw InvalidConfig(key_path(key) + ": " + std::to_string(v) + " is out of range [" +
                         std::to_string(lo) + ", " + std::to_string(hi) + "]");
@@ -69,16 +71,21 @@ std::string Config::get_choice(const std::string& key, const std::string& fallba
   throw InvalidConfig(key_path(key) + ": unknown value '" + v + "' (valid: " + all + ")");
 }
 
+Config Config::adopt(Config c) const {
+  c.recorder_ = recorder_;
+  c.unknown_keys_ = unknown_keys_;
+  return c;
+}
+
 Config Config::child(const std::string& key, const std::string& doc) {
   mark(key, "{}", doc);
-  Config c(has(key) ? node_[key] : YAML::Node(YAML::NodeType::Map), key_path(key));
-  c.recorder_ = recorder_;
-  return c;
+  return adopt(Config(has(key) ? node_[key] : YAML::Node(YAML::NodeType::Map), key_path(key)));
 }
 
 std::vector<Config> Config::child_list(const std::string& key, const std::string& doc) {
   mark(key, "[]", doc);
   std::vector<Config> out;
+  if (documenting() && !has(key)) return {adopt(Config(YAML::Node(YAML::NodeType::Map), key_path(key) + "[]"))};
   if (!has(key)) return out;
   const YAML::Node n = node_[key];
   if (n.IsMap()) {
@@ -89,7 +96,7 @@ std::vector<Config> Config::child_list(const std::string& key, const std::string
   } else {
     type_error(key, "a list of maps");
   }
-  for (auto& c : out) c.recorder_ = recorder_;
+  for (auto& c : out) c = adopt(std::move(c));
   return out;
 }
 
@@ -102,15 +109,81 @@ std::vector<std::string> Config::unread_keys() const {
   return out;
 }
 
-void Config::check_no_unknown_keys() const {
+namespace {
+
+// Levenshtein distance, for "did you mean": config keys are short.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// A likely misspelling: a few edits apart, relative to the length (`type` is not `size`), or
+// another ending of the same word (`energies` for `energy`).
+bool close_to(const std::string& typed, const std::string& key) {
+  if (typed == key) return false;
+  const std::size_t shorter = std::min(typed.size(), key.size());
+  std::size_t prefix = 0;
+  while (prefix < shorter && typed[prefix] == key[prefix]) ++prefix;
+  if (prefix >= std::max<std::size_t>(4, shorter - std::min<std::size_t>(shorter, 2))) return true;
+  return edit_distance(typed, key) <= std::max<std::size_t>(1, shorter / 3);
+}
+
+}  // namespace
+
+std::vector<std::string> Config::unknown_key_messages() const {
+  std::vector<std::string> out;
+  std::vector<std::string> valid(read_keys_->begin(), read_keys_->end());
+  // Keys the config loader and the sweep consume before a run's blocks are read.
+  if (path_.empty() && collects_)
+    for (const char* k : {"defaults", "smoke", "sweep"}) valid.emplace_back(k);
+  std::sort(valid.begin(), valid.end());
+  std::string listed;
+  for (const auto& r : valid) listed += (listed.empty() ? "" : ", ") + r;
   for (const auto& kv : node_) {
     const std::string k = kv.first.as<std::string>();
     if (read_keys_->count(k)) continue;
-    std::string valid;
-    for (const auto& r : *read_keys_) valid += (valid.empty() ? "" : ", ") + r;
-    throw InvalidConfig(key_path(k) + ": unknown key (valid keys here: " +
-                        (valid.empty() ? "none" : valid) + ")");
+    std::string msg = key_path(k) + ": unknown key (";
+    for (const auto& r : valid)
+      if (close_to(k, r)) {
+        msg += "did you mean " + key_path(r) + "? ";
+        break;
+      }
+    out.push_back(msg + "valid keys here: " + (listed.empty() ? "none" : listed) + ")");
   }
+  return out;
+}
+
+void Config::check_no_unknown_keys() const {
+  std::vector<std::string> found = unknown_key_messages();
+  if (unknown_keys_ && !collects_) {  // a block of a parse_config() tree: its root reports
+    unknown_keys_->insert(unknown_keys_->end(), found.begin(), found.end());
+    return;
+  }
+  if (collects_) found.insert(found.begin(), unknown_keys_->begin(), unknown_keys_->end());
+  if (found.empty()) return;
+  if (found.size() == 1) throw InvalidConfig(found.front());
+  std::string msg = std::to_string(found.size()) + " unknown keys:";
+  for (const auto& f : found) msg.append("\n  - ").append(f);
+  throw InvalidConfig(msg);
+}
+
+std::string Config::misspelling_of(const std::string& key) const {
+  for (const auto& kv : node_) {
+    const std::string k = kv.first.as<std::string>();
+    if (!read_keys_->count(k) && close_to(k, key))
+      return "; `" + key_path(k) + "` in the config is not a key: a misspelling of `" + key_path(key) + "`?";
+  }
+  return "";
 }
 
 std::string format_default(double v) {

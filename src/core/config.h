@@ -54,9 +54,16 @@ class Config {
   // A nested map (empty if absent); its reads and unknown keys are tracked separately.
   Config child(const std::string& key, const std::string& doc);
   // A list of maps, e.g. `energy: [ {type: membrane}, ... ]`; a single map counts as a list.
+  // While documenting: one empty item, `key[]`, so the reads of an item are documented too.
   std::vector<Config> child_list(const std::string& key, const std::string& doc);
 
-  void check_no_unknown_keys() const;  // throws InvalidConfig naming the key and valid keys
+  //! Throws InvalidConfig naming every unknown key of this block with the valid ones (and the
+  //! closest valid key when one is a likely misspelling). In a block of a parse_config() tree
+  //! the keys are collected instead and the root's check throws them all together.
+  void check_no_unknown_keys() const;
+  //! "; `enrgy` in this block is not a key: a misspelling of `energy`?" when an unread key of
+  //! the block is close to `key` (for errors about a missing key), else "".
+  std::string misspelling_of(const std::string& key) const;
   //! Keys present in the block that no read has asked for (yet), in file order.
   std::vector<std::string> unread_keys() const;
   void set_recorder(std::shared_ptr<std::vector<OptionDoc>> r) { recorder_ = std::move(r); }
@@ -68,11 +75,51 @@ class Config {
   void mark(const std::string& key, const std::string& fallback, const std::string& doc);
   [[noreturn]] void type_error(const std::string& key, const std::string& expected) const;
 
+  std::vector<std::string> unknown_key_messages() const;
+  Config adopt(Config c) const;  // c shares this tree's recorder and unknown-key collector
+
   YAML::Node node_;
   std::string path_;
   std::shared_ptr<std::set<std::string>> read_keys_;
   std::shared_ptr<std::vector<OptionDoc>> recorder_;
+  //! parse_config(): the unknown keys of the tree's blocks, reported by the root.
+  std::shared_ptr<std::vector<std::string>> unknown_keys_;
+  bool collects_ = false;  // the root of a parse_config() tree
+
+  template <class F>
+  friend auto parse_config(const YAML::Node& node, F&& parse) -> decltype(parse(std::declval<Config&>()));
 };
+
+//! Parses a whole config with `parse(root)` and reports every unknown key of every block in one
+//! error. The root's own check_no_unknown_keys() (which `parse` must call last) throws them all;
+//! an error thrown before it (e.g. a required key missing because it was misspelt) gets the
+//! unknown keys found so far added to its message.
+//! Every key `parse` reads, with its default and doc: `parse` run on an empty root while
+//! documenting (list items appear once, as `key[].item_key`). For `fairshape list --keys` and
+//! `fairshape schema`; the parse must not need a real value while documenting.
+template <class F>
+std::vector<OptionDoc> document_keys(F&& parse) {
+  Config root;
+  auto recorded = std::make_shared<std::vector<OptionDoc>>();
+  root.set_recorder(recorded);
+  parse(root);
+  return *recorded;
+}
+
+template <class F>
+auto parse_config(const YAML::Node& node, F&& parse) -> decltype(parse(std::declval<Config&>())) {
+  Config root(node, "");
+  root.unknown_keys_ = std::make_shared<std::vector<std::string>>();
+  root.collects_ = true;
+  try {
+    return parse(root);
+  } catch (const InvalidConfig& e) {
+    if (root.unknown_keys_->empty()) throw;
+    std::string msg = e.what();
+    for (const auto& u : *root.unknown_keys_) msg.append("\n  - also ").append(u);
+    throw InvalidConfig(msg);
+  }
+}
 
 std::string yaml_to_string(const YAML::Node& n);  // one-line flow style, for messages and CSV
 
@@ -95,16 +142,26 @@ bool finite(const std::vector<T>& v) {
 
 template <class T>
 T Config::get(const std::string& key, const T& fallback, const std::string& doc) {
-  YAML::Node fb;
-  fb = fallback;
-  if constexpr (std::is_floating_point_v<T>) mark(key, format_default(fallback), doc);
-  else mark(key, yaml_to_string(fb), doc);
+  // The fallback is formatted only for the docs and for an error: a sweep validates every
+  // point's config, and emitting YAML for each read was most of that time.
+  const auto fallback_text = [&fallback] {
+    YAML::Node fb;
+    fb = fallback;
+    return yaml_to_string(fb);
+  };
+  if (documenting()) {
+    if constexpr (std::is_floating_point_v<T>) mark(key, format_default(fallback), doc);
+    else mark(key, fallback_text(), doc);
+  } else {
+    read_keys_->insert(key);
+  }
   if (!has(key)) return fallback;
   T v;
   try {
     v = node_[key].as<T>();
   } catch (const YAML::Exception&) {
-    type_error(key, yaml_to_string(fb).empty() ? "a value" : "a value like '" + yaml_to_string(fb) + "'");
+    const std::string fb = fallback_text();
+    type_error(key, fb.empty() ? "a value" : "a value like '" + fb + "'");
   }
   if (!config_detail::finite(v)) type_error(key, "finite numbers");
   return v;
@@ -115,7 +172,7 @@ T Config::require(const std::string& key, const std::string& doc) {
   mark(key, "(required)", doc);
   if (!has(key)) {
     if (recorder_) return T{};
-    throw InvalidConfig(key_path(key) + ": required key is missing (" + doc + ")");
+    throw InvalidConfig(key_path(key) + ": required key is missing (" + doc + ")" + misspelling_of(key));
   }
   T v;
   try {

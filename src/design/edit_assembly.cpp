@@ -39,7 +39,11 @@ EditProblem assemble_edit_problem(const EditTerms& terms, const MultiresSurface&
   p.g = Eigen::MatrixXd::Zero(n, 3);
   for (const WeightedEnergy& e : terms.energies) {
     SparseMatrix He = e.energy->hessian(rest, e.weight);
-    if (e.energy->measures_positions() || terms.positions) p.g -= He * rest.positions();  // the energy of P_rest + ΔP
+    if (e.energy->measures_positions() || terms.positions) {  // the energy of P_rest + ΔP
+      const Eigen::MatrixXd HP = He * rest.positions();
+      p.g -= HP;
+      p.energy_at_rest += 0.5 * (rest.positions().transpose() * HP).trace();
+    }
     // The first term is moved in, not added to an empty H: the sum's temporary and its
     // assignment held three copies of H at once (1 GB at level 4, the set-up's largest spike).
     if (p.H.nonZeros() == 0) p.H = std::move(He);

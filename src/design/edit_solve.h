@@ -32,6 +32,10 @@ const NameTable<ConstraintMode>& constraint_mode_names();
 struct EditProblem {
   SparseMatrix H;      // n × n, shared by x, y, z
   Eigen::MatrixXd g;   // n × 3 linear term (thin plate: −H P_rest; detail-preserving: 0)
+  //! The energy of ΔP = 0: ½ P_restᵀ H P_rest of the terms measured on positions (0 for energies
+  //! of the deformation), so energy(ΔP) = ½ΔPᵀHΔP − gᵀΔP + energy_at_rest is the energy of the
+  //! result itself and never negative.
+  double energy_at_rest = 0;
   LinearConstraints constraints;
   //! The levels below this one, for multilevel solvers (empty: a single-level problem).
   std::shared_ptr<const LevelOperators> levels;

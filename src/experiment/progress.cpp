@@ -11,7 +11,10 @@ Progress::Progress(int total, std::string prefix)
 
 void Progress::finished(int done, const std::string& run_id, const std::string& termination, double seconds) {
   const double elapsed = timer_.seconds();
-  const double eta = done > 0 ? elapsed / done * (total_ - done) : 0.0;
+  // From the runs' own times (time_s), not the elapsed time: work shared between runs (a
+  // hierarchy built once) happens once and is not expected again for every run left.
+  own_seconds_ += seconds;
+  const double eta = done > 0 ? own_seconds_ / done * (total_ - done) : 0.0;
   if (tty_) {
     const int width = 30, filled = total_ > 0 ? width * done / total_ : width;
     std::fprintf(stderr, "\r%s[%.*s%*s] %d/%d  elapsed %.0fs  eta %.0fs  last: %s (%.2fs)   ", prefix_.c_str(),

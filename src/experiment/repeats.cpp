@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <set>
 
-#include "fairshape/core/statistics.h"
 #include "fairshape/experiment/metric_format.h"
 
 namespace fairshape {
@@ -15,7 +14,7 @@ bool ends_with(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
 
-// Empty or non-numeric cells take no part in a median.
+// Empty or non-numeric cells are skipped.
 std::vector<double> values_of(const std::vector<MetricRow>& rows, const std::string& column) {
   std::vector<double> out;
   for (const auto& r : rows) {
@@ -27,6 +26,22 @@ std::vector<double> values_of(const std::vector<MetricRow>& rows, const std::str
     }
   }
   return out;
+}
+
+// The execution whose time_s is the median (the first when no row has one).
+std::size_t median_execution(const std::vector<MetricRow>& rows) {
+  std::vector<std::pair<double, std::size_t>> times;
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const auto it = rows[k].find("time_s");
+    if (it == rows[k].end() || it->second.empty()) return 0;
+    try {
+      times.emplace_back(std::stod(it->second), k);
+    } catch (const std::exception&) {
+      return 0;
+    }
+  }
+  std::sort(times.begin(), times.end());
+  return times[(times.size() - 1) / 2].second;
 }
 
 }  // namespace
@@ -60,13 +75,16 @@ MetricRow run_repeated(int repeat, const std::vector<std::string>& measured_colu
   fs::remove_all(scratch);
   MetricRow row = rows.front();
   const std::set<std::string> measured(measured_columns.begin(), measured_columns.end());
+  // Every timing and memory column comes from one execution, the median one by time_s (the
+  // lower middle of an even count), so the row's parts still add up to at most its time_s;
+  // medians taken column by column would not.
+  const MetricRow& middle = rows[median_execution(rows)];
   for (const auto& c : measured_columns) {
-    if (ends_with(c, "_min_s")) continue;  // the minimum of its X_s column, below
-    const std::vector<double> v = values_of(rows, c);
-    if (v.size() == rows.size()) row[c] = num(median(v));
+    if (middle.count(c)) row[c] = middle.at(c);
     // solve_s beside solve_min_s: the fastest execution too.
     if (ends_with(c, "_s") && !ends_with(c, "_min_s")) {
       const std::string min_column = c.substr(0, c.size() - 2) + "_min_s";
+      const std::vector<double> v = values_of(rows, c);
       if (row.count(min_column) && v.size() == rows.size()) row[min_column] = num(*std::min_element(v.begin(), v.end()));
     }
   }

@@ -24,6 +24,11 @@ std::string resolve_input(const std::string& path, const std::vector<std::string
                       "beside the config)");
 }
 
+std::string read_input_path(Config& block, const std::string& key, const std::string& doc, const std::vector<std::string>& dirs) {
+  const std::string given = block.require<std::string>(key, doc);
+  return block.documenting() ? given : resolve_input(given, dirs, block.key_path(key));
+}
+
 Vec3 read_vec3(Config& c, const std::string& key, const Vec3& fallback, const std::string& doc) {
   const std::vector<double> v = c.get<std::vector<double>>(key, {fallback.x(), fallback.y(), fallback.z()}, doc);
   if (v.size() != 3 || !std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
@@ -62,13 +67,13 @@ RunBasics read_run_basics(Config& root) {
   const bool plain = !b.name.empty() && b.name.size() <= 128 && b.name != "." && b.name != ".." &&
                      b.name.front() != '.' && b.name.find_first_not_of(
                          "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789._-") == std::string::npos;
-  if (!plain)
+  if (!plain && !root.documenting())
     throw InvalidConfig("name: '" + b.name + "' must be a plain folder name (letters, digits, '.', '_', '-'; not "
                         "starting with '.'; at most 128 characters): it names results/<name>/");
   root.get<std::string>("description", "", "free text");
   b.seed = root.get_int("seed", 0, 0, INT32_MAX, "random seed (runs without randomness ignore it)");
   b.threads = root.get_int("threads", 0, 0, 4096, "TBB threads for optimized back ends (0 = all cores)");
-  (void)root.get_int("repeat", 1, 1, 1000, "timing repeats, run by the harness (the median of every timing column is reported, solve_min_s the minimum)");
+  (void)root.get_int("repeat", 1, 1, 1000, "timing repeats, run by the harness (every timing column from the median execution by time_s, solve_min_s the minimum)");
   b.implementation = root.get_enum("implementation", Backend::Optimized, backend_names(), "back end of every component");
   return b;
 }

@@ -39,6 +39,8 @@ Vec3 read_vec3(Config& c, const std::string& key, const Vec3& fallback, const st
 std::vector<std::string> input_search_dirs(const std::string& config_path);
 //! `path` as found in `dirs`. \throw InvalidConfig naming `key` when it is nowhere.
 std::string resolve_input(const std::string& path, const std::vector<std::string>& dirs, const std::string& key);
+//! The required input file `key` of `block`, resolved as above ("" while the block is documenting).
+std::string read_input_path(Config& block, const std::string& key, const std::string& doc, const std::vector<std::string>& dirs);
 //! Reads the mesh at `path` once per process (validation of every sweep point asks again), so
 //! a malformed or unreadable input is an invalid config — exit 2, nothing run — rather than a
 //! failed run. \throw InvalidConfig naming `key` and the reader's message.

@@ -11,6 +11,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "fairshape/core/config.h"
 #include "fairshape/experiment/repeats.h"
 #include "fairshape/experiment/run_outputs.h"
 
@@ -46,6 +47,8 @@ class RunKind {
   //! Metric columns the harness also puts on every row of every table, to key plots by
   //! solver rather than by hash (e.g. implementation, solver.type).
   virtual std::vector<std::string> identity_columns() const { return {"implementation", "solver.type"}; }
+  //! Every key its configs may have, with default and doc (`fairshape list --keys`, `schema`).
+  virtual std::vector<OptionDoc> keys() const = 0;
   //! Runs one validated config once (the harness repeats it for `repeat:`). Problems of the input or the numerics become the row's
   //! termination and message; anything else thrown is turned into a `crashed` row by the harness.
   virtual MetricRow execute(const YAML::Node& run_config, const std::vector<std::string>& search_dirs,

@@ -18,6 +18,16 @@ std::vector<YAML::Node> list_of(const YAML::Node& n, const std::string& key) {
   return out;
 }
 
+// A value's text inside a flow collection, as the one-line emission of a whole config holds it.
+std::string flow_text(const YAML::Node& v) {
+  YAML::Node seq(YAML::NodeType::Sequence);
+  seq.push_back(v);
+  const std::string s = yaml_to_string(seq);  // "[...]"
+  return s.substr(1, s.size() - 2);
+}
+
+constexpr const char* kSlot = "fairshape_swept_value_slot_";
+
 std::string key_of(const YAML::Node& k, const std::string& where) {
   if (!k.IsScalar()) throw InvalidConfig(where + ": a swept key must be a dotted key path, got '" + yaml_to_string(k) + "'");
   return k.as<std::string>();
@@ -55,10 +65,18 @@ SweepSpace::SweepSpace(const YAML::Node& root) {
     }
   }
   for (Axis& a : axes_) {
+    for (const auto& column : a.values) {
+      a.text.emplace_back();
+      a.flow.emplace_back();
+      for (const YAML::Node& v : column) {
+        a.text.back().push_back(yaml_to_string(v));
+        a.flow.back().push_back(flow_text(v));
+      }
+    }
     // Positions listing the same values make the same points: they are repeats of each other.
     std::vector<std::string> text(a.size());
     for (std::size_t i = 0; i < a.size(); ++i)
-      for (const auto& column : a.values) text[i] += yaml_to_string(column[i]) + '\x1f';
+      for (const auto& column : a.text) text[i] += column[i] + '\x1f';
     // Counted through a hash map, not by comparing every pair: an axis of 10,000 values took
     // 10^8 comparisons, in every shard of the sweep.
     std::unordered_map<std::string, std::size_t> seen;
@@ -72,6 +90,89 @@ SweepSpace::SweepSpace(const YAML::Node& root) {
                           " runs (the limit); split it into several experiments or use --shard");
     size_ *= a.size();
   }
+  prepare_hash_text();
+}
+
+void SweepSpace::prepare_hash_text() {
+  if (axes_.empty()) return;
+  YAML::Node slotted = YAML::Clone(base_);
+  std::vector<std::pair<std::size_t, std::size_t>> slots;
+  for (std::size_t a = 0; a < axes_.size(); ++a)
+    for (std::size_t k = 0; k < axes_[a].keys.size(); ++k) {
+      set_by_path(slotted, axes_[a].keys[k], YAML::Node(kSlot + std::to_string(slots.size()) + "_"));
+      slots.emplace_back(a, k);
+    }
+  const std::string text = yaml_to_string(slotted);
+  std::vector<std::string> pieces;
+  std::vector<std::pair<std::size_t, std::size_t>> order;
+  std::size_t from = 0;
+  for (std::size_t at = text.find(kSlot); at != std::string::npos; at = text.find(kSlot, from)) {
+    pieces.push_back(text.substr(from, at - from));
+    const std::size_t number = at + std::char_traits<char>::length(kSlot), end = text.find('_', number);
+    order.push_back(slots.at(std::stoul(text.substr(number, end - number))));
+    from = end + 1;
+  }
+  pieces.push_back(text.substr(from));
+  if (order.size() != slots.size()) return;  // a swept key inside another's value: emit per point
+  hash_pieces_ = std::move(pieces);
+  hash_slots_ = std::move(order);
+  // Each value's text in a map as in a sequence, and whole points with every axis at its first
+  // and at its last position, as run_id_of emits them.
+  for (const Axis& a : axes_)
+    for (const auto& column : a.values)
+      for (const YAML::Node& v : column) {
+        YAML::Node map(YAML::NodeType::Map);
+        map["k"] = v;
+        if (yaml_to_string(map) != "{k: " + flow_text(v) + "}") return hash_pieces_.clear();
+      }
+  std::vector<std::size_t> first(axes_.size(), 0), last(axes_.size());
+  for (std::size_t a = 0; a < axes_.size(); ++a) last[a] = axes_[a].size() - 1;
+  for (const auto& pos : {first, last})
+    if (hash_text(pos) != yaml_to_string(config_at(pos))) return hash_pieces_.clear();
+}
+
+std::vector<std::size_t> SweepSpace::positions(std::size_t index) const {
+  // The last axis varies fastest, like nested loops written in config order.
+  std::vector<std::size_t> pos(axes_.size());
+  std::size_t rest = index;
+  for (std::size_t a = axes_.size(); a-- > 0;) {
+    pos[a] = rest % axes_[a].size();
+    rest /= axes_[a].size();
+  }
+  return pos;
+}
+
+YAML::Node SweepSpace::config_at(const std::vector<std::size_t>& pos) const {
+  YAML::Node config = YAML::Clone(base_);
+  for (std::size_t a = 0; a < axes_.size(); ++a)
+    for (std::size_t k = 0; k < axes_[a].keys.size(); ++k)
+      set_by_path(config, axes_[a].keys[k], YAML::Clone(axes_[a].values[k][pos[a]]));
+  return config;
+}
+
+std::string SweepSpace::hash_text(const std::vector<std::size_t>& pos) const {
+  std::string text = hash_pieces_.front();
+  for (std::size_t s = 0; s < hash_slots_.size(); ++s) {
+    const auto [a, k] = hash_slots_[s];
+    text.append(axes_[a].flow[k][pos[a]]).append(hash_pieces_[s + 1]);
+  }
+  return text;
+}
+
+std::string SweepSpace::run_id(std::size_t index) const {
+  FAIRSHAPE_ASSERT(index < size_, "sweep point out of range");
+  const std::vector<std::size_t> pos = positions(index);
+  return run_id_at(pos, hash_pieces_.empty() ? run_id_of(config_at(pos)) : sha256_hex(hash_text(pos)).substr(0, 16));
+}
+
+std::string SweepSpace::run_id_at(const std::vector<std::size_t>& pos, std::string id) const {
+  // Identical points differ only in which duplicate position each axis took; in flat order
+  // they come in the lexicographic order of those choices, a mixed-radix number.
+  std::size_t repeat = 0;
+  for (std::size_t a = 0; a < axes_.size(); ++a)
+    repeat = repeat * axes_[a].multiplicity[pos[a]] + axes_[a].occurrence[pos[a]];
+  if (repeat > 0) id.append("-").append(std::to_string(repeat + 1));
+  return id;
 }
 
 std::vector<std::string> SweepSpace::keys() const {
@@ -80,34 +181,22 @@ std::vector<std::string> SweepSpace::keys() const {
   return keys;
 }
 
+std::vector<std::pair<std::string, std::string>> SweepSpace::params(std::size_t index) const {
+  const std::vector<std::size_t> pos = positions(index);
+  std::vector<std::pair<std::string, std::string>> out;
+  for (std::size_t a = 0; a < axes_.size(); ++a)
+    for (std::size_t k = 0; k < axes_[a].keys.size(); ++k) out.emplace_back(axes_[a].keys[k], axes_[a].text[k][pos[a]]);
+  return out;
+}
+
 RunPoint SweepSpace::point(std::size_t index) const {
   FAIRSHAPE_ASSERT(index < size_, "sweep point out of range");
   RunPoint p;
   p.index = index;
-  p.config = YAML::Clone(base_);
-  // The last axis varies fastest, like nested loops written in config order.
-  std::vector<std::size_t> pos(axes_.size());
-  std::size_t rest = index;
-  for (std::size_t a = axes_.size(); a-- > 0;) {
-    pos[a] = rest % axes_[a].size();
-    rest /= axes_[a].size();
-  }
-  // Identical points differ only in which duplicate position each axis took; in flat order
-  // they come in the lexicographic order of those choices, a mixed-radix number.
-  std::size_t repeat = 0;
-  for (std::size_t a = 0; a < axes_.size(); ++a) {
-    repeat = repeat * axes_[a].multiplicity[pos[a]] + axes_[a].occurrence[pos[a]];
-    for (std::size_t k = 0; k < axes_[a].keys.size(); ++k) {
-      const YAML::Node& v = axes_[a].values[k][pos[a]];
-      set_by_path(p.config, axes_[a].keys[k], YAML::Clone(v));
-      p.params.emplace_back(axes_[a].keys[k], yaml_to_string(v));
-    }
-  }
-  p.run_id = run_id_of(p.config);
-  if (repeat > 0) {
-    p.run_id += '-';
-    p.run_id.append(std::to_string(repeat + 1));
-  }
+  const std::vector<std::size_t> pos = positions(index);
+  p.config = config_at(pos);
+  p.params = params(index);
+  p.run_id = run_id_at(pos, hash_pieces_.empty() ? run_id_of(p.config) : sha256_hex(hash_text(pos)).substr(0, 16));
   return p;
 }
 

@@ -34,18 +34,35 @@ class SweepSpace {
   //! Swept keys in table column order (zip keys in their order, then the others).
   std::vector<std::string> keys() const;
   RunPoint point(std::size_t index) const;
+  //! point(index).run_id and .params without building the point's config.
+  std::string run_id(std::size_t index) const;
+  std::vector<std::pair<std::string, std::string>> params(std::size_t index) const;
 
  private:
   struct Axis {
     std::vector<std::string> keys;
     std::vector<std::vector<YAML::Node>> values;  // values[k][i]: key k at position i
+    std::vector<std::vector<std::string>> text;   // text[k][i]: the value as a table cell
+    std::vector<std::vector<std::string>> flow;   // flow[k][i]: the value as run_id_of's text holds it
     std::vector<std::size_t> occurrence;          // earlier positions with the same values
     std::vector<std::size_t> multiplicity;        // positions with the same values
     std::size_t size() const { return values.front().size(); }
   };
+  std::vector<std::size_t> positions(std::size_t index) const;
+  YAML::Node config_at(const std::vector<std::size_t>& pos) const;
+  std::string hash_text(const std::vector<std::size_t>& pos) const;
+  std::string run_id_at(const std::vector<std::size_t>& pos, std::string hash) const;  // `-k` added for repeats
+  void prepare_hash_text();
+
   YAML::Node base_;
   std::vector<Axis> axes_;
   std::size_t size_ = 1;
+  // run_id_of's text of every point is the base's text with each swept value's text put in:
+  // emitted once, not once per point (a sweep of 10^6 points spent most of its validation
+  // emitting YAML). Empty when that does not reproduce run_id_of exactly (checked on every
+  // axis value): then each point's config is emitted.
+  std::vector<std::string> hash_pieces_;  // text between the swept values, in emission order
+  std::vector<std::pair<std::size_t, std::size_t>> hash_slots_;  // (axis, key) of each value put in
 };
 
 //! Every point (small sweeps and tests; the harness iterates a SweepSpace).

@@ -15,6 +15,7 @@
 #include "fairshape/core/error.h"
 #include "fairshape/core/memory.h"
 #include "fairshape/core/summary.h"
+#include "fairshape/core/timer.h"
 #include "fairshape/experiment/config_loader.h"
 #include "fairshape/experiment/output_folder.h"
 #include "fairshape/experiment/progress.h"
@@ -63,13 +64,32 @@ std::vector<Filter> parse_filters(const std::vector<std::string>& filters, const
   return out;
 }
 
-bool passes(const RunPoint& p, const std::vector<Filter>& filters) {
+bool passes(const std::vector<std::pair<std::string, std::string>>& params, const std::vector<Filter>& filters) {
   for (const auto& f : filters) {
-    const auto it = std::find_if(p.params.begin(), p.params.end(), [&](const auto& kv) { return kv.first == f.key; });
-    if (it == p.params.end() || it->second != f.value) return false;
+    const auto it = std::find_if(params.begin(), params.end(), [&](const auto& kv) { return kv.first == f.key; });
+    if (it == params.end() || it->second != f.value) return false;
   }
   return true;
 }
+
+// Validating a large sweep takes a while (every point's config is parsed and checked; the
+// hierarchies once per distinct system): on a terminal or in a log, say how far it is.
+class ValidationProgress {
+ public:
+  explicit ValidationProgress(std::size_t total) : total_(total) {}
+  void step(std::size_t problems) {
+    ++done_;
+    if (total_ < 10000 || clock_.seconds() < next_) return;
+    next_ = clock_.seconds() + 2.0;
+    std::cerr << "fairshape: validating the sweep: " << done_ << " of " << total_ << " point(s), " << problems
+              << " problem(s) so far\n";
+  }
+
+ private:
+  std::size_t total_, done_ = 0;
+  Timer clock_;
+  double next_ = 2.0;  // the first line after two seconds
+};
 
 TableLayout layout_of(const RunKind& kind, const std::vector<std::string>& swept,
                       std::map<std::string, std::string>& swept_key_of) {
@@ -122,12 +142,14 @@ Plan make_plan(const SweepOptions& opt, bool validate) {
   std::map<std::string, std::vector<std::size_t>> problems;  // message -> the points that have it
   std::set<std::string> inputs;
   std::size_t position = 0;
+  ValidationProgress progress(validate ? (plan.space->size() - opt.shard.index + opt.shard.count - 1) / opt.shard.count : 0);
   for (std::size_t i = opt.shard.index; i < plan.space->size(); i += opt.shard.count) {
-    const RunPoint p = plan.space->point(i);
-    if (!passes(p, plan.filters)) continue;
+    progress.step(problems.size());
+    if (!plan.filters.empty() && !passes(plan.space->params(i), plan.filters)) continue;
     if (position++ % opt.worker.count != static_cast<std::size_t>(opt.worker.index)) continue;
     plan.selected.push_back(i);
     if (!validate && plan.kind) continue;
+    const RunPoint p = plan.space->point(i);
     try {
       RunKind& kind = kind_of(p.config, plan.kinds);
       if (plan.kind && plan.kind != &kind)
@@ -265,17 +287,16 @@ int run_worker(const SweepOptions& opt) {
   Plan plan = make_plan(opt, false);
   const fs::path dir = opt.out_dir;
   const std::set<std::string> done = recorded_runs(dir);
-  std::vector<RunPoint> todo;
-  for (std::size_t i : plan.selected) {
-    RunPoint p = plan.space->point(i);
-    if (!done.count(p.run_id)) todo.push_back(std::move(p));
-  }
+  std::vector<std::size_t> todo;  // points are built one at a time: a sweep's configs do not all fit
+  for (std::size_t i : plan.selected)
+    if (!done.count(plan.space->run_id(i))) todo.push_back(i);
   const std::string prefix = opt.worker.count > 1 ? "[worker " + std::to_string(opt.worker.index) + "] " : "";
   Progress progress(static_cast<int>(todo.size()), prefix);
   const bool single = plan.space->size() == 1;
   const fs::path marker = marker_of(dir, opt.worker.index);
   int failed = 0, finished = 0;
-  for (const RunPoint& p : todo) {
+  for (std::size_t index : todo) {
+    const RunPoint p = plan.space->point(index);
     write_atomically(marker, [&](std::ostream& os) { os << p.run_id << "\n"; });
     RunTables tables;
     const RunOutputs out{dir.string(), p.run_id, single, &tables};
@@ -333,9 +354,8 @@ int supervise(const SweepOptions& opt) {
     std::cout << plan.selected.size() << " of " << plan.space->size() << " point(s) (" << plan.kind->name()
               << " runs):\n";
     for (std::size_t i : plan.selected) {
-      const RunPoint p = plan.space->point(i);
-      std::cout << "  " << p.index << "  " << p.run_id;
-      for (const auto& [k, v] : p.params) std::cout << "  " << k << "=" << v;
+      std::cout << "  " << i << "  " << plan.space->run_id(i);
+      for (const auto& [k, v] : plan.space->params(i)) std::cout << "  " << k << "=" << v;
       std::cout << "\n";
     }
     return 0;
@@ -364,7 +384,7 @@ int supervise(const SweepOptions& opt) {
   const std::set<std::string> done = folder.finished_runs(plan.layout);
   std::size_t todo = 0;
   for (std::size_t i : plan.selected)
-    if (!done.count(plan.space->point(i).run_id)) ++todo;
+    if (!done.count(plan.space->run_id(i))) ++todo;
   RunJournal journal(dir, opt, plan.root, plan.name, plan.input_files, plan.selected.size(), done.size());
   std::cerr << plan.name << ": " << plan.space->size() << " run(s) in the sweep, " << todo << " to do here"
             << (done.empty() ? "" : " (" + std::to_string(done.size()) + " already done)") << " -> " << dir.string()
@@ -389,8 +409,8 @@ int supervise(const SweepOptions& opt) {
   std::set<std::string> crashed;
   const auto on_crash = [&](const WorkerCrash& c) {
     for (std::size_t i : plan.selected) {
+      if (plan.space->run_id(i) != c.run_id) continue;
       const RunPoint p = plan.space->point(i);
-      if (p.run_id != c.run_id) continue;
       const MetricRow m = crashed_row("the worker process was " + c.reason + " during this run");
       const auto keys = key_fields(plan, p, m);
       commit_run(dir, plan.layout, keys, runs_row(plan, keys, m), RunTables{});

@@ -6,6 +6,7 @@
 #include <tbb/parallel_reduce.h>
 #endif
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -96,7 +97,9 @@ bool IterationMonitor::record(int iteration, double residual, const Eigen::Matri
   const bool first = first_residual_ < 0;
   if (first) first_residual_ = residual;
   const bool energy_rule = opt_.energy_tolerance > 0;
-  const Timer observing;
+  // One clock read where this observation starts: the solve time so far is that instant less
+  // every earlier observation, so it cannot include any of this one's work.
+  const double observe_start = timer_.seconds();
   const double energy = (energy_rule || cb_) ? energy_(x) : std::nan("");
   // Relative to the decrease so far, so a constant in the energy (the reduced system drops
   // one) does not change when the rule fires.
@@ -108,11 +111,12 @@ bool IterationMonitor::record(int iteration, double residual, const Eigen::Matri
     fail("diverged at iteration " + std::to_string(iteration) + " (residual " + std::to_string(residual) + ")");
     return false;
   }
-  // Solve time so far: the wall time less all observation, this one's energy included, so
-  // the seconds of successive records never decrease.
-  const double solving_s = timer_.seconds() - (summary_.observe_s + observing.seconds());
+  // Never below the last record's: the observation intervals are measured by other reads of
+  // the same clock, and their rounding must not make the reported time step back.
+  const double solving_s = std::max(last_solving_s_, observe_start - summary_.observe_s);
+  last_solving_s_ = solving_s;
   const bool stop = cb_ && !cb_({iteration, residual, solving_s, energy, &x});
-  summary_.observe_s += observing.seconds();
+  summary_.observe_s += timer_.seconds() - observe_start;
   if (stop) {
     summary_.message = "stopped by the callback";
     return false;

@@ -96,6 +96,7 @@ class IterationMonitor {
   bool krylov_ = false;
   double first_residual_ = -1;
   double last_residual_ = -1;
+  double last_solving_s_ = 0;  // the seconds of the last record
   Eigen::MatrixXd previous_x_;  // stationary solvers with an error tolerance: the last check's iterate
   double previous_step_ = -1;
   double first_energy_ = 0, last_energy_ = 0;

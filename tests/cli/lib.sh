@@ -20,7 +20,7 @@ expect_error() {
 rows_equal() {
   $PY - "$1" "$2" <<'PYEOF'
 import csv, sys
-TIMING = {"subdivide_s", "assemble_s", "analyze_s", "solve_s", "solve_min_s", "time_s", "peak_rss_mb", "solve_extra_mb"}
+TIMING = {"assemble_s", "analyze_s", "solve_s", "solve_min_s", "time_s", "peak_rss_mb", "solve_extra_mb"}
 def load(p):
     with open(p, newline="") as f:
         return {r["run_id"]: {k: v for k, v in r.items() if k not in TIMING} for r in csv.DictReader(f)}

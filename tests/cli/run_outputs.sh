@@ -42,7 +42,10 @@ rows = list(csv.DictReader(open(sys.argv[1])))
 assert len(rows) == 4, rows
 for r in rows:
     assert r["n_fine"] == {"1": "17414", "2": "69650"}[r["input.levels"]], r
-    assert float(r["subdivide_s"]) > 0, r
+# Each level's hierarchy, per back end, is shared work built once: setup.csv has its row.
+setup = list(csv.DictReader(open(sys.argv[1].replace("runs.csv", "setup.csv"))))
+assert len(setup) == 4 and all(float(s["setup_s"]) > 0 for s in setup), setup
+assert {r["setup_ids"] for r in rows} == {s["setup_id"] for s in setup}
 PYEOF
 expect_error 2 "input.levels: 2 subdivision levels need representation" -- \
   "$FS" run configs/smoke/cow_nose_pull.yaml --set input.levels=2 --out "$SCRATCH/bad"

@@ -9,6 +9,7 @@
 #include "fairshape/core/summary.h"
 #include "fairshape/experiment/components.h"
 #include "fairshape/experiment/config_loader.h"
+#include "fairshape/experiment/config_schema.h"
 #include "fairshape/experiment/kinds/surface_edit/surface_edit_spec.h"
 #include "fairshape/experiment/sweep.h"
 #include "test_support.h"
@@ -166,4 +167,73 @@ TEST_CASE("a --set on a swept key replaces its axis, one overlapping it is refus
   CHECK_FALSE(root["sweep"]["zip"]["threads"]);
   CHECK(notes.size() == 2);
   CHECK_THROWS_WITH(load_experiment_config(path, {"energy.0.type=x"}), Contains("overlaps the swept key"));
+}
+
+TEST_CASE("every unknown key of a run's config in one error, with the likely misspelling", "[config]") {
+  YAML::Node c = smoke_config();
+  c["solvr"] = YAML::Load("{type: cholesky}");
+  c["input"]["levls"] = 2;
+  c["energy"][0]["wieght"] = 1.0;
+  try {
+    (void)SurfaceEditSpec::from_config(c, components(), dirs());
+    FAIL("three unknown keys passed");
+  } catch (const InvalidConfig& e) {
+    const std::string m = e.what();
+    CHECK_THAT(m, Contains("3 unknown keys"));
+    CHECK_THAT(m, Contains("solvr: unknown key (did you mean solver?"));
+    CHECK_THAT(m, Contains("input.levls: unknown key (did you mean input.levels?"));
+    CHECK_THAT(m, Contains("energy[0].wieght: unknown key (did you mean energy[0].weight?"));
+    // the keys the loader and the sweep read are valid at the top level too
+    CHECK_THAT(m, Contains("defaults") && Contains("smoke") && Contains("sweep"));
+  }
+  // A misspelt required block: the error that follows from it names the misspelling.
+  YAML::Node d = smoke_config();
+  d["energies"] = d["energy"];
+  d.remove("energy");
+  CHECK_THROWS_WITH(SurfaceEditSpec::from_config(d, components(), dirs()),
+                    Contains("at least one energy term is required") && Contains("`energies`") &&
+                        Contains("a misspelling of `energy`"));
+  // Far from every key: no guess.
+  YAML::Node f = smoke_config();
+  f["zzz"] = 1;
+  CHECK_THROWS_WITH(SurfaceEditSpec::from_config(f, components(), dirs()),
+                    Contains("zzz: unknown key (valid keys here:"));
+}
+
+TEST_CASE("every run kind documents every key it reads, and the schema holds them", "[config]") {
+  const std::vector<KindKeys> kinds = experiment_keys();
+  REQUIRE(kinds.size() == 4);
+  std::set<std::string> all;
+  for (const KindKeys& k : kinds) {
+    INFO(k.kind);
+    CHECK(k.keys.size() > 10);
+    for (const OptionDoc& d : k.keys) all.insert(d.key);
+  }
+  // A sample of each kind's keys, top level and nested, list items included.
+  for (const char* key : {"name", "input.mesh", "input.levels", "solver.type", "problem.constraint_mode", "energy[].type",
+                          "constraints[].type", "output.vtk", "sheets", "input.curve", "edits", "features", "sweep",
+                          "defaults", "smoke", "repeat"})
+    CHECK(all.count(key) == 1);
+  const std::string schema = experiment_schema(kinds);
+  CHECK_THAT(schema, Contains("\"$schema\"") && Contains("\"additionalProperties\": false") &&
+                         Contains("\"constraint_mode\"") && Contains("\"cholesky\""));
+}
+
+TEST_CASE("a sweep's run ids are run_id_of each point's whole config, whatever its values", "[config]") {
+  // Values whose text needs quoting or nesting in a flow map, keys new to the base and keys in
+  // a list: the ids come from the base's text with the values put in, so check them against
+  // the emission of every point's config.
+  YAML::Node root = smoke_config();
+  root["sweep"] = YAML::Load(
+      "{description: ['a, b', 'c: d', '{x}', '', '#1', \"it's\", 'multi\nline'],"
+      " constraints.1.offset: [[0.1, 0, 0], [0, 0.2, 0]],"
+      " zip: {new_block.new_key: [1, {m: [1, 2]}], energy: [[{type: membrane}], [{type: umbrella_thin_plate, weight: 2}]]}}");
+  const SweepSpace space(root);
+  REQUIRE(space.size() == 7 * 2 * 2);
+  for (std::size_t i = 0; i < space.size(); ++i) {
+    const RunPoint p = space.point(i);
+    CHECK(p.run_id == run_id_of(p.config));
+    CHECK(space.run_id(i) == p.run_id);
+    CHECK(space.params(i) == p.params);
+  }
 }

@@ -25,6 +25,7 @@ class CurveKind final : public RunKind {
     }
     return {spec.name, {spec.curve_path}};
   }
+  std::vector<OptionDoc> keys() const override { return CurveRunSpec::keys(); }
   const std::vector<std::string>& metric_columns() const override { return curve_metric_columns(); }
   std::vector<TableSchema> tables() const override { return {{"steps", curve_step_columns()}, {"iterations", curve_iteration_columns()}}; }
   MetricRow execute(const YAML::Node& c, const std::vector<std::string>& dirs, const RunOutputs& out) override {

@@ -169,19 +169,28 @@ std::string nearest_level_counts(int n, bool closed) {
 }
 }  // namespace
 
-CurveRunSpec CurveRunSpec::from_config(const YAML::Node& run_config, const std::vector<std::string>& dirs) {
-  Config root(run_config, "");
+// While documenting the keys: a straight curve of 2^8 + 1 points, so the reads that depend on
+// the curve run.
+static Polyline documenting_stand_in() {
+  Polyline p;
+  p.points = MatrixX3::Zero(257, 3);
+  p.points.col(0) = Eigen::VectorXd::LinSpaced(257, 0.0, 1.0);
+  return p;
+}
+
+// Every key of the run read from `root` (parse_config: unknown keys reported together).
+static CurveRunSpec read_curve_run(const std::vector<std::string>& dirs, Config& root) {
   CurveRunSpec s;
   static_cast<RunBasics&>(s) = read_run_basics(root);
   Config in = root.child("input", "input curve");
-  s.curve_path = resolve_input(in.require<std::string>("curve", "polyline OBJ (v and l lines)"), dirs, in.key_path("curve"));
+  s.curve_path = read_input_path(in, "curve", "polyline OBJ (v and l lines)", dirs);
   const int levels = in.get_int("levels", -1, -1, 62, "hierarchy depth (-1: as many as the point count allows)");
   const int resample = in.get_int("resample", 0, 0, 1 << 24,
                                   "resample the curve to this many points, equally spaced in arc length (0: as read); "
                                   "2^L·k + 1 points (closed: 2^L·k) give L levels");
   in.check_no_unknown_keys();
   try {
-    s.curve = read_polyline(s.curve_path);
+    s.curve = in.documenting() ? documenting_stand_in() : read_polyline(s.curve_path);
     if (resample > 0) s.curve.points = resample_polyline(s.curve.points, s.curve.closed, resample + (s.curve.closed ? 1 : 0))
                                            .topRows(resample);
   } catch (const Error& e) {
@@ -201,7 +210,7 @@ CurveRunSpec CurveRunSpec::from_config(const YAML::Node& run_config, const std::
                         std::to_string(s.curve.n_points()) + " points, which allow " + std::to_string(most));
   for (Config ec : root.child_list("edits", "editing loops applied in order: [{level, wrinkle_level, moves, drag_steps}]"))
     for (CurveEdit& e : read_edit(ec, s)) s.edits.push_back(std::move(e));
-  if (s.edits.empty()) throw InvalidConfig("edits: at least one edit is required");
+  if (s.edits.empty()) throw InvalidConfig("edits: at least one edit is required" + root.misspelling_of("edits"));
   s.editing = read_editing(root);
   for (auto& e : s.edits) e.options = s.editing;
   read_optimization(root, s);
@@ -211,6 +220,14 @@ CurveRunSpec CurveRunSpec::from_config(const YAML::Node& run_config, const std::
   out.check_no_unknown_keys();
   root.check_no_unknown_keys();
   return s;
+}
+
+std::vector<OptionDoc> CurveRunSpec::keys() {
+  return document_keys([](Config& root) { (void)read_curve_run({}, root); });
+}
+
+CurveRunSpec CurveRunSpec::from_config(const YAML::Node& run_config, const std::vector<std::string>& dirs) {
+  return parse_config(run_config, [&](Config& root) { return read_curve_run(dirs, root); });
 }
 
 const std::vector<std::string>& curve_metric_columns() {

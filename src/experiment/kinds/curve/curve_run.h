@@ -32,6 +32,8 @@ struct CurveRunSpec : RunBasics {
   CurveObjective objective() const;
   //! Reads and checks everything, the curve file included (its point count against the
   //! hierarchy, every edit's levels and control points). \throw InvalidConfig naming the key.
+  //! Every key a run of this kind reads, with its default and doc (document_keys).
+  static std::vector<OptionDoc> keys();
   static CurveRunSpec from_config(const YAML::Node& run_config, const std::vector<std::string>& search_dirs);
 };
 

@@ -27,6 +27,7 @@ class FeatureKind final : public RunKind {
     return {spec.name, {spec.mesh_path}};
   }
   void validation_done() override { hierarchies_.clear(); }
+  std::vector<OptionDoc> keys() const override { return FeatureRunSpec::keys(); }
   const std::vector<std::string>& metric_columns() const override { return feature_metric_columns(); }
   std::vector<TableSchema> tables() const override { return {feature_profile_table(), feature_attachment_table(), feature_step_table()}; }
   std::vector<std::string> identity_columns() const override { return {"implementation"}; }  // no solver

@@ -103,13 +103,12 @@ feature::FeatureParams read_feature_params(Config& c, const feature::FeaturePara
 
 bool is_feature_config(const YAML::Node& c) { return c.IsMap() && c["features"].IsDefined(); }
 
-FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const std::vector<std::string>& dirs) {
-  Config root(run_config, "");
+// Every key of the run read from `root` (parse_config: unknown keys reported together).
+static FeatureRunSpec read_feature_run(const std::vector<std::string>& dirs, Config& root) {
   FeatureRunSpec s;
   static_cast<RunBasics&>(s) = read_run_basics(root);
   Config in = root.child("input", "the base mesh: {mesh, levels, weights, remesh_base_faces}");
-  s.mesh_path = resolve_input(in.require<std::string>("mesh", "a triangle mesh (OFF/OBJ/PLY), or a saved Loop hierarchy (.vtm)"), dirs,
-                              in.key_path("mesh"));
+  s.mesh_path = read_input_path(in, "mesh", "a triangle mesh (OFF/OBJ/PLY), or a saved Loop hierarchy (.vtm)", dirs);
   s.levels = in.get_int("levels", 3, 0, 8, "uniform Loop subdivision steps");
   s.loop_weights = in.get_enum("weights", LoopWeights::Loop, loop_weight_names(), "Loop vertex weights (warren: 3/8k, the paper's)");
   s.remesh_base_faces = in.get_int("remesh_base_faces", 0, 0, 10000000,
@@ -222,6 +221,14 @@ FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const s
   return s;
 }
 
+std::vector<OptionDoc> FeatureRunSpec::keys() {
+  return document_keys([](Config& root) { (void)read_feature_run({}, root); });
+}
+
+FeatureRunSpec FeatureRunSpec::from_config(const YAML::Node& run_config, const std::vector<std::string>& dirs) {
+  return parse_config(run_config, [&](Config& root) { return read_feature_run(dirs, root); });
+}
+
 const std::vector<std::string>& feature_metric_columns() {
   static const std::vector<std::string> cols{"features", "levels", "n_fine", "segments", "edit_s", "apply_s", "vertices_moved",
                                              "max_displacement", "triangles_uniform", "triangles_adaptive",
@@ -252,9 +259,8 @@ double bounding_diagonal(const SurfaceMesh& m) {
 
 MultiresSurface feature_hierarchy(const FeatureRunSpec& spec) {
   if (spec.editor) {  // remeshed, saved or edited: the surface-edit kind's hierarchy
-    RunCache cache;
-    double build_s = 0;
-    return cache.hierarchy(*spec.editor, &build_s);
+    RunCache cache;  // one run's: its hierarchy is part of the run's time
+    return cache.hierarchy(*spec.editor);
   }
   SubdivisionOptions opt;
   opt.scheme = SchemeType::Loop;

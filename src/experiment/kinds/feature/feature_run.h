@@ -81,6 +81,8 @@ struct FeatureRunSpec : RunBasics {
   bool vtk = true;
   bool vtk_every_step = false;       // output.vtk: all — vtk/<run>_step<k>.vtp after every design step
   //! \throw InvalidConfig naming the key.
+  //! Every key a run of this kind reads, with its default and doc (document_keys).
+  static std::vector<OptionDoc> keys();
   static FeatureRunSpec from_config(const YAML::Node& run_config, const std::vector<std::string>& search_dirs);
 };
 

@@ -15,7 +15,7 @@ SheetSpec read_sheet_from_file(Config& c, const std::vector<std::string>& search
   SheetSpec s;
   s.name = c.get<std::string>("name", "sheet", "name constraints and curves refer to");
   const std::string given = c.require<std::string>("file", "a saved sheet (.sheet) to start from");
-  s.file = resolve_input(given, search_dirs, c.key_path("file"));
+  s.file = c.documenting() ? given : resolve_input(given, search_dirs, c.key_path("file"));
   // The file holds the exact surface; a second description of it could only disagree.
   for (const char* key : {"spans", "degree", "geometry", "size", "origin", "u_axis", "v_axis"})
     if (c.has(key))

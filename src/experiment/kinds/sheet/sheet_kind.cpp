@@ -16,6 +16,7 @@ class SheetKind final : public RunKind {
     const SheetRunSpec spec = SheetRunSpec::from_config(c, dirs);
     return {spec.name, sheet_input_files(spec)};  // saved sheets (`file:`); the rest is the config
   }
+  std::vector<OptionDoc> keys() const override { return SheetRunSpec::keys(); }
   const std::vector<std::string>& metric_columns() const override { return sheet_metric_columns(); }
   std::vector<TableSchema> tables() const override {
     return {{"steps", sheet_step_columns()}, {"cells", sheet_cell_columns()}};

@@ -222,8 +222,8 @@ int SheetRunSpec::steps() const {
   return n;
 }
 
-SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config, const std::vector<std::string>& search_dirs) {
-  Config root(run_config, "");
+// Every key of the run read from `root` (parse_config: unknown keys reported together).
+static SheetRunSpec read_sheet_run(const std::vector<std::string>& search_dirs, Config& root) {
   SheetRunSpec s;
   static_cast<RunBasics&>(s) = read_run_basics(root);
   for (Config c : root.child_list("sheets", "hierarchical B-spline sheets")) s.sheets.push_back(read_sheet(c, search_dirs));
@@ -391,6 +391,14 @@ SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config, const std::
   root.check_no_unknown_keys();
   check_free_curves(s);
   return s;
+}
+
+std::vector<OptionDoc> SheetRunSpec::keys() {
+  return document_keys([](Config& root) { (void)read_sheet_run({}, root); });
+}
+
+SheetRunSpec SheetRunSpec::from_config(const YAML::Node& run_config, const std::vector<std::string>& search_dirs) {
+  return parse_config(run_config, [&](Config& root) { return read_sheet_run(search_dirs, root); });
 }
 
 const std::vector<std::string>& sheet_metric_columns() {

@@ -115,6 +115,8 @@ struct SheetRunSpec : RunBasics {
 
   //! \throw InvalidConfig naming the key (unknown sheets or curves, uv outside the domain, ...).
   //! \param search_dirs where relative sheet `file:` paths are looked up (input_search_dirs).
+  //! Every key a run of this kind reads, with its default and doc (document_keys).
+  static std::vector<OptionDoc> keys();
   static SheetRunSpec from_config(const YAML::Node& run_config, const std::vector<std::string>& search_dirs = {});
 };
 

@@ -15,6 +15,7 @@
 #include "fairshape/experiment/kinds/surface_edit/drag_run.h"
 #include "fairshape/experiment/kinds/surface_edit/system_export.h"
 #include "fairshape/experiment/metric_format.h"
+#include "fairshape/experiment/sha256.h"
 #include "fairshape/io/mesh_io.h"
 #include "fairshape/io/vtk_io.h"
 #include "fairshape/design/edit_solve.h"
@@ -62,17 +63,26 @@ SurfaceMesh result_mesh(const SurfaceMesh& before, const MatrixX3& after, int le
   return m;
 }
 
-// Writes iterations.csv rows and VTK snapshots of the edit level while a solve runs.
+// The energy of the edit's result (configs/README.md, "energy"): the energy terms of the
+// deformation ΔP, or of P_rest + ΔP for terms measured on positions. Never negative.
+double edit_energy(const EditProblem& p, const Eigen::MatrixXd& delta) {
+  return quadratic_energy(p.H, p.g, delta) + p.energy_at_rest;
+}
+
+// Writes iterations.csv rows and VTK snapshots of the edit level while a solve runs. A row's
+// energy is the iterate's, as runs.csv measures the result's (not the objective of the
+// reduced system the solver iterates on, whose constant differs from mode to mode).
 class IterationSink {
  public:
   IterationSink(const SurfaceEditSpec& spec, const RunOutputs& out, const SurfaceMesh& rest, int level,
-                const DesignConstraints& placed, const Eigen::MatrixXd* reference)
-      : spec_(spec), out_(out), rest_(rest), level_(level), placed_(placed), reference_(reference) {
+                const DesignConstraints& placed, const EditProblem& problem, const Eigen::MatrixXd* reference)
+      : spec_(spec), out_(out), rest_(rest), level_(level), placed_(placed), problem_(problem), reference_(reference) {
   }
   bool operator()(const IterationRecord& r) {
     if (spec_.output.iterations)
-      out_.add_row("iterations", {std::to_string(r.iteration), num(r.residual), num(r.energy), num(r.seconds),
-                    reference_ ? num(relative_error(*r.x, *reference_)) : ""});
+      out_.add_row("iterations", {std::to_string(r.iteration), num(r.residual),
+                                  r.x->rows() == problem_.H.rows() ? num(edit_energy(problem_, *r.x)) : "",
+                                  num(r.seconds), reference_ ? num(relative_error(*r.x, *reference_)) : ""});
     if (spec_.output.vtk == VtkPolicy::All && r.iteration % spec_.output.vtk_every == 0) {
       const std::string file = out_.run_id + "_it" + std::to_string(r.iteration) + ".vtp";
       write_vtp(result_mesh(rest_, rest_.positions() + MatrixX3(*r.x), level_, placed_),
@@ -91,6 +101,7 @@ class IterationSink {
   const SurfaceMesh& rest_;
   int level_;
   const DesignConstraints& placed_;
+  const EditProblem& problem_;
   const Eigen::MatrixXd* reference_;
   std::vector<std::pair<double, std::string>> steps_;
 };
@@ -110,6 +121,7 @@ std::vector<const ReferenceSolution*> reference_solutions(const SurfaceEditSpec&
   std::unique_ptr<PreparedEdit> exact;  // factored on the first step the cache lacks
   for (std::size_t s = 0; s < scales.size(); ++s) {
     if (!cache.reference_solution(key(s))) {
+      const Timer yardstick;  // the factorization is charged to the first step that needs it
       if (!exact) {
         Config none;
         direct = components().solvers.create("cholesky", Backend::Optimized, none);
@@ -117,7 +129,10 @@ std::vector<const ReferenceSolution*> reference_solutions(const SurfaceEditSpec&
       }
       const EditSolution sol = exact->solve(scales[s] * p.constraints.C);
       if (sol.summary.termination != Termination::Converged) continue;
-      cache.store_reference_solution(key(s), {sol.delta, sol.solve_s});
+      cache.store_reference_solution(key(s), {sol.delta, sol.solve_s}, yardstick.seconds(),
+                                     "reference solution (CHOLMOD, constraint_mode " +
+                                         std::string(constraint_mode_names().name(spec.constraint_mode)) +
+                                         (s + 1 == scales.size() ? ")" : ", drag step " + std::to_string(s + 1) + ")"));
     }
     refs[s] = cache.reference_solution(key(s));
   }
@@ -125,7 +140,7 @@ std::vector<const ReferenceSolution*> reference_solutions(const SurfaceEditSpec&
 }
 
 void measure_accuracy(const EditProblem& p, const EditSolution& sol, const ReferenceSolution* ref, MetricRow& row) {
-  row["energy"] = num(quadratic_energy(p.H, p.g, sol.delta));
+  row["energy"] = num(edit_energy(p, sol.delta));
   row["constraint_violation"] = num(sol.constraint_residual);
   if (ref) row["error_vs_reference"] = num(relative_error(sol.delta, ref->u));
 }
@@ -277,7 +292,7 @@ void execute_regional(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
   DesignConstraints none;
   const EditProblem at_edit = assemble_edit_problem(energies_only, rest, level, none);
   const Eigen::MatrixXd delta = r.edited.mesh(level).positions() - rest.mesh(level).positions();
-  row["energy"] = num(quadratic_energy(at_edit.H, at_edit.g, delta));
+  row["energy"] = num(edit_energy(at_edit, delta));
   if (spec.output.reference_solution) {
     const std::string key = spec.system_key + std::string(constraint_mode_names().name(spec.constraint_mode)) + "|regional";
     if (!cache.reference_solution(key)) {
@@ -288,15 +303,33 @@ void execute_regional(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
       const auto direct = components().solvers.create("cholesky", Backend::Optimized, none_cfg);
       std::optional<PassLadder> converged = ladder;
       if (converged) converged->accuracy = Accuracy::Converged, converged->finest = direct.get();
+      const Timer yardstick;
       const RegionalEditResult ref =
           solve_regional_edit(terms, rest, level, spec.constraint_mode, *direct, Backend::Optimized, spec.qp_config(),
                               spec.constraint_tolerance, converged ? &*converged : nullptr);
       if (is_success(ref.summary.termination))
-        cache.store_reference_solution(key, {ref.edited.mesh(finest).positions() - rest.mesh(finest).positions(), ref.solve_s});
+        cache.store_reference_solution(key, {ref.edited.mesh(finest).positions() - rest.mesh(finest).positions(), ref.solve_s},
+                                       yardstick.seconds(), "reference solution of the regional passes (CHOLMOD)");
     }
     if (const ReferenceSolution* ref = cache.reference_solution(key)) row["error_vs_reference"] = num(relative_error(moved, ref->u));
   }
   report_result(spec, out, rest, r.edited, r.placed, moved, &r.region, row);
+}
+
+// time_s: the run's own time. The shared work done during it (a hierarchy, a reference solve)
+// is left out and written to setup.csv; setup_ids names all the shared work the run used.
+void charge_shared_setups(RunCache& cache, const RunOutputs& out, const Timer& total, MetricRow& row) {
+  const double wall = total.seconds();  // one clock read: time_s never exceeds the run's wall time
+  const RunCache::Setups setups = cache.take_setups();
+  double shared = 0;
+  for (const SharedSetup& s : setups.built) {
+    shared += s.seconds;
+    out.add_row("setup", {s.id, s.what, num(s.seconds)});
+  }
+  std::string ids;
+  for (const std::string& id : setups.used) ids.append(ids.empty() ? "" : " ").append(id);
+  row["setup_ids"] = ids;
+  row["time_s"] = num(std::max(0.0, wall - shared));
 }
 
 }  // namespace
@@ -307,6 +340,11 @@ const std::vector<std::string>& step_columns() {
   return cols;
 }
 
+const std::vector<std::string>& setup_columns() {
+  static const std::vector<std::string> cols{"setup_id", "setup", "setup_s"};
+  return cols;
+}
+
 const std::vector<std::string>& iteration_columns() {
   static const std::vector<std::string> cols{"iteration", "residual", "energy", "seconds", "error_vs_reference"};
   return cols;
@@ -314,34 +352,62 @@ const std::vector<std::string>& iteration_columns() {
 
 const std::vector<std::string>& metric_columns() {
   static const std::vector<std::string> cols{
-      "n_dofs", "n_fine", "n_constrained", "repeat", "subdivide_s", "assemble_s", "analyze_s", "solve_s", "solve_min_s",
+      "n_dofs", "n_fine", "n_constrained", "repeat", "setup_ids", "assemble_s", "analyze_s", "solve_s", "solve_min_s",
       "time_s", "iterations", "residual", "error_estimate", "energy", "constraint_violation", "error_vs_reference", "detail_change", "spike_ratio", "curve_points",
       "region_fraction", "moved_fraction", "outside_region_move", "rotation_rounds",
       "remesh_hausdorff", "remesh_edge_ratio", "peak_rss_mb", "solve_extra_mb", "unused_keys", "termination", "message"};
   return cols;
 }
 
-const MultiresSurface& RunCache::hierarchy(const SurfaceEditSpec& spec, double* build_s, const RemeshReport** made) {
+namespace {
+
+std::string hierarchy_key(const SurfaceEditSpec& spec) {
   const bool subdivided = spec.representation != Representation::Mesh;
-  const std::string key = spec.mesh_path + "|" +
-                          (subdivided ? std::string(to_string(spec.subdivision().scheme)) : std::string("mesh")) + "|" +
-                          std::to_string(spec.levels) + "|" + std::string(to_string(spec.boundary)) + "|" +
-                          std::string(to_string(spec.loop_weights)) + "|" + std::string(to_string(spec.crease_method)) + "|" +
-                          std::to_string(spec.remesh_base_faces) + (spec.remesh_triangle_base ? "t" : "") +
-                          "|" + std::string(to_string(spec.implementation)) + "|" + std::to_string(spec.crease_angle);
+  return spec.mesh_path + "|" + (subdivided ? std::string(to_string(spec.subdivision().scheme)) : std::string("mesh")) +
+         "|" + std::to_string(spec.levels) + "|" + std::string(to_string(spec.boundary)) + "|" +
+         std::string(to_string(spec.loop_weights)) + "|" + std::string(to_string(spec.crease_method)) + "|" +
+         std::to_string(spec.remesh_base_faces) + (spec.remesh_triangle_base ? "t" : "") + "|" +
+         std::string(to_string(spec.implementation)) + "|" + std::to_string(spec.crease_angle);
+}
+
+std::string reference_id(const std::string& key) { return "reference-" + sha256_hex(key).substr(0, 12); }
+
+std::string what_hierarchy(const SurfaceEditSpec& spec) {
+  if (fs::path(spec.mesh_path).extension() == ".vtm") return "hierarchy loaded from " + spec.mesh_path;
+  std::string what = spec.remesh_base_faces > 0 ? "remesh of " : "hierarchy of ";
+  what += spec.mesh_path;
+  if (spec.representation != Representation::Mesh)
+    what += ", " + std::string(to_string(spec.subdivision().scheme)) + ", " + std::to_string(spec.levels) + " levels";
+  return what;
+}
+
+}  // namespace
+
+RunCache::Setups RunCache::take_setups() { return std::exchange(setups_, {}); }
+
+void RunCache::use(const std::string& id) {
+  if (std::find(setups_.used.begin(), setups_.used.end(), id) == setups_.used.end()) setups_.used.push_back(id);
+}
+
+const MultiresSurface& RunCache::hierarchy(const SurfaceEditSpec& spec, const RemeshReport** made) {
+  const bool subdivided = spec.representation != Representation::Mesh;
+  const std::string key = hierarchy_key(spec);
+  const std::string id = "hierarchy-" + sha256_hex(key).substr(0, 12);
+  use(id);
   auto it = hierarchies_.find(key);
   if (it == hierarchies_.end() && fs::path(spec.mesh_path).extension() == ".vtm") {  // saved: its details kept
     Timer t;
     MultiresSurface h = MultiresSurface::load(spec.mesh_path, spec.implementation);
-    it = hierarchies_.emplace(key, std::make_pair(std::move(h), t.seconds())).first;
+    it = hierarchies_.emplace(key, std::move(h)).first;
+    setups_.built.push_back({id, what_hierarchy(spec), t.seconds()});
   }
   if (it == hierarchies_.end()) {
+    Timer t;  // reading the mesh included
     SurfaceMesh input = read_mesh(spec.mesh_path);
     if (subdivided && spec.crease_angle > 0) mark_feature_creases(input, spec.crease_angle);
     if (spec.remesh_base_faces > 0 && input.has_sharpness())  // the remeshed base has other edges
       throw InvalidInput("its crease/corner tags would be lost: remeshing (input.remesh_base_faces) builds a new "
                          "base mesh; use remesh_base_faces: 0 to keep them");
-    Timer t;
     SubdivisionOptions opt;
     if (subdivided) opt = spec.subdivision();
     RemeshOptions ropt;
@@ -360,22 +426,27 @@ const MultiresSurface& RunCache::hierarchy(const SurfaceEditSpec& spec, double* 
       // The numbers go into runs.csv; a missed quality target is also said, once per remesh.
       for (const auto& m : report.misses()) std::cerr << "warning: remesh " << spec.mesh_path << ": " << m << "\n";
     }
-    it = hierarchies_.emplace(key, std::make_pair(std::move(h), t.seconds())).first;
+    it = hierarchies_.emplace(key, std::move(h)).first;
+    setups_.built.push_back({id, what_hierarchy(spec), t.seconds()});
   }
-  *build_s = it->second.second;
   if (made) {
     const auto r = remesh_reports_.find(key);
     *made = r == remesh_reports_.end() ? nullptr : &r->second;
   }
-  return it->second.first;
+  return it->second;
 }
 
-const ReferenceSolution* RunCache::reference_solution(const std::string& key) const {
+const ReferenceSolution* RunCache::reference_solution(const std::string& key) {
   auto it = references_.find(key);
-  return it == references_.end() ? nullptr : &it->second;
+  if (it == references_.end()) return nullptr;
+  use(reference_id(key));
+  return &it->second;
 }
 
-void RunCache::store_reference_solution(const std::string& key, ReferenceSolution r) { references_[key] = std::move(r); }
+void RunCache::store_reference_solution(const std::string& key, ReferenceSolution r, double seconds, std::string what) {
+  references_[key] = std::move(r);
+  setups_.built.push_back({reference_id(key), std::move(what), seconds});
+}
 
 MetricRow execute_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& out) {
   MetricRow row;
@@ -384,10 +455,8 @@ MetricRow execute_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
   reset_peak_rss();
   Timer total;
   try {
-    double build_s = 0;
     const RemeshReport* remeshed = nullptr;
-    const MultiresSurface& rest = cache.hierarchy(spec, &build_s, &remeshed);
-    row["subdivide_s"] = num(build_s);
+    const MultiresSurface& rest = cache.hierarchy(spec, &remeshed);
     if (remeshed) {  // the remesh made for this run (a saved hierarchy's is in its _remesh.json)
       row["remesh_hausdorff"] = num(remeshed->hausdorff_relative());
       row["remesh_edge_ratio"] = num(remeshed->edge_ratio());
@@ -395,7 +464,7 @@ MetricRow execute_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
     const int level = spec.edit_level < 0 ? rest.levels() : spec.edit_level;
     if (is_regional(spec.edit_terms())) {
       execute_regional(spec, cache, out, rest, level, row);
-      row["time_s"] = num(total.seconds());
+      charge_shared_setups(cache, out, total, row);
       return row;
     }
     Timer t;
@@ -420,7 +489,7 @@ MetricRow execute_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
     // what the solver itself allocates — CHOLMOD's factor, the multigrid levels.
     const double before_solve_mb = trimmed_rss_mb();
     reset_peak_rss();
-    IterationSink sink(spec, out, rest.mesh(level), level, placed, reference ? &reference->u : nullptr);
+    IterationSink sink(spec, out, rest.mesh(level), level, placed, problem, reference ? &reference->u : nullptr);
     EditSolution sol;
     std::vector<Eigen::MatrixXd> level_solutions;
     const IterationCallback cb = std::ref(sink);
@@ -487,7 +556,7 @@ MetricRow execute_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
     row["termination"] = std::string(to_string(Termination::InvalidInput));
     row["message"] = std::string("in the assembled problem: ") + e.what();
   }
-  row["time_s"] = num(total.seconds());
+  charge_shared_setups(cache, out, total, row);
   if (row["peak_rss_mb"].empty()) row["peak_rss_mb"] = num(peak_rss_mb());  // a run that failed before or in its solve
   return row;
 }

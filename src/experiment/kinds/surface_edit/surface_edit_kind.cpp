@@ -32,9 +32,10 @@ class SurfaceEditKind final : public RunKind {
     validation_cache_ = RunCache();
     checked_systems_.clear();
   }
+  std::vector<OptionDoc> keys() const override { return SurfaceEditSpec::keys(); }
   const std::vector<std::string>& metric_columns() const override { return fairshape::metric_columns(); }
   std::vector<TableSchema> tables() const override {
-    return {{"iterations", iteration_columns()}, {"steps", step_columns()}};
+    return {{"iterations", iteration_columns()}, {"steps", step_columns()}, {"setup", setup_columns()}};
   }
   MetricRow execute(const YAML::Node& c, const std::vector<std::string>& dirs, const RunOutputs& out) override {
     SurfaceEditSpec spec = SurfaceEditSpec::from_config(c, components(), dirs);
@@ -53,10 +54,9 @@ class SurfaceEditKind final : public RunKind {
   // beyond the energy's limit): the sweep is refused before its first run.
   void check_on_hierarchy(const SurfaceEditSpec& spec) {
     if (!checked_systems_.insert(spec.system_key).second) return;  // points differing in the solver alone
-    double build_s = 0;
     const MultiresSurface* rest = nullptr;
     try {
-      rest = &validation_cache_.hierarchy(spec, &build_s);
+      rest = &validation_cache_.hierarchy(spec);
     } catch (const Error& e) {
       throw InvalidConfig("input.mesh: " + spec.mesh_path + ": " + e.what());
     }

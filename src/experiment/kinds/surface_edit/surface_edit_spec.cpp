@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "fairshape/core/config.h"
+#include "fairshape/experiment/components.h"
 #include "fairshape/experiment/vtk_policy.h"
 #include "fairshape/qp/qp_solver.h"
 
@@ -88,7 +89,7 @@ void read_energies(Config& root, const Components& c, Backend backend, SurfaceEd
     e.check_no_unknown_keys();
     s.energies.push_back(std::move(t));
   }
-  if (s.energies.empty()) throw InvalidConfig("energy: at least one energy term is required");
+  if (s.energies.empty()) throw InvalidConfig("energy: at least one energy term is required" + root.misspelling_of("energy"));
 }
 
 // influence_level / influence_rings of one constraint (Boier-Martin et al. §4.2, region of
@@ -291,14 +292,12 @@ void adopt_saved_hierarchy(Config& in, SurfaceEditSpec& s) {
 
 }  // namespace
 
-SurfaceEditSpec SurfaceEditSpec::from_config(const YAML::Node& run_config, const Components& c,
-                             const std::vector<std::string>& search_dirs) {
-  Config root(run_config, "");
+// Every key of the run read from `root` (parse_config: unknown keys reported together).
+static SurfaceEditSpec read_surface_edit(const YAML::Node& run_config, const Components& c, const std::vector<std::string>& search_dirs, Config& root) {
   SurfaceEditSpec s;
   static_cast<RunBasics&>(s) = read_run_basics(root);
   Config in = root.child("input", "input geometry");
-  s.mesh_path = resolve_input(in.require<std::string>("mesh", "mesh file (.obj, .off, .ply), or a saved hierarchy (.vtm)"), search_dirs,
-                              in.key_path("mesh"));
+  s.mesh_path = read_input_path(in, "mesh", "mesh file (.obj, .off, .ply), or a saved hierarchy (.vtm)", search_dirs);
   s.representation = in.get_enum("representation", Representation::Mesh, representation_names(),
                                  "shape representation: the mesh itself or its subdivision surface");
   s.levels = in.get_int("levels", 0, 0, 8, "uniform subdivision steps; the problem lives on the finest level");
@@ -368,6 +367,15 @@ SurfaceEditSpec SurfaceEditSpec::from_config(const YAML::Node& run_config, const
   for (const char* key : {"input", "energy", "constraints", "problem"})
     s.system_key += yaml_to_string(run_config[key]) + "|";
   return s;
+}
+
+std::vector<OptionDoc> SurfaceEditSpec::keys() {
+  return document_keys([](Config& root) { (void)read_surface_edit(YAML::Node(YAML::NodeType::Map), components(), {}, root); });
+}
+
+SurfaceEditSpec SurfaceEditSpec::from_config(const YAML::Node& run_config, const Components& c,
+                             const std::vector<std::string>& search_dirs) {
+  return parse_config(run_config, [&](Config& root) { return read_surface_edit(run_config, c, search_dirs, root); });
 }
 
 }  // namespace fairshape

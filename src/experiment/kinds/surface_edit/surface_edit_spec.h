@@ -101,6 +101,8 @@ struct SurfaceEditSpec : RunBasics {
   std::string system_key;  // equal for runs that solve the same linear system
 
   //! \param search_dirs where relative input paths are looked up after the working directory.
+  //! Every key a run of this kind reads, with its default and doc (document_keys).
+  static std::vector<OptionDoc> keys();
   static SurfaceEditSpec from_config(const YAML::Node& run_config, const Components& c,
                              const std::vector<std::string>& search_dirs);
 };

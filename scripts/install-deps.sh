@@ -11,6 +11,7 @@ PACKAGES=(
   libosd-dev libcgal-dev libembree-dev libmeshoptimizer-dev
   libssl-dev python3-matplotlib python3-pandas python3-vtk9 xvfb xauth  # python3-vtk9: tests read VTP arrays
   pybind11-dev python3-pybind11 python3-dev python3-numpy python3-scipy python3-pytest  # the Python module and its tests
+  python3-jsonschema python3-yaml  # tests/cli/config_schema.sh checks every shipped config against `fairshape schema`
   clang libclang-rt-14-dev
   slurm-wlm munge  # tests/cli/slurm_array.sh starts a single-node cluster of its own (no service is started)
   petsc-dev libhypre-dev openmpi-bin  # the PETSc/hypre solver peers and the mpirun -np 2 test (issue 27)

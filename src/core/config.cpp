@@ -142,6 +142,9 @@ bool close_to(const std::string& typed, const std::string& key) {
 
 std::vector<std::string> Config::unknown_key_messages() const {
   std::vector<std::string> out;
+  bool any = false;
+  for (const auto& kv : node_) any |= !read_keys_->count(kv.first.as<std::string>());
+  if (!any) return out;
   std::vector<std::string> valid(read_keys_->begin(), read_keys_->end());
   // Keys the config loader and the sweep consume before a run's blocks are read.
   if (path_.empty() && collects_)

@@ -31,8 +31,10 @@ nlohmann::json default_value(const std::string& text) {
   return text;
 }
 
-// The names a component `type` may take, by the key that selects it.
-std::vector<std::string> type_names(const std::string& path) {
+// The names a component `type` may take, by the key that selects it (a surface edit's
+// registries; the other kinds list theirs in their docs).
+std::vector<std::string> type_names(const std::string& kind, const std::string& path) {
+  if (kind != "surface_edit") return {};
   const Components& c = components();
   if (path == "energy[].type") return c.energies.names();
   if (path == "constraints[].type") return c.constraints.names();
@@ -88,22 +90,29 @@ std::vector<KindKeys> experiment_keys() {
 }
 
 std::string experiment_schema(const std::vector<KindKeys>& kinds) {
-  nlohmann::json schema = {{"$schema", "http://json-schema.org/draft-07/schema#"},
-                           {"title", "fairshape experiment config"},
-                           {"description", "The keys every fairshape run kind reads (`fairshape list --keys`)."},
-                           {"type", "object"},
-                           {"additionalProperties", false}};
-  for (const KindKeys& k : kinds)
+  // One schema per kind, any of which a config may match: the kinds give some keys different
+  // shapes (`energy` is a list of terms in a surface edit, a map of weights in a sheet run).
+  nlohmann::json any_of = nlohmann::json::array();
+  for (const KindKeys& k : kinds) {
+    nlohmann::json schema = {{"title", k.kind + " run"},
+                             {"description", "a config with " + k.marker},
+                             {"type", "object"},
+                             {"additionalProperties", false}};
     for (const OptionDoc& d : k.keys) {
       std::string walked;
       nlohmann::json& leaf = node_at(schema, d.key, walked);
-      std::string description = d.doc;
-      if (leaf.contains("description") && leaf["description"] != description) continue;  // the first kind's words
-      leaf["description"] = description;
+      if (leaf.contains("description")) continue;  // read twice: the first read's words
+      leaf["description"] = d.doc;
       if (d.default_value != "(required)" && !leaf.contains("type")) leaf["default"] = default_value(d.default_value);
-      const std::vector<std::string> names = type_names(walked);
+      const std::vector<std::string> names = type_names(k.kind, walked);
       if (!names.empty()) leaf["enum"] = names;
     }
+    any_of.push_back(std::move(schema));
+  }
+  const nlohmann::json schema = {{"$schema", "http://json-schema.org/draft-07/schema#"},
+                                 {"title", "fairshape experiment config"},
+                                 {"description", "The keys every fairshape run kind reads (`fairshape list --keys`)."},
+                                 {"anyOf", any_of}};
   return schema.dump(2) + "\n";
 }
 

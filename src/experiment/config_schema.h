@@ -19,9 +19,9 @@ struct KindKeys {
 //! Every run kind's keys, the config loader's (defaults, smoke, sweep) among them.
 std::vector<KindKeys> experiment_keys();
 
-//! One JSON Schema (draft-07) for every kind: the union of their keys, each with its default
-//! and doc; the component `type`s (energies, constraints, solvers) as enums; unknown keys refused
-//! in the blocks whose keys are all known.
+//! One JSON Schema (draft-07) for every kind: any of the kinds' schemas, each key with its
+//! default and doc; the component `type`s (energies, constraints, solvers) as enums; unknown
+//! keys refused in the blocks whose keys are all known.
 //! Returned as JSON text (indented).
 std::string experiment_schema(const std::vector<KindKeys>& kinds);
 

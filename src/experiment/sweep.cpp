@@ -20,8 +20,10 @@ std::vector<YAML::Node> list_of(const YAML::Node& n, const std::string& key) {
 
 // A value's text inside a flow collection, as the one-line emission of a whole config holds it.
 std::string flow_text(const YAML::Node& v) {
+  // A clone: putting v itself into another node would merge their yaml-cpp memory pools, and
+  // every later use of any swept value would then walk the pool of all of them.
   YAML::Node seq(YAML::NodeType::Sequence);
-  seq.push_back(v);
+  seq.push_back(YAML::Clone(v));
   const std::string s = yaml_to_string(seq);  // "[...]"
   return s.substr(1, s.size() - 2);
 }
@@ -122,7 +124,7 @@ void SweepSpace::prepare_hash_text() {
     for (const auto& column : a.values)
       for (const YAML::Node& v : column) {
         YAML::Node map(YAML::NodeType::Map);
-        map["k"] = v;
+        map["k"] = YAML::Clone(v);
         if (yaml_to_string(map) != "{k: " + flow_text(v) + "}") return hash_pieces_.clear();
       }
   std::vector<std::size_t> first(axes_.size(), 0), last(axes_.size());

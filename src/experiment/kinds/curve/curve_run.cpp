@@ -52,7 +52,7 @@ std::vector<CurveEdit> read_edit(Config& ec, const CurveRunSpec& s) {
                                    "move along the chord from control point 0 so the chord becomes this many times "
                                    "as long (< 1 compresses, > 1 stretches)");
     mc.check_no_unknown_keys();
-    if (by.empty() == (mv.chord_scale == 0))
+    if (by.empty() == (mv.chord_scale == 0) && !mc.documenting())
       throw InvalidConfig(mc.path() + ": give exactly one of `by` and `chord_scale`");
     if (!by.empty() && by.size() != 2 && by.size() != 3)
       throw InvalidConfig(mc.key_path("by") + ": expected [x, y] or [x, y, z]");

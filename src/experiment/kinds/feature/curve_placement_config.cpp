@@ -9,6 +9,11 @@ namespace fairshape {
 namespace {
 
 feature::PointsOnSurface read_waypoints(Config& g) {
+  if (g.documenting()) {  // both forms' keys, neither given
+    (void)read_point_list(g, "through", "waypoints as world points, projected onto the level");
+    (void)read_surface_point_list(g, "through_surface", "waypoints as [face, b0, b1, b2] on the level");
+    return {};
+  }
   if (g.has("through") == g.has("through_surface"))
     throw InvalidConfig(g.path() + ": give exactly one of through ([[x, y, z], ...], projected onto the level) or "
                                    "through_surface ([[face, b0, b1, b2], ...])");
@@ -35,13 +40,14 @@ feature::GeodesicPlacement read_geodesic(Config& g) {
 
 feature::SectionPlacement read_section(Config& c) {
   feature::SectionPlacement out;
-  if (!c.has("point") || !c.has("normal")) throw InvalidConfig(c.path() + ": the plane needs point and normal ([x, y, z] each)");
+  const bool documenting = c.documenting();  // every key read, none given
+  if ((!c.has("point") || !c.has("normal")) && !documenting) throw InvalidConfig(c.path() + ": the plane needs point and normal ([x, y, z] each)");
   out.point = read_vec3(c, "point", Vec3::Zero(), "a point of the plane");
   out.normal = read_vec3(c, "normal", Vec3::UnitZ(), "the plane's normal (any length > 0)");
   if (!(out.normal.norm() > 1e-12)) throw InvalidConfig(c.key_path("normal") + ": the normal has zero length");
-  if (c.has("nearest")) out.nearest = read_vec3(c, "nearest", Vec3::Zero(), "picks the section curve passing nearest (default: point)");
+  if (c.has("nearest") || documenting) out.nearest = read_vec3(c, "nearest", Vec3::Zero(), "picks the section curve passing nearest (default: point)");
   if (c.has("from") != c.has("to")) throw InvalidConfig(c.path() + ": give both from and to (clip the curve), or neither (the whole curve)");
-  if (c.has("from")) {
+  if (c.has("from") || documenting) {
     out.from = read_vec3(c, "from", Vec3::Zero(), "clip: the curve starts at its point closest to this");
     out.to = read_vec3(c, "to", Vec3::Zero(), "clip: the curve ends at its point closest to this");
   }
@@ -105,6 +111,17 @@ std::optional<feature::CurvePlacement> read_curve_placement(Config& f, const std
 
 // Where the feature's control polygon comes from (one of five keys) and whether it is closed.
 void read_curve_source(Config& c, const std::string& where, const std::vector<std::string>& dirs, FeatureSpec& f) {
+  if (c.documenting()) {  // the keys of every source, none of them given
+    (void)c.get<bool>("closed", false, "the curve closes on itself: no ends, no end caps, a periodic spline");
+    (void)read_point_list(c, "points", "world points, projected onto the level's surface");
+    (void)read_surface_point_list(c, "surface_points", "points as [face, b0, b1, b2] on the level");
+    Config g = c.child("geodesic", "a shortest path on the level through waypoints: {through | through_surface, spacing, smooth}");
+    (void)read_geodesic(g);
+    Config section = c.child("section", "the level cut by a plane: {point, normal, nearest, from, to, arc, spacing}");
+    (void)read_section(section);
+    (void)c.get<std::string>("polyline", "", "a file of points: .obj polyline or 'x y z' lines");
+    return;
+  }
   if (curve_keys_given(c) != 1)
     throw InvalidConfig(where + ": give exactly one of points ([[x, y, z], ...], projected onto the level), "
                                 "surface_points ([[face, b0, b1, b2], ...]), geodesic, section or polyline");

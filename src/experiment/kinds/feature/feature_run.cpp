@@ -130,7 +130,7 @@ static FeatureRunSpec read_feature_run(const std::vector<std::string>& dirs, Con
     f.after_edit = c.get<bool>("after_edit", false, "drawn on the surface the edit made (default: before it, carried by it)");
     read_schedule(c, f.step, f.until);
     f.moves = read_moves(c, f.step);
-    if (!f.moves.empty() && !c.has("points"))
+    if (!f.moves.empty() && !c.has("points") && !c.documenting())
       throw InvalidConfig(c.key_path("moves") + ": only a feature given by world `points` is moved (its points are translated "
                           "and placed again)");
     for (Config ch : c.child_list("changes", "its parameters from a later step on: [{step, height, radius, crease, ...}]")) {

@@ -111,7 +111,8 @@ SheetSpec read_sheet(Config& c, const std::vector<std::string>& search_dirs) {
 SpaceCurveSpec read_curve(Config& c, double chord_tolerance) {
   SpaceCurveSpec s;
   s.name = c.require<std::string>("name", "name curve constraints refer to");
-  if (c.has("from_surface")) {
+  const bool documenting = c.documenting();  // both ways of giving a curve are read
+  if (c.has("from_surface") || documenting) {
     for (const char* form : {"points", "arc", "bspline", "closed"})
       if (c.has(form))
         throw InvalidConfig(c.key_path(form) + (std::string(form) == "closed"
@@ -121,12 +122,13 @@ SpaceCurveSpec read_curve(Config& c, double chord_tolerance) {
     Config fs_ = c.child("from_surface", "trace the curve on a sheet's initial surface: {sheet, uv}");
     s.from_sheet = fs_.require<std::string>("sheet", "sheet name");
     const SampledCurve<2> uv = read_uv_curve(fs_, "uv", "(u, v) curve on that sheet", chord_tolerance);
-    if (uv.points.empty()) throw InvalidConfig(fs_.key_path("uv") + ": required key is missing");
+    if (uv.points.empty() && !documenting) throw InvalidConfig(fs_.key_path("uv") + ": required key is missing");
     s.uv = uv.points;
     s.closed = uv.closed;
     fs_.check_no_unknown_keys();
-  } else if (!c.documenting()) {  // points, arc or bspline (curve_forms.h), sampled already
-    if (!has_curve_form_key(c)) throw InvalidConfig(c.path() + ": give from_surface or a curve: points, arc or bspline");
+  }
+  if (!c.has("from_surface") || documenting) {  // points, arc or bspline (curve_forms.h), sampled already
+    if (!has_curve_form_key(c) && !documenting) throw InvalidConfig(c.path() + ": give from_surface or a curve: points, arc or bspline");
     const SampledCurve<3> curve = read_curve_form<3>(c, chord_tolerance);
     s.points = curve.points;
     s.closed = curve.closed;

@@ -85,11 +85,16 @@ void read_energies(Config& root, const Components& c, Backend backend, SurfaceEd
     EnergyTerm t;
     t.type = e.require<std::string>("type", "energy name (see `fairshape list`)");
     t.weight = e.get_number("weight", 1.0, 0.0, 1e12, "weight of this term");
+    if (e.documenting()) {  // every energy's options belong to an item of the list
+      for (const auto& name : c.energies.names())
+        (void)c.energies.create(name, c.energies.has(name, backend) ? backend : Backend::Reference, e);
+      continue;
+    }
     t.energy = c.energies.create(t.type, backend, e);
     e.check_no_unknown_keys();
     s.energies.push_back(std::move(t));
   }
-  if (s.energies.empty()) throw InvalidConfig("energy: at least one energy term is required" + root.misspelling_of("energy"));
+  if (s.energies.empty() && !root.documenting()) throw InvalidConfig("energy: at least one energy term is required" + root.misspelling_of("energy"));
 }
 
 // influence_level / influence_rings of one constraint (Boier-Martin et al. §4.2, region of
@@ -120,6 +125,11 @@ void read_constraints(Config& root, const Components& c, Backend backend, Surfac
     ConstraintTerm t;
     t.type = k.require<std::string>("type", "constraint name (see `fairshape list`)");
     t.influence = read_influence(k, t.type);
+    if (k.documenting()) {  // every constraint's options belong to an item of the list
+      for (const auto& name : c.constraints.names())
+        (void)c.constraints.create(name, c.constraints.has(name, backend) ? backend : Backend::Reference, k);
+      continue;
+    }
     t.constraint = c.constraints.create(t.type, backend, k);
     k.check_no_unknown_keys();
     s.constraints.push_back(std::move(t));

@@ -38,6 +38,15 @@ def test_run_dict_equals_cli_and_bindings(tmp_path, cow_hierarchy):
     assert np.isnan(change) and np.isnan(runs.loc[0, "detail_change"])
 
 
+def test_misspelt_key_of_a_dict_is_named_not_a_temporary_file(tmp_path):
+    config = {k: v for k, v in SMALL.items() if k != "energy"}
+    config["enregy"] = SMALL["energy"]
+    with pytest.raises(fairshape.InvalidConfig, match="enregy: unknown key") as e:
+        fairshape.run(config, out=tmp_path / "bad")
+    assert "energy" in str(e.value).replace("enregy", "") and "fairshape-config-" not in str(e.value)
+    assert "at least one energy term" not in str(e.value)
+
+
 def test_run_sweep_with_sets(tmp_path):
     runs = fairshape.run("configs/smoke/cow_nose_pull.yaml", out=tmp_path / "s",
                          set={"solver": {"type": "conjugate_gradient", "tolerance": 1e-9, "max_iterations": 5000}})

@@ -9,7 +9,7 @@ PACKAGES=(
   libeigen3-dev libsuitesparse-dev libceres-dev libtbb-dev nlohmann-json3-dev libx11-dev
   libbenchmark-dev catch2 libvtk9-dev libyaml-cpp-dev libcli11-dev
   libosd-dev libcgal-dev libembree-dev libmeshoptimizer-dev
-  libssl-dev python3-matplotlib python3-pandas python3-vtk9 xvfb xauth  # python3-vtk9: tests read VTP arrays
+  libssl-dev python3-matplotlib python3-pandas python3-seaborn python3-vtk9 xvfb xauth  # python3-vtk9: tests read VTP arrays; seaborn: plot.py
   pybind11-dev python3-pybind11 python3-dev python3-numpy python3-scipy python3-pytest  # the Python module and its tests
   python3-jsonschema python3-yaml  # tests/cli/config_schema.sh checks every shipped config against `fairshape schema`
   clang libclang-rt-14-dev

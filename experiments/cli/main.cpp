@@ -156,6 +156,11 @@ int main(int argc, char** argv) {
   c_submit->add_option("--cpus-per-task", subm.resources.cpus_per_task, "sbatch --cpus-per-task")
       ->check(CLI::Range(1, 4096));
   c_submit->add_option("--mem", subm.resources.mem, "sbatch --mem per task: megabytes, or with K, M, G, T (16G)");
+  c_submit->add_option("--sbatch-arg", subm.resources.extra,
+                       "any other sbatch option, one #SBATCH line on every job (repeatable): "
+                       "--sbatch-arg=--account=proj --sbatch-arg=--qos=normal --sbatch-arg=--gres=gpu:1");
+  c_submit->add_option("--setup", subm.setup,
+                       "a shell line each job runs before its command (repeatable, in order): --setup 'module load gcc'");
   c_submit->add_option("--out", subm.out, "output folder, new or empty (default results/<name>/<timestamp>_<commit>): "
                                           "slurm/ scripts and logs, shards/<i>/, the merged tables");
   c_submit->add_option("--set", subm.sets, "override a key in every task, as for run (value is YAML)");

@@ -52,6 +52,8 @@ int cmd_submit(const SubmitArgs& a) {
   if (!r.time.empty()) check_slurm_time(r.time);
   if (!r.mem.empty()) check_slurm_memory(r.mem);
   if (!r.partition.empty()) check_slurm_partition(r.partition);
+  for (const auto& e : r.extra) check_sbatch_arg(e);
+  for (const auto& line : a.setup) check_setup_line(line);
   std::string sbatch;
   if (a.now && (sbatch = find_sbatch()).empty())
     throw InvalidConfig("--now: sbatch is not on PATH (is this a Slurm login node?); without --now the scripts are "
@@ -77,6 +79,7 @@ int cmd_submit(const SubmitArgs& a) {
   job.tasks = tasks;
   job.points = sweep.selected;
   job.resources = r;
+  job.setup = a.setup;
   job.out_dir = fs::absolute(a.out.empty() ? default_out_dir(sweep.name) : fs::path(a.out)).lexically_normal();
   const SlurmScripts scripts = write_slurm_scripts(job);
 

@@ -14,6 +14,7 @@ struct SubmitArgs {
   bool slurm = false, now = false, smoke = false;
   std::string array_size;  // empty: min(points, kDefaultArraySize); checked by cmd_submit
   std::vector<std::string> sets;
+  std::vector<std::string> setup;  // --setup lines
   SlurmResources resources;
 };
 

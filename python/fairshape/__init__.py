@@ -8,7 +8,7 @@ what does not is said in each docstring (and in README.md, "Python").
 
 from ._fairshape import (  # noqa: F401  (the public API)
     __version__,
-    Error, InvalidInput, InvalidConfig, TopologyError, SolverError, IOError, ParseError, OutputError,
+    Error, InvalidInput, InvalidIndex, InvalidConfig, TopologyError, SolverError, FileError, MissingFileError, ParseError, OutputError,
     Mesh, read_mesh, write_mesh, read_arrays,
     MultiresSurface, remesh, subdivide, limit_positions, limit_normals, limit_matrix, relative_detail_change,
     stretch_bend_hessian, energy_hessian, components, constraint_modes,

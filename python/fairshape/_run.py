@@ -20,6 +20,17 @@ def _absolute_defaults(config):
     return d
 
 
+def _naming_the_dict(error, scratch):
+    """The error with the scratch file's name replaced: the file is gone by the time the caller
+    reads the message, and what they wrote was a dict."""
+    renamed = type(error)(str(error).replace(scratch, "the config dict"))
+    for attr in ("errno", "file", "line"):
+        value = getattr(error, attr, None)
+        if value is not None:
+            setattr(renamed, attr, "the config dict" if value == scratch else value)
+    return renamed
+
+
 def _set_arg(key, value):
     return f"{key}={value if isinstance(value, str) else json.dumps(value)}"
 
@@ -60,6 +71,10 @@ def run(config, out=None, set=None, filters=None, jobs=1, resume=False, force=Fa
         raise TypeError(f"config: expected a path or a dict, got {type(config).__name__}")
     try:
         status = _fairshape._run_sweep(path, out, sets, filt, jobs, resume, force, retry_failed, smoke, CLI)
+    except _fairshape.Error as e:
+        if scratch is None:
+            raise
+        raise _naming_the_dict(e, scratch.name) from None
     finally:
         if scratch is not None:
             os.unlink(scratch.name)

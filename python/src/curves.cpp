@@ -13,6 +13,7 @@
 #include <cmath>
 
 #include "bindings.h"
+#include "checks.h"
 #include "convert.h"
 #include "fairshape/curve_design/curve_components.h"
 #include "fairshape/curve_design/curve_metrics.h"
@@ -52,8 +53,8 @@ Eigen::MatrixXd curve_level(const Eigen::Ref<const Eigen::MatrixXd>& points, boo
   const Polyline c = polyline_arg(points, closed);
   const int L = levels_arg(c, levels);
   if (level < 0 || level > L)
-    throw InvalidInput("curve level " + std::to_string(level) + " is not in the hierarchy (levels 0.." + std::to_string(L) + ")");
-  return reconstruct(decompose(c, L, backend), level, backend).points;
+    throw InvalidIndex("curve level " + std::to_string(level) + " is not in the hierarchy (levels 0.." + std::to_string(L) + ")");
+  return checked(Eigen::MatrixXd(reconstruct(decompose(c, L, backend), level, backend).points), "Curve.level");
 }
 
 Eigen::MatrixXd curve_details(const Eigen::Ref<const Eigen::MatrixXd>& points, bool closed, int levels, int level,
@@ -62,8 +63,8 @@ Eigen::MatrixXd curve_details(const Eigen::Ref<const Eigen::MatrixXd>& points, b
   const Polyline c = polyline_arg(points, closed);
   const int L = levels_arg(c, levels);
   if (level < 0 || level >= L)
-    throw InvalidInput("curve details " + std::to_string(level) + ": the hierarchy has d^0..d^" + std::to_string(L - 1));
-  return decompose(c, L, backend).details[static_cast<std::size_t>(level)];
+    throw InvalidIndex("curve details " + std::to_string(level) + ": the hierarchy has d^0..d^" + std::to_string(L - 1));
+  return checked(Eigen::MatrixXd(decompose(c, L, backend).details[static_cast<std::size_t>(level)]), "Curve.details");
 }
 
 EditingOptions editing_arg(const std::string& step, const std::string& details, const std::string& region) {
@@ -158,7 +159,7 @@ py::dict edit_curve(const Eigen::Ref<const Eigen::MatrixXd>& points, bool closed
   const Polyline curve = polyline_arg(points, closed);
   const int L = levels_arg(curve, levels);
   if (level < 0 || level > L)
-    throw InvalidInput("edit_curve: level " + std::to_string(level) + " is outside the hierarchy (levels 0.." + std::to_string(L) + ")");
+    throw InvalidIndex("edit_curve: level " + std::to_string(level) + " is outside the hierarchy (levels 0.." + std::to_string(L) + ")");
   if (wrinkle_level != -1 && (wrinkle_level < level || wrinkle_level >= L))
     throw InvalidInput("edit_curve: wrinkle_level " + std::to_string(wrinkle_level) + " must lie in [level, levels-1] = [" +
                        std::to_string(level) + ", " + std::to_string(L - 1) + "] or be -1");
@@ -170,13 +171,16 @@ py::dict edit_curve(const Eigen::Ref<const Eigen::MatrixXd>& points, bool closed
     throw InvalidInput("edit_curve: offsets must be k×2 or k×3 for k = " + std::to_string(indices.size()) + " indices, got " +
                        std::to_string(offsets.rows()) + "×" + std::to_string(offsets.cols()));
   if (chord_scales.size() != indices.size()) throw InvalidInput("edit_curve: one chord scale per index (0: use the offset)");
+  finite_arg(offsets, "edit_curve: offsets");
+  finite_arg(beta, "edit_curve: beta");
+  for (std::size_t i = 0; i < chord_scales.size(); ++i) finite_arg(chord_scales[i], "edit_curve: chord_scales[" + std::to_string(i) + "]");
   CurveEdit e;
   e.edit_level = level;
   e.wrinkle_level = wrinkle_level;
   e.options = editing_arg(explicit_step, details, solve_region);
   for (std::size_t i = 0; i < indices.size(); ++i) {
     if (indices[i] >= m || indices[i] < -m)
-      throw InvalidInput("edit_curve: index " + std::to_string(indices[i]) + " is not on the level-" + std::to_string(level) +
+      throw InvalidIndex("edit_curve: index " + std::to_string(indices[i]) + " is not on the level-" + std::to_string(level) +
                          " polygon of " + std::to_string(m) + " points");
     if (!(chord_scales[i] >= 0)) throw InvalidInput("edit_curve: chord scales must be ≥ 0");
     CurveMove mv;
@@ -218,6 +222,9 @@ py::dict edit_curve(const Eigen::Ref<const Eigen::MatrixXd>& points, bool closed
       }
     }
   }
+  const std::string outcome = std::string(to_string(termination)) + ": " + message;
+  for (const auto* stage : {&first.reference, &last.edited, &last.attracting, &current.points})
+    finite_result(*stage, "edit_curve: a stage of the edit (" + outcome + ")");
   const Eigen::VectorXd original = segment_lengths(curve.points, closed);
   const CurveMetrics metrics = measure_curve(current.points, closed, original, last.attracting);
   const Eigen::VectorXd l = segment_lengths(current.points, closed);

@@ -8,6 +8,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.h"
+#include "checks.h"
 #include "convert.h"
 #include "fairshape/design/edit_assembly.h"
 #include "fairshape/design/edit_solve.h"
@@ -88,7 +89,7 @@ py::dict edit(const MultiresSurface& rest, const py::list& energies, const py::l
     throw InvalidConfig("formulation '" + formulation + "': expected 'displacement' or 'position'");
   const int l = level < 0 ? rest.levels() + 1 + level : level;
   if (l < 0 || l > rest.levels())
-    throw InvalidInput("edit: level " + std::to_string(level) + " is not in the hierarchy (levels 0.." +
+    throw InvalidIndex("edit: level " + std::to_string(level) + " is not in the hierarchy (levels 0.." +
                        std::to_string(rest.levels()) + ", or -1 for the finest)");
   OwnedTerms t = read_terms(energies, constraints, backend);
   t.terms.positions = formulation == "position";
@@ -118,6 +119,9 @@ py::dict edit(const MultiresSurface& rest, const py::list& energies, const py::l
       edited.synthesize_from(l, DetailSpace::Local);
     }
   }
+  const std::string outcome = std::string(to_string(sol.summary.termination)) + ": " + sol.summary.message;
+  finite_result(sol.delta, "edit: the deformation (" + outcome + ")");
+  finite_result(edited, "edit: the edited hierarchy (" + outcome + ")");
   py::dict out;
   out["level"] = l;
   out["n_dofs"] = n_dofs;

@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.h"
+#include "checks.h"
 #include "convert.h"
 #include "fairshape/energy/local_quadratic.h"
 #include "fairshape/experiment/components.h"
@@ -52,7 +53,7 @@ void bind_energy(py::module_& m) {
           py::gil_scoped_release release;
           H = stretch_bend_hessian(mesh, {alpha, beta}, b);
         }
-        return RowSparseMatrix(H);
+        return checked(RowSparseMatrix(H), "stretch_bend_hessian");
       },
       py::arg("mesh"), py::arg("alpha") = 0.1, py::arg("beta") = 1.0, py::arg("implementation") = "optimized",
       "Boier-Martin et al.'s stretch+bend matrix H (§3.4), E(P) = ½ Pᵀ H P per coordinate: a "
@@ -62,6 +63,7 @@ void bind_energy(py::module_& m) {
       "energy_hessian",
       [](const SurfaceMesh& mesh, const std::string& type, double weight, const std::string& implementation,
          const py::kwargs& options) {
+        finite_arg(weight, "energy_hessian: weight");
         const Backend b = backend_arg(implementation);
         Config cfg = to_config(options, "energy." + type);
         const auto energy = components().energies.create(type, b, cfg);
@@ -72,7 +74,7 @@ void bind_energy(py::module_& m) {
           py::gil_scoped_release release;
           H = energy->hessian(mesh, weight);
         }
-        return RowSparseMatrix(H);
+        return checked(RowSparseMatrix(H), "energy_hessian");
       },
       py::arg("mesh"), py::arg("type"), py::arg("weight") = 1.0, py::arg("implementation") = "optimized",
       "weight × H of a registered energy (fairshape.components()['energies'], `fairshape list`) on `mesh`, "

@@ -9,6 +9,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.h"
+#include "checks.h"
 #include "convert.h"
 #include "fairshape/experiment/kinds/feature/feature_run.h"
 #include "fairshape/feature/featured_surface.h"
@@ -123,6 +124,7 @@ py::dict apply_features(const MultiresSurface& hierarchy, const py::list& featur
     }
     placed.append(py::make_tuple(faces, bary));
   }
+  finite_result(result_copy, "apply_features: the featured hierarchy");
   out["features"] = rows;
   out["placed"] = placed;
   out["within_tolerance"] = all_within;

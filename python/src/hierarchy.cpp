@@ -8,6 +8,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.h"
+#include "checks.h"
 #include "convert.h"
 #include "fairshape/subdivision/limit.h"
 #include "fairshape/subdivision/multires_surface.h"
@@ -29,7 +30,7 @@ DetailSpace space_arg(const std::string& s) {
 int level_arg(const MultiresSurface& h, int level, const char* who) {
   const int l = level < 0 ? h.levels() + 1 + level : level;
   if (l < 0 || l > h.levels())
-    throw InvalidInput(std::string(who) + ": level " + std::to_string(level) + " is not in the hierarchy (levels 0.." +
+    throw InvalidIndex(std::string(who) + ": level " + std::to_string(level) + " is not in the hierarchy (levels 0.." +
                        std::to_string(h.levels()) + ", or -1 for the finest)");
   return l;
 }
@@ -64,9 +65,10 @@ void bind_hierarchy(py::module_& m) {
              const std::string& implementation) {
             const SubdivisionOptions opt = subdivision_arg(scheme, boundary, weights, crease);
             const Backend b = backend_arg(implementation);
+            finite_arg(finest, "MultiresSurface.analyze: finest");
             const MatrixX3 X(finest);
             py::gil_scoped_release release;
-            return MultiresSurface::analyze(base, X, opt, levels, b);
+            return checked(MultiresSurface::analyze(base, X, opt, levels, b), "MultiresSurface.analyze");
           },
           py::arg("base"), py::arg("finest"), py::arg("levels"), FAIRSHAPE_SCHEME_ARGS,
           py::arg("implementation") = "optimized",
@@ -75,7 +77,7 @@ void bind_hierarchy(py::module_& m) {
           "the finest level is reproduced.")
       .def_static(
           "load", [](const std::string& path, const std::string& implementation) {
-            return MultiresSurface::load(path, backend_arg(implementation));
+            return checked(MultiresSurface::load(path, backend_arg(implementation)), "MultiresSurface.load " + path);
           },
           py::arg("path"), py::arg("implementation") = "optimized",
           "A hierarchy saved by save() or `fairshape remesh` (.vtm with its JSON sidecar).")
@@ -83,13 +85,17 @@ void bind_hierarchy(py::module_& m) {
       .def_property_readonly("levels", &MultiresSurface::levels, "L: the finest level's index.")
       .def_property_readonly("scheme", [](const MultiresSurface& h) { return std::string(to_string(h.options().scheme)); })
       .def(
-          "mesh", [](const MultiresSurface& h, int level) { return SurfaceMesh(h.mesh(level_arg(h, level, "mesh"))); },
+          "mesh",
+          [](const MultiresSurface& h, int level) {
+            return checked(SurfaceMesh(h.mesh(level_arg(h, level, "mesh"))), "MultiresSurface.mesh");
+          },
           py::arg("level") = -1, "A copy of level `level`'s mesh.")
       .def(
           "positions",
           [](py::object self, int level) {
             const MultiresSurface& h = self.cast<const MultiresSurface&>();
             const SurfaceMesh& mesh = h.mesh(level_arg(h, level, "positions"));
+            finite_result(mesh, "MultiresSurface.positions");
             return view(mesh.positions().data(), mesh.n_vertices(), 3, self, false);
           },
           py::arg("level") = -1, "n_l×3 float64: level `level`'s positions, a read-only view (no copy).")
@@ -100,6 +106,7 @@ void bind_hierarchy(py::module_& m) {
             const int l = level_arg(h, level, "details");
             if (l == 0) throw InvalidInput("details: level 0 (the base) has no details: levels 1.." + std::to_string(h.levels()));
             const MatrixX3& d = h.details(l, space_arg(space));
+            finite_result(d, "MultiresSurface.details");
             return view(d.data(), d.rows(), 3, self, false);
           },
           py::arg("level") = -1, py::arg("space") = "local",
@@ -108,12 +115,14 @@ void bind_hierarchy(py::module_& m) {
       .def(
           "set_level_positions",
           [](MultiresSurface& h, int level, const Eigen::Ref<const MatrixX3>& X) {
+            finite_arg(X, "set_level_positions: X");
             h.set_level_positions(level_arg(h, level, "set_level_positions"), MatrixX3(X));
           },
           py::arg("level"), py::arg("X"), "Replaces level `level`'s positions (n_l×3, copied); then synthesize(from_level=level).")
       .def(
           "set_details",
           [](MultiresSurface& h, int level, const Eigen::Ref<const MatrixX3>& d, const std::string& space) {
+            finite_arg(d, "set_details: details");
             h.set_details(level_arg(h, level, "set_details"), MatrixX3(d), space_arg(space));
           },
           py::arg("level"), py::arg("details"), py::arg("space") = "local", "Replaces level l's details (n_l×3, copied).")
@@ -129,15 +138,21 @@ void bind_hierarchy(py::module_& m) {
           "Rebuilds the levels above from_level from it, keeping the details of `keep` ('local': they follow the "
           "surface; 'world': they translate).")
       .def(
-          "subdivision_operator", [](const MultiresSurface& h, int level) { return csr(h.subdivision_operator(level)); },
-          py::arg("level"), "S_level: scipy.sparse.csr_matrix n_{l+1}×n_l (a copy).")
+          "subdivision_operator",
+          [](const MultiresSurface& h, long long level) {
+            const int l = index_arg(level, h.levels(), "subdivision_operator", "level", "operators S_0..S_{L-1}");
+            return checked(csr(h.subdivision_operator(l)), "subdivision_operator");
+          },
+          py::arg("level"), "S_level (level 0..levels-1): scipy.sparse.csr_matrix n_{l+1}×n_l (a copy).")
       .def(
           "prolongation",
           [](const MultiresSurface& h, int from, int to) {
-            return csr(h.prolongation(level_arg(h, from, "prolongation"), level_arg(h, to, "prolongation")));
+            return checked(csr(h.prolongation(level_arg(h, from, "prolongation"), level_arg(h, to, "prolongation"))),
+                           "prolongation");
           },
           py::arg("from_level"), py::arg("to_level"), "S_{to-1}···S_from: csr_matrix n_to×n_from.")
-      .def("copy", [](const MultiresSurface& h) { return MultiresSurface(h); }, "A deep copy.")
+      .def("copy", [](const MultiresSurface& h) { return checked(MultiresSurface(h), "MultiresSurface.copy"); },
+           "A deep copy.")
       .def("__repr__", [](const MultiresSurface& h) {
         return "<fairshape.MultiresSurface " + std::string(to_string(h.options().scheme)) + ", levels 0.." +
                std::to_string(h.levels()) + ", " + std::to_string(h.mesh(h.levels()).n_vertices()) + " vertices at the finest>";
@@ -161,9 +176,10 @@ void bind_hierarchy(py::module_& m) {
           py::gil_scoped_release release;
           out = refine_uniform(mesh, opt, levels, b, {}, operators ? &S : nullptr);
         }
+        for (std::size_t l = 0; l < out.size(); ++l) finite_result(out[l], "subdivide, level " + std::to_string(l));
         if (!operators) return py::cast(std::move(out));
         py::list ops;
-        for (const auto& s : S) ops.append(csr(s));
+        for (const auto& s : S) ops.append(checked(csr(s), "subdivide: S"));
         return py::make_tuple(std::move(out), ops);
       },
       py::arg("mesh"), py::arg("levels"), FAIRSHAPE_SCHEME_ARGS, py::arg("implementation") = "optimized",
@@ -178,8 +194,12 @@ void bind_hierarchy(py::module_& m) {
       [](const SurfaceMesh& mesh, const std::string& scheme, const std::string& boundary, const std::string& weights,
          const std::string& crease) {
         const SubdivisionOptions opt = subdivision_arg(scheme, boundary, weights, crease);
-        py::gil_scoped_release release;
-        return limit_positions(mesh, opt);
+        MatrixX3 X;
+        {
+          py::gil_scoped_release release;
+          X = limit_positions(mesh, opt);
+        }
+        return checked(std::move(X), "limit_positions");
       },
       py::arg("mesh"), FAIRSHAPE_SCHEME_ARGS, "n×3 float64: the limit position of each vertex (a new array).");
   m.def(
@@ -187,14 +207,20 @@ void bind_hierarchy(py::module_& m) {
       [](const SurfaceMesh& mesh, const std::string& scheme, const std::string& boundary, const std::string& weights,
          const std::string& crease) {
         const SubdivisionOptions opt = subdivision_arg(scheme, boundary, weights, crease);
-        py::gil_scoped_release release;
-        return limit_normals(mesh, opt);
+        MatrixX3 N;
+        {
+          py::gil_scoped_release release;
+          N = limit_normals(mesh, opt);
+        }
+        return checked(std::move(N), "limit_normals");
       },
       py::arg("mesh"), FAIRSHAPE_SCHEME_ARGS, "n×3 float64: unit limit normals, oriented with the faces.");
   m.def(
       "limit_matrix",
       [](const SurfaceMesh& mesh, const std::string& scheme, const std::string& boundary, const std::string& weights,
-         const std::string& crease) { return csr(limit_matrix(mesh, subdivision_arg(scheme, boundary, weights, crease))); },
+         const std::string& crease) {
+        return checked(csr(limit_matrix(mesh, subdivision_arg(scheme, boundary, weights, crease))), "limit_matrix");
+      },
       py::arg("mesh"), FAIRSHAPE_SCHEME_ARGS,
       "csr_matrix n×n: row v maps control points to vertex v's limit position (limit_positions = L @ V).");
 }

@@ -3,6 +3,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.h"
+#include "checks.h"
 #include "convert.h"
 #include "fairshape/remesh/remesh.h"
 
@@ -28,6 +29,7 @@ void bind_remesh(py::module_& m) {
           py::gil_scoped_release release;
           h.emplace(remesh(dense, opt, &r));
         }
+        finite_result(*h, "remesh: the hierarchy");
         py::list misses;
         for (const auto& miss : r.misses()) {  // a missed quality target is usable, but never silent
           misses.append(miss);

@@ -14,6 +14,7 @@
 #include <Eigen/Geometry>
 
 #include "bindings.h"
+#include "checks.h"
 #include "convert.h"
 #include "fairshape/bspline/sheet_geometry.h"
 #include "fairshape/bspline/variational_sheet.h"
@@ -44,6 +45,11 @@ struct Sheet {
 
 Sheet make_sheet(const std::array<int, 2>& spans, int degree, const std::array<double, 2>& size, const Vec3& origin,
                  const Vec3& u_axis, const Vec3& v_axis) {
+  finite_arg(size[0], "Sheet: size[0]");
+  finite_arg(size[1], "Sheet: size[1]");
+  finite_arg(origin.transpose(), "Sheet: origin");
+  finite_arg(u_axis.transpose(), "Sheet: u_axis");
+  finite_arg(v_axis.transpose(), "Sheet: v_axis");
   if (spans[0] < 1 || spans[1] < 1 ||
       static_cast<long long>(spans[0]) * spans[1] > bspline::HierarchicalSurface::kMaxBaseSpans)
     throw InvalidInput("Sheet: spans " + std::to_string(spans[0]) + " x " + std::to_string(spans[1]) +
@@ -68,17 +74,19 @@ Sheet make_sheet(const std::array<int, 2>& spans, int degree, const std::array<d
 
 Eigen::MatrixXd evaluate(const Sheet& s, const Eigen::Ref<const Eigen::MatrixXd>& uv) {
   if (uv.cols() != 2) throw InvalidInput("Sheet.evaluate: expected a k×2 array of (u, v), got " + std::to_string(uv.cols()) + " columns");
+  finite_arg(uv, "Sheet.evaluate: uv");
   Eigen::MatrixXd X(uv.rows(), 3);
   for (Eigen::Index i = 0; i < uv.rows(); ++i) {
     const Eigen::Vector2d p = s.spans(uv(i, 0), uv(i, 1), "Sheet.evaluate, point " + std::to_string(i));
     X.row(i) = s.sheet.surface().position(s.sheet.coefficients(), p.x(), p.y()).transpose();
   }
-  return X;
+  return checked(std::move(X), "Sheet.evaluate");
 }
 
 // The tessellation grid of final.obj: (spans_u·n + 1) × (spans_v·n + 1) points, u first.
 py::array_t<double> grid(const Sheet& s, int per_span) {
   if (per_span < 1 || per_span > 64) throw InvalidInput("Sheet.grid: samples_per_span must be in [1, 64]");
+  finite_result(s.sheet.coefficients(), "Sheet.grid: the control points");
   const int cols = s.shape.spans_u * per_span + 1, rows = s.shape.spans_v * per_span + 1;
   py::array_t<double> out({cols, rows, 3});
   auto o = out.mutable_unchecked<3>();
@@ -98,18 +106,20 @@ py::array_t<double> grid(const Sheet& s, int per_span) {
 Eigen::MatrixXd trace(const Sheet& s, const Eigen::Ref<const Eigen::MatrixXd>& uv, int samples) {
   if (uv.cols() != 2 || uv.rows() < 2) throw InvalidInput("Sheet.trace: expected an m×2 array of (u, v), m ≥ 2");
   if (samples < 2 || samples > 100000) throw InvalidInput("Sheet.trace: samples must be in [2, 100000]");
+  finite_arg(uv, "Sheet.trace: uv");
   std::vector<Eigen::Vector2d> at;
   for (Eigen::Index i = 0; i < uv.rows(); ++i) at.push_back(s.spans(uv(i, 0), uv(i, 1), "Sheet.trace, point " + std::to_string(i)));
   const std::vector<Vec3> pts = bspline::surface_curve(s.sheet.surface(), s.sheet.coefficients(), at, samples);
   Eigen::MatrixXd X(static_cast<Eigen::Index>(pts.size()), 3);
   for (std::size_t i = 0; i < pts.size(); ++i) X.row(static_cast<Eigen::Index>(i)) = pts[i].transpose();
-  return X;
+  return checked(std::move(X), "Sheet.trace");
 }
 
 Eigen::Matrix2d weights_arg(py::handle w, const Eigen::Matrix2d& isotropic, const char* name) {
-  if (py::isinstance<py::float_>(w) || py::isinstance<py::int_>(w)) return w.cast<double>() * isotropic;
+  if (py::isinstance<py::float_>(w) || py::isinstance<py::int_>(w)) return finite_arg(w.cast<double>(), name) * isotropic;
   const auto m = py::cast<Eigen::MatrixXd>(py::module_::import("numpy").attr("asarray")(w, "float64"));
   if (m.rows() != 2 || m.cols() != 2) throw InvalidConfig(std::string(name) + ": expected a number or a 2×2 matrix");
+  finite_arg(m, name);
   return m;
 }
 
@@ -131,6 +141,9 @@ py::dict design_sheet(const Sheet& rest, const Eigen::Ref<const Eigen::MatrixXd>
   if (points_uv.cols() != 2 || targets.cols() != 3 || targets.rows() != points_uv.rows())
     throw InvalidInput("design_sheet: points_uv must be k×2 and targets k×3 (k = " + std::to_string(points_uv.rows()) +
                        "), got " + std::to_string(targets.rows()) + "×" + std::to_string(targets.cols()));
+  finite_arg(points_uv, "design_sheet: points_uv");
+  finite_arg(targets, "design_sheet: targets");
+  finite_arg(tolerance, "design_sheet: refinement_tolerance");
   std::vector<bspline::SheetConstraint> active;
   for (Eigen::Index i = 0; i < points_uv.rows(); ++i) {
     bspline::SheetConstraint c;
@@ -154,6 +167,8 @@ py::dict design_sheet(const Sheet& rest, const Eigen::Ref<const Eigen::MatrixXd>
     const auto space = pair[1].cast<Eigen::MatrixXd>();
     if (uv.cols() != 2 || uv.rows() < 2) throw InvalidInput(c.label + ": the (u, v) polyline must be m×2 with m ≥ 2");
     if (space.cols() != 3 || space.rows() < 2) throw InvalidInput(c.label + ": the space polyline must be p×3 with p ≥ 2");
+    finite_arg(uv, c.label + ": the (u, v) polyline");
+    finite_arg(space, c.label + ": the space polyline");
     for (Eigen::Index i = 0; i < uv.rows(); ++i)
       c.curve.uv.push_back(rest.spans(uv(i, 0), uv(i, 1), c.label + ", (u, v) point " + std::to_string(i)));
     for (Eigen::Index i = 0; i < space.rows(); ++i) c.curve.space.push_back(space.row(i).transpose());
@@ -179,6 +194,8 @@ py::dict design_sheet(const Sheet& rest, const Eigen::Ref<const Eigen::MatrixXd>
     py::gil_scoped_release release;
     r = bspline::solve_sheet(out_sheet.sheet, energy, active, *solver, refinement, backend);
   }
+  finite_result(out_sheet.sheet.coefficients(), "design_sheet: the sheet's control points (" +
+                                                   std::string(to_string(r.qp.summary.termination)) + ")");
   py::dict out;
   out["termination"] = std::string(to_string(r.qp.summary.termination));
   out["succeeded"] = is_success(r.qp.summary.termination);
@@ -215,7 +232,8 @@ void bind_sheets(py::module_& m) {
       .def_property_readonly("size", [](const Sheet& s) { return s.size(); }, "(w, h): the (u, v) domain's extent")
       .def_property_readonly("dofs", [](const Sheet& s) { return s.sheet.surface().dof_count(); }, "control points, every layer")
       .def_property_readonly("levels", [](const Sheet& s) { return s.sheet.surface().level_count(); }, "hierarchy layers")
-      .def_property_readonly("coefficients", [](const Sheet& s) { return Eigen::MatrixXd(s.sheet.coefficients()); },
+      .def_property_readonly("coefficients",
+                             [](const Sheet& s) { return checked(Eigen::MatrixXd(s.sheet.coefficients()), "Sheet.coefficients"); },
                              "dofs×3 control points (a copy)")
       .def("evaluate", &evaluate, py::arg("uv"), "Points of the surface at k (u, v) (a k×2 array, design units): k×3.")
       .def("trace", &trace, py::arg("uv"), py::arg("samples") = 65,

@@ -12,6 +12,7 @@ std::string read_regular_file(const std::string& path, std::uintmax_t max_bytes)
   namespace fs = std::filesystem;
   std::error_code ec;
   const auto status = fs::status(path, ec);
+  if (status.type() == fs::file_type::not_found) throw MissingFile(path + ": cannot open for reading (no such file)");
   if (ec || !fs::exists(status)) throw IOError(path + ": cannot open for reading (missing file or no permission)");
   if (fs::is_directory(status)) throw IOError(path + ": is a directory, not a file");
   if (!fs::is_regular_file(status))

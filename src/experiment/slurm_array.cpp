@@ -30,6 +30,15 @@ void resource_lines(std::ostream& os, const SlurmResources& r, bool with_cpus) {
   if (!r.time.empty()) os << "#SBATCH --time=" << r.time << "\n";
   if (with_cpus && r.cpus_per_task > 0) os << "#SBATCH --cpus-per-task=" << r.cpus_per_task << "\n";
   if (!r.mem.empty()) os << "#SBATCH --mem=" << r.mem << "\n";
+  for (const auto& e : r.extra) os << "#SBATCH " << e << "\n";
+}
+
+// The --setup lines, after the #SBATCH block (sbatch reads no #SBATCH line after a command)
+// and before anything else the job runs.
+void setup_lines(std::ostream& os, const SlurmArrayJob& job) {
+  if (job.setup.empty()) return;
+  os << "# Set-up given to `fairshape submit --setup`:\n";
+  for (const auto& line : job.setup) os << line << "\n";
 }
 
 std::string slurm_dir(const SlurmArrayJob& job) { return (job.out_dir / "slurm").string(); }
@@ -71,6 +80,37 @@ void check_slurm_partition(const std::string& text) {
                         "several separated by commas)");
 }
 
+void check_sbatch_arg(const std::string& text) {
+  // The scripts write these themselves, or have an option of their own that is checked.
+  static const std::vector<std::pair<std::string, std::string>> owned = {
+      {"--array", "--array-size"},        {"--partition", "--partition"},  {"--time", "--time"},
+      {"--mem", "--mem"},                 {"--cpus-per-task", "--cpus-per-task"},
+      {"--output", "the scripts' logs in OUT/slurm/logs"}, {"--error", "the scripts' logs in OUT/slurm/logs"},
+      {"--chdir", "the directory submit runs in"},          {"--job-name", "the experiment's name"},
+      {"--dependency", "the merge job's afterok"},          {"--open-mode", "the scripts (append)"},
+      {"--requeue", "the array script"},                    {"--kill-on-invalid-dep", "the merge script"},
+      {"--parsable", "--now"}};
+  static const std::regex form(R"(--[A-Za-z][A-Za-z0-9-]*(=[^\s'"\\]+)?)");
+  if (!std::regex_match(text, form))
+    throw InvalidConfig("--sbatch-arg '" + text + "': not an sbatch option (valid: --name or --name=value, one word "
+                        "without spaces or quotes, e.g. --sbatch-arg=--account=proj, --sbatch-arg=--gres=gpu:1; an "
+                        "#SBATCH line ends at white space)");
+  const std::string name = text.substr(0, text.find('='));
+  for (const auto& [option, by] : owned)
+    if (name == option)
+      throw InvalidConfig("--sbatch-arg '" + text + "': " + option + " is set by " + by + " (valid: any other sbatch "
+                          "option, e.g. --account, --qos, --constraint, --gres)");
+}
+
+void check_setup_line(const std::string& text) {
+  if (text.find_first_not_of(" \t") == std::string::npos)
+    throw InvalidConfig("--setup '" + text + "': an empty line (valid: one shell command, e.g. 'module load gcc')");
+  for (char c : text)
+    if (c == '\n' || c == '\r' || c == '\0')
+      throw InvalidConfig("--setup: one line per --setup (valid: a shell command without line breaks; give "
+                          "--setup again for the next line)");
+}
+
 std::string shell_quote(const std::string& word) {
   std::string out(1, '\'');
   for (char c : word) {
@@ -95,6 +135,7 @@ std::string array_script(const SlurmArrayJob& job) {
      << "#SBATCH --output=" << slurm_dir(job) << "/logs/shard-%a.log\n"
      << "#SBATCH --chdir=" << job.work_dir.string() << "\n";
   resource_lines(os, job.resources, true);
+  setup_lines(os, job);
   os << "shard=\"${SLURM_ARRAY_TASK_ID:?this is a job array script: submit it with sbatch, see above}\"\n"
      << "echo \"fairshape: shard $shard/" << n << ", attempt $(( ${SLURM_RESTART_COUNT:-0} + 1 )), "
      << "$(date -u +%Y-%m-%dT%H:%M:%SZ) on $(hostname)\"\n"
@@ -123,6 +164,7 @@ std::string merge_script(const SlurmArrayJob& job) {
      // A failed task never satisfies afterok: the merge is then cancelled, not left pending.
      << "#SBATCH --kill-on-invalid-dep=yes\n";
   resource_lines(os, job.resources, false);
+  setup_lines(os, job);  // before `set -u`: module scripts read variables that may be unset
   os << "set -euo pipefail\n"
      << "shards=()\n"
      << "for ((i = 0; i < " << job.tasks << "; ++i)); do shards+=(" << shell_quote((job.out_dir / "shards").string() + "/")

@@ -10,10 +10,12 @@
 
 namespace fairshape {
 
-//! sbatch's resource options; empty (or 0) leaves the cluster's default.
+//! sbatch's resource options; empty (or 0) leaves the cluster's default. `extra`: any other
+//! sbatch options (--account=, --qos=, --constraint=, --gres=), one #SBATCH line each, on every job.
 struct SlurmResources {
   std::string partition, time, mem;
   int cpus_per_task = 0;
+  std::vector<std::string> extra;
 };
 
 //! Slurm's own spellings are checked here, so a typo is refused before anything is written
@@ -21,6 +23,8 @@ struct SlurmResources {
 void check_slurm_time(const std::string& text);       // --time: M, M:S, H:M:S, D-H, D-H:M, D-H:M:S
 void check_slurm_memory(const std::string& text);     // --mem: an integer with an optional K/M/G/T
 void check_slurm_partition(const std::string& text);  // --partition: names separated by commas
+void check_sbatch_arg(const std::string& text);        // --sbatch-arg: --name or --name=value, one word
+void check_setup_line(const std::string& text);        // --setup: one shell line
 
 struct SlurmArrayJob {
   std::string executable;                // absolute path of fairshape
@@ -32,6 +36,7 @@ struct SlurmArrayJob {
   int tasks = 1;                         // N, the array's size and the shard count
   std::size_t points = 0;                // for the scripts' header
   SlurmResources resources;
+  std::vector<std::string> setup;        // shell lines each job runs before its command (module load ...)
 };
 
 struct SlurmScripts {

@@ -316,18 +316,22 @@ int run_worker(const SweepOptions& opt) {
   return failed ? 3 : 0;
 }
 
-// The keys (dotted paths) whose values differ between two configs.
-void differing_keys(const YAML::Node& a, const YAML::Node& b, const std::string& path, std::vector<std::string>& out) {
+}  // namespace
+
+void differing_keys(const YAML::Node& a, const YAML::Node& b, const std::string& path, std::vector<std::string>& out,
+                    const std::string& in_a, const std::string& in_b) {
   if (a.IsMap() && b.IsMap()) {
     std::set<std::string> keys;
     for (const auto& kv : a) keys.insert(kv.first.as<std::string>());
     for (const auto& kv : b) keys.insert(kv.first.as<std::string>());
-    for (const auto& k : keys) differing_keys(a[k], b[k], path.empty() ? k : path + "." + k, out);
+    for (const auto& k : keys) differing_keys(a[k], b[k], path.empty() ? k : path + "." + k, out, in_a, in_b);
     return;
   }
   const std::string sa = a.IsDefined() ? yaml_to_string(a) : "(absent)", sb = b.IsDefined() ? yaml_to_string(b) : "(absent)";
-  if (sa != sb) out.push_back(path + " (" + sa + " there, " + sb + " now)");
+  if (sa != sb) out.push_back(path + " (" + sa + " " + in_a + ", " + sb + " " + in_b + ")");
 }
+
+namespace {
 
 // A resume continues the same experiment: its configuration outside `sweep` must be the one
 // the folder was started with (the sweep may grow: new points simply run).

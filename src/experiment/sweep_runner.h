@@ -11,6 +11,10 @@
 #include <string>
 #include <vector>
 
+namespace YAML {
+class Node;
+}
+
 namespace fairshape {
 
 struct Slice {
@@ -49,9 +53,16 @@ struct SweepCheck {
 //! \throw InvalidConfig naming every problem and the points that have it (exit 2).
 SweepCheck check_sweep(const SweepOptions& opt);
 
+//! The keys (dotted paths) whose values differ between configs `a` and `b`, each appended to
+//! `out` as "key (A IN_A, B IN_B)": by default a stored config ("there") against the current one.
+void differing_keys(const YAML::Node& a, const YAML::Node& b, const std::string& path, std::vector<std::string>& out,
+                    const std::string& in_a = "there", const std::string& in_b = "now");
+
 //! `fairshape merge OUT IN...`: the shards' output folders joined into OUT (every table, and
 //! a run.json naming each shard); or, given CSV files, those tables joined into OUT.csv. A
-//! run's rows come from the first input holding that run. Folders whose configs differ are refused.
+//! run's rows come from the first input holding that run. Inputs of different experiments (their
+//! config.resolved.yaml differ, for tables the one beside each) are refused, naming the keys; CSV
+//! tables without a config beside them get a `source` column naming the file of each row.
 void merge_results(const std::vector<std::string>& inputs, const std::string& output);
 
 }  // namespace fairshape

@@ -32,6 +32,39 @@ import csv, sys
 series = {r["series"] for r in csv.DictReader(open(sys.argv[1]))}
 assert all("solver.tolerance=" in s and "solver.type=" in s for s in series), series
 PYEOF
+# A hue value holding several runs draws one line per run (told apart by style, with a warning
+# naming the value), never one line through all of them; --estimator median draws one line per
+# hue value and says what it drew. Counted on the figure itself (matplotlib's Line2D objects).
+$PY - "$S/sweep" "$S/lines.png" <<'PYEOF' || fail "one line per run"
+import contextlib, csv, importlib.util, io, sys
+import matplotlib.pyplot as plt
+spec = importlib.util.spec_from_file_location("plot", "scripts/plot.py")
+plot = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(plot)
+table, runs = sys.argv[1] + "/iterations.csv", list(csv.DictReader(open(sys.argv[1] + "/runs.csv")))
+def positive(v):
+    try:
+        return float(v) > 0
+    except ValueError:
+        return False
+drawn_runs = {r["run_id"] for r in csv.DictReader(open(table)) if positive(r["residual"])}
+types = {r["solver.type"] for r in runs if r["run_id"] in drawn_runs}
+assert len(drawn_runs) > len(types), "the sweep must put several runs under one solver.type"
+def lines_of(*extra):
+    plt.close("all")
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err):
+        plot.main([table, "--x", "iteration", "--y", "residual", "--hue", "solver.type", "--logy", "-o", sys.argv[2], *extra])
+    return [l for l in plt.gcf().axes[0].get_lines() if len(l.get_xdata())], err.getvalue()
+lines, said = lines_of()
+assert len(lines) == len(drawn_runs), f"{len(lines)} lines for {len(drawn_runs)} runs"
+assert "solver.type=conjugate_gradient holds 2 runs: drawn as 2 lines" in said, said
+lines, said = lines_of("--estimator", "median")
+assert len(lines) == len(types), f"{len(lines)} median lines for {len(types)} solver types"
+assert "each line is the median over the runs of one solver.type value" in said, said
+PYEOF
+expect_error 1 "needs a numeric x and --kind line" -- "${P[@]}" "$S/sweep/runs.csv" --x solver.type --y solve_s \
+  --estimator median -o "$S/none.png"
 expect_error 1 "nothing to plot: every one of $rows points was left out ($rows y empty or not a number)" -- \
   "${P[@]}" "$S/sweep/runs.csv" --x solver.type --y message -o "$S/none.png"
 expect_error 1 "no row has solver.type=lu" -- "${P[@]}" "$S/sweep/runs.csv" --x n_dofs --y solve_s \

@@ -136,4 +136,21 @@ grep -q "attempt 2" "$log1" || { cat "$log1" >&2; fail "task 1 was not started a
 grep -q "already done" "$log1" || { cat "$log1" >&2; fail "the requeued task did not resume its shard"; }
 rows_equal "$S/serial_long/runs.csv" "$S/requeue/runs.csv" || fail "merged runs.csv after a requeue differs"
 if grep -q crashed "$S/requeue/runs.csv"; then fail "the requeue left a crashed row"; fi
-echo "slurm_array: ok (array $ARRAY requeued mid-shard, $(grep -c attempt "$log1") attempts of task 1)"
+requeue_note="array $ARRAY requeued mid-shard, $(grep -c attempt "$log1") attempts of task 1"
+
+# 3. A site's sbatch options (--sbatch-arg) reach both jobs, and its set-up lines (--setup) run
+# in every task and in the merge before their command, as Slurm runs them.
+ids=$(submit "$S/site" --array-size 2 --sbatch-arg=--account=fairshape-test --sbatch-arg=--comment=site-options \
+  --setup 'echo "site setup ran in job $SLURM_JOB_ID"' --setup 'export FAIRSHAPE_SITE_MARK=1')
+read -r ARRAY MERGE <<< "$(echo $ids)"
+[ -n "$MERGE" ] || fail "submit --now printed no job ids: $(cat "$S/submit.out")"
+wait_for_merge "$S/site" "$MERGE"
+for id in "$ARRAY" "$MERGE"; do
+  scontrol show job "$id" | grep -q "Account=fairshape-test" || fail "job $id: --sbatch-arg=--account did not reach it"
+  scontrol show job "$id" | grep -q "Comment=site-options" || fail "job $id: --sbatch-arg=--comment did not reach it"
+done
+for log in shard-0 shard-1 merge; do
+  grep -q "site setup ran in job" "$S/site/slurm/logs/$log.log" || { cat "$S/site/slurm/logs/$log.log" >&2; fail "--setup did not run in $log"; }
+done
+rows_equal "$S/serial/runs.csv" "$S/site/runs.csv" || fail "merged runs.csv with site options differs from the serial run"
+echo "slurm_array: ok ($requeue_note; site options on array $ARRAY and merge $MERGE)"

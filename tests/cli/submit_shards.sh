@@ -30,6 +30,23 @@ rows_equal "$SCRATCH/serial/runs.csv" "$OUT/runs.csv" || fail "the scripts' merg
 SLURM_ARRAY_TASK_ID=2 SLURM_RESTART_COUNT=1 bash "$A" > "$SCRATCH/again.log" 2>&1 || fail "task 2 again"
 grep -q "0 to do here (4 already done)" "$SCRATCH/again.log" || { cat "$SCRATCH/again.log"; fail "a re-run task did not resume"; }
 
+# A site's own sbatch options and set-up lines: --sbatch-arg lines in every job's #SBATCH block,
+# --setup lines in order after it and before the job's command.
+"$FS" submit $CFG --slurm --array-size 2 --sbatch-arg=--account=proj1 --sbatch-arg=--gres=gpu:1 \
+  --setup 'module load gcc/12' --setup 'export OMP_NUM_THREADS=2' --out "$SCRATCH/site" > /dev/null || fail "--sbatch-arg, --setup"
+for script in "$SCRATCH/site/slurm/array.sbatch" "$SCRATCH/site/slurm/merge.sbatch"; do
+  $PY - "$script" <<'PYEOF' || fail "$script: the site lines"
+import sys
+lines = open(sys.argv[1]).read().splitlines()
+at = lambda text: lines.index(text)
+last_sbatch = max(i for i, l in enumerate(lines) if l.startswith("#SBATCH"))
+command = min(i for i, l in enumerate(lines) if not l.startswith("#") and (" run " in l or " merge " in l))
+assert "#SBATCH --account=proj1" in lines and "#SBATCH --gres=gpu:1" in lines, lines
+assert last_sbatch < at("module load gcc/12") < at("export OMP_NUM_THREADS=2") < command, lines
+PYEOF
+  bash -n "$script" || fail "$script is not valid bash"
+done
+
 # Refusals: exit 2, the option and the valid choices named, nothing written.
 expect_error 2 "valid: --slurm" -- "$FS" submit $CFG --out "$SCRATCH/r1"
 expect_error 2 "valid: 1 to 16" -- "$FS" submit $CFG --slurm --array-size 0 --out "$SCRATCH/r1"
@@ -45,6 +62,13 @@ expect_error 2 "sbatch is not on PATH" -- env PATH=/nonexistent "$FS" submit $CF
 expect_error 2 "holds files already" -- "$FS" submit $CFG --slurm --out "$OUT"
 expect_error 2 "spaces, quotes" -- "$FS" submit $CFG --slurm --out "$SCRATCH/with space"
 expect_error 2 "solver.nonsense" -- "$FS" submit $CFG --slurm --set solver.nonsense=1 --out "$SCRATCH/r1"
+expect_error 2 "--sbatch-arg 'account=proj1': not an sbatch option (valid: --name or --name=value" -- \
+  "$FS" submit $CFG --slurm --sbatch-arg=account=proj1 --out "$SCRATCH/r1"
+expect_error 2 "one word without spaces" -- "$FS" submit $CFG --slurm "--sbatch-arg=--comment=two words" --out "$SCRATCH/r1"
+expect_error 2 "--array is set by --array-size" -- "$FS" submit $CFG --slurm --sbatch-arg=--array=0-3 --out "$SCRATCH/r1"
+expect_error 2 "--time is set by --time" -- "$FS" submit $CFG --slurm --sbatch-arg=--time=5 --out "$SCRATCH/r1"
+expect_error 2 "one line per --setup" -- "$FS" submit $CFG --slurm --setup $'module load a\nrm -rf x' --out "$SCRATCH/r1"
+expect_error 2 "--setup '': an empty line" -- "$FS" submit $CFG --slurm --setup '' --out "$SCRATCH/r1"
 [ ! -e "$SCRATCH/r1" ] && [ ! -e "$SCRATCH/with space/slurm" ] || fail "a refused submit wrote files"
 
 # Shards partition the serial run's ids, for several n (one shard per point included).

@@ -14,4 +14,21 @@ ls "$SCRATCH"/jobs/final/*.obj | wc -l | grep -q 16 || fail "final meshes of a s
 [ "$(data_rows "$SCRATCH/filtered/runs.csv")" -eq 4 ] || fail "--filter"
 "$FS" run $CFG --out "$SCRATCH/replaced" --set 'sweep.solver.max_iterations=[50]' 2>/dev/null
 [ "$(data_rows "$SCRATCH/replaced/runs.csv")" -eq 4 ] || fail "--set on a sweep list"
+# Tables of two experiments are not joined with nothing saying which row is which: refused,
+# naming the files and the differing keys (as merging their folders is). A table with no
+# config.resolved.yaml beside it cannot be checked, so each row names its file instead.
+expect_error 2 "replaced/runs.csv: holds another experiment than .*serial/runs.csv" -- \
+  "$FS" merge "$SCRATCH/mixed.csv" "$SCRATCH/serial/runs.csv" "$SCRATCH/replaced/runs.csv"
+grep -q "sweep.solver.max_iterations" "$SCRATCH/stderr.txt" || fail "the refused merge does not name the differing key"
+[ ! -e "$SCRATCH/mixed.csv" ] || fail "a refused merge wrote its output"
+mkdir -p "$SCRATCH/loose"
+cp "$SCRATCH/serial/runs.csv" "$SCRATCH/loose/a.csv" && cp "$SCRATCH/replaced/runs.csv" "$SCRATCH/loose/b.csv"
+"$FS" merge "$SCRATCH/loose.csv" "$SCRATCH/loose/a.csv" "$SCRATCH/loose/b.csv"
+$PY - "$SCRATCH/loose.csv" "$SCRATCH/loose" <<'PYEOF'
+import csv, os, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+sources = [r["source"] for r in rows]
+want = {os.path.join(sys.argv[2], n): sum(1 for _ in open(os.path.join(sys.argv[2], n))) - 1 for n in ("a.csv", "b.csv")}
+assert {s: sources.count(s) for s in set(sources)} == want, (set(sources), want)
+PYEOF
 echo "sweep_jobs_shards: ok"

@@ -7,10 +7,13 @@ import fairshape
 
 def test_hierarchy_of_classes():
     for cls in (fairshape.InvalidInput, fairshape.InvalidConfig, fairshape.TopologyError, fairshape.SolverError,
-                fairshape.IOError):
+                fairshape.FileError):
         assert issubclass(cls, fairshape.Error)
-    assert issubclass(fairshape.ParseError, fairshape.IOError)
-    assert issubclass(fairshape.OutputError, fairshape.IOError)
+    for cls in (fairshape.ParseError, fairshape.OutputError, fairshape.MissingFileError):
+        assert issubclass(cls, fairshape.FileError) and issubclass(cls, OSError)
+    assert issubclass(fairshape.MissingFileError, FileNotFoundError)
+    assert issubclass(fairshape.InvalidInput, ValueError) and issubclass(fairshape.InvalidConfig, ValueError)
+    assert issubclass(fairshape.InvalidIndex, fairshape.InvalidInput) and issubclass(fairshape.InvalidIndex, IndexError)
     assert issubclass(fairshape.SolveFailed, fairshape.Error)
 
 
@@ -33,8 +36,8 @@ def test_non_manifold_is_topology_error():
         fairshape.Mesh(V, [[0, 1, 2], [0, 1, 3], [0, 1, 4]])  # one edge in three faces
 
 
-def test_missing_file_is_io_error(tmp_path):
-    with pytest.raises(fairshape.IOError, match="nowhere.obj"):
+def test_missing_file_is_file_error(tmp_path):
+    with pytest.raises(fairshape.FileError, match="nowhere.obj"):
         fairshape.read_mesh(str(tmp_path / "nowhere.obj"))
 
 

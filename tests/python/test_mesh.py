@@ -40,12 +40,13 @@ def test_polygon_mesh_faces_are_lists(tmp_path):
     assert quads.F.shape == (1, 4)
 
 
-def test_V_is_a_writeable_view_without_copy(cow):
+def test_V_is_a_read_only_view_without_copy(cow):
     m = cow.copy()
     a, b = m.V, m.V
     assert np.shares_memory(a, b)  # both views of the mesh's own storage
-    a[0] += 1.0
-    assert np.array_equal(m.V[0], cow.V[0] + 1.0)
+    assert not a.flags.writeable  # writes go through the checked setter
+    m.V = a + 1.0
+    assert np.array_equal(m.V[0], cow.V[0] + 1.0) and np.array_equal(a[0], cow.V[0] + 1.0)
     assert not np.shares_memory(m.V, cow.V)  # copy() is deep
 
 

@@ -38,6 +38,16 @@ def test_run_dict_equals_cli_and_bindings(tmp_path, cow_hierarchy):
     assert np.isnan(change) and np.isnan(runs.loc[0, "detail_change"])
 
 
+def test_misspelt_key_of_a_dict_is_named_not_a_temporary_file(tmp_path):
+    config = {k: v for k, v in SMALL.items() if k != "energy"}
+    config["enregy"] = SMALL["energy"]
+    with pytest.raises(fairshape.InvalidConfig, match="enregy") as e:  # the misspelling, named
+        fairshape.run(config, out=tmp_path / "bad")
+    message = str(e.value)
+    assert "energy" in message.replace("enregy", "")  # the valid key
+    assert message.startswith("the config dict") and "fairshape-config-" not in message
+
+
 def test_run_sweep_with_sets(tmp_path):
     runs = fairshape.run("configs/smoke/cow_nose_pull.yaml", out=tmp_path / "s",
                          set={"solver": {"type": "conjugate_gradient", "tolerance": 1e-9, "max_iterations": 5000}})

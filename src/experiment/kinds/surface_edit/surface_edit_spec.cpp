@@ -94,7 +94,6 @@ void read_energies(Config& root, const Components& c, Backend backend, SurfaceEd
     e.check_no_unknown_keys();
     s.energies.push_back(std::move(t));
   }
-  if (s.energies.empty() && !root.documenting()) throw InvalidConfig("energy: at least one energy term is required" + root.misspelling_of("energy"));
 }
 
 // influence_level / influence_rings of one constraint (Boier-Martin et al. §4.2, region of
@@ -372,7 +371,10 @@ static SurfaceEditSpec read_surface_edit(const YAML::Node& run_config, const Com
   pc.check_no_unknown_keys();
   read_solver(root, c, s.implementation, s);
   read_output(root, s);
+  // After the unknown-key check: a missing `energy:` is most often a misspelt one, and that
+  // message names the misspelling and the valid keys.
   root.check_no_unknown_keys();
+  if (s.energies.empty() && !root.documenting()) throw InvalidConfig("energy: at least one energy term is required");
 
   for (const char* key : {"input", "energy", "constraints", "problem"})
     s.system_key += yaml_to_string(run_config[key]) + "|";

@@ -34,7 +34,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 UNITS = {
     "solve_s": "solve time (s)", "solve_min_s": "fastest solve (s)", "analyze_s": "analysis time (s)",
-    "assemble_s": "assembly time (s)", "subdivide_s": "hierarchy build (s)", "time_s": "wall time (s)",
+    "assemble_s": "assembly time (s)", "setup_s": "shared set-up (s)", "time_s": "wall time (s)",
     "explicit_s": "explicit step time (s)", "apply_s": "feature application (s)", "seconds": "time (s)",
     "reference_solve_s": "reference solve (s)", "peak_rss_mb": "peak resident memory (MB)",
     "solve_extra_mb": "memory the solve added (MB)", "n_dofs": "unknowns", "n_fine": "finest-level vertices",

@@ -90,9 +90,11 @@ class HierarchicalSurface {
   //! \throw InvalidInput for a span that is not in Ω_L or a level beyond kMaxLevel.
   SparseMatrix refine(const std::vector<SpanId>& spans);
   static constexpr int kMaxLevel = 12;
-  //! The largest base grid accepted: spans_u × spans_v ≤ 2^20 base spans (a 1024 × 1024 sheet,
-  //! about 1M control points per coordinate before any refinement).
-  static constexpr long long kMaxBaseSpans = 1LL << 20;
+  //! The largest base grid accepted: spans_u × spans_v ≤ 2^18 base spans (a 512 × 512 sheet,
+  //! about 265k control points per coordinate before any refinement). Measured on the 24 GiB,
+  //! 2-core machine (tests/cli/limits_slow.sh): 512 × 512 solves by KKT in 3 minutes and 4.3 GB;
+  //! 1024 × 1024 took 12.5 GB and 6 minutes and its KKT system was then called singular.
+  static constexpr long long kMaxBaseSpans = 1LL << 18;
 
   //! The cells on which the surface is one polynomial patch: spans of some layer with no
   //! finer span inside, tiling the domain (used for integration and per-span errors).

@@ -25,6 +25,15 @@ chain() {  # file0 -> ... -> file<n> -> the smoke config -> base/output.yaml: n 
 "$FS" run "$(chain 14)" --dry-run > /dev/null 2>"$SCRATCH/err.txt" || { cat "$SCRATCH/err.txt"; fail "defaults 16 deep"; }
 expect_error 2 "nest more than 16 deep" -- "$FS" run "$(chain 15)" --dry-run
 
+# B-spline sheets: at most 2^18 base spans (limits_slow.sh solves one of 512 x 512).
+cat > "$SCRATCH/sheet_over.yaml" <<'YAML'
+name: sheet_over
+sheets: [{name: sheet, spans: [513, 512], size: [1, 1]}]
+energy: {alpha: 0.01, beta: 1}
+constraints: [{type: point, uv: [0.5, 0.5], by: [0, 0, 0.1]}]
+YAML
+expect_error 2 "at most 262144" -- "$FS" run "$SCRATCH/sheet_over.yaml" --dry-run
+
 # A sweep of 10^6 points: one shard of a thousand is validated and listed at once, with the
 # whole sweep's size (the full dry run is timed in experiments/bench/sweep_benchmark.cpp).
 $PY - "$SMOKE" "$SCRATCH/million.yaml" <<'PYEOF'

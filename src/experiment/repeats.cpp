@@ -80,6 +80,7 @@ MetricRow run_repeated(int repeat, const std::vector<std::string>& measured_colu
   // medians taken column by column would not.
   const MetricRow& middle = rows[median_execution(rows)];
   for (const auto& c : measured_columns) {
+    if (ends_with(c, "_min_s")) continue;  // the minimum of its X_s column, below
     if (middle.count(c)) row[c] = middle.at(c);
     // solve_s beside solve_min_s: the fastest execution too.
     if (ends_with(c, "_s") && !ends_with(c, "_min_s")) {

@@ -361,9 +361,10 @@ const std::vector<std::string>& metric_columns() {
 
 namespace {
 
-std::string hierarchy_key(const SurfaceEditSpec& spec) {
+// How the hierarchy is built from its input file (the key and the id add the file).
+std::string hierarchy_options(const SurfaceEditSpec& spec) {
   const bool subdivided = spec.representation != Representation::Mesh;
-  return spec.mesh_path + "|" + (subdivided ? std::string(to_string(spec.subdivision().scheme)) : std::string("mesh")) +
+  return (subdivided ? std::string(to_string(spec.subdivision().scheme)) : std::string("mesh")) +
          "|" + std::to_string(spec.levels) + "|" + std::string(to_string(spec.boundary)) + "|" +
          std::string(to_string(spec.loop_weights)) + "|" + std::string(to_string(spec.crease_method)) + "|" +
          std::to_string(spec.remesh_base_faces) + (spec.remesh_triangle_base ? "t" : "") + "|" +
@@ -391,8 +392,11 @@ void RunCache::use(const std::string& id) {
 
 const MultiresSurface& RunCache::hierarchy(const SurfaceEditSpec& spec, const RemeshReport** made) {
   const bool subdivided = spec.representation != Representation::Mesh;
-  const std::string key = hierarchy_key(spec);
-  const std::string id = "hierarchy-" + sha256_hex(key).substr(0, 12);
+  const std::string key = spec.mesh_path + "|" + hierarchy_options(spec);
+  // The id names the work by the input's content, not its path: the same hierarchy has the
+  // same id in every folder and clone.
+  std::string& id = hierarchy_ids_[key];
+  if (id.empty()) id = "hierarchy-" + sha256_hex(sha256_file_hex(spec.mesh_path) + "|" + hierarchy_options(spec)).substr(0, 12);
   use(id);
   auto it = hierarchies_.find(key);
   if (it == hierarchies_.end() && fs::path(spec.mesh_path).extension() == ".vtm") {  // saved: its details kept

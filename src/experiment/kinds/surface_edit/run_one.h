@@ -61,6 +61,7 @@ class RunCache {
 
  private:
   std::map<std::string, MultiresSurface> hierarchies_;
+  std::map<std::string, std::string> hierarchy_ids_;  // by the key of hierarchies_
   std::map<std::string, RemeshReport> remesh_reports_;
   std::map<std::string, ReferenceSolution> references_;
   void use(const std::string& id);

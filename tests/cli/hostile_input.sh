@@ -124,6 +124,80 @@ done
 # VTK polydata: counts checked before VTK allocates, ids checked as 64-bit.
 sed 's/NumberOfPoints="2904"/NumberOfPoints="1000000000000"/' "$H/cow_copy.vtp" > "$H/huge_count.vtp"
 hostile 2 "is not a count up to" -- "$FS" info "$H/huge_count.vtp"
+# The XML is parsed, not scanned: attribute values count whatever their quoting and spacing
+# (single quotes, spaces around '='), components as much as points (NumberOfComponents, from a
+# 600-byte file, hung info, convert and subdivide), inline compressed arrays as much as
+# appended ones. Each is refused at once: hostile_quick adds a 2 s bound (a refusal is
+# immediate; the margin is for a loaded machine) to hostile's memory bounds.
+hostile_quick() {
+  local t0 ms
+  t0=$(date +%s%N)
+  hostile "$@"
+  ms=$((($(date +%s%N) - t0) / 1000000))
+  [ "$ms" -lt 2000 ] || fail "case $CASES took $ms ms, not a prompt refusal: ${*:4}"
+}
+sed "s/NumberOfPoints=\"2904\"/NumberOfPoints='1000000000000'/" "$H/cow_copy.vtp" > "$H/single_quoted_count.vtp"
+sed 's/NumberOfPoints="2904"/NumberOfPoints = "1000000000000"/' "$H/cow_copy.vtp" > "$H/spaced_count.vtp"
+sed "s/NumberOfPoints=\"2904\"/NumberOfPoints\t=\t'1000000000000'/" "$H/cow_copy.vtp" > "$H/tab_spaced_count.vtp"
+for f in single_quoted_count spaced_count tab_spaced_count; do
+  hostile_quick 2 "$f.vtp:[0-9]*: Piece NumberOfPoints=\"1000000000000\" is not a count up to" -- "$FS" info "$H/$f.vtp"
+done
+components_vtp() {  # $1: the file, $2: the data array's NumberOfComponents attribute as written
+  cat > "$1" <<VTP
+<?xml version="1.0"?>
+<VTKFile type="PolyData" version="0.1" byte_order="LittleEndian">
+  <PolyData>
+    <Piece NumberOfPoints="3" NumberOfPolys="1">
+      <PointData><DataArray type="Float64" Name="weight" $2 format="ascii">0 0 0</DataArray></PointData>
+      <Points><DataArray type="Float64" NumberOfComponents="3" format="ascii">0 0 0 1 0 0 0 1 0</DataArray></Points>
+      <Polys>
+        <DataArray type="Int64" Name="connectivity" format="ascii">0 1 2</DataArray>
+        <DataArray type="Int64" Name="offsets" format="ascii">3</DataArray>
+      </Polys>
+    </Piece>
+  </PolyData>
+</VTKFile>
+VTP
+}
+components_vtp "$H/huge_components.vtp" "NumberOfComponents='4000000000'"
+components_vtp "$H/many_components.vtp" 'NumberOfComponents = "50000000"'
+for cmd in info convert subdivide; do
+  out=(); [ "$cmd" = info ] || out=("$H/components_out.obj")
+  [ "$cmd" != subdivide ] || out+=(--scheme loop --levels 1)
+  hostile_quick 2 "huge_components.vtp:5: DataArray NumberOfComponents=\"4000000000\" is not a count up to" -- "$FS" $cmd "$H/huge_components.vtp" "${out[@]}"
+  hostile_quick 2 "many_components.vtp:5: <DataArray Name=\"weight\">: 50000000 components x 3 tuples is more than this .*-byte file can hold" -- \
+    "$FS" $cmd "$H/many_components.vtp" "${out[@]}"
+done
+[ ! -e "$H/components_out.obj" ] || fail "a refused .vtp was converted"
+# Inline (format="binary") compressed data whose header claims a 2^36-byte block.
+$PY - "$H" <<'PYEOF'
+import base64, struct, sys, zlib
+points = struct.pack("<9d", 0, 0, 0, 1, 0, 0, 0, 1, 0)
+z = zlib.compress(points)
+header = struct.pack("<4Q", 1, 1 << 36, 1 << 36, len(z))
+inline = (base64.b64encode(header) + base64.b64encode(z)).decode()
+open(f"{sys.argv[1]}/inline_huge_block.vtp", "w").write(f"""<?xml version="1.0"?>
+<VTKFile type="PolyData" version="0.1" byte_order="LittleEndian" header_type="UInt64" compressor="vtkZLibDataCompressor">
+  <PolyData>
+    <Piece NumberOfPoints="3" NumberOfPolys="1">
+      <Points><DataArray type="Float64" NumberOfComponents="3" format="binary">{inline}</DataArray></Points>
+      <Polys>
+        <DataArray type="Int64" Name="connectivity" format="ascii">0 1 2</DataArray>
+        <DataArray type="Int64" Name="offsets" format="ascii">3</DataArray>
+      </Polys>
+    </Piece>
+  </PolyData>
+</VTKFile>
+""")
+PYEOF
+hostile_quick 2 "inline_huge_block.vtp:5: an inline array's header is inconsistent with the compressed data" -- "$FS" info "$H/inline_huge_block.vtp"
+# The fuzzer's VTK corpus: each hostile file refused promptly, naming itself; the valid ones read.
+for f in tests/fuzz/vtp/*.vtp; do
+  case "$(basename "$f")" in
+    valid_*) "$FS" info "$f" > /dev/null 2>&1 || fail "$f, a valid file of the fuzz corpus, was not read" ;;
+    *) hostile_quick 2 "$(basename "$f")" -- "$FS" info "$f" ;;
+  esac
+done
 cat > "$H/wrapped_id.vtp" <<'VTP'
 <?xml version="1.0"?>
 <VTKFile type="PolyData" version="0.1" byte_order="LittleEndian" header_type="UInt64">

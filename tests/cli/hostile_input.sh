@@ -360,6 +360,22 @@ hostile 2 "--jobs" -- "$FS" run $SMOKE --jobs 0 --out "$H/j"
 hostile 2 "expected key.path=value" -- "$FS" run $SMOKE --set novalue
 hostile 2 "must be a plain folder name" -- "$FS" run $SMOKE --set 'name=../escape' --dry-run
 hostile 2 "must be a plain folder name" -- "$FS" run $SMOKE --set 'name=/abs/dir' --dry-run
+# Nothing is written outside --out: a symbolic link inside it (the lock, final/, vtk/, a table)
+# is refused by name before anything is written through it (the lock's target was truncated to
+# a PID even by a refused run; results landed in a linked final/ or vtk/).
+mkdir -p "$H/linked_lock" && printf 'keep\n' > "$H/lock_target" && ln -sfn "$H/lock_target" "$H/linked_lock/.lock"
+hostile 2 "linked_lock/.lock: a symbolic link inside the output folder" -- "$FS" run $SMOKE --out "$H/linked_lock"
+[ "$(cat "$H/lock_target")" = keep ] || fail "the target of a .lock link was written"
+touch "$H/linked_lock/runs.csv"  # a folder with results: the run is refused for it later, the lock first
+hostile 2 "linked_lock/.lock: a symbolic link" -- "$FS" run $SMOKE --out "$H/linked_lock"
+[ "$(cat "$H/lock_target")" = keep ] || fail "a refused run wrote the target of a .lock link"
+TWO_RUNS=(--set 'sweep={solver.tolerance: [1.0e-10, 1.0e-9]}')
+for sub in final vtk runs.csv; do
+  mkdir -p "$H/linked_$sub" "$H/outside_$sub"
+  if [ "$sub" = runs.csv ]; then ln -sfn "$H/outside_$sub/runs.csv" "$H/linked_$sub/$sub"; else ln -sfn "$H/outside_$sub" "$H/linked_$sub/$sub"; fi
+  hostile 2 "linked_$sub/$sub: a symbolic link inside the output folder" -- "$FS" run $SMOKE --out "$H/linked_$sub" "${TWO_RUNS[@]}"
+  [ -z "$(ls -A "$H/outside_$sub")" ] || fail "a run wrote through a linked $sub: $(ls -A "$H/outside_$sub")"
+done
 
 [ "$CASES" -ge 60 ] || fail "only $CASES hostile cases"
 echo "hostile_input: ok ($CASES cases)"

@@ -28,6 +28,7 @@
 
 #include "fairshape/core/atomic_file.h"
 #include "fairshape/core/error.h"
+#include "fairshape/io/finite_output.h"
 #include "fairshape/io/vtk_checks.h"
 #include "fairshape/io/vtk_convert.h"
 
@@ -53,10 +54,12 @@ vtkSmartPointer<vtkDoubleArray> to_vtk_array(const std::string& name, const Eige
   return a;
 }
 
-void check_rows(const std::string& path, const std::string& name, Eigen::Index rows, Eigen::Index expected) {
-  if (rows != expected)
-    throw InvalidInput(path + ": data array '" + name + "' has " + std::to_string(rows) +
+// Every data array written has a row per point (or cell), finite values only.
+void check_rows(const std::string& path, const std::string& name, const Eigen::MatrixXd& m, Eigen::Index expected) {
+  if (m.rows() != expected)
+    throw InvalidInput(path + ": data array '" + name + "' has " + std::to_string(m.rows()) +
                        " rows, expected " + std::to_string(expected));
+  io::internal::require_finite(m, path, "data array '" + name + "' row");
 }
 
 vtkSmartPointer<vtkPoints> to_vtk_points(const MatrixX3& P) {
@@ -70,6 +73,7 @@ vtkSmartPointer<vtkPoints> to_vtk_points(const MatrixX3& P) {
 }  // namespace
 
 vtkSmartPointer<vtkPolyData> io::internal::to_polydata(const SurfaceMesh& mesh, const std::string& path) {
+  io::internal::require_finite(mesh.positions(), path, "vertex");
   auto pd = vtkSmartPointer<vtkPolyData>::New();
   pd->SetPoints(to_vtk_points(mesh.positions()));
   vtkNew<vtkCellArray> polys;
@@ -80,11 +84,11 @@ vtkSmartPointer<vtkPolyData> io::internal::to_polydata(const SurfaceMesh& mesh, 
   }
   pd->SetPolys(polys);
   for (const auto& [name, m] : mesh.vertex_data) {
-    check_rows(path, name, m.rows(), mesh.n_vertices());
+    check_rows(path, name, m, mesh.n_vertices());
     pd->GetPointData()->AddArray(to_vtk_array(name, m));
   }
   for (const auto& [name, m] : mesh.face_data) {
-    check_rows(path, name, m.rows(), mesh.n_faces());
+    check_rows(path, name, m, mesh.n_faces());
     pd->GetCellData()->AddArray(to_vtk_array(name, m));
   }
   // Crease and corner sharpness: edges are not cells of the file, so the sharp ones go into
@@ -242,6 +246,7 @@ void write_vtp(const SurfaceMesh& mesh, const std::string& path) {
 
 void write_vtp(const MatrixX3& points, const std::vector<std::vector<int>>& polylines, const DataArrays& point_data,
                const std::string& path) {
+  io::internal::require_finite(points, path, "point");
   vtkNew<vtkPolyData> pd;
   pd->SetPoints(to_vtk_points(points));
   vtkNew<vtkCellArray> lines;
@@ -254,7 +259,7 @@ void write_vtp(const MatrixX3& points, const std::vector<std::vector<int>>& poly
   }
   pd->SetLines(lines);
   for (const auto& [name, m] : point_data) {
-    check_rows(path, name, m.rows(), points.rows());
+    check_rows(path, name, m, points.rows());
     pd->GetPointData()->AddArray(to_vtk_array(name, m));
   }
   write_polydata_atomically(pd, path);
@@ -272,14 +277,15 @@ SurfaceMesh read_vtp(const std::string& path) { return from_polydata(io::interna
 void write_vtm(const std::vector<NamedMesh>& blocks, const std::string& path) {
   quiet_vtk();
   const fs::path target(path);
-  const fs::path staging = temporary_sibling(target);  // a folder holding the .vtm and its data folder
-  fs::create_directories(staging);
+  // The blocks first: a block refused (non-finite, mismatched arrays) leaves no staging folder.
   vtkNew<vtkMultiBlockDataSet> mb;
   mb->SetNumberOfBlocks(static_cast<unsigned>(blocks.size()));
   for (std::size_t i = 0; i < blocks.size(); ++i) {
     mb->SetBlock(static_cast<unsigned>(i), to_polydata(*blocks[i].mesh, path));
     mb->GetMetaData(static_cast<unsigned>(i))->Set(vtkCompositeDataSet::NAME(), blocks[i].name.c_str());
   }
+  const fs::path staging = temporary_sibling(target);  // a folder holding the .vtm and its data folder
+  fs::create_directories(staging);
   vtkNew<vtkXMLMultiBlockDataWriter> w;
   const fs::path staged_file = staging / target.filename();
   w->SetFileName(staged_file.c_str());

@@ -268,6 +268,46 @@ grep -q "could not be written will run again" "$SCRATCH/resume.txt" || fail "the
 grep -q ",converged," "$H/full_run/runs.csv" || fail "the re-run is not recorded"
 ! grep -q "output_failed" "$H/full_run/runs.csv" || fail "the failed row stayed"
 
+# A curve split into two `l` statements that share vertex 65 (as exporters write it) is one
+# curve of 129 points, also with its second piece written backwards (the first piece alone was
+# edited, the other 64 points dropped); two curves that do not meet are refused, naming the lines.
+$PY - "$H" <<'PYEOF'
+import sys
+v = [l for l in open("data/curves/wave129.obj").read().splitlines() if l.startswith("v ")]
+assert len(v) == 129
+l = lambda ids: "l " + " ".join(map(str, ids))
+def obj(name, *lines): open(f"{sys.argv[1]}/{name}.obj", "w").write("\n".join(v + list(lines)) + "\n")
+obj("split", l(range(1, 66)), l(range(65, 130)))
+obj("split_reversed", l(range(1, 66)), l(range(129, 64, -1)))
+obj("two_curves", l(range(1, 65)), l(range(66, 130)))
+PYEOF
+for f in split split_reversed; do
+  "$FS" run configs/sauvage/fig1.yaml --out "$H/$f" --set "input.curve=$H/$f.obj" --set 'sweep={}' 2>/dev/null ||
+    fail "a curve in two 'l' statements ($f.obj) was not edited"
+  CASES=$((CASES + 1))
+  grep -q ",converged," "$H/$f/runs.csv" || fail "$f.obj: the edit did not converge"
+  [ "$(grep -c '^v ' "$H/$f/final.obj")" -eq 129 ] || fail "$f.obj: the result is not the whole curve of 129 points"
+done
+hostile 2 "two_curves.obj:131: this polyline (vertices 66 to 129) does not continue the curve of line(s) 130, which ends at vertex 64" -- \
+  "$FS" run configs/sauvage/fig1.yaml --dry-run --set "input.curve=$H/two_curves.obj"
+# Results too large to stay finite are refused, naming where, and nothing is written (they were
+# written as inf and nan, exit 0).
+hostile 2 "energy: the Hessian has a non-finite entry" -- "$FS" energy data/cow.off --alpha 1e308 --beta 1e308 --out "$H/inf.mtx"
+[ ! -e "$H/inf.mtx" ] || fail "a non-finite Hessian was written"
+# A cube with every coordinate 1e308 or 1.5e308: the vertex rule's sums overflow.
+$PY - "$H/huge_coordinates.obj" <<'PYEOF'
+import itertools, sys
+with open(sys.argv[1], "w") as f:
+    for p in itertools.product((1.0e308, 1.5e308), repeat=3):
+        f.write("v %r %r %r\n" % p)
+    f.write("f 1 2 4 3\nf 5 7 8 6\nf 1 5 6 2\nf 3 4 8 7\nf 1 3 7 5\nf 2 6 8 4\n")
+PYEOF
+hostile 2 "subdivide: level [12] has non-finite positions (vertex [0-9]*): the input's coordinates are too large" -- \
+  "$FS" subdivide "$H/huge_coordinates.obj" "$H/huge_subdivided.obj" --scheme catmull-clark --levels 2
+hostile 2 "subdivide: level [12] has non-finite positions" -- \
+  "$FS" subdivide "$H/huge_coordinates.obj" "$H/huge_subdivided.vtm" --scheme catmull-clark --levels 2
+[ -z "$(ls "$H" | grep huge_subdivided)" ] || fail "a refused subdivision left files: $(ls "$H" | grep huge_subdivided)"
+
 # --- configs ------------------------------------------------------------------------------
 cfg() { printf '%s\n' "$2" > "$H/$1.yaml"; echo "$H/$1.yaml"; }
 hostile 2 "key 'name' repeats the key of line 1" -- "$FS" run "$(cfg dup_key "name: a

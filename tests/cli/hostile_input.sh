@@ -320,6 +320,18 @@ hostile 2 "a \`defaults\` entry must be a file name" -- "$FS" run "$(cfg bad_def
 name: x")" --dry-run
 hostile 2 "include themselves" -- "$FS" run "$(cfg self_include "defaults: [self_include.yaml]
 name: x")" --dry-run
+# A second YAML document was ignored; a non-UTF-8 byte was an internal error (exit 1) after
+# config.resolved.yaml and vtk/ were written. Both are refused, by line, before --out is made.
+hostile 2 "two_documents.yaml:3: a second YAML document starts here" -- "$FS" run "$(cfg two_documents "defaults: [$PWD/$SMOKE]
+name: first
+---
+name: second")" --out "$H/two_documents_out"
+[ ! -e "$H/two_documents_out" ] || fail "a refused config made its output folder"
+printf 'defaults: [%s]\ndescription: caf\xe9 au lait\n' "$PWD/$SMOKE" > "$H/latin1.yaml"
+hostile 2 "latin1.yaml:2: byte 0xE9 at column 17 is not UTF-8" -- "$FS" run "$H/latin1.yaml" --out "$H/latin1_out"
+[ ! -e "$H/latin1_out" ] || fail "a config refused for its encoding made its output folder"
+hostile 2 "--set 'description':1: byte 0xE9" -- "$FS" run $SMOKE --set "description=caf$(printf '\xe9')" --out "$H/latin1_set"
+[ ! -e "$H/latin1_set" ] || fail "a --set refused for its encoding made its output folder"
 # A diamond of includes 12 deep, 4 wide: each file is loaded once (was exponential: a hang).
 for d in $(seq 0 12); do
   if [ "$d" -eq 12 ]; then printf 'name: deep\n' > "$H/level$d.yaml"

@@ -1,5 +1,5 @@
 // Readers that take the whole of a file (a curve in several pieces), writers that never write a
-// non-finite number.
+// non-finite number, configs that are one UTF-8 document.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "fairshape/core/error.h"
+#include "fairshape/experiment/yaml_structure.h"
 #include "fairshape/io/matrix_market.h"
 #include "fairshape/io/mesh_io.h"
 #include "fairshape/io/vtk_io.h"
@@ -98,4 +99,15 @@ TEST_CASE("writers refuse non-finite numbers, naming where, and leave nothing be
   M(0, 1) = nan;
   CHECK_THROWS_WITH(write_matrix_market(M, (dir / "mesh_M.mtx").string()), Contains("row 0 has a non-finite value"));
   CHECK(nothing_left(dir, "mesh"));
+}
+
+TEST_CASE("a config is one UTF-8 YAML document", "[config]") {
+  CHECK_NOTHROW(check_yaml_structure("name: café\n", "ok.yaml"));
+  CHECK_NOTHROW(check_yaml_structure("---\nname: café 😀\n...\n", "ok.yaml"));
+  CHECK_THROWS_WITH(check_yaml_structure("name: a\n---\nname: b\n", "two.yaml"), Contains("two.yaml:2: a second YAML document"));
+  CHECK_THROWS_WITH(check_yaml_structure("a: 1\nname: caf\xe9\n", "latin1.yaml"), Contains("latin1.yaml:2: byte 0xE9 at column 10"));
+  CHECK_THROWS_WITH(check_utf8("a: \xc0\xaf", "overlong"), Contains("byte 0xC0"));
+  CHECK_THROWS_WITH(check_utf8("a: \xed\xa0\x80", "surrogate"), Contains("byte 0xED"));
+  CHECK_THROWS_WITH(check_utf8("a: \xe2\x82", "cut"), Contains("byte 0xE2"));
+  CHECK_NOTHROW(check_utf8("a: \xf0\x9f\x98\x80", "emoji"));
 }

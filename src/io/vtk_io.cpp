@@ -250,14 +250,24 @@ void write_vtp(const MatrixX3& points, const std::vector<std::vector<int>>& poly
   vtkNew<vtkPolyData> pd;
   pd->SetPoints(to_vtk_points(points));
   vtkNew<vtkCellArray> lines;
+  std::vector<bool> on_line(static_cast<std::size_t>(points.rows()), false);
   for (const auto& line : polylines) {
     lines->InsertNextCell(static_cast<vtkIdType>(line.size()));
     for (int i : line) {
       FAIRSHAPE_ASSERT(i >= 0 && i < points.rows(), "a polyline through a point that does not exist");
       lines->InsertCellPoint(i);
+      on_line[static_cast<std::size_t>(i)] = true;
     }
   }
   pd->SetLines(lines);
+  // ParaView draws cells, not bare points: every point on no polyline is a vertex cell.
+  vtkNew<vtkCellArray> verts;
+  for (Eigen::Index i = 0; i < points.rows(); ++i)
+    if (!on_line[static_cast<std::size_t>(i)]) {
+      verts->InsertNextCell(1);
+      verts->InsertCellPoint(i);
+    }
+  pd->SetVerts(verts);
   for (const auto& [name, m] : point_data) {
     check_rows(path, name, m, points.rows());
     pd->GetPointData()->AddArray(to_vtk_array(name, m));

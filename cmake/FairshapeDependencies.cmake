@@ -17,7 +17,7 @@ endif()
 if(FAIRSHAPE_WITH_CERES)
   fairshape_require(Ceres libceres-dev 2.1 CONFIG)
 endif()
-set(FAIRSHAPE_VTK_COMPONENTS CommonCore CommonDataModel IOXML IOImage RenderingCore RenderingOpenGL2
+set(FAIRSHAPE_VTK_COMPONENTS CommonCore CommonDataModel IOXML IOXMLParser expat IOImage RenderingCore RenderingOpenGL2
     RenderingAnnotation RenderingFreeType FiltersCore FiltersGeometry FiltersSources)
 if(FAIRSHAPE_WITH_VTK)
   fairshape_require(VTK libvtk9-dev 9.1 COMPONENTS ${FAIRSHAPE_VTK_COMPONENTS})

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 
@@ -45,6 +46,20 @@ SurfaceMesh load_any(const std::string& path, std::vector<std::string>* warnings
   const MeshFile f = read_mesh_file(path);
   if (warnings) *warnings = f.warnings;
   return mesh_from_file(f, path);  // crease/corner tags applied: a bad one names its line
+}
+
+// Coordinates near the largest double overflow in subdivision's sums: say so, naming the level
+// and vertex, rather than pass inf on (the writers refuse it too, without the reason).
+void require_finite_levels(const std::vector<SurfaceMesh>& levels, bool limit) {
+  for (std::size_t l = 0; l < levels.size(); ++l) {
+    const MatrixX3& P = levels[l].positions();
+    if (P.allFinite()) continue;
+    Eigen::Index v = 0;
+    while (P.row(v).allFinite()) ++v;
+    throw InvalidInput("subdivide: " + std::string(limit && l + 1 == levels.size() ? "the limit positions of " : "") + "level " +
+                       std::to_string(l) + " has non-finite positions (vertex " + std::to_string(v) +
+                       "): the input's coordinates are too large for the subdivision to stay finite");
+  }
 }
 
 }  // namespace
@@ -141,6 +156,7 @@ int cmd_subdivide(const SubdivideArgs& a) {
   std::vector<SurfaceMesh> levels =
       refine_uniform(load_any(a.input, nullptr), opt, a.levels, backend_from_string(a.implementation), limits);
   if (a.limit) levels.back().positions() = limit_positions(levels.back(), opt);
+  require_finite_levels(levels, a.limit);
   if (fs::path(a.output).extension() == ".vtm") {
     std::vector<NamedMesh> blocks;
     for (std::size_t l = 0; l < levels.size(); ++l) blocks.push_back({"level_" + std::to_string(l), &levels[l]});
@@ -238,6 +254,12 @@ int cmd_energy(const EnergyArgs& a) {
   SurfaceMesh m = load_any(a.mesh, nullptr);
   if (a.level > 0) m = refine_uniform(m, {scheme_from_string(a.scheme)}, a.level, backend).back();
   const SparseMatrix H = stretch_bend_hessian(m, {a.alpha, a.beta}, backend);
+  for (int k = 0; k < H.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(H, k); it; ++it)
+      if (!std::isfinite(it.value()))
+        throw InvalidInput("energy: the Hessian has a non-finite entry at (" + std::to_string(it.row()) + ", " +
+                           std::to_string(it.col()) + "): --alpha, --beta or the mesh's coordinates are too large " +
+                           "for it to stay finite");
   write_matrix_market(H, a.out, true);
   std::cerr << "H: " << H.rows() << " x " << H.cols() << ", " << H.nonZeros() << " nonzeros -> " << a.out << "\n";
   return 0;

@@ -221,6 +221,7 @@ YAML::Node load_experiment_config(const std::string& path, const std::vector<std
     const auto eq = s.find('=');
     if (eq == std::string::npos || eq == 0)
       throw InvalidConfig("--set '" + s + "': expected key.path=value");
+    check_utf8(s, "--set '" + s.substr(0, eq) + "'");  // before anything is written (config.resolved.yaml)
     YAML::Node value;
     try {
       value = YAML::Load(s.substr(eq + 1));

@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cstring>
@@ -15,6 +16,26 @@
 namespace fairshape {
 namespace fs = std::filesystem;
 
+namespace {
+
+[[noreturn]] void refuse_link(const fs::path& link) {
+  throw InvalidConfig(link.string() + ": a symbolic link inside the output folder; fairshape writes nothing outside " +
+                      "--out and would write through it: remove the link, or use another --out");
+}
+
+// The writers follow symbolic links (a linked vtk/ or final/ puts results elsewhere, a linked
+// table is appended to wherever it points): any link inside the folder is refused before
+// anything is written. The folder itself may be a link: --out names where results go.
+void refuse_links_inside(const fs::path& dir) {
+  std::error_code ec;
+  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
+       it.increment(ec))
+    if (it->is_symlink()) refuse_link(it->path());
+  if (ec) throw InvalidConfig(dir.string() + ": cannot list the folder: " + ec.message());
+}
+
+}  // namespace
+
 OutputFolder::OutputFolder(fs::path dir) : dir_(std::move(dir)) {
   std::error_code ec;
   if (fs::exists(dir_, ec) && !fs::is_directory(dir_, ec))
@@ -22,17 +43,34 @@ OutputFolder::OutputFolder(fs::path dir) : dir_(std::move(dir)) {
   fs::create_directories(dir_, ec);
   if (ec) throw InvalidConfig("--out " + dir_.string() + ": cannot create the folder: " + ec.message());
   const fs::path lock = dir_ / ".lock";
-  lock_fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  // O_NOFOLLOW: a .lock that is a symbolic link is refused before anything is written through
+  // it (even by a run refused later); O_NONBLOCK: a FIFO named .lock does not hang the open.
+  lock_fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK, 0644);
+  if (lock_fd_ < 0 && errno == ELOOP) refuse_link(lock);
   if (lock_fd_ < 0) throw InvalidConfig(dir_.string() + ": cannot write to the folder: " + std::strerror(errno));
+  struct stat st {};
+  if (::fstat(lock_fd_, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(lock_fd_);
+    lock_fd_ = -1;
+    throw InvalidConfig(lock.string() + ": not a regular file (fairshape's lock file): remove it, or use another --out");
+  }
   if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
-    std::ifstream in(lock);
-    std::string holder;
-    std::getline(in, holder);
+    char buf[32] = {};
+    const ssize_t n = ::pread(lock_fd_, buf, sizeof buf - 1, 0);
+    std::string holder(buf, n > 0 ? static_cast<std::size_t>(n) : 0);
+    holder = holder.substr(0, holder.find('\n'));
     ::close(lock_fd_);
     lock_fd_ = -1;
     throw InvalidConfig(dir_.string() + ": another fairshape run is writing to this folder" +
                         (holder.empty() ? "" : " (pid " + holder + ")") +
                         "; wait for it, or use another --out");
+  }
+  try {  // once this run holds the folder: another run may be creating and removing files in it
+    refuse_links_inside(dir_);
+  } catch (...) {
+    ::close(lock_fd_);
+    lock_fd_ = -1;
+    throw;
   }
   const std::string pid = std::to_string(::getpid()) + "\n";
   if (::ftruncate(lock_fd_, 0) == 0 && ::write(lock_fd_, pid.data(), pid.size()) < 0) {}

@@ -3,11 +3,13 @@
 #include <cstdio>
 
 #include "fairshape/core/atomic_file.h"
+#include "fairshape/io/finite_output.h"
 #include "fairshape/io/text_scanner.h"
 
 namespace fairshape {
 
 void write_matrix_market(const SparseMatrix& A, const std::string& path, bool symmetric) {
+  io::internal::require_finite(A, path);
   long long nnz = 0;
   for (int k = 0; k < A.outerSize(); ++k)
     for (SparseMatrix::InnerIterator it(A, k); it; ++it)
@@ -27,6 +29,7 @@ void write_matrix_market(const SparseMatrix& A, const std::string& path, bool sy
 }
 
 void write_matrix_market(const Eigen::MatrixXd& M, const std::string& path) {
+  io::internal::require_finite(M, path, "row");
   write_atomically(path, [&](std::ostream& os) {
     os << "%%MatrixMarket matrix array real general\n% written by fairshape\n" << M.rows() << ' ' << M.cols() << '\n';
     char buf[64];

@@ -1,11 +1,13 @@
 #include "fairshape/io/mesh_io.h"
 
+#include <algorithm>
 #include <bit>
 #include <cinttypes>
 #include <cstdio>
 #include <filesystem>
 
 #include "fairshape/core/atomic_file.h"
+#include "fairshape/io/finite_output.h"
 #include "fairshape/io/text_scanner.h"
 
 namespace fairshape {
@@ -135,6 +137,7 @@ void write_mesh_file(const MeshFile& data, const std::string& path, const WriteO
   const MeshFormat fmt = format_from_path(path);
   if (fmt != MeshFormat::Obj && !data.lines.empty())
     throw IOError(path + ": polylines can only be written as .obj");
+  io::internal::require_finite(data.vertices, path, "vertex");
   write_atomically(
       path,
       [&](std::ostream& os) {
@@ -161,12 +164,51 @@ void write_mesh(const SurfaceMesh& mesh, const std::string& path, const WriteOpt
   write_mesh_file(d, path, opt);
 }
 
+namespace {
+
+// The line numbers of a file's `l` statements, for naming them.
+std::vector<long> polyline_statement_lines(std::string_view text, const std::string& path) {
+  io::internal::TextScanner s(text, path);
+  std::vector<long> out;
+  while (s.next_line())
+    if (s.tokens()[0] == "l") out.push_back(s.line());
+  return out;
+}
+
+}  // namespace
+
+// Exporters split one curve into several `l` statements that share their end vertices
+// (`l 1 … 65`, `l 65 … 129`): the pieces are joined in file order, each starting where the
+// curve so far ends (a piece written backwards is turned round; so is the first, when the
+// second starts at its beginning). Pieces that do not chain so are several curves in one
+// file: refused, naming the lines, rather than editing the first and dropping the others.
 Polyline read_polyline(const std::string& path) {
   if (format_from_path(path) != MeshFormat::Obj)
     throw IOError(path + ": polylines are read from .obj files ('v' and 'l' lines)");
-  const MeshFile d = read_mesh_file(path);
+  const std::string bytes = io::internal::read_whole_file(path);
+  const MeshFile d = parse_obj(bytes, path);
   if (d.lines.empty()) throw InvalidInput(path + ": no 'l' statement (polyline) in the file");
+  // Pieces meet at a shared vertex, or at two vertices written twice at the same place.
+  const auto meet = [&d](int a, int b) { return a == b || d.vertices.row(a) == d.vertices.row(b); };
   std::vector<int> ids = d.lines.front();
+  for (std::size_t k = 1; k < d.lines.size(); ++k) {
+    std::vector<int> piece = d.lines[k];
+    const bool at_end = meet(ids.back(), piece.front()) || meet(ids.back(), piece.back());
+    if (k == 1 && !at_end && (meet(ids.front(), piece.front()) || meet(ids.front(), piece.back())))
+      std::reverse(ids.begin(), ids.end());
+    if (!meet(ids.back(), piece.front()) && meet(ids.back(), piece.back())) std::reverse(piece.begin(), piece.end());
+    if (!meet(ids.back(), piece.front())) {
+      const std::vector<long> at = polyline_statement_lines(bytes, path);
+      std::string before;
+      for (std::size_t j = 0; j < k; ++j) before += (j ? ", " : "") + std::to_string(at[j]);
+      throw ParseError(path, at[k],
+                       "this polyline (vertices " + std::to_string(d.lines[k].front() + 1) + " to " +
+                           std::to_string(d.lines[k].back() + 1) + ") does not continue the curve of line(s) " + before +
+                           ", which ends at vertex " + std::to_string(ids.back() + 1) +
+                           ": fairshape edits one curve per file (join the pieces end to start, or put each curve in its own file)");
+    }
+    ids.insert(ids.end(), piece.begin() + 1, piece.end());
+  }
   Polyline c;
   c.closed = ids.size() > 2 && ids.front() == ids.back();
   if (c.closed) ids.pop_back();

@@ -54,7 +54,8 @@ struct WriteOptions {
 void write_mesh(const SurfaceMesh& mesh, const std::string& path, const WriteOptions& opt = {});
 void write_mesh_file(const MeshFile& data, const std::string& path, const WriteOptions& opt = {});
 
-//! The first polyline of an OBJ file (`v` and `l` lines); closed when it ends where it began.
+//! The polyline of an OBJ file (`v` and `l` lines; several `l` statements are joined when each
+//! continues the curve before it, and refused otherwise); closed when it ends where it began.
 Polyline read_polyline(const std::string& path);
 void write_polyline(const Polyline& curve, const std::string& path);
 

@@ -28,7 +28,8 @@
 
 #include "fairshape/core/atomic_file.h"
 #include "fairshape/core/error.h"
-#include "fairshape/io/text_scanner.h"
+#include "fairshape/io/finite_output.h"
+#include "fairshape/io/vtk_checks.h"
 #include "fairshape/io/vtk_convert.h"
 
 namespace fairshape {
@@ -53,10 +54,12 @@ vtkSmartPointer<vtkDoubleArray> to_vtk_array(const std::string& name, const Eige
   return a;
 }
 
-void check_rows(const std::string& path, const std::string& name, Eigen::Index rows, Eigen::Index expected) {
-  if (rows != expected)
-    throw InvalidInput(path + ": data array '" + name + "' has " + std::to_string(rows) +
+// Every data array written has a row per point (or cell), finite values only.
+void check_rows(const std::string& path, const std::string& name, const Eigen::MatrixXd& m, Eigen::Index expected) {
+  if (m.rows() != expected)
+    throw InvalidInput(path + ": data array '" + name + "' has " + std::to_string(m.rows()) +
                        " rows, expected " + std::to_string(expected));
+  io::internal::require_finite(m, path, "data array '" + name + "' row");
 }
 
 vtkSmartPointer<vtkPoints> to_vtk_points(const MatrixX3& P) {
@@ -70,6 +73,7 @@ vtkSmartPointer<vtkPoints> to_vtk_points(const MatrixX3& P) {
 }  // namespace
 
 vtkSmartPointer<vtkPolyData> io::internal::to_polydata(const SurfaceMesh& mesh, const std::string& path) {
+  io::internal::require_finite(mesh.positions(), path, "vertex");
   auto pd = vtkSmartPointer<vtkPolyData>::New();
   pd->SetPoints(to_vtk_points(mesh.positions()));
   vtkNew<vtkCellArray> polys;
@@ -80,11 +84,11 @@ vtkSmartPointer<vtkPolyData> io::internal::to_polydata(const SurfaceMesh& mesh, 
   }
   pd->SetPolys(polys);
   for (const auto& [name, m] : mesh.vertex_data) {
-    check_rows(path, name, m.rows(), mesh.n_vertices());
+    check_rows(path, name, m, mesh.n_vertices());
     pd->GetPointData()->AddArray(to_vtk_array(name, m));
   }
   for (const auto& [name, m] : mesh.face_data) {
-    check_rows(path, name, m.rows(), mesh.n_faces());
+    check_rows(path, name, m, mesh.n_faces());
     pd->GetCellData()->AddArray(to_vtk_array(name, m));
   }
   // Crease and corner sharpness: edges are not cells of the file, so the sharp ones go into
@@ -147,120 +151,6 @@ void read_arrays(vtkFieldData* fd, std::map<std::string, Eigen::MatrixXd>& out) 
       for (Eigen::Index c = 0; c < m.cols(); ++c) m(r, c) = a->GetComponent(r, static_cast<int>(c));
     out[a->GetName()] = std::move(m);
   }
-}
-
-// The element counts a VTK XML file declares (NumberOfPoints="...", NumberOfPolys="...")
-// checked before VTK allocates for them: an absurd count is a refusal, not std::bad_alloc.
-// Compressed payloads can be far smaller than what they hold, so the bound is absolute.
-constexpr long long kMaxVtkElements = 100'000'000;
-
-
-constexpr unsigned long long kMaxCompressionBlock = 1ULL << 26;  // 64 MiB
-
-// Standard base64 (VTK's encoding of appended data); stops at the first character outside it.
-std::string decode_base64(std::string_view text) {
-  static const std::string alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  unsigned value = 0;
-  int bits = 0;
-  for (char c : text) {
-    const std::size_t k = alphabet.find(c);
-    if (k == std::string::npos) break;
-    value = (value << 6) | static_cast<unsigned>(k);
-    bits += 6;
-    if (bits >= 8) {
-      bits -= 8;
-      out.push_back(static_cast<char>((value >> bits) & 0xFF));
-    }
-  }
-  return out;
-}
-
-// Appended data: every array's header (its byte count, or for compressed data the block count
-// and sizes) must describe bytes the file holds — zlib expands at most 1032:1 — or VTK
-// allocates what a corrupted header claims (found by fuzz_read_vtp: 2.7 GB from a 3 KB file).
-// Raw data is read as is; base64 data is decoded header by header (VTK encodes each header
-// on its own), offsets then counting encoded characters.
-void check_appended_headers(const std::string& bytes, const std::string& path) {
-  const std::size_t tag = bytes.find("<AppendedData");
-  if (tag == std::string::npos) return;
-  const std::size_t close = bytes.find('>', tag);
-  if (close == std::string::npos) throw IOError(path + ": AppendedData tag without its end");
-  const bool base64 = bytes.substr(tag, close - tag).find("encoding=\"base64\"") != std::string::npos;
-  const std::size_t marker = bytes.find('_', close);
-  if (marker == std::string::npos) throw IOError(path + ": AppendedData without its '_' marker");
-  const std::size_t base = marker + 1;
-  const std::string xml = bytes.substr(0, tag);
-  const bool big_endian = xml.find("byte_order=\"BigEndian\"") != std::string::npos;
-  const std::size_t word = xml.find("header_type=\"UInt64\"") != std::string::npos ? 8 : 4;
-  const bool compressed = xml.find("compressor=\"") != std::string::npos;
-  const auto fail = [&](const std::string& what) { throw IOError(path + ": an appended array's header " + what + " (corrupt file?)"); };
-  // `count` header words at `at` (raw bytes, or the base64 unit holding `total` words).
-  const auto words = [&](std::size_t at, std::size_t count, std::size_t total) {
-    std::string raw;
-    if (base64) {
-      const std::size_t chars = (total * word + 2) / 3 * 4;
-      if (at + chars > bytes.size()) fail("lies past the end of the file");
-      raw = decode_base64(std::string_view(bytes).substr(at, chars));
-    } else {
-      if (at + count * word > bytes.size()) fail("lies past the end of the file");
-      raw = bytes.substr(at, count * word);
-    }
-    if (raw.size() < count * word) fail("is cut short");
-    std::vector<unsigned long long> out(count, 0);
-    for (std::size_t k = 0; k < count; ++k)
-      for (std::size_t b = 0; b < word; ++b) {  // most significant byte first, in the file's byte order
-        const auto byte = static_cast<unsigned char>(raw[k * word + (big_endian ? b : word - 1 - b)]);
-        out[k] = (out[k] << 8) | byte;
-      }
-    return out;
-  };
-  for (std::size_t pos = xml.find(" offset=\""); pos != std::string::npos; pos = xml.find(" offset=\"", pos + 1)) {
-    const std::size_t end = xml.find('"', pos + 9);
-    const std::string value = xml.substr(pos + 9, end == std::string::npos ? 0 : end - pos - 9);
-    if (value.empty() || value.size() > 15 || value.find_first_not_of("0123456789") != std::string::npos)
-      throw IOError(path + ": appended-data offset '" + value.substr(0, 24) + "' is not a byte offset");
-    const std::size_t at = base + std::stoull(value);
-    if (at > bytes.size()) fail("starts past the end of the file");
-    // What the file holds after the header, as decoded bytes.
-    const long double held = base64 ? (bytes.size() - at) * 0.75L : static_cast<long double>(bytes.size() - at);
-    if (!compressed) {
-      if (words(at, 1, 1)[0] > held) fail("claims more bytes than the file holds");
-      continue;
-    }
-    const auto head = words(at, 3, 3);
-    const unsigned long long blocks = head[0], block = head[1], last = head[2];
-    if (blocks > held / word) fail("claims more compressed blocks than the file holds");
-    const auto all = words(at, 3 + static_cast<std::size_t>(blocks), 3 + static_cast<std::size_t>(blocks));
-    long double stored = 0;
-    for (std::size_t b = 0; b < blocks; ++b) stored += all[3 + b];
-    const long double expanded = blocks == 0 ? 0.0L : (blocks - 1.0L) * block + (last ? last : block);
-    // VTK allocates one block-sized buffer whatever the blocks hold: its writers use 32 KiB.
-    if (stored > held || expanded > 1032.0L * stored + 4096.0L || block > kMaxCompressionBlock)
-      fail("is inconsistent with the compressed data that follows");
-  }
-}
-
-// The file's bytes, its declared counts and appended headers checked (see above).
-std::string checked_vtk_text(const std::string& path) {
-  quiet_vtk();
-  std::string text = io::internal::read_whole_file(path);
-  check_appended_headers(text, path);
-  // The declared counts live in the XML, not in the binary payload after <AppendedData>.
-  const std::string head = text.substr(0, text.find("<AppendedData"));
-  for (std::size_t pos = head.find("NumberOf"); pos != std::string::npos; pos = head.find("NumberOf", pos + 1)) {
-    const std::size_t eq = head.find("=\"", pos);
-    if (eq == std::string::npos || eq - pos > 32) continue;
-    const std::size_t end = head.find('"', eq + 2);
-    if (end == std::string::npos) continue;
-    const std::string value = head.substr(eq + 2, end - eq - 2);
-    const std::string name = head.substr(pos, eq - pos);
-    if (value.empty() || value.find_first_not_of("0123456789") != std::string::npos || value.size() > 12 ||
-        std::stoll(value) > kMaxVtkElements)
-      throw IOError(path + ": " + name + "=\"" + value.substr(0, 24) + "\" is not a count up to " +
-                    std::to_string(kMaxVtkElements) + " (the largest mesh fairshape reads)");
-  }
-  return text;
 }
 
 // What VTK read, checked before it is used: points present, and every cell's ids in range,
@@ -335,7 +225,8 @@ SurfaceMesh from_polydata(vtkPolyData* pd, const std::string& path) {
 namespace io::internal {
 
 vtkSmartPointer<vtkPolyData> read_checked_polydata(const std::string& path) {
-  const std::string text = checked_vtk_text(path);
+  quiet_vtk();
+  const std::string text = io::internal::checked_vtk_text(path);
   vtkNew<vtkXMLPolyDataReader> r;
   if (!r->CanReadFile(path.c_str())) throw IOError(path + ": not a VTK XML PolyData file");
   // The bytes already read and checked, not the file again.
@@ -355,19 +246,30 @@ void write_vtp(const SurfaceMesh& mesh, const std::string& path) {
 
 void write_vtp(const MatrixX3& points, const std::vector<std::vector<int>>& polylines, const DataArrays& point_data,
                const std::string& path) {
+  io::internal::require_finite(points, path, "point");
   vtkNew<vtkPolyData> pd;
   pd->SetPoints(to_vtk_points(points));
   vtkNew<vtkCellArray> lines;
+  std::vector<bool> on_line(static_cast<std::size_t>(points.rows()), false);
   for (const auto& line : polylines) {
     lines->InsertNextCell(static_cast<vtkIdType>(line.size()));
     for (int i : line) {
       FAIRSHAPE_ASSERT(i >= 0 && i < points.rows(), "a polyline through a point that does not exist");
       lines->InsertCellPoint(i);
+      on_line[static_cast<std::size_t>(i)] = true;
     }
   }
   pd->SetLines(lines);
+  // ParaView draws cells, not bare points: every point on no polyline is a vertex cell.
+  vtkNew<vtkCellArray> verts;
+  for (Eigen::Index i = 0; i < points.rows(); ++i)
+    if (!on_line[static_cast<std::size_t>(i)]) {
+      verts->InsertNextCell(1);
+      verts->InsertCellPoint(i);
+    }
+  pd->SetVerts(verts);
   for (const auto& [name, m] : point_data) {
-    check_rows(path, name, m.rows(), points.rows());
+    check_rows(path, name, m, points.rows());
     pd->GetPointData()->AddArray(to_vtk_array(name, m));
   }
   write_polydata_atomically(pd, path);
@@ -385,14 +287,15 @@ SurfaceMesh read_vtp(const std::string& path) { return from_polydata(io::interna
 void write_vtm(const std::vector<NamedMesh>& blocks, const std::string& path) {
   quiet_vtk();
   const fs::path target(path);
-  const fs::path staging = temporary_sibling(target);  // a folder holding the .vtm and its data folder
-  fs::create_directories(staging);
+  // The blocks first: a block refused (non-finite, mismatched arrays) leaves no staging folder.
   vtkNew<vtkMultiBlockDataSet> mb;
   mb->SetNumberOfBlocks(static_cast<unsigned>(blocks.size()));
   for (std::size_t i = 0; i < blocks.size(); ++i) {
     mb->SetBlock(static_cast<unsigned>(i), to_polydata(*blocks[i].mesh, path));
     mb->GetMetaData(static_cast<unsigned>(i))->Set(vtkCompositeDataSet::NAME(), blocks[i].name.c_str());
   }
+  const fs::path staging = temporary_sibling(target);  // a folder holding the .vtm and its data folder
+  fs::create_directories(staging);
   vtkNew<vtkXMLMultiBlockDataWriter> w;
   const fs::path staged_file = staging / target.filename();
   w->SetFileName(staged_file.c_str());
@@ -415,12 +318,9 @@ void write_vtm(const std::vector<NamedMesh>& blocks, const std::string& path) {
 
 std::vector<SurfaceMesh> read_vtm(const std::string& path) {
   // The .vtm and every piece it names: VTK reads the pieces itself, so each is checked first.
-  const std::string text = checked_vtk_text(path);
-  for (std::size_t pos = text.find(" file=\""); pos != std::string::npos; pos = text.find(" file=\"", pos + 1)) {
-    const std::size_t end = text.find('"', pos + 7);
-    if (end == std::string::npos) break;
-    (void)checked_vtk_text((fs::path(path).parent_path() / text.substr(pos + 7, end - pos - 7)).string());
-  }
+  std::vector<std::string> pieces;
+  (void)io::internal::checked_vtk_text(path, &pieces);
+  for (const std::string& piece : pieces) (void)io::internal::checked_vtk_text((fs::path(path).parent_path() / piece).string());
   vtkNew<vtkXMLMultiBlockDataReader> r;
   r->SetFileName(path.c_str());
   r->Update();

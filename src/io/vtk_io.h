@@ -19,7 +19,8 @@ void write_vtp(const SurfaceMesh& mesh, const std::string& path);
 void write_vtp(const Polyline& curve, const DataArrays& point_data, const std::string& path);
 
 //! Points, with polylines through some of them (indices into `points`) and point arrays: what
-//! overlays are made of (constraint points, curves).
+//! overlays are made of (constraint points, curves). Each point on no polyline is a vertex
+//! cell, so that ParaView's default representation draws it.
 void write_vtp(const MatrixX3& points, const std::vector<std::vector<int>>& polylines, const DataArrays& point_data,
                const std::string& path);
 

@@ -13,6 +13,17 @@ grep -q ",converged," "$SCRATCH/ring/runs.csv" || fail "ring128 did not converge
 [ "$(grep -c '^v ' "$SCRATCH/ring/final.obj")" -eq 128 ] || fail "final.obj does not have 128 points"
 [ "$(ls "$SCRATCH/ring/vtk/"*.vtp | grep -vc _constraints)" -eq 4 ] || fail "expected one VTK polyline per stage"
 [ "$(ls "$SCRATCH/ring/vtk/"*_constraints.vtp | wc -l)" -eq 4 ] || fail "expected a handles overlay per stage"
+# Each handle is a vertex cell: ParaView's default representation draws cells, not bare points.
+$PY - "$SCRATCH/ring/vtk" <<'PYEOF'
+import glob, sys
+from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+for f in glob.glob(f"{sys.argv[1]}/*_constraints.vtp"):
+    r = vtkXMLPolyDataReader()
+    r.SetFileName(f)
+    r.Update()
+    o = r.GetOutput()
+    assert o.GetNumberOfPoints() > 0 and o.GetNumberOfVerts() == o.GetNumberOfPoints(), (f, o.GetNumberOfPoints(), o.GetNumberOfVerts())
+PYEOF
 [ "$(wc -l < "$SCRATCH/ring/steps.csv")" -eq 5 ] || fail "expected a header and 4 stage rows in steps.csv"
 # The linearized loop and Ceres in one sweep: both converge to the same lengths.
 "$FS" run $C --out "$SCRATCH/solvers" --set 'sweep={optimization.solver.type: [linearized, ceres]}' 2>/dev/null \

@@ -124,6 +124,80 @@ done
 # VTK polydata: counts checked before VTK allocates, ids checked as 64-bit.
 sed 's/NumberOfPoints="2904"/NumberOfPoints="1000000000000"/' "$H/cow_copy.vtp" > "$H/huge_count.vtp"
 hostile 2 "is not a count up to" -- "$FS" info "$H/huge_count.vtp"
+# The XML is parsed, not scanned: attribute values count whatever their quoting and spacing
+# (single quotes, spaces around '='), components as much as points (NumberOfComponents, from a
+# 600-byte file, hung info, convert and subdivide), inline compressed arrays as much as
+# appended ones. Each is refused at once: hostile_quick adds a 2 s bound (a refusal is
+# immediate; the margin is for a loaded machine) to hostile's memory bounds.
+hostile_quick() {
+  local t0 ms
+  t0=$(date +%s%N)
+  hostile "$@"
+  ms=$((($(date +%s%N) - t0) / 1000000))
+  [ "$ms" -lt 2000 ] || fail "case $CASES took $ms ms, not a prompt refusal: ${*:4}"
+}
+sed "s/NumberOfPoints=\"2904\"/NumberOfPoints='1000000000000'/" "$H/cow_copy.vtp" > "$H/single_quoted_count.vtp"
+sed 's/NumberOfPoints="2904"/NumberOfPoints = "1000000000000"/' "$H/cow_copy.vtp" > "$H/spaced_count.vtp"
+sed "s/NumberOfPoints=\"2904\"/NumberOfPoints\t=\t'1000000000000'/" "$H/cow_copy.vtp" > "$H/tab_spaced_count.vtp"
+for f in single_quoted_count spaced_count tab_spaced_count; do
+  hostile_quick 2 "$f.vtp:[0-9]*: Piece NumberOfPoints=\"1000000000000\" is not a count up to" -- "$FS" info "$H/$f.vtp"
+done
+components_vtp() {  # $1: the file, $2: the data array's NumberOfComponents attribute as written
+  cat > "$1" <<VTP
+<?xml version="1.0"?>
+<VTKFile type="PolyData" version="0.1" byte_order="LittleEndian">
+  <PolyData>
+    <Piece NumberOfPoints="3" NumberOfPolys="1">
+      <PointData><DataArray type="Float64" Name="weight" $2 format="ascii">0 0 0</DataArray></PointData>
+      <Points><DataArray type="Float64" NumberOfComponents="3" format="ascii">0 0 0 1 0 0 0 1 0</DataArray></Points>
+      <Polys>
+        <DataArray type="Int64" Name="connectivity" format="ascii">0 1 2</DataArray>
+        <DataArray type="Int64" Name="offsets" format="ascii">3</DataArray>
+      </Polys>
+    </Piece>
+  </PolyData>
+</VTKFile>
+VTP
+}
+components_vtp "$H/huge_components.vtp" "NumberOfComponents='4000000000'"
+components_vtp "$H/many_components.vtp" 'NumberOfComponents = "50000000"'
+for cmd in info convert subdivide; do
+  out=(); [ "$cmd" = info ] || out=("$H/components_out.obj")
+  [ "$cmd" != subdivide ] || out+=(--scheme loop --levels 1)
+  hostile_quick 2 "huge_components.vtp:5: DataArray NumberOfComponents=\"4000000000\" is not a count up to" -- "$FS" $cmd "$H/huge_components.vtp" "${out[@]}"
+  hostile_quick 2 "many_components.vtp:5: <DataArray Name=\"weight\">: 50000000 components x 3 tuples is more than this .*-byte file can hold" -- \
+    "$FS" $cmd "$H/many_components.vtp" "${out[@]}"
+done
+[ ! -e "$H/components_out.obj" ] || fail "a refused .vtp was converted"
+# Inline (format="binary") compressed data whose header claims a 2^36-byte block.
+$PY - "$H" <<'PYEOF'
+import base64, struct, sys, zlib
+points = struct.pack("<9d", 0, 0, 0, 1, 0, 0, 0, 1, 0)
+z = zlib.compress(points)
+header = struct.pack("<4Q", 1, 1 << 36, 1 << 36, len(z))
+inline = (base64.b64encode(header) + base64.b64encode(z)).decode()
+open(f"{sys.argv[1]}/inline_huge_block.vtp", "w").write(f"""<?xml version="1.0"?>
+<VTKFile type="PolyData" version="0.1" byte_order="LittleEndian" header_type="UInt64" compressor="vtkZLibDataCompressor">
+  <PolyData>
+    <Piece NumberOfPoints="3" NumberOfPolys="1">
+      <Points><DataArray type="Float64" NumberOfComponents="3" format="binary">{inline}</DataArray></Points>
+      <Polys>
+        <DataArray type="Int64" Name="connectivity" format="ascii">0 1 2</DataArray>
+        <DataArray type="Int64" Name="offsets" format="ascii">3</DataArray>
+      </Polys>
+    </Piece>
+  </PolyData>
+</VTKFile>
+""")
+PYEOF
+hostile_quick 2 "inline_huge_block.vtp:5: an inline array's header is inconsistent with the compressed data" -- "$FS" info "$H/inline_huge_block.vtp"
+# The fuzzer's VTK corpus: each hostile file refused promptly, naming itself; the valid ones read.
+for f in tests/fuzz/vtp/*.vtp; do
+  case "$(basename "$f")" in
+    valid_*) "$FS" info "$f" > /dev/null 2>&1 || fail "$f, a valid file of the fuzz corpus, was not read" ;;
+    *) hostile_quick 2 "$(basename "$f")" -- "$FS" info "$f" ;;
+  esac
+done
 cat > "$H/wrapped_id.vtp" <<'VTP'
 <?xml version="1.0"?>
 <VTKFile type="PolyData" version="0.1" byte_order="LittleEndian" header_type="UInt64">
@@ -194,6 +268,46 @@ grep -q "could not be written will run again" "$SCRATCH/resume.txt" || fail "the
 grep -q ",converged," "$H/full_run/runs.csv" || fail "the re-run is not recorded"
 ! grep -q "output_failed" "$H/full_run/runs.csv" || fail "the failed row stayed"
 
+# A curve split into two `l` statements that share vertex 65 (as exporters write it) is one
+# curve of 129 points, also with its second piece written backwards (the first piece alone was
+# edited, the other 64 points dropped); two curves that do not meet are refused, naming the lines.
+$PY - "$H" <<'PYEOF'
+import sys
+v = [l for l in open("data/curves/wave129.obj").read().splitlines() if l.startswith("v ")]
+assert len(v) == 129
+l = lambda ids: "l " + " ".join(map(str, ids))
+def obj(name, *lines): open(f"{sys.argv[1]}/{name}.obj", "w").write("\n".join(v + list(lines)) + "\n")
+obj("split", l(range(1, 66)), l(range(65, 130)))
+obj("split_reversed", l(range(1, 66)), l(range(129, 64, -1)))
+obj("two_curves", l(range(1, 65)), l(range(66, 130)))
+PYEOF
+for f in split split_reversed; do
+  "$FS" run configs/sauvage/fig1.yaml --out "$H/$f" --set "input.curve=$H/$f.obj" --set 'sweep={}' 2>/dev/null ||
+    fail "a curve in two 'l' statements ($f.obj) was not edited"
+  CASES=$((CASES + 1))
+  grep -q ",converged," "$H/$f/runs.csv" || fail "$f.obj: the edit did not converge"
+  [ "$(grep -c '^v ' "$H/$f/final.obj")" -eq 129 ] || fail "$f.obj: the result is not the whole curve of 129 points"
+done
+hostile 2 "two_curves.obj:131: this polyline (vertices 66 to 129) does not continue the curve of line(s) 130, which ends at vertex 64" -- \
+  "$FS" run configs/sauvage/fig1.yaml --dry-run --set "input.curve=$H/two_curves.obj"
+# Results too large to stay finite are refused, naming where, and nothing is written (they were
+# written as inf and nan, exit 0).
+hostile 2 "energy: the Hessian has a non-finite entry" -- "$FS" energy data/cow.off --alpha 1e308 --beta 1e308 --out "$H/inf.mtx"
+[ ! -e "$H/inf.mtx" ] || fail "a non-finite Hessian was written"
+# A cube with every coordinate 1e308 or 1.5e308: the vertex rule's sums overflow.
+$PY - "$H/huge_coordinates.obj" <<'PYEOF'
+import itertools, sys
+with open(sys.argv[1], "w") as f:
+    for p in itertools.product((1.0e308, 1.5e308), repeat=3):
+        f.write("v %r %r %r\n" % p)
+    f.write("f 1 2 4 3\nf 5 7 8 6\nf 1 5 6 2\nf 3 4 8 7\nf 1 3 7 5\nf 2 6 8 4\n")
+PYEOF
+hostile 2 "subdivide: level [12] has non-finite positions (vertex [0-9]*): the input's coordinates are too large" -- \
+  "$FS" subdivide "$H/huge_coordinates.obj" "$H/huge_subdivided.obj" --scheme catmull-clark --levels 2
+hostile 2 "subdivide: level [12] has non-finite positions" -- \
+  "$FS" subdivide "$H/huge_coordinates.obj" "$H/huge_subdivided.vtm" --scheme catmull-clark --levels 2
+[ -z "$(ls "$H" | grep huge_subdivided)" ] || fail "a refused subdivision left files: $(ls "$H" | grep huge_subdivided)"
+
 # --- configs ------------------------------------------------------------------------------
 cfg() { printf '%s\n' "$2" > "$H/$1.yaml"; echo "$H/$1.yaml"; }
 hostile 2 "key 'name' repeats the key of line 1" -- "$FS" run "$(cfg dup_key "name: a
@@ -206,6 +320,18 @@ hostile 2 "a \`defaults\` entry must be a file name" -- "$FS" run "$(cfg bad_def
 name: x")" --dry-run
 hostile 2 "include themselves" -- "$FS" run "$(cfg self_include "defaults: [self_include.yaml]
 name: x")" --dry-run
+# A second YAML document was ignored; a non-UTF-8 byte was an internal error (exit 1) after
+# config.resolved.yaml and vtk/ were written. Both are refused, by line, before --out is made.
+hostile 2 "two_documents.yaml:3: a second YAML document starts here" -- "$FS" run "$(cfg two_documents "defaults: [$PWD/$SMOKE]
+name: first
+---
+name: second")" --out "$H/two_documents_out"
+[ ! -e "$H/two_documents_out" ] || fail "a refused config made its output folder"
+printf 'defaults: [%s]\ndescription: caf\xe9 au lait\n' "$PWD/$SMOKE" > "$H/latin1.yaml"
+hostile 2 "latin1.yaml:2: byte 0xE9 at column 17 is not UTF-8" -- "$FS" run "$H/latin1.yaml" --out "$H/latin1_out"
+[ ! -e "$H/latin1_out" ] || fail "a config refused for its encoding made its output folder"
+hostile 2 "--set 'description':1: byte 0xE9" -- "$FS" run $SMOKE --set "description=caf$(printf '\xe9')" --out "$H/latin1_set"
+[ ! -e "$H/latin1_set" ] || fail "a --set refused for its encoding made its output folder"
 # A diamond of includes 12 deep, 4 wide: each file is loaded once (was exponential: a hang).
 for d in $(seq 0 12); do
   if [ "$d" -eq 12 ]; then printf 'name: deep\n' > "$H/level$d.yaml"
@@ -286,6 +412,22 @@ hostile 2 "--jobs" -- "$FS" run $SMOKE --jobs 0 --out "$H/j"
 hostile 2 "expected key.path=value" -- "$FS" run $SMOKE --set novalue
 hostile 2 "must be a plain folder name" -- "$FS" run $SMOKE --set 'name=../escape' --dry-run
 hostile 2 "must be a plain folder name" -- "$FS" run $SMOKE --set 'name=/abs/dir' --dry-run
+# Nothing is written outside --out: a symbolic link inside it (the lock, final/, vtk/, a table)
+# is refused by name before anything is written through it (the lock's target was truncated to
+# a PID even by a refused run; results landed in a linked final/ or vtk/).
+mkdir -p "$H/linked_lock" && printf 'keep\n' > "$H/lock_target" && ln -sfn "$H/lock_target" "$H/linked_lock/.lock"
+hostile 2 "linked_lock/.lock: a symbolic link inside the output folder" -- "$FS" run $SMOKE --out "$H/linked_lock"
+[ "$(cat "$H/lock_target")" = keep ] || fail "the target of a .lock link was written"
+touch "$H/linked_lock/runs.csv"  # a folder with results: the run is refused for it later, the lock first
+hostile 2 "linked_lock/.lock: a symbolic link" -- "$FS" run $SMOKE --out "$H/linked_lock"
+[ "$(cat "$H/lock_target")" = keep ] || fail "a refused run wrote the target of a .lock link"
+TWO_RUNS=(--set 'sweep={solver.tolerance: [1.0e-10, 1.0e-9]}')
+for sub in final vtk runs.csv; do
+  mkdir -p "$H/linked_$sub" "$H/outside_$sub"
+  if [ "$sub" = runs.csv ]; then ln -sfn "$H/outside_$sub/runs.csv" "$H/linked_$sub/$sub"; else ln -sfn "$H/outside_$sub" "$H/linked_$sub/$sub"; fi
+  hostile 2 "linked_$sub/$sub: a symbolic link inside the output folder" -- "$FS" run $SMOKE --out "$H/linked_$sub" "${TWO_RUNS[@]}"
+  [ -z "$(ls -A "$H/outside_$sub")" ] || fail "a run wrote through a linked $sub: $(ls -A "$H/outside_$sub")"
+done
 
 [ "$CASES" -ge 60 ] || fail "only $CASES hostile cases"
 echo "hostile_input: ok ($CASES cases)"

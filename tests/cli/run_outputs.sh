@@ -69,5 +69,8 @@ import numpy as np
 distinct = len(np.unique(np.round(vtk_to_numpy(overlay.GetPoints().GetData()), 12), axis=0))
 assert int(marked.sum()) == distinct, (marked.sum(), distinct)  # every constrained vertex, the curve's included
 assert overlay.GetNumberOfLines() == 1, "the curve's chain is not in the overlay"
+# ParaView draws cells, not bare points: each constraint point (kind >= 0) is a vertex cell.
+kind = vtk_to_numpy(overlay.GetPointData().GetArray("kind"))
+assert overlay.GetNumberOfVerts() == int((kind >= 0).sum()) > 0, (overlay.GetNumberOfVerts(), int((kind >= 0).sum()))
 PYEOF
 echo "run_outputs (subdivision): ok"

@@ -172,7 +172,10 @@ void Config::check_no_unknown_keys() const {
     unknown_keys_->insert(unknown_keys_->end(), found.begin(), found.end());
     return;
   }
-  if (collects_) found.insert(found.begin(), unknown_keys_->begin(), unknown_keys_->end());
+  if (collects_) {  // reported here, so parse_config() does not add them to this error again
+    found.insert(found.begin(), unknown_keys_->begin(), unknown_keys_->end());
+    unknown_keys_->clear();
+  }
   if (found.empty()) return;
   if (found.size() == 1) throw InvalidConfig(found.front());
   std::string msg = std::to_string(found.size()) + " unknown keys:";

@@ -63,7 +63,7 @@ SweepSpace::SweepSpace(const YAML::Node& root) {
     for (const auto& kv : sweep) {
       const std::string key = key_of(kv.first, "sweep");
       if (key == "zip") continue;
-      axes_.push_back({{key}, {list_of(kv.second, key)}, {}, {}});
+      axes_.push_back({{key}, {list_of(kv.second, key)}, {}, {}, {}, {}});
     }
   }
   for (Axis& a : axes_) {
@@ -111,7 +111,12 @@ void SweepSpace::prepare_hash_text() {
   for (std::size_t at = text.find(kSlot); at != std::string::npos; at = text.find(kSlot, from)) {
     pieces.push_back(text.substr(from, at - from));
     const std::size_t number = at + std::char_traits<char>::length(kSlot), end = text.find('_', number);
-    order.push_back(slots.at(std::stoul(text.substr(number, end - number))));
+    const std::string digits = text.substr(number, end == std::string::npos ? std::string::npos : end - number);
+    // The marker's text in the config itself (not ours): emit per point.
+    if (end == std::string::npos || digits.empty() || digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos ||
+        std::stoul(digits) >= slots.size())
+      return;
+    order.push_back(slots[std::stoul(digits)]);
     from = end + 1;
   }
   pieces.push_back(text.substr(from));

@@ -430,4 +430,7 @@ for sub in final vtk runs.csv; do
 done
 
 [ "$CASES" -ge 60 ] || fail "only $CASES hostile cases"
+# The README quotes this suite's count: it must be the count the suite ran.
+grep -q "hostile_input.sh\`, $CASES hostile inputs" README.md ||
+  fail "README.md's hostile-input count is not this suite's $CASES: update it"
 echo "hostile_input: ok ($CASES cases)"

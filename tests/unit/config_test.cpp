@@ -180,6 +180,7 @@ TEST_CASE("every unknown key of a run's config in one error, with the likely mis
   } catch (const InvalidConfig& e) {
     const std::string m = e.what();
     CHECK_THAT(m, Contains("3 unknown keys"));
+    CHECK_THAT(m, !Contains("also"));  // each named once
     CHECK_THAT(m, Contains("solvr: unknown key (did you mean solver?"));
     CHECK_THAT(m, Contains("input.levls: unknown key (did you mean input.levels?"));
     CHECK_THAT(m, Contains("energy[0].wieght: unknown key (did you mean energy[0].weight?"));

@@ -199,7 +199,8 @@ TEST_CASE("malformed sheet files are refused naming the file, the line and the p
       {good.substr(0, good.rfind('\n', good.size() / 2) + 1), "file truncated or count wrong"},
       {good.substr(0, good.rfind('\n', good.size() - 2) + 1), "control point " + std::to_string(sheet.surface().dof_count()) + " of " +
                                                       std::to_string(sheet.surface().dof_count()) + ": file ends early"},
-      {replace_line(good, "spans", "spans 1024 1024"), "more than the"},
+      {replace_line(good, "spans", "spans 512 512"), "more than the"},  // the largest base, in a small file
+      {replace_line(good, "spans", "spans 1024 1024"), "above the limit of 262144"},
       {replace_line(good, "spans", "spans 0 4"), "spans_u is 0, outside"},
       {replace_line(good, "layers", "layers 14"), "the layer count is 14, outside [1, 13]"},
   };

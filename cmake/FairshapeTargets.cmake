@@ -71,6 +71,6 @@ function(fairshape_add_test name)
   # --warn NoTests: a test whose name ctest cannot pass back to Catch (a ';' splits it) would
   # otherwise match nothing and pass without running.
   catch_discover_tests(${name} PROPERTIES LABELS "${ARG_LABELS}" TIMEOUT ${FAIRSHAPE_TEST_TIMEOUT}
-                       EXTRA_ARGS --warn NoTests
+                       TEST_SPEC ${FAIRSHAPE_CATCH_TEST_SPEC} EXTRA_ARGS --warn NoTests
                        WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
 endfunction()

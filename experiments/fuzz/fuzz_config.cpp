@@ -1,7 +1,7 @@
 // libFuzzer target for the config layer's parsing: any text must either load — structure
 // checked (repeated and non-scalar keys), YAML parsed, every key read through Config — or
 // raise a fairshape::Error; never a YAML exception, a crash or a hang.
-//   build-fuzz/bin/fuzz_config -max_total_time=30 tests/fuzz/config
+//   build-sanitize/bin/fuzz_config -max_total_time=30 tests/fuzz/config
 #include <cstddef>
 #include <cstdint>
 #include <string>

@@ -1,6 +1,6 @@
 // libFuzzer target for one mesh reader, chosen at compile time (FAIRSHAPE_FUZZ_FORMAT = 0 OBJ,
 // 1 OFF, 2 PLY). Any input must either parse into a valid mesh or raise a fairshape::Error.
-//   cmake --preset fuzz && cmake --build build-fuzz && build-fuzz/bin/fuzz_read_off -max_total_time=60
+//   cmake --preset sanitize && cmake --build build-sanitize && build-sanitize/bin/fuzz_read_off -max_total_time=60
 #include <cstddef>
 #include <cstdint>
 #include <string_view>

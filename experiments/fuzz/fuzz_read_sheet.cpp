@@ -1,7 +1,7 @@
 // libFuzzer target for the sheet-file reader (bspline/sheet_file.h): any text must either read
 // as a sheet — which then evaluates and saves again — or raise a fairshape::Error; never a
 // crash, a hang or a huge allocation from a header's counts.
-//   build-fuzz/bin/fuzz_read_sheet -max_total_time=30 tests/fuzz/sheet
+//   build-sanitize/bin/fuzz_read_sheet -max_total_time=30 tests/fuzz/sheet
 #include <cstddef>
 #include <cstdint>
 #include <sstream>

@@ -1,6 +1,6 @@
 // libFuzzer target for the VTK XML polydata reader: any bytes, written to a file (VTK reads
 // files), must either give a valid mesh or raise a fairshape::Error.
-//   build-fuzz/bin/fuzz_read_vtp -max_total_time=30 tests/fuzz/vtp
+//   build-sanitize/bin/fuzz_read_vtp -max_total_time=30 tests/fuzz/vtp
 #include <unistd.h>
 
 #include <cstddef>

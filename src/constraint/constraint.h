@@ -53,6 +53,7 @@ struct PlacedCurve {
   bool closed = false;
   std::string label;
   std::vector<SurfacePoint> samples = {};  // placement limit_points: the curve's points on the limit surface
+  std::string note = {};  // how it was placed when that differs from what was asked (a run's message says it)
 };
 
 struct DesignConstraints {

@@ -49,10 +49,36 @@ class CurveConstraint : public Constraint {
 
   void add_on_surface(const LevelMeshes& mesh_at, int finest, const SubdivisionOptions& rules,
                       DesignConstraints& out) const override {
-    if (!o_.limit_points) return add_to(mesh_at, finest, out);
+    std::string no_chain;
+    if (!o_.limit_points && snap(mesh_at, finest, out, &no_chain)) return;
+    // Snapping found no chain of vertices along the curve on any level it may use (on a remeshed
+    // scan's finest level the vertices rarely line up): the curve is met exactly on the finest
+    // level's limit surface instead, and the run's message says so (papers/boier-martin/README.md,
+    // "Curves on the finest level").
     // The surface the designer sees is the finest level's limit: the points go there unless
     // `level` names another level (whose limit surface they then lie on).
-    const int level = resolve_level(o_.level_given ? o_.first_level : -1, finest, who_);
+    const int level = o_.limit_points ? resolve_level(o_.level_given ? o_.first_level : -1, finest, who_) : finest;
+    place_on_limit_surface(mesh_at, finest, rules, level, out);
+    if (!o_.limit_points)
+      out.curves.back().note = who_ + ": no level from " + std::to_string(resolve_level(o_.first_level, finest, who_)) +
+                               " to " + std::to_string(finest) + " has a chain of snapped vertices (" + no_chain +
+                               "), so it is placed at points of the finest level's limit surface (placement: limit_points)";
+  }
+
+  void add_to(const LevelMeshes& mesh_at, int finest, DesignConstraints& out) const override {
+    if (o_.limit_points)
+      throw InvalidInput(who_ + ": placement limit_points needs the subdivision rules (add_on_surface)");
+    std::string why;
+    if (!snap(mesh_at, finest, out, &why))
+      throw InvalidInput(who_ + ": no level from " + std::to_string(resolve_level(o_.first_level, finest, who_)) + " to " +
+                         std::to_string(finest) + " has a chain of vertices along the curve (" + why +
+                         "); use placement: limit_points (exact points of the limit surface, any level), draw the curve "
+                         "through finer features, add levels, or raise snap_ratio");
+  }
+
+ private:
+  void place_on_limit_surface(const LevelMeshes& mesh_at, int finest, const SubdivisionOptions& rules, int level,
+                              DesignConstraints& out) const {
     const SurfaceMesh& m = mesh_at(level);
     const LimitEvaluator evaluator(m, rules);
     const SurfaceMesh& fine = mesh_at(finest);
@@ -66,9 +92,9 @@ class CurveConstraint : public Constraint {
     out.curves.push_back({level, {}, o_.closed, who_, c.points});
   }
 
-  void add_to(const LevelMeshes& mesh_at, int finest, DesignConstraints& out) const override {
-    if (o_.limit_points)
-      throw InvalidInput(who_ + ": placement limit_points needs the subdivision rules (add_on_surface)");
+  // Vertices snapped onto the curve on the first level from `level` where they form a chain
+  // (Appendix); false, with the last level's reason in `why`, when none does.
+  bool snap(const LevelMeshes& mesh_at, int finest, DesignConstraints& out, std::string* why_none) const {
     const int first = resolve_level(o_.first_level, finest, who_);
     // "Leaves the surface" is judged on the finest level, the surface the designer sees.
     const SurfaceMesh& fine = mesh_at(finest);
@@ -89,14 +115,12 @@ class CurveConstraint : public Constraint {
         out.points.push_back({level, chain->vertices[i], false, target - m.position(chain->vertices[i]), who_});
       }
       out.curves.push_back({level, chain->vertices, o_.closed, who_});
-      return;
+      return true;
     }
-    throw InvalidInput(who_ + ": no level from " + std::to_string(first) + " to " + std::to_string(finest) +
-                       " has a chain of vertices along the curve (" + why +
-                       "); draw the curve through finer features, add levels, or raise snap_ratio");
+    *why_none = why;
+    return false;
   }
 
- private:
   // The motion of the control polygon at parameter u (segment + fraction).
   Vec3 displacement(double u, const Vec3& centroid) const {
     const Eigen::Index n = o_.points.rows();

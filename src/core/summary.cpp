@@ -7,7 +7,7 @@ namespace fairshape {
 const std::vector<std::string>& termination_names() {
   static const std::vector<std::string> names{"converged",         "energy_stalled", "schedule_completed",
                                               "max_iterations",    "constraints_unmet", "ill_conditioned",   "numerical_failure",
-                                              "not_a_minimum",     "stalled",           "infeasible",
+                                              "not_a_minimum",     "folded",            "stalled",           "infeasible",
                                               "invalid_input",     "output_failed",     "crashed",
                                               "out_of_memory"};
   return names;

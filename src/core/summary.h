@@ -21,6 +21,10 @@ namespace fairshape {
 //   not_a_minimum      — constraints and stationarity met, but the point is a constrained saddle:
 //                        the Lagrangian's Hessian has negative curvature on the constraints'
 //                        tangent space (a step along it, projected back, lowers the objective);
+//   folded             — the constraints are met, but the result turns the surface over: faces
+//                        flipped against the surface they came from, or a normal constraint
+//                        met by the reverse of its target (its rows, tangents ⊥ N, hold for −N
+//                        as well);
 //   stalled            — an iterative solve stopped making progress (no decrease of its measure
 //                        over the stall window) before its tolerance: more iterations would not help;
 //   infeasible         — no point satisfying the constraints was found from the start (the
@@ -41,6 +45,7 @@ enum class Termination {
   IllConditioned,
   NumericalFailure,
   NotAMinimum,
+  Folded,
   Stalled,
   Infeasible,
   InvalidInput,

@@ -27,6 +27,11 @@ namespace fairshape {
 struct Influence {
   static constexpr int kEditLevel = -1;   // level: the run's edit level
   static constexpr int kWholeLevel = -1;  // rings: every vertex of the level may move
+  //! rings: as many as the edit needs — from kFirstAutoRings, doubled while the pass's result
+  //! folds the surface (a region narrower than the handle's move must bend over: measured in
+  //! papers/boier-martin/README.md, "Regions that fold").
+  static constexpr int kAutoRings = -2;
+  static constexpr int kFirstAutoRings = 2;
   int level = kEditLevel;
   int rings = kWholeLevel;
   //! A fixed constraint has nothing to spread: it is held in every pass, with no region.

@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 
 #include "fairshape/constraint/crease_normals.h"
+#include "fairshape/mesh/orientation.h"
 #include "fairshape/energy/divided_differences.h"
 #include "fairshape/subdivision/limit.h"
 
@@ -245,6 +246,22 @@ Vec3 estimated_normal(const SurfaceMesh& D_mesh, const MatrixX3& positions, int 
     for (Eigen::SparseVector<double>::InnerIterator e(rows[r]); e; ++e)
       q[r] += e.value() * positions.row(e.index()).transpose();
   return q[0].cross(q[1]).normalized();
+}
+
+Vec3 achieved_normal(const SurfaceMesh& mesh, const MatrixX3& positions, const NormalConstraint& nc) {
+  const auto rows = nc.surface.empty() ? tangent_rows(mesh, nc.vertex) : derivative_rows(mesh, nc.surface);
+  const auto cross_at = [&rows](const MatrixX3& P) {
+    Vec3 q[2] = {Vec3::Zero(), Vec3::Zero()};
+    for (int r = 0; r < 2; ++r)
+      for (Eigen::SparseVector<double>::InnerIterator e(rows[r]); e; ++e) q[r] += e.value() * P.row(e.index()).transpose();
+    return Vec3(q[0].cross(q[1]));
+  };
+  // The tangents' order is the local fit's, not the faces': orient by the rest surface.
+  const Vec3 faces = nc.surface.empty() ? area_normal(mesh, mesh.positions(), nc.vertex)
+                                        : vector_area(mesh, mesh.positions(), nc.surface.at.face);
+  const double sign = cross_at(mesh.positions()).dot(faces) < 0 ? -1.0 : 1.0;
+  const Vec3 n = sign * cross_at(positions);
+  return n.norm() > 0 ? Vec3(n.normalized()) : Vec3::Zero();
 }
 
 LinearConstraints propagate_constraints(const MultiresSurface& h, int l, const std::vector<PointConstraint>& cs,

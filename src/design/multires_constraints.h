@@ -56,4 +56,10 @@ void require_fixed_position(const LinearConstraints& constraints);
 //! applied to `positions`: Q_u × Q_v normalized — what a normal constraint prescribes.
 Vec3 estimated_normal(const SurfaceMesh& D_mesh, const MatrixX3& positions, int vertex);
 
+//! The unit normal that normal constraint `nc`'s rows see at `positions` of its level (`mesh`
+//! at rest): Q_u × Q_v of its tangents (a surface point's ∂S/∂u × ∂S/∂v), oriented like the
+//! faces around it at rest — so a result that met the rows with the reverse of the target
+//! shows a normal opposite to it. Zero where the tangents are parallel.
+Vec3 achieved_normal(const SurfaceMesh& mesh, const MatrixX3& positions, const NormalConstraint& nc);
+
 }  // namespace fairshape

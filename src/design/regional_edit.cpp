@@ -11,6 +11,7 @@
 #include "fairshape/core/error.h"
 #include "fairshape/core/timer.h"
 #include "fairshape/design/multires_constraints.h"
+#include "fairshape/mesh/orientation.h"
 #include "fairshape/problem/anderson_acceleration.h"
 #include "fairshape/problem/constrained_system.h"
 #include "fairshape/problem/least_squares.h"
@@ -93,9 +94,10 @@ DesignConstraints imposed_in_pass(const std::vector<PlacedTerm>& terms, int k, i
   return out;
 }
 
-// The level-k vertices pass k may move (sorted), or nullopt for the whole level.
+// The level-k vertices pass k may move (sorted), or nullopt for the whole level; a constraint
+// with influence_rings auto grows by `auto_rings` rings.
 std::optional<std::vector<int>> pass_unknowns(const std::vector<PlacedTerm>& terms, const MultiresSurface& h, int k,
-                                              int edit_level) {
+                                              int edit_level, int auto_rings) {
   std::vector<int> region;
   const int n = h.mesh(k).n_vertices();
   for (const auto& t : terms) {
@@ -104,12 +106,21 @@ std::optional<std::vector<int>> pass_unknowns(const std::vector<PlacedTerm>& ter
     const LinearConstraints rows = propagate_constraints(h, k, t.placed);
     std::vector<int> seeds = reached_columns(rows.A);
     for (int c : reached_columns(rows.A_coupled)) seeds.push_back(c % n);  // [Δx; Δy; Δz] columns
-    const std::vector<int> grown = grow_rings(h.mesh(k), seeds, t.influence.rings);
+    const int rings = t.influence.rings == Influence::kAutoRings ? auto_rings : t.influence.rings;
+    const std::vector<int> grown = grow_rings(h.mesh(k), seeds, rings);
     region.insert(region.end(), grown.begin(), grown.end());
   }
   std::sort(region.begin(), region.end());
   region.erase(std::unique(region.begin(), region.end()), region.end());
   return region;
+}
+
+// True when pass k has a constraint whose rings grow until its result does not fold.
+bool grows_rings(const std::vector<PlacedTerm>& terms, int k, int edit_level) {
+  for (const auto& t : terms)
+    if (!t.influence.held && t.influence.level_or(edit_level) == k && t.influence.rings == Influence::kAutoRings)
+      return true;
+  return false;
 }
 
 // True when pass k moves its whole level (pass_unknowns gives nullopt).
@@ -281,13 +292,14 @@ class LadderRound : public RoundSolver {
 // linear rows' answer by a little — the next round, its targets measured again, takes that up.
 RegionalPass solve_pass(const std::vector<PlacedTerm>& placed, const EditTerms& energies_only, const MultiresSurface& rest,
                         int k, int edit_level, ConstraintMode mode, Solver& solver, Backend backend,
-                        const Config& qp_options, double tolerance, const PassLadder* ladder, MultiresSurface& edited) {
+                        const Config& qp_options, double tolerance, const PassLadder* ladder, int auto_rings,
+                        MultiresSurface& edited) {
   constexpr int kMaxRounds = 30, kStallRounds = 3;
   RegionalPass pass;
   pass.level = k;
   pass.level_vertices = rest.mesh(k).n_vertices();
   const DesignConstraints imposed = imposed_in_pass(placed, k, edit_level);
-  const std::optional<std::vector<int>> region = pass_unknowns(placed, rest, k, edit_level);
+  const std::optional<std::vector<int>> region = pass_unknowns(placed, rest, k, edit_level, auto_rings);
   Eigen::VectorXi on_level = Eigen::VectorXi::Ones(pass.level_vertices);
   if (region) {
     on_level.setZero();
@@ -304,6 +316,7 @@ RegionalPass solve_pass(const std::vector<PlacedTerm>& placed, const EditTerms& 
                      std::to_string(std::min(ladder->coarse_level, k));
   } else {
     if (ladder) pass.solved_by = "direct";
+    if (grows_rings(placed, k, edit_level)) pass.solved_by += (pass.solved_by.empty() ? "" : ", ") + std::to_string(auto_rings) + " rings (auto)";
     DesignConstraints none;
     EditProblem full = assemble_edit_problem(energies_only, rest, k, none);
     full.constraints = propagate_constraints(rest, k, imposed);  // the rows; each round measures its targets
@@ -361,6 +374,36 @@ RegionalPass solve_pass(const std::vector<PlacedTerm>& placed, const EditTerms& 
   return pass;
 }
 
+// Pass k with influence_rings auto: solved on 2 rings, then 4, 8, … while its result folds the
+// surface (a face turned against the rest surface), up to the whole level. A region narrower
+// than the handle's move has to bend back on itself between the handle and its fixed border
+// (measured: papers/boier-martin/README.md, "Regions that fold"); the rings that fit are found
+// by looking at the result, which costs one pass on a small region per doubling.
+RegionalPass solve_unfolded_pass(const std::vector<PlacedTerm>& placed, const EditTerms& energies_only,
+                                 const MultiresSurface& rest, int k, int edit_level, ConstraintMode mode, Solver& solver,
+                                 Backend backend, const Config& qp_options, double tolerance, const PassLadder* ladder,
+                                 MultiresSurface& edited) {
+  const MatrixX3 before = edited.mesh(k).positions();
+  const int finest = rest.levels();
+  const bool grows = grows_rings(placed, k, edit_level);
+  // Folds an earlier pass left are that pass's: this one grows only for the folds it adds.
+  const std::size_t folds_before = grows ? flipped_faces(rest.mesh(finest), edited.mesh(finest).positions()).flipped.size() : 0;
+  double discarded_analyze_s = 0, discarded_solve_s = 0;  // the attempts that folded cost time too
+  for (int rings = Influence::kFirstAutoRings;; rings *= 2) {
+    RegionalPass pass = solve_pass(placed, energies_only, rest, k, edit_level, mode, solver, backend, qp_options,
+                                   tolerance, ladder, rings, edited);
+    pass.analyze_s += discarded_analyze_s;
+    pass.solve_s += discarded_solve_s;
+    if (!grows || !is_success(pass.summary.termination) || pass.unknowns == pass.level_vertices ||
+        flipped_faces(rest.mesh(finest), edited.mesh(finest).positions()).flipped.size() <= folds_before)
+      return pass;
+    discarded_analyze_s = pass.analyze_s;
+    discarded_solve_s = pass.solve_s;
+    edited.set_level_positions(k, before);  // undone: level k as it was, the finer levels re-synthesized from it
+    edited.synthesize_from(k, DetailSpace::Local);
+  }
+}
+
 }  // namespace
 
 bool is_regional(const EditTerms& terms) {
@@ -377,7 +420,8 @@ void check_regional_edit(const EditTerms& terms, const MultiresSurface& h, int e
     if (!ladder && !t.influence.held && t.influence.rings != Influence::kWholeLevel && mode == ConstraintMode::Paper &&
         solver.uses_levels())
       throw InvalidInput(t.label + ": a bounded region of influence (influence_rings " +
-                         std::to_string(t.influence.rings) + ") is solved on its own vertices, but the solver needs "
+                         (t.influence.rings == Influence::kAutoRings ? std::string("auto") : std::to_string(t.influence.rings)) +
+                         ") is solved on its own vertices, but the solver needs "
                          "every vertex of the level (it is multilevel): use a direct or single-level solver, or a QP "
                          "constraint_mode");
   for (int k : pass_levels(placed, edit_level)) {
@@ -406,9 +450,8 @@ RegionalEditResult solve_regional_edit(const EditTerms& terms, const MultiresSur
                        rest.mesh(finest).positions().colwise().minCoeff()).norm();
   MultiresSurface baseline = rest;  // re-synthesized without an edit: what "did not move" means
   for (int k : pass_levels(placed, edit_level)) {
-    RegionalPass pass =
-        solve_pass(placed, energies_only, rest, k, edit_level, mode, solver, backend, qp_options, tolerance * size,
-                   ladder, out.edited);
+    RegionalPass pass = solve_unfolded_pass(placed, energies_only, rest, k, edit_level, mode, solver, backend,
+                                            qp_options, tolerance * size, ladder, out.edited);
     out.analyze_s += pass.analyze_s;
     out.solve_s += pass.solve_s;
     for (Eigen::Index v = 0; v < pass.reached.size(); ++v)

@@ -1,5 +1,7 @@
 #include "fairshape/experiment/run_basics.h"
 
+#include "fairshape/core/summary.h"
+
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -74,6 +76,13 @@ RunBasics read_run_basics(Config& root) {
   b.seed = root.get_int("seed", 0, 0, INT32_MAX, "random seed (runs without randomness ignore it)");
   b.threads = root.get_int("threads", 0, 0, 4096, "TBB threads for optimized back ends (0 = all cores)");
   (void)root.get_int("repeat", 1, 1, 1000, "timing repeats, run by the harness (every timing column from the median execution by time_s, solve_min_s the minimum)");
+  std::vector<std::string> outcomes{"success"};
+  for (const std::string& t : termination_names())
+    if (!is_success(termination_from_string(t))) outcomes.push_back(t);
+  (void)root.get_choice("expect", "success", outcomes,
+                        "the outcome the run is meant to show, checked by the harness: success, or the termination of a "
+                        "failure it demonstrates (Figure 2's thin plate without boundary constraints folds); any other "
+                        "outcome fails the run");
   b.implementation = root.get_enum("implementation", Backend::Optimized, backend_names(), "back end of every component");
   return b;
 }

@@ -246,6 +246,15 @@ bool succeeded(const MetricRow& m) {
   }
 }
 
+// The run delivered what its config's `expect` asks: success by default, or the named failure
+// of a run that demonstrates one (a row ending otherwise — even a success — is a failed run).
+bool as_expected(const MetricRow& m, const YAML::Node& config) {
+  const std::string expect = config["expect"] ? config["expect"].as<std::string>() : "success";
+  if (expect == "success") return succeeded(m);
+  const auto it = m.find("termination");
+  return it != m.end() && it->second == expect;
+}
+
 // No NaN or infinity in a row marked a success: a run whose metrics are not finite (an
 // offset of 1e308, a diverged iterate that still met its stopping rule) failed numerically.
 MetricRow with_finite_metrics(MetricRow m) {
@@ -305,9 +314,12 @@ int run_worker(const SweepOptions& opt) {
     commit_run(dir, plan.layout, keys, runs_row(plan, keys, m), tables);
     fs::remove(marker);
     const std::string& term = m.at("termination");
-    if (!succeeded(m)) {
+    if (!as_expected(m, p.config)) {
       ++failed;
-      std::cerr << prefix << "run " << p.run_id << " " << term << ": " << m.at("message") << "\n";
+      std::cerr << prefix << "run " << p.run_id << " " << term << (succeeded(m) ? " (expected " + p.config["expect"].as<std::string>() + ")" : "")
+                << ": " << m.at("message") << "\n";
+    } else if (!succeeded(m)) {
+      std::cerr << prefix << "run " << p.run_id << " " << term << ", as expected: " << m.at("message") << "\n";
     }
     const auto t = m.find("time_s");
     progress.finished(++finished, p.run_id, term, t == m.end() || t->second.empty() ? 0.0 : std::stod(t->second));

@@ -38,24 +38,31 @@ double height_at(const BaseCurve& c, double arc) {
 
 }  // namespace
 
-FeatureScale feature_scale(const TriangleSurface& surface, const BaseCurve& curve) {
-  FeatureScale worst;
-  if (curve.segments.empty()) return worst;
-  const SurfaceMesh& mesh = surface.mesh();
-  const double size = (mesh.positions().colwise().maxCoeff() - mesh.positions().colwise().minCoeff()).norm();
+namespace {
+
+// The curve's segment midpoints and the directions its heights displace them (sign(h) · normal).
+struct Probes {
+  MatrixX3 points, directions;
+};
+Probes probes_of(const TriangleSurface& surface, const BaseCurve& curve) {
   const Eigen::Index n = static_cast<Eigen::Index>(curve.segments.size());
-  MatrixX3 points(n, 3), directions(n, 3);
+  Probes p{MatrixX3(n, 3), MatrixX3(n, 3)};
   for (Eigen::Index i = 0; i < n; ++i) {
     const BaseSegment& seg = curve.segments[static_cast<std::size_t>(i)];
     const Vec3 normal = surface.normal(SurfacePoint{seg.face, 0.5 * (seg.bary_a + seg.bary_b)});
     const double h = height_at(curve, seg.arc_start + 0.5 * seg.length);
-    points.row(i) = (seg.a + 0.5 * seg.ab).transpose();
-    directions.row(i) = (h < 0 ? -normal : normal).transpose();
+    p.points.row(i) = (seg.a + 0.5 * seg.ab).transpose();
+    p.directions.row(i) = (h < 0 ? -normal : normal).transpose();
   }
-  // A crossing within a millionth of the size is the curve's own face (or a rounding twin).
-  const Eigen::VectorXd thickness = ClosestPointQuery(mesh).ray_distances(points, directions, 1e-6 * size);
+  return p;
+}
+
+double diagonal(const SurfaceMesh& m) { return (m.positions().colwise().maxCoeff() - m.positions().colwise().minCoeff()).norm(); }
+
+FeatureScale worst_point(const TriangleSurface& surface, const BaseCurve& curve, const Eigen::VectorXd& thickness, double size) {
+  FeatureScale worst;
   double worst_ratio = -1;
-  for (Eigen::Index i = 0; i < n; ++i) {
+  for (Eigen::Index i = 0; i < thickness.size(); ++i) {
     const BaseSegment& seg = curve.segments[static_cast<std::size_t>(i)];
     const double arc = seg.arc_start + 0.5 * seg.length;
     const double signed_h = height_at(curve, arc), h = std::abs(signed_h);
@@ -69,6 +76,31 @@ FeatureScale feature_scale(const TriangleSurface& surface, const BaseCurve& curv
     if (ratio > worst_ratio) worst_ratio = ratio, worst = {h, scale, arc, limit};
   }
   return worst;
+}
+
+}  // namespace
+
+FeatureScale feature_scale(const TriangleSurface& surface, const BaseCurve& curve) {
+  if (curve.segments.empty()) return {};
+  const double size = diagonal(surface.mesh());
+  const Probes p = probes_of(surface, curve);
+  // A crossing within a millionth of the size is the curve's own face (or a rounding twin).
+  const Eigen::VectorXd thickness = ClosestPointQuery(surface.mesh()).ray_distances(p.points, p.directions, 1e-6 * size);
+  return worst_point(surface, curve, thickness, size);
+}
+
+FeatureScale feature_scale(const TriangleSurface& surface, const BaseCurve& curve, const SurfaceMesh& whole) {
+  if (curve.segments.empty()) return {};
+  const double size = diagonal(whole);
+  const Probes p = probes_of(surface, curve);
+  // Crossings of the part of the level that is there (exactly what the whole level gives near
+  // the curve) ...
+  const Eigen::VectorXd near = ClosestPointQuery(surface.mesh()).ray_distances(p.points, p.directions, 1e-6 * size);
+  // ... and of the complete coarser surface, from the curve point's place on it: started from
+  // the drawn level's point, a ray would cross the coarser surface's own sheet within the sag.
+  const ClosestPointQuery on_whole(whole);
+  const Eigen::VectorXd far = on_whole.ray_distances(on_whole.closest_points(p.points), p.directions, 1e-6 * size);
+  return worst_point(surface, curve, near.cwiseMin(far), size);
 }
 
 std::string feature_scale_miss(const FeatureScale& s) {

@@ -32,6 +32,15 @@ struct FeatureScale {
 //! The point of `curve` where its height is largest against the local scale of `surface`.
 FeatureScale feature_scale(const TriangleSurface& surface, const BaseCurve& curve);
 
+//! The same where `surface` holds only part of the level (a sparse run's patch around the curve,
+//! adaptive_evaluation.h): the curvature on `surface` (the curve's faces and their neighbours are
+//! in it), the thickness the smaller of the crossings of `surface` and of `whole` — a complete
+//! surface of the model without features, coarser than `surface` (a sparse run's base mesh: a
+//! thin part away from the computed region is only there), the ray cast from the curve point's
+//! closest point on it — and the size that of `whole`. A coarser `whole` stands in for the
+//! surface within its sag of the drawn level (a fraction of its edges).
+FeatureScale feature_scale(const TriangleSurface& surface, const BaseCurve& curve, const SurfaceMesh& whole);
+
 //! "" when the feature fits, else "height |h| 5 exceeds the local scale 2.83 (size) at arc length 0.41".
 std::string feature_scale_miss(const FeatureScale& s);
 

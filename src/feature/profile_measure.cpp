@@ -207,12 +207,24 @@ ProfileMeasure measure_on_mesh(const SurfaceMesh& mesh, const MatrixX3& referenc
 
 std::string profile_miss(const char* where, const ProfileMeasure& m, const FeatureParams& q) { return miss(where, m, q); }
 
+ProfileGates profile_gates(ProfileTarget target) {
+  switch (target) {
+    case ProfileTarget::Limit: return {false, true};
+    case ProfileTarget::Finest: return {true, false};
+    case ProfileTarget::DrawnLevel: break;
+  }
+  return {true, true};
+}
+
+const char* gates_name(ProfileGates g) { return g.fine && g.limit ? "finest+limit" : g.fine ? "finest" : "limit"; }
+
 std::vector<FeatureMeasure> measure_features(FeaturedSurface& surface) {
   const MultiresSurface& result = surface.result();
   const std::vector<LevelOperator>& ops = surface.operators();
   const VisibleTargets& targets = surface.visible_targets();
   std::vector<FeatureMeasure> out;
   if (ops.empty()) return out;
+  const ProfileGates gates = profile_gates(surface.profile_target());
   const SurfaceMesh& finest = result.mesh(result.levels());
   const MatrixX3& achieved_fine = finest.positions();
   const MatrixX3 achieved_limit = targets.limit_matrix * achieved_fine;
@@ -237,8 +249,8 @@ std::vector<FeatureMeasure> measure_features(FeaturedSurface& surface) {
                            others, scale, below);
       f.limit = measure_one(finest, {targets.limit[k], targets.limit.back(), achieved_limit, limit_below}, *ops[k].surface,
                             curve, others, scale, below);
-      f.why = miss("finest level", f.fine, q);
-      if (f.why.empty()) f.why = miss("limit", f.limit, q);
+      if (gates.fine) f.why = miss("finest level", f.fine, q);
+      if (f.why.empty() && gates.limit) f.why = miss("limit", f.limit, q);
       // A profile met exactly is still not a fine feature when it dwarfs the surface there.
       const std::string too_tall = feature_scale_miss(feature_scale(*ops[k].surface, curve));
       if (!too_tall.empty()) f.why = too_tall + (f.why.empty() ? "" : "; " + f.why);

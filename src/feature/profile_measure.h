@@ -57,7 +57,21 @@ ProfileMeasure measure_on_mesh(const SurfaceMesh& mesh, const MatrixX3& referenc
 //! The first tolerance `m` misses ("<where>: profile error … > profile_tolerance …"), or "".
 std::string profile_miss(const char* where, const ProfileMeasure& m, const FeatureParams& q);
 
-//! One entry per feature, in id order. Evaluates the surface.
+//! Which measured surface decides a feature's verdict (README, "What level l means"): the one
+//! `profile_on` makes exact — `limit` the limit points, `finest` the finest control points. The
+//! other one differs from it by the Loop smoothing of the displacement, about h (h_L / r)²: it
+//! is reported (features.csv's columns) but does not decide. `drawn_level` makes neither exact
+//! (the paper's own surface, the drawn level's control points, is not what is seen), so both
+//! visible surfaces decide, as they did.
+struct ProfileGates {
+  bool fine = true, limit = true;
+};
+ProfileGates profile_gates(ProfileTarget target);
+//! features.csv's `gated_on`: "limit", "finest" or "finest+limit".
+const char* gates_name(ProfileGates g);
+
+//! One entry per feature, in id order, its verdict taken on the surface(s) profile_gates names for
+//! the surface's ProfileTarget and on the local scale (feature_scale.h). Evaluates the surface.
 std::vector<FeatureMeasure> measure_features(FeaturedSurface& surface);
 
 }  // namespace fairshape::feature

@@ -47,6 +47,11 @@ std::vector<SparseFeatureMeasure> measure_sparse_features(const AdaptiveEvaluati
   for (const LevelOperator& op : t.operators)
     for (const BaseCurve& c : op.curves) all.push_back(&c);
   const VisibleTargets& x = t.targets;
+  // The base mesh without features: the complete surface the thickness and size bounds of the
+  // local scale are taken on (the finer levels hold only the features' regions).
+  SparseLevel base = a.levels[0];
+  if (!a.unperturbed.empty() && a.unperturbed[0].rows() == base.positions.rows()) base.positions = a.unperturbed[0];
+  const SurfaceMesh whole = make_patch(base).mesh;
   for (std::size_t k = 0; k < t.operators.size(); ++k) {
     const LevelOperator& op = t.operators[k];
     const int below = levels - op.level;
@@ -57,6 +62,7 @@ std::vector<SparseFeatureMeasure> measure_sparse_features(const AdaptiveEvaluati
         if (c != &curve) others.push_back(c);
       SparseFeatureMeasure& m = out[static_cast<std::size_t>(op.ids[j])];
       m.fine = measure_on_mesh(mesh, x.fine[k], x.fine.back(), achieved, *op.surface, curve, others, below);
+      m.scale = feature_scale(*op.surface, curve, whole);
       if (const int missing = incomplete_near(mesh, t.complete, curve, measured_reach(*op.surface, curve)); missing > 0) {
         m.limit_note = "limit not measured: " + std::to_string(missing) +
                        " finest vertices near the curve lack part of their one-ring on the sparse level (its support "

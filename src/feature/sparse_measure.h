@@ -12,13 +12,16 @@
 // give or take twice the longest edge around them (a limit point lies in the hull of its
 // one-ring; a moved control point moves its ring's limit points) — the feature's support refined
 // completely. Where it is not, the limit is not measured and `limit_note` says why (a run
-// reports it in its row as a miss, never a silent NaN).
+// reports it in its row as a miss, never a silent NaN). The local scale of each feature
+// (feature_scale.h) is measured on what the run computed: the drawn level's patch around the
+// curve and the base mesh, which is whole.
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "fairshape/feature/adaptive_evaluation.h"
+#include "fairshape/feature/feature_scale.h"
 #include "fairshape/feature/profile_measure.h"
 
 namespace fairshape::feature {
@@ -27,6 +30,9 @@ struct SparseFeatureMeasure {
   ProfileMeasure fine, limit;
   bool limit_measured = false;
   std::string limit_note;  // why the limit is not measured ("" when it is)
+  //! The local-scale check (feature_scale.h) on the computed region: the curvature on the drawn
+  //! level's patch, the thickness against the patch and the whole base mesh, the base mesh's size.
+  FeatureScale scale;
 };
 
 //! One entry per feature of `a` (input order), drawn on any level: measured against the targets

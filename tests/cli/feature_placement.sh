@@ -3,11 +3,10 @@
 # before anything runs, each naming the feature and key.
 source "$(dirname "$0")/lib.sh"
 C=configs/khodakovsky-schroder/fig17.yaml
-# Its features are one to two finest edges wide: exact at the limit, their finest control points
-# within the looser tolerance the config states (exit 3, constraints_unmet, if they were not).
-rc=0; "$FS" run $C --out "$SCRATCH/fig17" 2>/dev/null || rc=$?
-[ "$rc" -eq 0 ] || [ "$rc" -eq 3 ] || fail "fig17 failed (exit $rc)"
-grep -q -E ',(converged|constraints_unmet),' "$SCRATCH/fig17/runs.csv" || fail "fig17 did not finish"
+# Its features are about three finest edges wide: exact at the limit (which decides), their height
+# at the curve within the looser tolerance the config states.
+"$FS" run $C --out "$SCRATCH/fig17" 2>/dev/null || fail "fig17 failed or missed the tolerance its config states"
+grep -q -E ',converged,' "$SCRATCH/fig17/runs.csv" || fail "fig17 did not converge"
 $PY - "$SCRATCH/fig17/features.csv" <<'PYEOF' || fail "fig17's features miss their profile at the limit"
 import csv, sys
 rows = list(csv.DictReader(open(sys.argv[1])))

@@ -33,9 +33,27 @@ cmp -s "$SCRATCH/fig11/final.obj" "$SCRATCH/ref/final.obj" || fail "reference an
 # The achieved profile per feature (issue 24); a feature outside its tolerance is no convergence.
 head -1 "$SCRATCH/fig11/features.csv" | grep -q "height_min_limit,.*profile_error_limit,within_tolerance" || fail "features.csv lacks the limit profile"
 [ "$(tail -n +2 "$SCRATCH/fig11/features.csv" | wc -l)" -eq 3 ] || fail "expected one features.csv row per feature"
-rc=0; "$FS" run $C --out "$SCRATCH/tight" --set input.levels=3 --set adaptive.enabled=false 2>/dev/null || rc=$?
+rc=0; "$FS" run $C --out "$SCRATCH/tight" --set input.levels=3 --set adaptive.enabled=false --set profile_on=drawn_level 2>/dev/null || rc=$?
 [ "$rc" -eq 3 ] || fail "a feature outside its tolerance must not converge (exit $rc)"
 grep -q "constraints_unmet,.*features miss their tolerance; first: feature 'ridge_a' (level 2), finest level: profile error" "$SCRATCH/tight/runs.csv" || fail "the miss is not named"
+# Only the surface profile_on names decides: with the profile exact at the limit (the default),
+# finest control points that miss by more than 2 % are reported, not a miss; with profile_on
+# finest the limit is reported and the finest level decides.
+# (At 3 levels, profile_on limit: the limit within 4.2 % of h, the finest control points off by up
+# to 5.8 %; profile_on finest: the finest within 4.1 %, the limit's height off by 8 %.)
+"$FS" run $C --out "$SCRATCH/gated" --set input.levels=3 --set adaptive.enabled=false --set feature_defaults.profile_tolerance=0.045 2>/dev/null || fail "a feature within its tolerance at the limit must converge, whatever the finest control points show"
+"$FS" run $C --out "$SCRATCH/gated_fine" --set input.levels=3 --set adaptive.enabled=false --set feature_defaults.profile_tolerance=0.045 --set profile_on=finest 2>/dev/null || fail "a feature within its tolerance on the finest level must converge, whatever the limit shows"
+$PY - "$SCRATCH/gated" "$SCRATCH/gated_fine" <<'PYEOF' || fail "gated runs: expected every feature within tolerance where profile_on makes it exact, the other surface's miss reported"
+import csv, sys
+ok = True
+for d, gate, other in zip(sys.argv[1:3], ("limit", "finest"), ("fine", "limit")):
+    r = list(csv.DictReader(open(d + "/runs.csv")))[0]
+    f = list(csv.DictReader(open(d + "/features.csv")))
+    ok = ok and r["termination"] == "converged" and r["features_within_tolerance"] == "3"
+    ok = ok and all(x["within_tolerance"] == "1" and x["gated_on"] == gate for x in f)
+    ok = ok and max(max(float(x["profile_error_" + other]), float(x["height_error_" + other])) for x in f) > 0.045  # reported, not gated
+sys.exit(0 if ok else 1)
+PYEOF
 expect_error 2 "features\[0\].profile_tolerance" -- "$FS" run $C --set features.0.profile_tolerance=2 --out "$SCRATCH/x"
 expect_error 2 "profile_on: unknown value 'coarse'" -- "$FS" run $C --set profile_on=coarse --out "$SCRATCH/x"
 # Features in the multiresolution editor (issue 24 part 4): Figure 15's detail-preserving edit
@@ -197,11 +215,50 @@ for target in limit finest; do
   compare_sparse "$SCRATCH/sparse3_$target" "$SCRATCH/sparse3_u_$target" || fail "sparse run (features on level 2 of 3, profile_on $target): expected the uniform run's features.csv and attachments"
 done
 # Placement tools on a level small enough to be computed whole (Figure 17: six curves placed by
-# sections, geodesics and a file on level 1 of the helmet): the uniform run's features.
-F17="configs/khodakovsky-schroder/fig17.yaml --set input.levels=2 --set output.vtk=none --set feature_defaults.profile_tolerance=0.9 --set feature_defaults.width_tolerance=0.9"
+# sections, geodesics and a file on level 1 of the helmet, at its 3 levels: at 2 its radii are
+# narrower than two finest edges and refused): the uniform run's features.
+F17="configs/khodakovsky-schroder/fig17.yaml --set input.levels=3 --set output.vtk=none --set feature_defaults.profile_tolerance=0.9 --set feature_defaults.width_tolerance=0.9"
 "$FS" run $F17 --out "$SCRATCH/sparse17" --set adaptive.evaluation=sparse 2>/dev/null || fail "sparse run with placement tools failed"
 "$FS" run $F17 --out "$SCRATCH/sparse17_u" 2>/dev/null || fail "uniform Figure 17 run failed"
 compare_sparse "$SCRATCH/sparse17" "$SCRATCH/sparse17_u" || fail "sparse run with placement tools: expected the uniform run's features.csv and attachments"
+# A feature taller than the surface's local scale is a miss in a sparse run as in a uniform one:
+# the scale is measured on what the sparse run computes (the drawn level's patch, the base mesh).
+for ev in sparse uniform; do
+  rc=0; "$FS" run $C --out "$SCRATCH/tall_$ev" --set input.levels=3 --set output.vtk=none --set feature_defaults.height=5 --set feature_defaults.profile_tolerance=0.2 --set feature_defaults.width_tolerance=0.5 --set adaptive.evaluation=$ev 2>/dev/null || rc=$?
+  [ "$rc" -eq 3 ] || fail "a feature taller than the local scale ($ev) must not succeed (exit $rc)"
+  $PY - "$SCRATCH/tall_$ev" <<'PYEOF' || fail "a feature taller than the local scale ($ev): expected within_tolerance 0 naming the scale"
+import csv, sys
+r = list(csv.DictReader(open(sys.argv[1] + "/runs.csv")))[0]
+f = list(csv.DictReader(open(sys.argv[1] + "/features.csv")))
+ok = r["termination"] == "constraints_unmet" and r["features_within_tolerance"] == "0" and "not checked" not in r["message"]
+# The two ridges take the default height 5 (the groove keeps its own, -0.04, and misses where they cross it).
+tall = [x for x in f if x["feature"] in ("ridge_a", "ridge_b")]
+ok = ok and len(f) == 3 and len(tall) == 2 and all(x["within_tolerance"] == "0" and "exceeds the local scale of the surface" in x["miss"] for x in tall)
+sys.exit(0 if ok else 1)
+PYEOF
+done
+# The same on a model the method was not tuned on: a groove of 0.2 cut into the knot's tube (its
+# radius of curvature 0.055 there), drawn on level 1 of 3 — converged, within tolerance, before.
+cat > "$SCRATCH/knot_tall.yaml" <<YAML
+name: knot_tall
+input: { mesh: $PWD/data/knot.off, levels: 3 }
+feature_defaults: { radius: 0.04, height: -0.2, quadratic: false, profile_tolerance: 0.9, width_tolerance: 0.9, max_turn_deg: 179 }
+features:
+  - { name: cut, level: 1, max_distance: 0.1, points: [[-0.178207, 0.0240985, 0.113362], [-0.16583, 0.0293945, 0.129887]] }
+output: { vtk: none }
+adaptive: { evaluation: sparse }
+YAML
+rc=0; "$FS" run "$SCRATCH/knot_tall.yaml" --out "$SCRATCH/knot_tall" 2>/dev/null || rc=$?
+[ "$rc" -eq 3 ] || fail "a groove deeper than the knot's tube (sparse) must not succeed (exit $rc)"
+grep -q "0,height |h| 0.2 exceeds the local scale of the surface 0.05.* (curvature)" "$SCRATCH/knot_tall/features.csv" || fail "the knot's groove: expected the local-scale miss in features.csv"
+# A feature narrower than two edges of its finest level is refused at load, naming the key,
+# its radius, the finest edge and what to change (the patch's level-3 edges are about 0.024).
+for ev in uniform sparse; do
+  expect_error 2 "features\[2\].radius: feature 'groove' is narrower than 2 edges of its finest level: its radius 0.03 against finest edges of about 0.02.* under the curve (level 3).*give a radius of at least 0.0.* or input.levels: 4" -- \
+    "$FS" run $C --set input.levels=3 --set output.vtk=none --set features.2.radius=0.03 --set adaptive.evaluation=$ev --out "$SCRATCH/x"
+done
+expect_error 2 "features\[0\].radius: feature 'ridge_a' is narrower than 2 edges of its finest level: its right side's radius (radius / left_right_ratio) 0.036" -- \
+  "$FS" run $C --set input.levels=3 --set features.0.left_right_ratio=5 --out "$SCRATCH/x"
 # What needs the whole hierarchy is refused with sparse, naming the key and the valid choices.
 expect_error 2 "output.vtk: with adaptive.evaluation: sparse no VTK is written" -- "$FS" run $C --set input.levels=2 --set profile_on=drawn_level --set adaptive.evaluation=sparse --out "$SCRATCH/x"
 expect_error 2 "features\[0\].section: the tool needs its whole level; level 1 has 4000 faces > adaptive.placement_max_faces 1000 with adaptive.evaluation: sparse (draw the curve on a coarser level, raise adaptive.placement_max_faces" -- "$FS" run $F17 --set adaptive.evaluation=sparse --set adaptive.placement_max_faces=1000 --out "$SCRATCH/x"

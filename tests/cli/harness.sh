@@ -118,13 +118,18 @@ assert key(sys.argv[1]) == key(sys.argv[2]), "merged iterations.csv differs from
 PYEOF
 expect_error 2 "holds another experiment" -- "$FS" merge "$SCRATCH/bad" "$SCRATCH/shard0" "$SCRATCH/replaced"
 
-# Outcomes: the energy rule stopping a run is a success; an unreached tolerance is not.
-"$FS" run $SMOKE --out "$SCRATCH/stalled" --set solver.type=gauss_seidel --set solver.tolerance=0 \
+# Outcomes: the energy rule stopping a run is a success; an unreached tolerance is not. The nose
+# moves a tenth of the smoke edit's: a few Gauss-Seidel sweeps leave the full edit's handle pulled
+# out alone, folding the faces around it — a fold, which no stopping rule makes a success.
+SMALL='constraints=[{type: fixed, region: {axis: x, from: 0.0, to: 0.3}}, {type: position, nearest: [0.5, 0.0, 0.0], offset: [0.015, 0.0, 0.008]}]'
+expect_error 3 "folded: .* faces flipped" -- "$FS" run $SMOKE --out "$SCRATCH/folded" --set solver.type=gauss_seidel \
+  --set solver.tolerance=0 --set solver.max_iterations=5
+"$FS" run $SMOKE --out "$SCRATCH/stalled" --set solver.type=gauss_seidel --set solver.tolerance=0 --set "$SMALL" \
   --set solver.energy_tolerance=1.0e-3 --set solver.max_iterations=100000 2>/dev/null || fail "energy_stalled exits non-zero"
 grep -q energy_stalled "$SCRATCH/stalled/runs.csv" || fail "no energy_stalled row"
 expect_error 3 "max_iterations" -- "$FS" run $SMOKE --out "$SCRATCH/unreached" --set solver.type=gauss_seidel \
   --set solver.tolerance=1.0e-12 --set solver.max_iterations=5
-"$FS" run $SMOKE --out "$SCRATCH/fixed" --set solver.type=gauss_seidel --set solver.tolerance=0 \
+"$FS" run $SMOKE --out "$SCRATCH/fixed" --set solver.type=gauss_seidel --set solver.tolerance=0 --set "$SMALL" \
   --set solver.max_iterations=5 2>/dev/null || fail "a fixed sweep count (the papers' rule) exits non-zero"
 grep -q schedule_completed "$SCRATCH/fixed/runs.csv" || fail "no schedule_completed row"
 expect_error 3 "max_iterations" -- "$FS" run configs/sauvage/fig3.yaml --out "$SCRATCH/curve" \

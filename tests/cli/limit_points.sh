@@ -28,10 +28,26 @@ assert overlay.GetNumberOfLines() == 1, "the curve is not in the overlay"
 line = overlay.GetCell(overlay.GetNumberOfCells() - 1)
 assert line.GetNumberOfPoints() == n, (line.GetNumberOfPoints(), n)
 PYEOF
-# A handle at the limit point nearest the nose, with a normal target there, exact mode.
+# The same curve with the default placement on the finest level, snapping only vertices within
+# 0.05 of their shortest edge: no chain of them lines up along it (as on a remeshed scan's finest
+# level), so it is placed on the finest level's limit surface, and the run says so.
+"$FS" run $C --out "$SCRATCH/default" "${HIER[@]}" --set 'constraints=[{type: fixed, region: {axis: x, from: 0.0, to: 0.1}},
+    {type: curve, level: 2, snap_ratio: 0.05, max_distance: 0.05, points: [[-0.235, 0.217, 0.0], [-0.052, 0.208, 0.0], [0.15, 0.215, 0.0]],
+     translation: [0.0, 0.05, 0.0]}]' 2>/dev/null || fail "a default-placement curve on the finest level"
+$PY - "$SCRATCH/default" "$SCRATCH/curve" <<'PYEOF'
+import csv, sys
+r = list(csv.DictReader(open(f"{sys.argv[1]}/runs.csv")))[0]
+asked = list(csv.DictReader(open(f"{sys.argv[2]}/runs.csv")))[0]
+assert r["termination"] == "converged", r
+assert "placed at points of the finest level's limit surface (placement: limit_points)" in r["message"], r["message"]
+assert float(r["constraint_violation"]) < 1e-9, r
+assert r["curve_points"] == asked["curve_points"], (r["curve_points"], asked["curve_points"])  # the same placement
+PYEOF
+# A handle at the limit point nearest the nose, with a normal target there, exact mode (tilted
+# up, [1, 0.3, 0], 2 faces beside it fold: reported folded, tests/cli/orientation.sh).
 "$FS" run $C --out "$SCRATCH/at" "${HIER[@]}" --set 'constraints=[{type: fixed, region: {axis: x, from: 0.0, to: 0.3}},
     {type: position, nearest_on_limit: [0.5, 0.0, 0.0], offset: [0.0, 0.05, 0.0]},
-    {type: normal, nearest_on_limit: [0.5, 0.0, 0.0], normal: [1, 0.3, 0]}]' 2>/dev/null \
+    {type: normal, nearest_on_limit: [0.5, 0.0, 0.0], normal: [1, -0.3, 0]}]' 2>/dev/null \
   || fail "a run with a handle and a normal at a limit point"
 grep -q ",converged," "$SCRATCH/at/runs.csv" || fail "the limit-point handle run did not converge"
 # Bad surface points: exit 2 at validation, naming the key and the valid range.

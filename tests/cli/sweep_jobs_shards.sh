@@ -12,7 +12,7 @@ ls "$SCRATCH"/jobs/final/*.obj | wc -l | grep -q 16 || fail "final meshes of a s
 # --filter keeps a subset; a --set on a sweep list replaces it.
 "$FS" run $CFG --out "$SCRATCH/filtered" --filter solver.max_iterations=200 2>/dev/null
 [ "$(data_rows "$SCRATCH/filtered/runs.csv")" -eq 4 ] || fail "--filter"
-"$FS" run $CFG --out "$SCRATCH/replaced" --set 'sweep.solver.max_iterations=[50]' 2>/dev/null
+"$FS" run $CFG --out "$SCRATCH/replaced" --set 'sweep.solver.max_iterations=[150]' 2>/dev/null
 [ "$(data_rows "$SCRATCH/replaced/runs.csv")" -eq 4 ] || fail "--set on a sweep list"
 # Tables of two experiments are not joined with nothing saying which row is which: refused,
 # naming the files and the differing keys (as merging their folders is). A table with no

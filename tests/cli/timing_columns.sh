@@ -47,13 +47,14 @@ for r in its:
 PYEOF
 rows_equal "$SCRATCH/jobs1/runs.csv" "$SCRATCH/jobs2/runs.csv" || fail "--jobs 2 rows differ from --jobs 1"
 
-# The energy of a thin plate of the surface's positions is the result's, a sum of squares.
-"$FS" run "$SMOKE" --out "$SCRATCH/plate" --set 'energy=[{type: surface_thin_plate}]' 2>/dev/null \
+# The energy of a thin plate of the surface's positions is the result's, a sum of squares (the
+# free front of the cow collapses under it, folding: Figure 2's failure, expected here).
+"$FS" run "$SMOKE" --out "$SCRATCH/plate" --set 'energy=[{type: surface_thin_plate}]' --set expect=folded 2>/dev/null \
   || fail "a thin-plate run"
 $PY - "$SCRATCH/plate/runs.csv" <<'PYEOF'
 import csv, sys
 r = list(csv.DictReader(open(sys.argv[1])))[0]
-assert r["termination"] == "converged", r
+assert r["termination"] == "folded", r
 assert float(r["energy"]) > 0, r["energy"]
 PYEOF
 

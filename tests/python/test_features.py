@@ -9,7 +9,7 @@ import pytest
 import fairshape
 from conftest import cli, obj_vertices
 
-DEFAULTS = dict(quadratic=True, profile_tolerance=0.06)  # fig14's feature_defaults
+DEFAULTS = dict(quadratic=True)  # fig14's feature_defaults
 FIG14 = [fairshape.feature([[-0.85, -0.3, 0.0813], [0.0, 0.05, -0.0002], [0.85, 0.3, 0.0813]], level=1, name="ridge",
                            radius=0.45, height=0.12, **DEFAULTS),
          fairshape.feature([[-0.5, -0.8, -0.0084], [-0.3, 0.0, 0.0108], [-0.45, 0.8, -0.0141]], level=3,

@@ -457,7 +457,7 @@ TEST_CASE("placement keys in a feature config: checked at load, errors name the 
           "[feature][placement]") {
   const std::vector<std::string> dirs = input_search_dirs(test::source_path("configs/khodakovsky-schroder/fig11.yaml"));
   const auto spec = [&](const std::string& feature) {
-    return FeatureRunSpec::from_config(YAML::Load("{name: t, input: {mesh: data/ks_patch.off, levels: 1}, "
+    return FeatureRunSpec::from_config(YAML::Load("{name: t, input: {mesh: data/ks_patch.off, levels: 2}, "
                                                   "feature_defaults: {radius: 0.1, height: 0.02}, features: [" +
                                                   feature + "]}"),
                                        dirs);
@@ -485,7 +485,8 @@ TEST_CASE("placement keys in a feature config: checked at load, errors name the 
                     Catch::Contains("give exactly one of"));
   CHECK_THROWS_WITH(spec("{name: f, polyline: no/such/file.obj}"), Catch::Contains("features[0].polyline"));
 
-  // Errors only the level can show come from placing the features, naming feature and key.
+  // Errors only the level can show come from placing the features, naming feature and key (two
+  // levels: at one the radius would span about one finest edge, refused as too narrow).
   FeatureRunSpec miss = spec("{name: rim, section: {point: [0, 0, 5], normal: [0, 0, 1]}}");
   CHECK_THROWS_WITH(placed_features(miss, feature_hierarchy(miss)),
                     Catch::Contains("feature 'rim' (features[0].section)") && Catch::Contains("misses the surface"));

@@ -249,7 +249,7 @@ TEST_CASE("point and normal constraints at (face, u, v) of the finest level are 
   }
 }
 
-TEST_CASE("a curve on the finest level of a remeshed cow is met on the limit surface", "[limit_points][design][curve]") {
+TEST_CASE("a curve on the finest level of a remeshed cow is met on the limit surface", "[limit_points][design][curve][slow]") {
   RemeshOptions ro;
   ro.base_faces = 200;
   ro.levels = 2;

@@ -27,7 +27,7 @@ using namespace fairshape;
 using Catch::Matchers::Contains;
 namespace fs = std::filesystem;
 
-TEST_CASE("every config under configs/ is one kind's, and each of its points validates", "[experiment][kinds]") {
+TEST_CASE("every config under configs/ is one kind's, and each of its points validates", "[experiment][kinds][slow]") {
   const auto kinds = make_run_kinds();
   std::set<std::string> names;
   for (const auto& k : kinds) CHECK(names.insert(k->name()).second);  // names are unique
@@ -70,7 +70,8 @@ TEST_CASE("_levels.vtm holds the details of the edited surface, analysed anew", 
     RunKind& kind = kind_of(p.config, kinds);
     RunTables tables;
     const MetricRow row = kind.execute(p.config, input_search_dirs(cfg), {dir.string(), p.run_id, false, &tables});
-    REQUIRE(row.at("termination") == "converged");
+    // The thin plate folds the surface where it fairs the details away, as the config expects.
+    REQUIRE(row.at("termination") == (i == 0 ? "folded" : "converged"));
     // The remesh made for the run is measured in its row.
     CHECK(std::stod(row.at("remesh_hausdorff")) > 0);
     CHECK(std::stod(row.at("remesh_hausdorff")) < 0.1);

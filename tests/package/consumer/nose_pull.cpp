@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
     const MultiresSurface h(read_mesh(argv[1]), SubdivisionOptions{}, 2, Backend::Optimized);
     const auto energy = make_stretch_bend({0.1, 1.0}, StretchBendOf::Deformation, Backend::Optimized);
     const auto back = prescribed_offset(VertexSelection::slab(0, 0.0, 0.3), Vec3::Zero());
-    const auto nose = prescribed_offset(VertexSelection::nearest({0.5, 0.0, 0.0}), {0.15, 0.0, 0.08});
+    const auto nose = prescribed_offset(VertexSelection::nearest({0.5, 0.0, 0.0}), {0.06, 0.0, 0.032});  // configs/smoke/cow_nose_pull.yaml's handle
     EditTerms terms;
     terms.energies = {{energy.get(), 1.0}};
     terms.constraints = {back.get(), nose.get()};

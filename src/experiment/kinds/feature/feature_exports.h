@@ -2,8 +2,11 @@
 // per-level feature displacements the paper keeps apart from the surface (Khodakovsky &
 // Schröder, §1.4: features live in the hierarchy as offsets of the level they are drawn on),
 // and each curve's attachment (face, barycentric coordinates) on its drawn level and every
-// finer one.
+// finer one, carried to where the feature is.
 #pragma once
+
+#include <map>
+#include <vector>
 
 #include "fairshape/experiment/run_outputs.h"
 #include "fairshape/feature/featured_surface.h"
@@ -14,11 +17,19 @@ namespace fairshape {
 //! level of the result, piecewise linearly).
 const TableSchema& feature_attachment_table();
 
-//! Feature `id`'s base curve followed to the finest level, on the result there (for drawing the
-//! curve on the surface it made).
-std::vector<Vec3> curve_on_finest_result(feature::FeaturedSurface& surface, int id);
+//! A curve's points on one level of the result: on its drawn level its own faces and coordinates,
+//! on finer levels carried to where the feature is (feature/curve_on_level.h).
+struct CurveOnLevel {
+  int level = 0;
+  std::vector<feature::SurfacePoint> at;
+  std::vector<Vec3> x;
+};
 
-//! Adds a row per curve point and level to attachments.csv.
+//! Every feature's curve on the finest level of the result, by id (for drawing it on the surface
+//! it made).
+std::map<int, std::vector<Vec3>> curves_on_finest_result(feature::FeaturedSurface& surface);
+
+//! Adds a row per curve point and level to attachments.csv: the drawn level and every finer one.
 void export_attachments(feature::FeaturedSurface& surface, const RunOutputs& out);
 
 //! levels/<run>_level<k>.vtp for every level k: the result there, with point arrays

@@ -16,6 +16,7 @@
 #include "fairshape/experiment/kinds/feature/feature_exports.h"
 #include "fairshape/experiment/components.h"
 #include "fairshape/experiment/kinds/feature/feature_steps.h"
+#include "fairshape/experiment/kinds/feature/feature_width_check.h"
 #include "fairshape/experiment/kinds/feature/sparse_run.h"
 #include "fairshape/core/memory.h"
 #include "fairshape/experiment/kinds/sheet/constraint_schedule.h"
@@ -245,7 +246,7 @@ const TableSchema& feature_profile_table() {
                               "height_min_fine", "height_max_fine", "width_left_fine", "width_right_fine", "height_error_fine",
                               "width_error_fine", "profile_error_fine", "height_min_limit", "height_max_limit",
                               "width_left_limit", "width_right_limit", "height_error_limit", "width_error_limit",
-                              "profile_error_limit", "within_tolerance", "miss"}};
+                              "profile_error_limit", "within_tolerance", "miss", "gated_on"}};
   return t;
 }
 
@@ -282,6 +283,7 @@ void place_feature(FeatureRunSpec& spec, const feature::FeaturedSurface& surface
     if (p.face < 0 || p.face >= surface.original().mesh(f.curve.level).n_faces())
       throw InvalidInput("feature '" + f.curve.name + "': face " + std::to_string(p.face) + " is not a face of level " +
                          std::to_string(f.curve.level));
+  check_feature_width(f, surface.original().mesh(0), spec.levels);
 }
 
 namespace {
@@ -321,6 +323,8 @@ namespace {
 // in runs.csv, and a feature outside its tolerance makes the run constraints_unmet, naming it.
 void report_profiles(feature::FeaturedSurface& surface, MetricRow& row, const RunOutputs& out) {
   const std::vector<feature::FeatureMeasure> measured = feature::measure_features(surface);
+  // Only the surface profile_on makes exact decides a verdict; the other is reported.
+  const char* gated_on = feature::gates_name(feature::profile_gates(surface.profile_target()));
   int within = 0;
   double fine = 0, limit = 0, height = 0, width = 0;
   std::string first_miss;
@@ -332,7 +336,7 @@ void report_profiles(feature::FeaturedSurface& surface, MetricRow& row, const Ru
                              num(a.height_min), num(a.height_max), num(a.width_left), num(a.width_right), num(a.height_error),
                              num(a.width_error), num(a.profile_error), num(b.height_min), num(b.height_max), num(b.width_left),
                              num(b.width_right), num(b.height_error), num(b.width_error), num(b.profile_error),
-                             f.within_tolerance ? "1" : "0", f.why});
+                             f.within_tolerance ? "1" : "0", f.why, gated_on});
     within += f.within_tolerance ? 1 : 0;
     fine = std::max(fine, a.profile_error), limit = std::max(limit, b.profile_error);
     height = std::max({height, a.height_error, b.height_error});
@@ -419,6 +423,7 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
     for (const auto& [id, f] : surface.features()) smallest = std::min(smallest, std::abs(f.params.height));
     if (std::isfinite(smallest) && smallest > 0)
       for (const std::vector<Vec3>& line : contour_lines(fine, norms, 0.01 * smallest)) drawn.add_outline(line);
+    const std::map<int, std::vector<Vec3>> on_finest = curves_on_finest_result(surface);
     for (const auto& [id, bc] : surface.base_curves()) {
       segments += static_cast<int>(bc.segments.size());
       // A closed curve's last segment ends at the first one's start: written once, as a loop.
@@ -427,7 +432,7 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
       if (!bc.closed) X.row(X.rows() - 1) = bc.segments.back().b.transpose();
       write_polyline(Polyline{X, bc.closed}, (fs::path(out.dir) / "curves" /
                                           (out.run_id + "_" + file_name_part(surface.features().at(id).name) + ".obj")).string());
-      drawn.add_curve(curve_on_finest_result(surface, id), bc.closed);
+      drawn.add_curve(on_finest.at(id), bc.closed);
     }
     if (spec.vtk) drawn.write((fs::path(out.dir) / "vtk" / (out.run_id + "_constraints.vtp")).string());
     row["segments"] = std::to_string(segments);

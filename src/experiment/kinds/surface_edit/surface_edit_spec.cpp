@@ -99,6 +99,21 @@ void read_energies(Config& root, const Components& c, Backend backend, SurfaceEd
 // influence_level / influence_rings of one constraint (Boier-Martin et al. §4.2, region of
 // influence: design/influence.h). A fixed constraint moves nothing, so it has no region: it is
 // held in every pass, and the keys are refused on it rather than ignored.
+int read_rings(const Config& k, const std::string& text) {
+  if (text == "auto") return Influence::kAutoRings;
+  std::size_t used = 0;
+  int rings = 0;
+  try {
+    rings = std::stoi(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || used == 0 || rings < -1 || rings > 1000)
+    throw InvalidConfig(k.key_path("influence_rings") + ": '" + text + "' is not a ring count (valid: 0..1000, -1 for "
+                        "the whole level, or auto)");
+  return rings;
+}
+
 Influence read_influence(Config& k, const std::string& type) {
   Influence i;
   i.held = type == "fixed";
@@ -109,12 +124,13 @@ Influence read_influence(Config& k, const std::string& type) {
   i.level = k.get_int("influence_level", Influence::kEditLevel, -1, 16,
                       "level the constraint is propagated to and solved on: its region of influence is coarse "
                       "(global) or fine (local) with it (-1: the edit level; must not be finer than `level`)");
-  // A level of its own bounds the region (2 rings) unless told otherwise; without either key
-  // the constraint is solved on the whole edit level, as before regions existed.
-  const int default_rings = i.level != Influence::kEditLevel ? 2 : Influence::kWholeLevel;
-  i.rings = k.get_int("influence_rings", default_rings, -1, 1000,
-                      "rings of the influence level's vertices around the constraint's rows that may move "
-                      "(-1: the whole level; default 2 when influence_level is given, else -1)");
+  // A level of its own bounds the region (auto: as many rings as keep the result unfolded)
+  // unless told otherwise; without either key the constraint is solved on the whole edit level.
+  const std::string rings = k.get<std::string>(
+      "influence_rings", i.level != Influence::kEditLevel ? "auto" : "-1",
+      "rings of the influence level's vertices around the constraint's rows that may move: a count 0..1000, "
+      "-1 (the whole level) or auto (from 2, doubled while the result folds; the default when influence_level is given)");
+  i.rings = read_rings(k, rings);
   if (i.held) i.level = Influence::kEditLevel, i.rings = Influence::kWholeLevel;
   return i;
 }

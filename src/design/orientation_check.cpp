@@ -1,0 +1,40 @@
+#include "fairshape/design/orientation_check.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "fairshape/design/multires_constraints.h"
+
+namespace fairshape {
+
+std::string OrientationCheck::describe() const {
+  std::ostringstream os;
+  os.precision(4);
+  if (!folds.flipped.empty()) os << "folded: " << folds.describe();
+  if (!reversed.empty()) {
+    os << (folds.flipped.empty() ? "folded: " : "; ") << "normal constraint" << (reversed.size() > 1 ? "s " : " ");
+    for (std::size_t i = 0; i < reversed.size(); ++i) os << (i ? ", " : "") << reversed[i];
+    os << " met by the reverse of the target (" << normal_error_deg << " degrees from it)";
+  }
+  return os.str();
+}
+
+OrientationCheck check_orientation(const MultiresSurface& rest, const MultiresSurface& edited,
+                                   const DesignConstraints& placed) {
+  OrientationCheck c;
+  const int finest = rest.levels();
+  c.folds = flipped_faces(rest.mesh(finest), edited.mesh(finest).positions());
+  for (const NormalConstraint& nc : placed.normals) {
+    const Vec3 n = achieved_normal(rest.mesh(nc.level), edited.mesh(nc.level).positions(), nc);
+    const double cosine = n.dot(nc.normal.normalized());
+    const double deg = std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / std::numbers::pi;
+    c.normal_error_deg = std::max(c.normal_error_deg, deg);
+    if (cosine < 0 && std::find(c.reversed.begin(), c.reversed.end(), nc.label) == c.reversed.end())
+      c.reversed.push_back(nc.label);
+  }
+  return c;
+}
+
+}  // namespace fairshape

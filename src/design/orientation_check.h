@@ -1,0 +1,30 @@
+// Whether an edit kept the surface's orientation, measured on its result (Boier-Martin et al.
+// §4.2; papers/boier-martin/README.md, "Folds and reversed normals"). The linear rows of a
+// normal constraint (Q_u · N = Q_v · N = 0) are met by −N as well as N, and no energy term
+// sees orientation, so a converged solve can answer with a surface turned over; a run is only
+// a success when this check finds neither a flipped face nor a reversed normal.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "fairshape/constraint/constraint.h"
+#include "fairshape/mesh/orientation.h"
+#include "fairshape/subdivision/multires_surface.h"
+
+namespace fairshape {
+
+struct OrientationCheck {
+  FoldReport folds;                   // the finest level, against the rest surface
+  double normal_error_deg = -1;       // the largest angle of an achieved normal from its target (−1: none)
+  std::vector<std::string> reversed;  // normal constraints met by their reverse (angle above 90°)
+  bool folded() const { return !folds.flipped.empty() || !reversed.empty(); }
+  //! What turned over, for a run's message ("" when nothing did).
+  std::string describe() const;
+};
+
+//! `edited` is `rest` with an edit applied (same levels and topology).
+OrientationCheck check_orientation(const MultiresSurface& rest, const MultiresSurface& edited,
+                                   const DesignConstraints& placed);
+
+}  // namespace fairshape

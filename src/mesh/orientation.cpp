@@ -1,0 +1,71 @@
+#include "fairshape/mesh/orientation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include <Eigen/Geometry>
+
+#include "fairshape/core/error.h"
+
+namespace fairshape {
+
+Vec3 vector_area(const SurfaceMesh& mesh, const MatrixX3& positions, int f) {
+  Vec3 sum = Vec3::Zero();
+  const int h0 = mesh.face_halfedge(f);
+  int h = h0;
+  do {
+    sum += positions.row(mesh.from_vertex(h)).transpose().cross(positions.row(mesh.to_vertex(h)).transpose());
+    h = mesh.next(h);
+  } while (h != h0);
+  return 0.5 * sum;
+}
+
+Vec3 area_normal(const SurfaceMesh& mesh, const MatrixX3& positions, int v) {
+  Vec3 n = Vec3::Zero();
+  for (int f : mesh.vertex_faces(v)) n += vector_area(mesh, positions, f);
+  return n;
+}
+
+std::string FoldReport::describe() const {
+  if (flipped.empty()) return "";
+  std::ostringstream os;
+  os.precision(4);
+  os << flipped.size() << " of " << faces << " faces flipped, around (" << center.x() << ", " << center.y() << ", "
+     << center.z() << ")";
+  return os.str();
+}
+
+FoldReport flipped_faces(const SurfaceMesh& mesh, const MatrixX3& result) {
+  if (result.rows() != mesh.n_vertices())
+    throw InvalidInput("fold check: " + std::to_string(result.rows()) + " positions for a mesh of " +
+                       std::to_string(mesh.n_vertices()) + " vertices");
+  FoldReport r;
+  const int n = mesh.n_faces();
+  std::vector<Vec3> rest(static_cast<std::size_t>(n));
+  double mean_area = 0;
+  for (int f = 0; f < n; ++f) mean_area += (rest[f] = vector_area(mesh, mesh.positions(), f)).norm();
+  if (n == 0 || !(mean_area > 0)) return r;
+  const double tiny = 1e-12 * mean_area / n;
+  double cos_largest = 1;
+  for (int f = 0; f < n; ++f) {
+    const Vec3 now = vector_area(mesh, result, f);
+    const double a = rest[f].norm(), b = now.norm();
+    if (!(a > tiny) || !(b > tiny)) continue;
+    ++r.faces;
+    const double c = rest[f].dot(now) / (a * b);
+    cos_largest = std::min(cos_largest, c);
+    if (c >= 0) continue;
+    r.flipped.push_back(f);
+    Vec3 centroid = Vec3::Zero();
+    const std::vector<int> corners = mesh.face_vertices(f);
+    for (int v : corners) centroid += result.row(v).transpose();
+    r.center += centroid / static_cast<double>(corners.size());
+  }
+  if (!r.flipped.empty()) r.center /= static_cast<double>(r.flipped.size());
+  r.largest_turn_deg = std::acos(std::clamp(cos_largest, -1.0, 1.0)) * 180.0 / std::numbers::pi;
+  return r;
+}
+
+}  // namespace fairshape

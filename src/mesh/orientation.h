@@ -1,0 +1,35 @@
+// Folds: where an edited surface turns over against the surface it was made from. A linear
+// solve can meet every constraint and still fold — normal rows (tangents ⊥ N) hold for −N as
+// well as N, and a small region asked to move far bends back on itself — so every surface run
+// looks at its result with this check (configs/README.md, "flipped_faces").
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "fairshape/mesh/surface_mesh.h"
+
+namespace fairshape {
+
+//! Half the sum of p_i × p_{i+1} over the corners of face f at `positions` (Newell): the face's
+//! normal scaled by its area, for planar and non-planar polygons alike.
+Vec3 vector_area(const SurfaceMesh& mesh, const MatrixX3& positions, int f);
+
+//! The area-weighted normal of the faces around vertex v at `positions` (zero where they cancel).
+Vec3 area_normal(const SurfaceMesh& mesh, const MatrixX3& positions, int v);
+
+struct FoldReport {
+  int faces = 0;                 // faces compared (those with an area on both surfaces)
+  std::vector<int> flipped;      // faces whose vector area points against their rest one's
+  Vec3 center = Vec3::Zero();    // the mean centroid of the flipped faces on the result
+  double largest_turn_deg = 0;   // the largest angle between a face's rest and result normals
+  //! "421 of 36128 faces flipped, around (0.1, 0.2, 0.3)" (empty without a flip).
+  std::string describe() const;
+};
+
+//! Compares every face of `mesh` at `result` with the same face at mesh.positions(). A face
+//! whose rest or result area is below 1e-12 of the mean rest face area (degenerate) is skipped.
+//! \throw InvalidInput if `result` does not have one row per vertex.
+FoldReport flipped_faces(const SurfaceMesh& mesh, const MatrixX3& result);
+
+}  // namespace fairshape

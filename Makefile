@@ -7,7 +7,7 @@ FUZZ_RUNS ?= 100000
 BUILD_DIR := build
 FAIRSHAPE := $(BUILD_DIR)/bin/fairshape
 
-.PHONY: deps configure build install test package-test demo sanitize asan-test fuzz-run bench clean
+.PHONY: deps configure build install test package-test demo sanitize-configure sanitize asan-test fuzz-run bench clean
 
 deps:
 	bash scripts/install-deps.sh
@@ -34,18 +34,23 @@ demo: build
 	bash scripts/demo.sh
 
 # The unit tests under AddressSanitizer + UBSan and the libFuzzer targets share one clang tree
-# (preset sanitize), so CI compiles the libraries under the sanitizers once. Catch cases tagged
-# [slow] (minutes under ASan, seconds in release; each has a smaller sanitized sibling) are not
-# discovered there: the preset sets FAIRSHAPE_CATCH_TEST_SPEC.
+# (preset sanitize): the fuzzers need only the readers' libraries built there, the unit tests all
+# of them. Catch cases tagged [slow] (minutes under ASan, seconds in release; each has a smaller
+# sanitized sibling) are not discovered there: the preset sets FAIRSHAPE_CATCH_TEST_SPEC.
 FUZZ_TARGETS := fuzz_read_obj fuzz_read_off fuzz_read_ply fuzz_read_vtp fuzz_config fuzz_read_sheet
 
-sanitize: deps
-	cmake --preset sanitize && cmake --build build-sanitize -j $(JOBS) --target unit_tests $(FUZZ_TARGETS)
+sanitize-configure: deps
+	cmake --preset sanitize
 
-asan-test: sanitize
+sanitize: sanitize-configure
+	cmake --build build-sanitize -j $(JOBS) --target unit_tests $(FUZZ_TARGETS)
+
+asan-test: sanitize-configure
+	cmake --build build-sanitize -j $(JOBS) --target unit_tests
 	cd build-sanitize && ASAN_OPTIONS=detect_leaks=0 ctest --output-on-failure -j $(JOBS) -L unit
 
-fuzz-run: sanitize
+fuzz-run: sanitize-configure
+	cmake --build build-sanitize -j $(JOBS) --target $(FUZZ_TARGETS)
 	bash scripts/fuzz.sh $(FUZZ_RUNS)
 
 # Builds of other CMake trees (the installed package's consumer, fairshape without its optional

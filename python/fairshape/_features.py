@@ -39,13 +39,17 @@ class FeatureResult:
     features.csv: name, level, height, radius_left, radius_right, fine / limit (each height_min,
     height_max, width_left, width_right, height_error, width_error, profile_error: errors as
     fractions of |height|, widths of the radius), within_tolerance, why (the first miss);
-    within_tolerance: every feature's; placed: per feature its (faces k, bary k×3) on its level."""
+    within_tolerance: every feature's; placed: per feature its (faces k, bary k×3) on its level;
+    flipped_faces: finest faces the features turned over against the surface without them, and
+    folds, where ('' when none): a fold is a failed result whatever the profiles say."""
 
     positions: np.ndarray
     hierarchy: _fairshape.MultiresSurface
     features: list
     within_tolerance: bool
     placed: list
+    flipped_faces: int = 0
+    folds: str = ""
 
 
 def apply_features(hierarchy, features, profile_on="limit", implementation="optimized"):
@@ -62,7 +66,8 @@ def apply_features(hierarchy, features, profile_on="limit", implementation="opti
         features = [features]
     r = _fairshape._apply_features(hierarchy, list(features), profile_on, implementation)
     return FeatureResult(positions=r["positions"], hierarchy=r["hierarchy"], features=list(r["features"]),
-                         within_tolerance=r["within_tolerance"], placed=list(r["placed"]))
+                         within_tolerance=r["within_tolerance"], placed=list(r["placed"]),
+                         flipped_faces=r["flipped_faces"], folds=r["folds"])
 
 
 FeatureResult.__module__ = "fairshape"

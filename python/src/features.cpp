@@ -11,6 +11,7 @@
 #include "bindings.h"
 #include "checks.h"
 #include "convert.h"
+#include "fairshape/mesh/orientation.h"
 #include "fairshape/experiment/kinds/feature/feature_run.h"
 #include "fairshape/feature/featured_surface.h"
 #include "fairshape/feature/profile_measure.h"
@@ -125,6 +126,11 @@ py::dict apply_features(const MultiresSurface& hierarchy, const py::list& featur
     placed.append(py::make_tuple(faces, bary));
   }
   finite_result(result_copy, "apply_features: the featured hierarchy");
+  // Looked at as the command line's feature runs are (feature_folds.h): faces turned over.
+  const int finest = result_copy.levels();
+  const FoldReport folds = flipped_faces(hierarchy.mesh(finest), result_copy.mesh(finest).positions());
+  out["flipped_faces"] = static_cast<int>(folds.flipped.size());
+  out["folds"] = folds.describe();
   out["features"] = rows;
   out["placed"] = placed;
   out["within_tolerance"] = all_within;

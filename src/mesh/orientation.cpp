@@ -1,6 +1,7 @@
 #include "fairshape/mesh/orientation.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -37,20 +38,20 @@ std::string FoldReport::describe() const {
   return os.str();
 }
 
-FoldReport flipped_faces(const SurfaceMesh& mesh, const MatrixX3& result) {
-  if (result.rows() != mesh.n_vertices())
-    throw InvalidInput("fold check: " + std::to_string(result.rows()) + " positions for a mesh of " +
-                       std::to_string(mesh.n_vertices()) + " vertices");
+namespace {
+
+// Faces 0..n-1 given by their vector areas on both surfaces and their centroids on the result.
+template <class RestArea, class ResultArea, class Centroid>
+FoldReport compare_faces(int n, const RestArea& rest_area, const ResultArea& result_area, const Centroid& centroid) {
   FoldReport r;
-  const int n = mesh.n_faces();
   std::vector<Vec3> rest(static_cast<std::size_t>(n));
   double mean_area = 0;
-  for (int f = 0; f < n; ++f) mean_area += (rest[f] = vector_area(mesh, mesh.positions(), f)).norm();
+  for (int f = 0; f < n; ++f) mean_area += (rest[f] = rest_area(f)).norm();
   if (n == 0 || !(mean_area > 0)) return r;
   const double tiny = 1e-12 * mean_area / n;
   double cos_largest = 1;
   for (int f = 0; f < n; ++f) {
-    const Vec3 now = vector_area(mesh, result, f);
+    const Vec3 now = result_area(f);
     const double a = rest[f].norm(), b = now.norm();
     if (!(a > tiny) || !(b > tiny)) continue;
     ++r.faces;
@@ -58,14 +59,49 @@ FoldReport flipped_faces(const SurfaceMesh& mesh, const MatrixX3& result) {
     cos_largest = std::min(cos_largest, c);
     if (c >= 0) continue;
     r.flipped.push_back(f);
-    Vec3 centroid = Vec3::Zero();
-    const std::vector<int> corners = mesh.face_vertices(f);
-    for (int v : corners) centroid += result.row(v).transpose();
-    r.center += centroid / static_cast<double>(corners.size());
+    r.center += centroid(f);
   }
   if (!r.flipped.empty()) r.center /= static_cast<double>(r.flipped.size());
   r.largest_turn_deg = std::acos(std::clamp(cos_largest, -1.0, 1.0)) * 180.0 / std::numbers::pi;
   return r;
+}
+
+Vec3 triangle_area(const std::array<int, 3>& t, const MatrixX3& p) {
+  const Vec3 a = p.row(t[0]).transpose(), b = p.row(t[1]).transpose(), c = p.row(t[2]).transpose();
+  return 0.5 * (b - a).cross(c - a);
+}
+
+}  // namespace
+
+FoldReport flipped_faces(const SurfaceMesh& mesh, const MatrixX3& result) {
+  if (result.rows() != mesh.n_vertices())
+    throw InvalidInput("fold check: " + std::to_string(result.rows()) + " positions for a mesh of " +
+                       std::to_string(mesh.n_vertices()) + " vertices");
+  return compare_faces(
+      mesh.n_faces(), [&](int f) { return vector_area(mesh, mesh.positions(), f); },
+      [&](int f) { return vector_area(mesh, result, f); },
+      [&](int f) {
+        Vec3 centroid = Vec3::Zero();
+        const std::vector<int> corners = mesh.face_vertices(f);
+        for (int v : corners) centroid += result.row(v).transpose();
+        return Vec3(centroid / static_cast<double>(corners.size()));
+      });
+}
+
+FoldReport flipped_triangles(const std::vector<std::array<int, 3>>& triangles, const MatrixX3& rest, const MatrixX3& result) {
+  if (rest.rows() != result.rows())
+    throw InvalidInput("fold check: " + std::to_string(result.rows()) + " result positions for " +
+                       std::to_string(rest.rows()) + " rest positions");
+  for (const auto& t : triangles)
+    for (int v : t)
+      if (v < 0 || v >= rest.rows()) throw InvalidInput("fold check: corner " + std::to_string(v) + " is not a vertex");
+  return compare_faces(
+      static_cast<int>(triangles.size()), [&](int f) { return triangle_area(triangles[f], rest); },
+      [&](int f) { return triangle_area(triangles[f], result); },
+      [&](int f) {
+        const auto& t = triangles[f];
+        return Vec3((result.row(t[0]) + result.row(t[1]) + result.row(t[2])).transpose() / 3.0);
+      });
 }
 
 }  // namespace fairshape

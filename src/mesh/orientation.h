@@ -4,6 +4,7 @@
 // looks at its result with this check (configs/README.md, "flipped_faces").
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -31,5 +32,10 @@ struct FoldReport {
 //! whose rest or result area is below 1e-12 of the mean rest face area (degenerate) is skipped.
 //! \throw InvalidInput if `result` does not have one row per vertex.
 FoldReport flipped_faces(const SurfaceMesh& mesh, const MatrixX3& result);
+
+//! The same comparison for triangles given by their corners, on a patch of a surface (the
+//! present faces of a sparse level): `rest` and `result` hold the same vertices.
+//! \throw InvalidInput for a corner out of range or position counts that differ.
+FoldReport flipped_triangles(const std::vector<std::array<int, 3>>& triangles, const MatrixX3& rest, const MatrixX3& result);
 
 }  // namespace fairshape

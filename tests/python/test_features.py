@@ -41,6 +41,7 @@ def test_features_equal_cli(patch, fig14_cli):
     assert np.abs(r.positions - expected).max() < 1e-10
     assert np.abs(r.hierarchy.positions() - expected).max() < 1e-10
     assert [f["name"] for f in r.features] == ["ridge", "groove_a", "groove_b"]
+    assert r.flipped_faces == 0 and r.folds == ""
     for f in r.features:
         row = rows[f["name"]]
         for where in ("fine", "limit"):
@@ -53,6 +54,13 @@ def test_features_equal_cli(patch, fig14_cli):
              for f, (faces, bary) in zip(FIG14, r.placed)]
     s = fairshape.apply_features(patch, again)
     assert np.abs(s.positions - r.positions).max() < 1e-12
+
+
+def test_a_feature_too_tall_for_its_surface_is_seen_to_fold(patch):
+    tall = dict(FIG14[0], height=5.0)
+    r = fairshape.apply_features(patch, [tall])
+    assert r.flipped_faces > 0
+    assert "faces flipped" in r.folds
 
 
 def test_feature_errors(patch):

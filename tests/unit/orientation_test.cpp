@@ -72,3 +72,25 @@ TEST_CASE("the normal a normal constraint achieves keeps its sign (a mirrored su
   const Vec3 turned = achieved_normal(m, m.positions() * R.transpose(), nc);
   CHECK((turned - R * rest).norm() < 1e-12);  // a rotation turns it with the surface
 }
+
+TEST_CASE("a patch of triangles given by corners folds where its mesh does", "[orientation]") {
+  // The sparse feature runs' form of the check: the same answer as flipped_faces on a triangle mesh.
+  const SurfaceMesh m = test::grid(6, true);
+  std::vector<std::array<int, 3>> triangles;
+  for (int f = 0; f < m.n_faces(); ++f) {
+    const std::vector<int> c = m.face_vertices(f);
+    REQUIRE(c.size() == 3);
+    triangles.push_back({c[0], c[1], c[2]});
+  }
+  MatrixX3 folded = m.positions();
+  folded.row(center_vertex(m)) += Eigen::RowVector3d(0.5, 0, 0);
+  const FoldReport whole = flipped_faces(m, folded);
+  const FoldReport patch = flipped_triangles(triangles, m.positions(), folded);
+  REQUIRE(!whole.flipped.empty());
+  CHECK(patch.flipped == whole.flipped);
+  CHECK(patch.faces == whole.faces);
+  CHECK((patch.center - whole.center).norm() < 1e-12);
+  CHECK(flipped_triangles(triangles, m.positions(), m.positions()).flipped.empty());
+  triangles.push_back({0, 1, static_cast<int>(m.n_vertices())});  // a corner past the vertices
+  CHECK_THROWS_AS(flipped_triangles(triangles, m.positions(), folded), InvalidInput);
+}

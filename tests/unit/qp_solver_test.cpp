@@ -1,6 +1,8 @@
 // The constrained quadratic solvers (Welch & Witkin §4.3) on B-spline problems.
 #include <catch2/catch.hpp>
 
+#include <cmath>
+
 #include "fairshape/bspline/hierarchical_surface.h"
 #include "fairshape/bspline/surface_constraints.h"
 #include "fairshape/bspline/thin_plate_energy.h"
@@ -91,6 +93,36 @@ TEST_CASE("KKT: constraints to 1e-10, dependent curve rows dropped and reported,
   const Eigen::MatrixXd At = Eigen::MatrixXd(SparseMatrix(pr.qp.A.transpose()));
   const Eigen::MatrixXd lambda = At.completeOrthogonalDecomposition().solve(g);
   CHECK((At * lambda - g).norm() < 1e-8 * (1 + g.norm()));
+}
+
+TEST_CASE("KKT on a program whose H diagonal spans eight orders more: the same answer, in its own units", "[qp]") {
+  // The sheet's unknowns rescaled by D (10^0 .. 10^-5, a smooth grading across the unknowns): the
+  // program min ½ yᵀ(DHD)y − (Df)ᵀy, (AD)y = b is the sheet's in other units, so its answer is
+  // D⁻¹p* exactly, while its H diagonal spans 1e10 times the sheet's spread, as on the levels of
+  // a dense scan with sliver triangles. (UMFPACK's own row scaling keeps this one exact.)
+  SheetProblem pr;
+  const Eigen::Index n = pr.qp.H.rows();
+  Eigen::VectorXd d(n);
+  for (Eigen::Index i = 0; i < n; ++i) d[i] = std::pow(10.0, -5.0 * static_cast<double>(i) / static_cast<double>(n - 1));
+  QuadraticProgram graded = pr.qp;
+  graded.H = SparseMatrix(d.asDiagonal() * pr.qp.H * d.asDiagonal());
+  graded.K = SparseMatrix();
+  graded.f = d.asDiagonal() * pr.qp.f;
+  graded.A = SparseMatrix(pr.qp.A * d.asDiagonal());
+  const Eigen::VectorXd diag = graded.H.diagonal();
+  REQUIRE(diag.maxCoeff() / diag.minCoeff() > 1e8);
+  const QpReport exact = solved("kkt", pr.qp);
+  REQUIRE(exact.summary.termination == Termination::Converged);
+  const Eigen::MatrixXd expected = d.cwiseInverse().asDiagonal() * exact.p;
+  for (const Backend backend : {Backend::Reference, Backend::Optimized}) {
+    auto solver = make("kkt", backend);
+    solver->analyze(graded);
+    const QpReport r = solver->solve(graded.f, graded.b);
+    INFO(r.summary.message);
+    REQUIRE(r.summary.termination == Termination::Converged);
+    CHECK((d.asDiagonal() * r.p - exact.p).norm() <= 1e-7 * exact.p.norm());
+    CHECK((r.p - expected).norm() <= 1e-6 * expected.norm());
+  }
 }
 
 TEST_CASE("KKT reuses UMFPACK's symbolic analysis for a program with the same pattern", "[qp]") {

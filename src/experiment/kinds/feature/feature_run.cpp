@@ -14,6 +14,7 @@
 #include "fairshape/core/timer.h"
 #include "fairshape/experiment/kinds/feature/curve_placement_config.h"
 #include "fairshape/experiment/kinds/feature/feature_exports.h"
+#include "fairshape/experiment/kinds/feature/feature_folds.h"
 #include "fairshape/experiment/components.h"
 #include "fairshape/experiment/kinds/feature/feature_steps.h"
 #include "fairshape/experiment/kinds/feature/feature_width_check.h"
@@ -235,7 +236,7 @@ const std::vector<std::string>& feature_metric_columns() {
                                              "max_displacement", "triangles_uniform", "triangles_adaptive",
                                              "adaptive_evaluation", "adaptive_faces_computed", "peak_rss_mb",
                                              "profile_on", "features_within_tolerance", "worst_profile_error_fine",
-                                             "worst_profile_error_limit", "worst_height_error", "worst_width_error", "time_s",
+                                             "worst_profile_error_limit", "worst_height_error", "worst_width_error", "flipped_faces", "time_s",
                                              "unused_keys", "termination", "message"};
   return cols;
 }
@@ -457,10 +458,13 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
       const LimitSurface limit = export_levels_and_limit(surface, out);
       fine.vertex_data["limit_position"] = limit.positions;
       fine.vertex_data["limit_normal"] = limit.normals;
-      write_vtp(fine, (fs::path(out.dir) / "vtk" / (out.run_id + ".vtp")).string());
     }
+    const FoldReport folds = flipped_faces(std::as_const(surface).original().mesh(spec.levels), fine.positions());
+    mark_flipped(fine, folds);
+    if (spec.vtk) write_vtp(fine, (fs::path(out.dir) / "vtk" / (out.run_id + ".vtp")).string());
     write_mesh(fine, out.final_path());
     report_profiles(surface, row, out);
+    report_folds(folds, row);
   } catch (const OutputError& e) {  // results incomplete: not a finished run
     row["termination"] = std::string(to_string(Termination::OutputFailed));
     row["message"] = e.what();

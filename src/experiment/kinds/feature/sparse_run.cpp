@@ -8,6 +8,7 @@
 
 #include "fairshape/core/timer.h"
 #include "fairshape/experiment/kinds/feature/curve_placement_config.h"
+#include "fairshape/experiment/kinds/feature/feature_folds.h"
 #include "fairshape/experiment/kinds/feature/feature_width_check.h"
 #include "fairshape/experiment/metric_format.h"
 #include "fairshape/feature/adaptive_evaluation.h"
@@ -210,6 +211,8 @@ void execute_sparse_feature_run(FeatureRunSpec& spec, const RunOutputs& out, Met
   // is present: adaptive_evaluation.h).
   const Eigen::VectorXd moved = (S.positions - S.original).rowwise().norm();
   row["max_displacement"] = num(moved.maxCoeff());
+  // The present faces of the finest level hold every face a feature moved: their folds are the run's.
+  const FoldReport folds = flipped_triangles(S.corners, S.original, S.positions);
   // The finest vertices moved, as the uniform run counts them (its threshold scales with the
   // finest level's diagonal, this one with the base mesh's: the same up to the shrinkage).
   row["vertices_moved"] = std::to_string((moved.array() > 1e-12 * diag).count());
@@ -329,6 +332,7 @@ void execute_sparse_feature_run(FeatureRunSpec& spec, const RunOutputs& out, Met
     row["message"] = std::to_string(a.curves.size() - static_cast<std::size_t>(within)) + " of " +
                      std::to_string(a.curves.size()) + " features miss their tolerance; first: " + first_miss;
   }
+  report_folds(folds, row);
 }
 
 }  // namespace fairshape

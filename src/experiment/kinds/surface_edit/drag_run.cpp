@@ -1,5 +1,6 @@
 #include "fairshape/experiment/kinds/surface_edit/drag_run.h"
 
+#include <cmath>
 #include <filesystem>
 
 #include "fairshape/core/config.h"
@@ -54,11 +55,17 @@ DragOutcome run_drag(const SurfaceEditSpec& spec, const RunOutputs& out, const E
     result.last = edit.solve(scales[s], last ? last_step : IterationCallback());
     if (on_step && result.last.delta.allFinite()) on_step(static_cast<int>(s) + 1, result.last.delta);
     const ReferenceSolution* ref = references[s];
+    // A step that failed (or a reference that did) has no error to report: the cell stays empty
+    // rather than a NaN a plot would draw as a gap or a reader take for a number.
+    const bool failed = !result.last.delta.allFinite() || result.last.summary.termination == Termination::NumericalFailure;
+    const bool measurable = ref && !failed && ref->u.allFinite();
     if (write_steps)
       out.add_row("steps", {std::to_string(s + 1), num(scales[s]), std::string(to_string(a.ladder())), num(result.last.solve_s),
                    std::to_string(result.last.summary.iterations),
-                   ref ? num(relative_error(result.last.delta, ref->u)) : "", num(result.last.constraint_residual),
+                   measurable ? num(relative_error(result.last.delta, ref->u)) : "",
+                   std::isfinite(result.last.constraint_residual) ? num(result.last.constraint_residual) : "",
                    ref ? num(ref->solve_s) : ""});
+    if (failed) break;  // the later steps would start from nothing; the run reports this one's failure
   }
   result.level_solutions = edit.level_solutions();
   return result;

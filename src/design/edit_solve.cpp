@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "fairshape/core/timer.h"
+#include "fairshape/design/constrained_freedom.h"
 #include "fairshape/problem/constrained_system.h"
 #include "fairshape/problem/least_squares.h"
 #include "fairshape/qp/qp_solver.h"
@@ -112,6 +113,65 @@ EditSolution PreparedEdit::solve(const Eigen::MatrixXd& C, const IterationCallba
   out.constraint_residual = measure_constraints_ ? (s.constraints.A * out.delta - targets).norm()
                                                  : std::numeric_limits<double>::quiet_NaN();
   if (coupled) out.delta = unstack(out.delta);
+  return out;
+}
+
+EditSolution PreparedEdit::solve_to_optimum(const Eigen::MatrixXd& C, const IterationCallback& cb,
+                                            const Eigen::MatrixXd* initial) {
+  EditSolution out = solve(C, cb, initial, ConstrainedStart::NearestToInitial);
+  if (!paper_ || !is_success(out.summary.termination)) return out;
+  const EditProblem& s = solved();
+  // The freedom depends on the rows only; found once per analysis.
+  if (!freedom_) freedom_ = constrained_freedom(s.constraints.A, 4 * kMaxFreedom);
+  const Eigen::Index d = freedom_->basis.cols();
+  if (freedom_->columns.empty() || d == 0) return out;
+  if (d > kMaxFreedom) {
+    out.summary.message += (out.summary.message.empty() ? "" : "; ") + std::string("the constrained unknowns keep the "
+                           "split's values (") + std::to_string(d) + " free directions, above " + std::to_string(kMaxFreedom) + ")";
+    return out;
+  }
+  Timer t;
+  const bool coupled = stacked_.has_value();
+  const Eigen::Index k = s.g.cols();
+  Eigen::MatrixXd x = coupled ? Eigen::MatrixXd(stack(out.delta)) : out.delta;
+  // W's column j: the constrained unknowns moved along basis column j, the free ones following
+  // (the split of the homogeneous problem started there keeps the constrained values: they meet
+  // the zero rows). The same for every coordinate column, so the first one is taken.
+  Eigen::MatrixXd W = Eigen::MatrixXd::Zero(x.rows(), d);
+  const Eigen::MatrixXd zero_f = Eigen::MatrixXd::Zero(s.g.rows(), k);
+  const Eigen::MatrixXd zero_b = Eigen::MatrixXd::Zero(s.constraints.A.rows(), k);
+  int iterations = out.summary.iterations;
+  for (Eigen::Index j = 0; j < d; ++j) {
+    Eigen::MatrixXd start = Eigen::MatrixXd::Zero(x.rows(), k);
+    for (std::size_t c = 0; c < freedom_->columns.size(); ++c)
+      start.row(freedom_->columns[c]).setConstant(freedom_->basis(static_cast<Eigen::Index>(c), j));
+    qp::QpSolveOptions o;
+    o.initial = &start;
+    o.nearest_to_initial = true;
+    o.measure_residual = false;
+    const qp::QpReport r = qp_->solve(zero_f, zero_b, o);
+    if (!is_success(r.summary.termination)) {
+      out.summary.message += (out.summary.message.empty() ? "" : "; ") + std::string("the constrained unknowns keep the "
+                             "split's values (a free direction's solve ended ") + std::string(to_string(r.summary.termination)) + ")";
+      return out;
+    }
+    W.col(j) = r.p.col(0);
+    iterations += r.summary.iterations;
+  }
+  const SparseMatrix& H = s.H;
+  const Eigen::MatrixXd HW = H * W;
+  // The energy's minimum over x + W y: (WᵀHW) y = −Wᵀ(Hx − g).
+  const Eigen::MatrixXd y = (W.transpose() * HW).ldlt().solve(-(HW.transpose() * x - W.transpose() * (g_ ? *g_ : s.g)));
+  x += W * y;
+  out.delta = coupled ? unstack(x) : x;
+  out.summary.iterations = iterations;
+  out.summary.message += (out.summary.message.empty() ? "" : "; ") + std::string("constrained unknowns optimized over ") +
+                         std::to_string(d) + " free direction(s) of their rows";
+  if (measure_constraints_) {
+    const Eigen::MatrixXd targets = coupled ? stacked_targets(original_->constraints, C) : C;
+    out.constraint_residual = (s.constraints.A * x - targets).norm();
+  }
+  out.solve_s += t.seconds();
   return out;
 }
 

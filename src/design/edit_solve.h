@@ -14,6 +14,7 @@
 #include <optional>
 #include <vector>
 
+#include "fairshape/design/constrained_freedom.h"
 #include "fairshape/core/backend.h"
 #include "fairshape/design/multires_constraints.h"
 #include "fairshape/solver/level_operators.h"
@@ -82,6 +83,14 @@ class PreparedEdit {
   //! are direct: they ignore `cb` and `initial`.
   EditSolution solve(const Eigen::MatrixXd& C, const IterationCallback& cb = {}, const Eigen::MatrixXd* initial = nullptr,
                      ConstrainedStart constrained = ConstrainedStart::MinimumNorm);
+  //! solve(), then (paper mode) the constrained unknowns' remaining freedom optimized too: the
+  //! problem's minimizer, not the split's answer (design/constrained_freedom.h). Each free
+  //! direction d of the constrained unknowns is followed by the free ones (one more split solve
+  //! of the homogeneous problem each), and the energy minimized over their span exactly (a d × d
+  //! system). Up to kMaxFreedom directions; beyond, the split's answer with a note.
+  EditSolution solve_to_optimum(const Eigen::MatrixXd& C, const IterationCallback& cb = {},
+                                const Eigen::MatrixXd* initial = nullptr);
+  static constexpr int kMaxFreedom = 256;
   double analyze_s() const { return analyze_s_; }
   //! Replaces the problem's linear term g (n × 3) for the next solves: a rotation-aware edit
   //! changes only g between its iterations, so the analysis is kept.
@@ -103,6 +112,7 @@ class PreparedEdit {
   int constrained_vertices_ = 0;  // unknowns some constraint row reaches
   double analyze_s_ = 0;
   bool measure_constraints_ = true;
+  std::optional<ConstrainedFreedom> freedom_;  // solve_to_optimum's, found on first use
 };
 
 //! [C stacked by coordinate; the coupled targets]: the right-hand side of the coupled system.

@@ -130,7 +130,9 @@ EditSolution MultilevelEdit::solve(double scale, const IterationCallback& cb) {
         break;
       case Accuracy::Converged: {
         const Eigen::MatrixXd x0 = start(0, last);
-        out = prepared_[last]->solve(targets(last), cb, &x0, ConstrainedStart::NearestToInitial);
+        // Converged means the problem's minimizer: the constrained unknowns' own freedom (a
+        // normal constraint's ring) optimized as well, not frozen where the split puts them.
+        out = prepared_[last]->solve_to_optimum(targets(last), cb, &x0);
         break;
       }
     }

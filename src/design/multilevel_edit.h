@@ -9,7 +9,9 @@
 //                rows (the paper's minimum-norm values from zero would replace the
 //                prolongated shape by a spike under a fine handle);
 //   converged:   the configured solver on level L, to its tolerance, started from the
-//                interactive approximation.
+//                interactive approximation; the constrained unknowns' remaining freedom
+//                optimized too (PreparedEdit::solve_to_optimum), so the answer is the
+//                problem's minimizer, also under normal constraints.
 // A drag is a sequence of solve() calls with the same constraint set and moving targets;
 // each step warm-starts from the previous one corrected by the change of the coarse
 // solution, prolongated (x₀ = x_prev + P (c − c_prev)), level by level in the cascade.

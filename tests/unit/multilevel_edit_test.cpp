@@ -4,10 +4,13 @@
 
 #include <cmath>
 
+#include <Eigen/Geometry>
+
 #include "fairshape/design/multilevel_edit.h"
 #include "fairshape/energy/local_quadratic.h"
 #include "fairshape/experiment/components.h"
 #include "fairshape/io/mesh_io.h"
+#include "fairshape/mesh/orientation.h"
 #include "fairshape/problem/constrained_system.h"
 #include "fairshape/solver/level_operators.h"
 #include "fairshape/subdivision/subdivider.h"
@@ -191,6 +194,41 @@ TEST_CASE("converged: a drag's steps reach the direct solution, warm starts cut 
     iterations.push_back(sol.summary.iterations);
   }
   CHECK(iterations.back() < iterations.front());
+}
+
+TEST_CASE("converged: under a normal constraint, the problem's minimizer, not the split's answer", "[design][bm][multilevel]") {
+  // The split freezes the normal's ring where its rows' least change puts it; the converged mode
+  // optimizes that freedom too (PreparedEdit::solve_to_optimum) and reaches the KKT optimum.
+  const SurfaceMesh& m = hierarchy().mesh(kFinest);
+  const std::vector<PointConstraint> points = designer_constraints();
+  const int tip = points.back().vertex;
+  const Vec3 n0 = area_normal(m, m.positions(), tip).normalized();
+  const Vec3 turned = Eigen::AngleAxisd(0.35, n0.unitOrthogonal()) * n0;
+  const DesignConstraints design{points, {NormalConstraint{kFinest, tip, turned, "turn"}}, {}};
+  EditLadder ladder;
+  for (int level = 0; level <= kFinest; ++level) {
+    EditProblem p;
+    p.H = stretch_bend_hessian(hierarchy().mesh(level), {0.1, 1.0}, Backend::Optimized);
+    p.g = Eigen::MatrixXd::Zero(p.H.rows(), 3);
+    p.constraints = propagate_constraints(hierarchy(), level, design);
+    ladder.problems.push_back(std::move(p));
+    if (level < kFinest) ladder.prolongations.push_back(hierarchy().subdivision_operator(level));
+  }
+  const Eigen::MatrixXd exact = exact_solution(ladder.problems.back());
+  auto direct = solver("cholesky", Backend::Optimized)();
+  const Eigen::MatrixXd split = solve_edit(ladder.problems.back(), ConstraintMode::Paper, *direct, Backend::Optimized).delta;
+  REQUIRE(relative_error(split, exact) > 1e-4);  // what the converged mode reached before
+  for (const std::string finest : {"cholesky", "conjugate_gradient"}) {
+    auto s = solver(finest, Backend::Optimized, "{tolerance: 1.0e-12, max_iterations: 100000}")();
+    MultilevelEdit edit(ladder, Accuracy::Converged, solver("cholesky", Backend::Optimized),
+                        solver("gauss_seidel", Backend::Optimized), *s, Backend::Optimized);
+    const EditSolution sol = edit.solve(1.0);
+    INFO(finest << ": " << sol.summary.message);
+    CHECK(sol.summary.termination == Termination::Converged);
+    CHECK(relative_error(sol.delta, exact) <= 1e-6);
+    CHECK(sol.constraint_residual <= 1e-9 * (1 + exact.norm()));
+    CHECK_THAT(sol.summary.message, Catch::Contains("free direction"));
+  }
 }
 
 // Coarse levels skip measuring their (propagated, huge) constraint residuals; every mode still

@@ -106,4 +106,29 @@ expect_error 2 "optimization.solver.type: ceres does not take the total_length c
 expect_error 2 "total_length and segment_lengths together" -- "$FS" run $T --out "$SCRATCH/x" \
   --set 'optimization.constraints=[{type: segment_lengths}, {type: total_length}]'
 expect_error 2 "set editing.solve_region: curve" -- "$FS" run $T --out "$SCRATCH/x" --set editing.solve_region=support
+# Planar curves stay planar, judged in their plane; the key is checked.
+F1=configs/sauvage/fig1.yaml
+expect_error 2 "editing.plane: unknown value 'flat' (valid: keep, free)" -- "$FS" run $F1 --set editing.plane=flat --out "$SCRATCH/x"
+expect_error 2 "editing.partial_edit: unknown value 'yes' (valid: fail, accept)" -- "$FS" run $F1 --set editing.partial_edit=yes --out "$SCRATCH/x"
+"$FS" run $F1 --set 'sweep={}' --set optimization.beta=0.5 --set optimization.solver.type=linearized --out "$SCRATCH/planar" 2>/dev/null \
+  || fail "the paper's loop on Figure 1 at beta 0.5 should end at an in-plane minimum"
+"$FS" run $F1 --set 'sweep={}' --set optimization.beta=0.5 --set editing.plane=free --out "$SCRATCH/free3d" 2>/dev/null || true
+$PY - "$SCRATCH/planar/runs.csv" "$SCRATCH/free3d/runs.csv" <<'PYEOF' || fail "planar run: expected plane kept, out_of_plane <= 1e-12, an in-plane verdict; plane: free judged in 3-D"
+import csv, sys
+r = next(csv.DictReader(open(sys.argv[1])))
+f = next(csv.DictReader(open(sys.argv[2])))
+ok = (r["termination"] == "converged" and r["plane"] == "kept" and float(r["out_of_plane"]) <= 1e-12
+      and r["second_order_space"] == "in_plane" and float(r["min_reduced_hessian_eig"]) >= 0
+      and f["plane"] == "free" and f["second_order_space"] == "3d")
+sys.exit(0 if ok else 1)
+PYEOF
+# A drag the lengths cannot honour (the end to 1.2 times the chord: the wave is only 1.06 times
+# as long) is not a success unless allowed.
+OVER=(--set 'sweep={}' --set 'edits.0.moves=[{index: -1, chord_scale: 1.2}]' --set edits.0.drag_steps=5)
+rc=0; "$FS" run $F1 "${OVER[@]}" --out "$SCRATCH/over" 2>/dev/null || rc=$?
+[ "$rc" -eq 3 ] || fail "over-stretched drag: exit $rc, expected 3"
+grep -q ",edit_undone,.*over-stretched" "$SCRATCH/over/runs.csv" || fail "over-stretched drag not reported as edit_undone"
+"$FS" run $F1 "${OVER[@]}" --set editing.partial_edit=accept --out "$SCRATCH/over_ok" 2>/dev/null \
+  || fail "editing.partial_edit: accept should let the over-stretched drag end converged"
+grep -q ",converged,.*not honoured" "$SCRATCH/over_ok/runs.csv" || fail "an accepted partial edit should still say so"
 echo "curve_run: ok"

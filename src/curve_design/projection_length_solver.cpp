@@ -40,7 +40,8 @@ bool collect(const LengthProblem& p, std::vector<Projection>& out, std::vector<c
             "constraint); the solvers that do: linearized, trust_region";
       return false;
     } else {
-      why = "the projection baseline projects segment lengths, pins and a plane only; this problem has another constraint kind";
+      why = "the projection baseline projects segment lengths and pins only (and a planar problem's plane); this problem has "
+            "another constraint kind";
       return false;
     }
   }

@@ -133,4 +133,25 @@ grep -q ",edit_undone,.*over-stretched" "$SCRATCH/over/runs.csv" || fail "over-s
 "$FS" run $F1 "${OVER[@]}" --set editing.partial_edit=accept --out "$SCRATCH/over_ok" 2>/dev/null \
   || fail "editing.partial_edit: accept should let the over-stretched drag end converged"
 grep -q ",converged,.*not honoured" "$SCRATCH/over_ok/runs.csv" || fail "an accepted partial edit should still say so"
+# A folded spike (point 65 thrown beyond 66 along the level-6 chord 64-66): a 5 % compression
+# with wrinkles at w = 6 leaves one midpoint the explicit step cannot place; not in silence.
+$PY - "$SCRATCH/spiky.obj" <<'PYEOF'
+import sys
+P = [[float(x) for x in l.split()[1:4]] for l in open("data/curves/wave129.obj") if l.startswith("v ")]
+p, q = P[64], P[66]
+P[65] = [q[i] + 3 * (q[i] - p[i]) + (1e-3 if i == 1 else 0) for i in range(3)]
+with open(sys.argv[1], "w") as f:
+    for v in P:
+        f.write("v %.17g %.17g %.17g\n" % tuple(v))
+    f.write("l " + " ".join(str(i + 1) for i in range(len(P))) + "\n")
+PYEOF
+SPIKE=(--set 'sweep={}' --set input.curve="$SCRATCH/spiky.obj" --set edits.0.wrinkle_level=6 --set 'edits.0.moves=[{index: -1, chord_scale: 0.95}]')
+rc=0; "$FS" run $F1 "${SPIKE[@]}" --out "$SCRATCH/spike" 2>/dev/null || rc=$?
+[ "$rc" -eq 3 ] || fail "spiky explicit step: exit $rc, expected 3"
+$PY - "$SCRATCH/spike/runs.csv" <<'PYEOF' || fail "the spike's unplaced midpoint should end constraints_unmet with the error it left"
+import csv, sys
+r = next(csv.DictReader(open(sys.argv[1])))
+sys.exit(0 if r["termination"] == "constraints_unmet" and int(r["unplaceable_midpoints"]) >= 1
+         and float(r["explicit_length_error"]) > 1e-3 and "explicit step left" in r["message"] else 1)
+PYEOF
 echo "curve_run: ok"

@@ -205,7 +205,7 @@ py::dict edit_curve(const Eigen::Ref<const Eigen::MatrixXd>& points, bool closed
   {
     py::gil_scoped_release release;
     for (const CurveEdit& step : fairshape::drag_steps(e, drag_steps)) {
-      last = run_editing_loop(current, L, step, objective, *solver, backend);
+      last = run_editing_loop(current, L, step, objective, *solver, backend, &curve);
       if (done == 0) first = last;
       ++done;
       solves += last.solve.solves;

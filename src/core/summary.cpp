@@ -9,7 +9,7 @@ const std::vector<std::string>& termination_names() {
                                               "max_iterations",    "constraints_unmet", "ill_conditioned",   "numerical_failure",
                                               "not_a_minimum",     "folded",            "stalled",           "infeasible",
                                               "invalid_input",     "output_failed",     "crashed",
-                                              "out_of_memory"};
+                                              "out_of_memory",     "edit_undone"};
   return names;
 }
 

@@ -35,7 +35,10 @@ namespace fairshape {
 //   numerical_failure  — diverged, singular, non-finite, or the result fails its own checks;
 //   invalid_input      — the input (files, constraints) made the run impossible;
 //   output_failed      — the result could not be written (disk full, permissions);
-//   crashed            — an unexpected exception or a signal ended the run.
+//   crashed            — an unexpected exception or a signal ended the run;
+//   edit_undone        — the solve met its constraints, but not the edit: the handles the user
+//                        dragged were pulled back (a drag asking more length than the curve has)
+//                        or the result returned them most of the way to where they started.
 enum class Termination {
   Converged,
   EnergyStalled,
@@ -51,7 +54,8 @@ enum class Termination {
   InvalidInput,
   OutputFailed,
   Crashed,
-  OutOfMemory
+  OutOfMemory,
+  EditUndone
 };
 
 std::string_view to_string(Termination t);

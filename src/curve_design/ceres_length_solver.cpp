@@ -9,6 +9,7 @@
 
 #include "fairshape/core/config.h"
 #include "fairshape/core/timer.h"
+#include "fairshape/curve_design/curve_plane.h"
 
 namespace fairshape {
 namespace {
@@ -143,6 +144,15 @@ LengthSolveReport CeresLengthSolver::solve(const LengthProblem& p, const MatrixX
       rep.summary.message = "Ceres failed in round " + std::to_string(round + 1) + ": " + summary.message;
       return rep;
     }
+    // A planar problem's in-plane rows (curve_plane.h) are linear in one point: the penalty
+    // meets them only to its tolerance, the orthogonal projection exactly, moving each point by
+    // that residual (lengths change by its square); everything below is measured after it.
+    for (const auto& c : p.constraints())
+      if (const auto* plane = dynamic_cast<const InPlane*>(c.get()))
+        for (int q : plane->points()) {
+          const Vec3& nrm = plane->plane().normal;
+          X.row(q) -= nrm.dot(X.row(q).transpose() - plane->plane().origin) * nrm.transpose();
+        }
     const std::vector<ConstraintRow> rows = p.rows(X);
     double violation = 0;
     for (int r = 0; r < m; ++r) violation = std::max(violation, std::abs(rows[r].value / p.row_scale(r)));

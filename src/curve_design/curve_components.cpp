@@ -11,7 +11,7 @@ namespace {
 class SegmentLengthsKind final : public CurveConstraintKind {
  public:
   std::unique_ptr<CurveConstraint> build(const CurveEditContext& e) const override {
-    return std::make_unique<SegmentLengths>(segment_lengths(e.reference.points, e.reference.closed), e.reference.closed);
+    return std::make_unique<SegmentLengths>(e.lengths, e.reference.closed);
   }
 };
 
@@ -27,8 +27,7 @@ class TotalLengthKind final : public CurveConstraintKind {
                           " is not a length; give a positive finite number (or omit it: the reference curve's length)");
   }
   std::unique_ptr<CurveConstraint> build(const CurveEditContext& e) const override {
-    const Eigen::VectorXd l = segment_lengths(e.reference.points, e.reference.closed);
-    return std::make_unique<TotalLength>(l, value_ > 0 ? value_ : l.sum(), e.reference.closed);
+    return std::make_unique<TotalLength>(e.lengths, value_ > 0 ? value_ : e.lengths.sum(), e.reference.closed);
   }
 
  private:

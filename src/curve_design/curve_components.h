@@ -18,6 +18,9 @@ struct CurveEditContext {
   const Polyline& reference;        // C_R: its segment lengths are the ones to keep
   const MatrixX3& edited;           // C_D: the curve after the user's edit, before any fixing
   std::vector<int> moved_points;    // fine-level indices of the control points the user moved
+  //! The segment lengths every edit keeps: the original curve's, not the previous edit's result
+  //! (a drag of many steps would otherwise carry each step's rounding into the next).
+  const Eigen::VectorXd& lengths;
 };
 
 class CurveConstraintKind {

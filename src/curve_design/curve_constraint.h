@@ -113,6 +113,8 @@ class FixedTangents final : public CurveConstraint {
   //! The chord (a, b) whose direction stands for point p's tangent.
   static std::pair<int, int> chord(int p, int n_points, bool closed);
   void set_scales(const MatrixX3& X);  // typical |d| per point, from a curve of the right lengths
+  const std::vector<std::pair<int, int>>& chords() const { return chords_; }
+  const MatrixX3& directions() const { return directions_; }  // unit, one row per point
 
  private:
   std::vector<int> points_;

@@ -49,4 +49,31 @@ CurveMetrics measure_curve(const MatrixX3& X, bool closed, const Eigen::VectorXd
   return m;
 }
 
+double handle_reach(const MatrixX3& R, const MatrixX3& D, const MatrixX3& X, const std::vector<int>& moved) {
+  double reach = 1;
+  for (int p : moved) {
+    const Eigen::RowVector3d asked = D.row(p) - R.row(p);
+    const double a2 = asked.squaredNorm();
+    if (!(a2 > 0)) continue;
+    reach = std::min(reach, (X.row(p) - R.row(p)).dot(asked) / a2);
+  }
+  return reach;
+}
+
+double worst_overstretch(const MatrixX3& X, const Eigen::VectorXd& lengths, bool closed, int stride, const std::vector<int>& moved) {
+  const int n = static_cast<int>(X.rows());
+  std::vector<double> arc(static_cast<std::size_t>(n) + 1, 0.0);  // arc[i]: length from point 0 to point i
+  for (int i = 0; i < static_cast<int>(lengths.size()); ++i) arc[static_cast<std::size_t>(i) + 1] = arc[static_cast<std::size_t>(i)] + lengths[i];
+  const double total = closed ? arc[static_cast<std::size_t>(n)] : 0;
+  double worst = -1;
+  for (int p : moved)
+    for (int q = 0; q < n; q += stride) {
+      if (q == p) continue;
+      double between = std::abs(arc[static_cast<std::size_t>(p)] - arc[static_cast<std::size_t>(q)]);
+      if (closed) between = std::min(between, total - between);
+      if (between > 0) worst = std::max(worst, (X.row(p) - X.row(q)).norm() / between - 1);
+    }
+  return worst;
+}
+
 }  // namespace fairshape

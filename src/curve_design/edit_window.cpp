@@ -4,6 +4,8 @@
 #include <cmath>
 #include <map>
 
+#include "fairshape/curve_design/curve_plane.h"
+
 namespace fairshape {
 namespace {
 
@@ -76,6 +78,16 @@ EditWindow build_window(const LengthProblem& whole, std::vector<int> pts, bool c
     }
     constraints.push_back(std::make_unique<PinnedPoints>(std::move(idx), std::move(targets)));
   }
+  // A planar problem's in-plane rows on the window's free points (pinned ones are held already).
+  for (const auto& c : whole.constraints())
+    if (const auto* plane = dynamic_cast<const InPlane*>(c.get())) {
+      std::vector<int> idx;
+      for (int p : plane->points()) {
+        const int q = where[static_cast<std::size_t>(p)];
+        if (q >= 0 && !pins.count(q)) idx.push_back(q);
+      }
+      if (!idx.empty()) constraints.push_back(std::make_unique<InPlane>(std::move(idx), plane->plane()));
+    }
   EditWindow w;
   w.problem = std::make_unique<LengthProblem>(std::move(attractor), closed_window,
                                               window_energies(whole, where, free), std::move(constraints));
@@ -90,7 +102,8 @@ std::vector<EditWindow> edit_windows(const LengthProblem& whole, const std::vect
   const bool closed = whole.closed();
   if (std::all_of(support.begin(), support.end(), [](char s) { return s != 0; })) return {};
   for (const auto& c : whole.constraints())  // a window rebuilds lengths and pins; others would be dropped
-    if (!dynamic_cast<const SegmentLengths*>(c.get()) && !dynamic_cast<const PinnedPoints*>(c.get()))
+    if (!dynamic_cast<const SegmentLengths*>(c.get()) && !dynamic_cast<const PinnedPoints*>(c.get()) &&
+        !dynamic_cast<const InPlane*>(c.get()))
       throw InvalidInput("solve_region support: only segment lengths and pins are solved on the edit's support; "
                          "use solve_region: curve for other constraints (tangent)");
   const auto fixed = [&](int i) {

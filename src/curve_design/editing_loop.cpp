@@ -1,5 +1,6 @@
 #include "fairshape/curve_design/editing_loop.h"
 
+#include "fairshape/core/error.h"
 #include "fairshape/core/timer.h"
 #include "fairshape/curve_design/detail_frames.h"
 #include "fairshape/curve_design/edit_support.h"
@@ -74,8 +75,11 @@ std::vector<WeightedStencils> paper_objective(const CurveObjective& o, int n, bo
 }
 
 PreparedCurveEdit prepare_editing_loop(const Polyline& reference, int levels, const CurveEdit& edit,
-                                       const CurveObjective& objective, Backend backend) {
+                                       const CurveObjective& objective, Backend backend, const Polyline* original) {
   check_edit_placement(reference, levels, edit);
+  if (original == nullptr) original = &reference;
+  FAIRSHAPE_ASSERT(original->n_points() == reference.n_points() && original->closed == reference.closed,
+                   "the original curve has the reference's points");
   const bool closed = reference.closed;
   const int n = reference.n_points();
   PreparedCurveEdit prepared;
@@ -98,24 +102,40 @@ PreparedCurveEdit prepare_editing_loop(const Polyline& reference, int levels, co
   if (edit.wrinkle_level >= 0) {
     const int w = edit.wrinkle_level;
     MatrixX3 cw = synthesize(ce, L, edit.edit_level, w, backend), dw = L.detail(w, cw);
-    const Eigen::VectorXd target = segment_lengths(L.polygons[static_cast<std::size_t>(w + 1)], closed);
+    // Level w+1's lengths to restore: the finest level's are the original curve's (kept by every
+    // edit); a coarser level's are not kept by the solve, so they are the reference's own.
+    const Eigen::VectorXd target = segment_lengths(w + 1 == levels ? original->points : L.polygons[static_cast<std::size_t>(w + 1)], closed);
     if (edit.options.explicit_step == ExplicitStep::Local) {
       out.explicit_step = preserve_lengths_locally(cw, dw, target, closed, moved, 1 << (w - edit.edit_level));
     } else {
       const int anchor = moved.empty() ? 0 : moved.front() << (w - edit.edit_level);
       out.explicit_step = preserve_lengths_explicitly(cw, dw, target, closed, anchor, backend);
     }
-    out.attracting = synthesize(synthesis_step(cw, dw, closed, backend), L, w + 1, levels, backend);
+    out.explicit_step.unplaceable_midpoints = count_unplaceable_midpoints(cw, target, closed);
+    const MatrixX3 c_next = synthesis_step(cw, dw, closed, backend);
+    out.explicit_step.length_error =
+        (segment_lengths(c_next, closed) - target).cwiseAbs().cwiseQuotient(target).maxCoeff();
+    out.attracting = synthesize(c_next, L, w + 1, levels, backend);
   } else {
     out.attracting = out.edited;
   }
   out.explicit_s = explicit_timer.seconds();
 
-  const CurveEditContext context{reference, out.edited, out.moved_points};
+  const Eigen::VectorXd lengths = segment_lengths(original->points, closed);
+  const CurveEditContext context{reference, out.edited, out.moved_points, lengths};
   std::vector<std::unique_ptr<CurveConstraint>> constraints;
   for (const auto* kind : objective.constraints) constraints.push_back(kind->build(context));
+  out.plane = fit_plane({&out.reference, &out.edited, &out.attracting});
+  if (edit.options.plane == PlaneMode::Keep && out.plane.planar) {
+    std::vector<const CurveConstraint*> given;
+    for (const auto& c : constraints) given.push_back(c.get());
+    if (constraints_in_plane(given, out.plane)) {
+      constraints.push_back(std::make_unique<InPlane>(in_plane_points(n, given), out.plane));
+      out.solved_in_plane = true;
+    }
+  }
   prepared.problem = std::make_unique<LengthProblem>(out.attracting, closed, paper_objective(objective, n, closed),
-                                                     std::move(constraints), segment_lengths(reference.points, closed));
+                                                     std::move(constraints), lengths);
   out.total_length_asked = prepared.problem->total_length_target();
   out.length_mode = prepared.problem->length_mode();
   if (edit.options.solve_region == SolveRegion::Support) prepared.windows = edit_windows(*prepared.problem, out.support);
@@ -123,9 +143,9 @@ PreparedCurveEdit prepare_editing_loop(const Polyline& reference, int levels, co
 }
 
 EditStages run_editing_loop(const Polyline& reference, int levels, const CurveEdit& edit, const CurveObjective& objective,
-                            const LengthSolver& solver, Backend backend) {
+                            const LengthSolver& solver, Backend backend, const Polyline* original) {
   const Timer total;
-  PreparedCurveEdit prepared = prepare_editing_loop(reference, levels, edit, objective, backend);
+  PreparedCurveEdit prepared = prepare_editing_loop(reference, levels, edit, objective, backend, original);
   EditStages& out = prepared.stages;
   const Timer solve_timer;
   out.solve = prepared.windows.empty() ? solver.solve(*prepared.problem, out.attracting)

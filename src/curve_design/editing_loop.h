@@ -11,6 +11,7 @@
 
 #include "fairshape/core/backend.h"
 #include "fairshape/curve_design/curve_components.h"
+#include "fairshape/curve_design/curve_plane.h"
 #include "fairshape/curve_design/edit_window.h"
 #include "fairshape/curve_design/explicit_length.h"
 #include "fairshape/curve_design/length_problem.h"
@@ -31,10 +32,14 @@ struct CurveMove {
 enum class ExplicitStep { Local, Sweep };        // explicit_local.h | explicit_length.h
 enum class DetailFrames { Global, LocalFrames };  // the paper's world-coordinate details | detail_frames.h
 enum class SolveRegion { Support, Curve };       // edit_window.h | the paper's whole-curve eq. 2
+// Keep: a planar problem (curves and constraints in one plane) is solved in its plane
+// (curve_plane.h); Free: three unknowns per point whatever the input.
+enum class PlaneMode { Keep, Free };
 struct EditingOptions {
   ExplicitStep explicit_step = ExplicitStep::Local;
   DetailFrames details = DetailFrames::LocalFrames;
   SolveRegion solve_region = SolveRegion::Support;
+  PlaneMode plane = PlaneMode::Keep;
 };
 
 struct CurveEdit {
@@ -63,6 +68,10 @@ struct EditStages {
   ExplicitLengthReport explicit_step;
   LengthMode length_mode = LengthMode::Segments;  // which length constraint the solve kept
   double total_length_asked = 0;                  // the total length the solve aimed at
+  //! The plane of C_R, C_D and C_A (curve_plane.h); solved_in_plane: the problem held its
+  //! points in it (plane: keep and everything planar), so the second-order verdict is in-plane.
+  CurvePlane plane;
+  bool solved_in_plane = false;
   LengthSolveReport solve;
   double explicit_s = 0, solve_s = 0, total_s = 0;
 };
@@ -75,12 +84,14 @@ struct PreparedCurveEdit {
 };
 //! \throw InvalidInput as run_editing_loop.
 PreparedCurveEdit prepare_editing_loop(const Polyline& reference, int levels, const CurveEdit& edit,
-                                       const CurveObjective& objective, Backend backend);
+                                       const CurveObjective& objective, Backend backend, const Polyline* original = nullptr);
 
 //! \throw InvalidInput for levels outside the hierarchy, moves off the level-e polygon, an
 //! infeasible edit or zero-length segments (before anything is solved).
+//! `original`: the curve whose lengths the edit keeps, every level's (nullptr: `reference`'s).
+//! A sequence of edits (a drag) passes the first curve, so lengths never drift from step to step.
 EditStages run_editing_loop(const Polyline& reference, int levels, const CurveEdit& edit, const CurveObjective& objective,
-                            const LengthSolver& solver, Backend backend);
+                            const LengthSolver& solver, Backend backend, const Polyline* original = nullptr);
 
 //! The §3 objective of an edit: (1−β)·smoothness + max(β, kMinimumAttractorWeight)·D.
 std::vector<WeightedStencils> paper_objective(const CurveObjective& o, int n_points, bool closed);

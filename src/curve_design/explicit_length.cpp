@@ -64,6 +64,16 @@ bool place_midpoint(const MatrixX3& c, MatrixX3& detail, const Eigen::VectorXd& 
   return changed;
 }
 
+int count_unplaceable_midpoints(const MatrixX3& c, const Eigen::VectorXd& target, bool closed) {
+  const int m = static_cast<int>(c.rows()), segments = closed ? m : m - 1;
+  int count = 0;
+  for (int i = 0; i < segments; ++i) {
+    const double a = target[2 * i], b = target[2 * i + 1], s = (c.row((i + 1) % m) - c.row(i)).norm();
+    count += s < std::abs(a - b) * (1 - 1e-12);
+  }
+  return count;
+}
+
 ExplicitLengthReport preserve_lengths_explicitly(MatrixX3& coarse, MatrixX3& detail, const Eigen::VectorXd& target,
                                                  bool closed, int anchor, Backend backend) {
   const int segments = static_cast<int>(detail.rows());

@@ -17,7 +17,13 @@
 //    so what the user dragged stays where it was put and the far parts follow like a rope.
 //    On a closed curve the two sweeps meet opposite the anchor; the segment where they meet
 //    is left to the optimization.
-//  * |PQ| < |a − b| (no intersection): the midpoint goes on the line PQ at distance a from P.
+//  * |PQ| < |a − b| (no intersection: one child far longer than the other and the chord, a
+//    spike): no midpoint gives both lengths, and the paper's step only replaces details, so
+//    the midpoint goes on the line PQ at distance a from P (the longer child beyond the
+//    shorter) and the level-(w+1) lengths stay wrong there. Such midpoints are counted
+//    (ExplicitLengthReport::unplaceable_midpoints) and the lengths the step left are measured
+//    (length_error): the editing loop reports them and a run fails on them unless allowed
+//    (papers/sauvage/README.md, "Explicit step on spiky detail").
 #pragma once
 
 #include "fairshape/core/backend.h"
@@ -36,7 +42,15 @@ struct ExplicitLengthReport {
   // `local` only: how far moved control points had to be pulled back towards their fixed
   // neighbours because the edit asked for more length than the curve has there (0: none).
   double worst_pull_back = 0;
+  // Level-w segments whose chord is shorter than |a − b| (no midpoint keeps both children), and
+  // the largest relative error of the level-(w+1) lengths after the step, measured on the
+  // polygon it produced (both ways; set by the editing loop).
+  int unplaceable_midpoints = 0;
+  double length_error = 0;
 };
+
+//! Level-w segments of `coarse` whose chord is shorter than |a − b| (a, b its children's targets).
+int count_unplaceable_midpoints(const MatrixX3& coarse, const Eigen::VectorXd& target, bool closed);
 
 //! \param coarse level-w points; moved in the stretching case.
 //! \param detail d^w, replaced.

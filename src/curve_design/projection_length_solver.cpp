@@ -7,6 +7,7 @@
 
 #include "fairshape/core/message_format.h"
 #include "fairshape/core/timer.h"
+#include "fairshape/curve_design/curve_plane.h"
 
 namespace fairshape {
 namespace {
@@ -19,8 +20,15 @@ struct Projection {
 };
 
 // The projections of the problem's constraints; false (and `why`) for a kind it cannot project.
-bool collect(const LengthProblem& p, std::vector<Projection>& out, std::string& why) {
+// A planar problem's in-plane rows (curve_plane.h) are not penalized but met exactly: after
+// each global step their points are projected onto the plane (the rows' own projection). The
+// rest of the data lie in the plane, so the global step leaves it by rounding only.
+bool collect(const LengthProblem& p, std::vector<Projection>& out, std::vector<const InPlane*>& planes, std::string& why) {
   for (const auto& c : p.constraints()) {
+    if (const auto* plane = dynamic_cast<const InPlane*>(c.get())) {
+      planes.push_back(plane);
+      continue;
+    }
     if (const auto* s = dynamic_cast<const SegmentLengths*>(c.get())) {
       const int n = p.n_points(), segments = static_cast<int>(s->lengths().size());
       for (int i = 0; i < segments; ++i) out.push_back({i, (i + 1) % n, s->lengths()[i], Vec3::Zero()});
@@ -32,7 +40,8 @@ bool collect(const LengthProblem& p, std::vector<Projection>& out, std::string& 
             "constraint); the solvers that do: linearized, trust_region";
       return false;
     } else {
-      why = "the projection baseline projects segment lengths and pins only; this problem has another constraint kind";
+      why = "the projection baseline projects segment lengths and pins only (and a planar problem's plane); this problem has "
+            "another constraint kind";
       return false;
     }
   }
@@ -46,8 +55,9 @@ LengthSolveReport ProjectionLengthSolver::solve(const LengthProblem& p, const Ma
   LengthSolveReport rep;
   rep.points = start;
   std::vector<Projection> proj;
+  std::vector<const InPlane*> planes;
   std::string why;
-  if (!collect(p, proj, why)) {
+  if (!collect(p, proj, planes, why)) {
     rep.summary.termination = Termination::InvalidInput;
     rep.summary.message = why;
     return rep;
@@ -107,6 +117,11 @@ LengthSolveReport ProjectionLengthSolver::solve(const LengthProblem& p, const Ma
     }
     // Global step.
     X = global.solve(rhs);
+    for (const InPlane* plane : planes)
+      for (int q : plane->points()) {
+        const Vec3& n = plane->plane().normal;
+        X.row(q) -= n.dot(X.row(q).transpose() - plane->plane().origin) * n.transpose();
+      }
     ++rep.solves;
     if (!X.allFinite()) return finish(Termination::NumericalFailure, "non-finite iterate");
     const double length_error = p.max_relative_length_error(X), err = std::max(length_error, p.max_relative_pin_error(X));

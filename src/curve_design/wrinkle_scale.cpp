@@ -44,7 +44,11 @@ WrinkleScale wrinkle_scale(const MatrixX3& final, const MatrixX3& attracting, bo
   const Eigen::Index segments = closed ? n : n - 1;
   if (!(L > 0) || !(out.amplitude > 0)) return out;
   // d at N points equally spaced in arc length (closed: periodic, the last sample before 0 again).
-  const Eigen::Index N = n;
+  // N: the power of two at or above n, so the FFT is O(N log N) for every n (a prime n made
+  // Eigen's FFT quadratic: minutes at 131,073 points). The frequencies are cycles over L
+  // whatever N, so the peak does not depend on it.
+  Eigen::Index N = 1;
+  while (N < n) N *= 2;
   // One pass: the samples' arc lengths increase, so the segment holding each one only moves on.
   MatrixX3 resampled(N, 3);
   std::size_t i = 0;

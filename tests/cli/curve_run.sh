@@ -1,9 +1,11 @@
 # Curve experiments (configs/sauvage): outputs on any curve, and bad input reported clearly.
 source "$(dirname "$0")/lib.sh"
 C=configs/sauvage/fig3.yaml
-# Any curve through --set input.curve: a closed space curve, edited at level 1, wrinkles at 3.
+# Any curve through --set input.curve: a closed space curve, edited at level 1, wrinkles at 3
+# (a move the lengths allow: [-0.2, 0.1, 0.3] puts the handle 14 % farther from its neighbour
+# than the curve between them is long, which ends edit_undone, tested below).
 "$FS" run $C --out "$SCRATCH/ring" --set input.curve=data/curves/ring128.obj --set 'sweep={}' \
-  --set edits.0.level=1 --set edits.0.wrinkle_level=3 --set 'edits.0.moves=[{index: 2, by: [-0.2, 0.1, 0.3]}]' 2>/dev/null \
+  --set edits.0.level=1 --set edits.0.wrinkle_level=3 --set 'edits.0.moves=[{index: 2, by: [-0.05, 0.03, 0.1]}]' 2>/dev/null \
   || fail "ring128 run failed"
 for f in runs.csv steps.csv final.obj run.json; do [ -s "$SCRATCH/ring/$f" ] || fail "missing $f"; done
 head -1 "$SCRATCH/ring/runs.csv" | grep -q "length_error_max,length_error_rms,total_length_change,bending_energy,distance_to_attractor,wrinkles" \
@@ -106,4 +108,50 @@ expect_error 2 "optimization.solver.type: ceres does not take the total_length c
 expect_error 2 "total_length and segment_lengths together" -- "$FS" run $T --out "$SCRATCH/x" \
   --set 'optimization.constraints=[{type: segment_lengths}, {type: total_length}]'
 expect_error 2 "set editing.solve_region: curve" -- "$FS" run $T --out "$SCRATCH/x" --set editing.solve_region=support
+# Planar curves stay planar, judged in their plane; the key is checked.
+F1=configs/sauvage/fig1.yaml
+expect_error 2 "editing.plane: unknown value 'flat' (valid: keep, free)" -- "$FS" run $F1 --set editing.plane=flat --out "$SCRATCH/x"
+expect_error 2 "editing.partial_edit: unknown value 'yes' (valid: fail, accept)" -- "$FS" run $F1 --set editing.partial_edit=yes --out "$SCRATCH/x"
+"$FS" run $F1 --set 'sweep={}' --set optimization.beta=0.5 --set optimization.solver.type=linearized --out "$SCRATCH/planar" 2>/dev/null \
+  || fail "the paper's loop on Figure 1 at beta 0.5 should end at an in-plane minimum"
+"$FS" run $F1 --set 'sweep={}' --set optimization.beta=0.5 --set editing.plane=free --out "$SCRATCH/free3d" 2>/dev/null || true
+$PY - "$SCRATCH/planar/runs.csv" "$SCRATCH/free3d/runs.csv" <<'PYEOF' || fail "planar run: expected plane kept, out_of_plane <= 1e-12, an in-plane verdict; plane: free judged in 3-D"
+import csv, sys
+r = next(csv.DictReader(open(sys.argv[1])))
+f = next(csv.DictReader(open(sys.argv[2])))
+ok = (r["termination"] == "converged" and r["plane"] == "kept" and float(r["out_of_plane"]) <= 1e-12
+      and r["second_order_space"] == "in_plane" and float(r["min_reduced_hessian_eig"]) >= 0
+      and f["plane"] == "free" and f["second_order_space"] == "3d")
+sys.exit(0 if ok else 1)
+PYEOF
+# A drag the lengths cannot honour (the end to 1.2 times the chord: the wave is only 1.06 times
+# as long) is not a success unless allowed.
+OVER=(--set 'sweep={}' --set 'edits.0.moves=[{index: -1, chord_scale: 1.2}]' --set edits.0.drag_steps=5)
+rc=0; "$FS" run $F1 "${OVER[@]}" --out "$SCRATCH/over" 2>/dev/null || rc=$?
+[ "$rc" -eq 3 ] || fail "over-stretched drag: exit $rc, expected 3"
+grep -q ",edit_undone,.*over-stretched" "$SCRATCH/over/runs.csv" || fail "over-stretched drag not reported as edit_undone"
+"$FS" run $F1 "${OVER[@]}" --set editing.partial_edit=accept --out "$SCRATCH/over_ok" 2>/dev/null \
+  || fail "editing.partial_edit: accept should let the over-stretched drag end converged"
+grep -q ",converged,.*not honoured" "$SCRATCH/over_ok/runs.csv" || fail "an accepted partial edit should still say so"
+# A folded spike (point 65 thrown beyond 66 along the level-6 chord 64-66): a 5 % compression
+# with wrinkles at w = 6 leaves one midpoint the explicit step cannot place; not in silence.
+$PY - "$SCRATCH/spiky.obj" <<'PYEOF'
+import sys
+P = [[float(x) for x in l.split()[1:4]] for l in open("data/curves/wave129.obj") if l.startswith("v ")]
+p, q = P[64], P[66]
+P[65] = [q[i] + 3 * (q[i] - p[i]) + (1e-3 if i == 1 else 0) for i in range(3)]
+with open(sys.argv[1], "w") as f:
+    for v in P:
+        f.write("v %.17g %.17g %.17g\n" % tuple(v))
+    f.write("l " + " ".join(str(i + 1) for i in range(len(P))) + "\n")
+PYEOF
+SPIKE=(--set 'sweep={}' --set input.curve="$SCRATCH/spiky.obj" --set edits.0.wrinkle_level=6 --set 'edits.0.moves=[{index: -1, chord_scale: 0.95}]')
+rc=0; "$FS" run $F1 "${SPIKE[@]}" --out "$SCRATCH/spike" 2>/dev/null || rc=$?
+[ "$rc" -eq 3 ] || fail "spiky explicit step: exit $rc, expected 3"
+$PY - "$SCRATCH/spike/runs.csv" <<'PYEOF' || fail "the spike's unplaced midpoint should end constraints_unmet with the error it left"
+import csv, sys
+r = next(csv.DictReader(open(sys.argv[1])))
+sys.exit(0 if r["termination"] == "constraints_unmet" and int(r["unplaceable_midpoints"]) >= 1
+         and float(r["explicit_length_error"]) > 1e-3 and "explicit step left" in r["message"] else 1)
+PYEOF
 echo "curve_run: ok"

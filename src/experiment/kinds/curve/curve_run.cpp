@@ -8,6 +8,8 @@
 #include "fairshape/core/config.h"
 #include "fairshape/core/timer.h"
 #include "fairshape/curve_design/curve_metrics.h"
+#include "fairshape/curve_design/curve_plane.h"
+#include "fairshape/curve_design/self_crossings.h"
 #include "fairshape/curve_design/edit_support.h"
 #include "fairshape/curves/curve_sampling.h"
 #include "fairshape/curve_design/wrinkle_scale.h"
@@ -131,7 +133,7 @@ void read_optimization(Config& root, CurveRunSpec& s) {
 }
 
 // How the loop keeps edits local (papers/sauvage/README.md, issue 25 parts 3 and 4).
-EditingOptions read_editing(Config& root) {
+EditingOptions read_editing(Config& root, bool& accept_partial_edit) {
   EditingOptions o;
   Config c = root.child("editing", "how the editing loop keeps an edit local: {explicit_step, details, solve_region}");
   const std::string step = c.get_choice("explicit_step", "local", {"local", "sweep"},
@@ -141,7 +143,16 @@ EditingOptions read_editing(Config& root) {
                                            "details in world coordinates (the paper) or in their coarse segment's frame");
   const std::string region = c.get_choice("solve_region", "support", {"support", "curve"},
                                           "the §3 optimization over the edit's support (the rest held) or the whole curve");
+  const std::string plane = c.get_choice("plane", "keep", {"keep", "free"},
+                                         "keep: a planar problem (curve, edit and constraints in one plane) is solved in its "
+                                         "plane; free: every point has three unknowns, so a planar curve may leave its plane");
+  accept_partial_edit =
+      c.get_choice("partial_edit", "fail", {"fail", "accept"},
+                   "an edit not honoured — handles pulled back or returned (edit_undone), attracting-curve lengths left "
+                   "wrong by the explicit step (constraints_unmet): fail ends the run so (exit 3); accept ends it converged, "
+                   "the message saying what happened") == "accept";
   c.check_no_unknown_keys();
+  o.plane = plane == "keep" ? PlaneMode::Keep : PlaneMode::Free;
   o.explicit_step = step == "local" ? ExplicitStep::Local : ExplicitStep::Sweep;
   o.details = details == "local_frames" ? DetailFrames::LocalFrames : DetailFrames::Global;
   o.solve_region = region == "support" ? SolveRegion::Support : SolveRegion::Curve;
@@ -211,7 +222,7 @@ static CurveRunSpec read_curve_run(const std::vector<std::string>& dirs, Config&
   for (Config ec : root.child_list("edits", "editing loops applied in order: [{level, wrinkle_level, moves, drag_steps}]"))
     for (CurveEdit& e : read_edit(ec, s)) s.edits.push_back(std::move(e));
   if (s.edits.empty()) throw InvalidConfig("edits: at least one edit is required" + root.misspelling_of("edits"));
-  s.editing = read_editing(root);
+  s.editing = read_editing(root, s.accept_partial_edit);
   for (auto& e : s.edits) e.options = s.editing;
   read_optimization(root, s);
   Config out = root.child("output", "what each run writes");
@@ -236,6 +247,7 @@ const std::vector<std::string>& curve_metric_columns() {
       "distance_to_attractor", "wrinkles", "wrinkle_amplitude", "wrinkle_wavelength", "wrinkle_wavelength_segments",
       "length_constraint", "total_length_asked", "total_length_error", "segment_stretch_min", "segment_stretch_max",
       "attractor_length_error", "moved_outside_support", "attractor_moved_outside_support", "solves", "outer_iterations", "stationarity", "min_reduced_hessian_eig", "saddle_escapes",
+      "plane", "out_of_plane", "second_order_space", "handle_reach", "explicit_length_error", "unplaceable_midpoints", "self_crossings",
       "explicit_s", "solve_s", "time_s", "unused_keys", "termination", "message"};
   return cols;
 }
@@ -253,6 +265,11 @@ const std::vector<std::string>& curve_iteration_columns() {
 }
 
 namespace {
+
+// Length preservation is explicit at level w + 1 (Sauvage et al. §4.1): lengths placed
+// analytically, so anything above rounding is a length the step could not place.
+constexpr double kExplicitLengthTolerance = 1e-9;
+bool edits_wrinkle(const CurveEdit& e) { return e.wrinkle_level >= 0; }
 
 const char* const kStages[] = {"reference", "edited", "attracting", "final"};
 
@@ -296,12 +313,20 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
   int solves = 0, outer = 0, done = 0;
   double outside_final = 0, outside_attracting = 0;
   std::string explicit_note;  // an explicit step that could not keep the lengths inside the support
+  // The input's plane: the result's distance from it is measured here, whatever the solver did.
+  const CurvePlane input_plane = fit_plane({&spec.curve.points});
+  bool every_edit_in_plane = true;
+  // Edits not honoured (editing.partial_edit): the worst over the edits, and what happened.
+  double reach = 1, explicit_error = 0;
+  int unplaceable = 0;
+  std::string undone_note, unmet_note;
+  MatrixX3 drag_start, drag_asked;
   try {
     const Eigen::VectorXd original = segment_lengths(spec.curve.points, spec.curve.closed);
     Polyline current = spec.curve;
     EditStages last;
     for (std::size_t k = 0; k < spec.edits.size(); ++k) {
-      last = run_editing_loop(current, spec.levels, spec.edits[k], spec.objective(), *spec.solver, spec.implementation);
+      last = run_editing_loop(current, spec.levels, spec.edits[k], spec.objective(), *spec.solver, spec.implementation, &spec.curve);
       const int edit = static_cast<int>(k);
       time_s += last.total_s;
       explicit_s += last.explicit_s;
@@ -309,6 +334,7 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
       solves += last.solve.solves;
       outer += last.solve.outer_iterations;
       ++done;
+      every_edit_in_plane &= last.solved_in_plane;
       const double tol = rounding_tolerance(last.reference);
       outside_final = std::max(outside_final, moved_outside_support(last.reference, last.final, last.support, tol));
       outside_attracting = std::max(outside_attracting, moved_outside_support(last.reference, last.attracting, last.support, tol));
@@ -322,10 +348,47 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
                          std::to_string(last.explicit_step.unreachable_chains) +
                          " level-e segment(s) stretched beyond their reference length, up to " +
                          num(100 * last.explicit_step.worst_excess) + " % too long: left straight for the optimization); ";
-      const Eigen::VectorXd lengths = segment_lengths(current.points, current.closed);
+      // A drag's steps are judged together: from where its handles were before its first step,
+      // against the sum of the displacements its steps asked for.
+      const CurveEdit& e = spec.edits[k];
+      if (e.drag_step == 1) {
+        drag_start = last.reference;
+        drag_asked = MatrixX3::Zero(last.reference.rows(), 3);
+      }
+      drag_asked += last.edited - last.reference;
+      double r = 1, stretch = -1;
+      if (e.drag_step == e.drag_steps) {
+        r = handle_reach(drag_start, drag_start + drag_asked, last.final, last.moved_points);
+        reach = std::min(reach, r);
+        // Where the drag asked its handles to be, against the curve's own lengths.
+        MatrixX3 asked = last.edited;
+        for (int p : last.moved_points) asked.row(p) = drag_start.row(p) + drag_asked.row(p);
+        // (A total length lets segments stretch: only the total bounds a handle's reach there.)
+        if (last.length_mode == LengthMode::Segments)
+          stretch = worst_overstretch(asked, original, spec.curve.closed, 1 << (spec.levels - e.edit_level), last.moved_points);
+      }
+      if (undone_note.empty() && (last.explicit_step.worst_pull_back > 0 || last.explicit_step.unreachable_chains > 0 ||
+                                  r < kUndoneReach || stretch > 1e-9))
+        undone_note = "edit " + std::to_string(k) + " not honoured: " +
+                      (stretch > 1e-9 ? "it puts a handle " + num(100 * stretch) + " % farther from a control point than the curve "
+                                        "between them is long (over-stretched)"
+                       : r < kUndoneReach ? "the result kept " + num(100 * r) + " % of the handles' displacement" +
+                                              (e.drag_steps > 1 ? " over the drag's " + std::to_string(e.drag_steps) + " steps" : "")
+                                        : std::string("the handles were pulled back so the lengths could be kept")) +
+                      " (editing.partial_edit: accept allows it); ";
+      explicit_error = std::max(explicit_error, last.explicit_step.length_error);
+      unplaceable += last.explicit_step.unplaceable_midpoints;
+      if (unmet_note.empty() && edits_wrinkle(spec.edits[k]) && last.explicit_step.length_error > kExplicitLengthTolerance)
+        unmet_note = "edit " + std::to_string(k) + ": the explicit step left the attracting curve's level-" +
+                     std::to_string(spec.edits[k].wrinkle_level + 1) + " lengths up to " +
+                     num(100 * last.explicit_step.length_error) + " % off (" +
+                     std::to_string(last.explicit_step.unplaceable_midpoints) +
+                     " midpoint(s) on chords shorter than the difference of their two lengths, " +
+                     std::to_string(last.explicit_step.unreachable_chains) +
+                     " chain(s) stretched beyond reach; editing.partial_edit: accept allows it); ";
       const MatrixX3* stage_points[] = {&last.reference, &last.edited, &last.attracting, &last.final};
       for (int st = 0; st < 4; ++st) {
-        const CurveMetrics m = measure_curve(*stage_points[st], current.closed, lengths, last.attracting);
+        const CurveMetrics m = measure_curve(*stage_points[st], current.closed, original, last.attracting);
         const bool fin = st == 3;
         out.add_row("steps", step_row(edit, spec.edits[k], kStages[st], m, fin ? std::to_string(last.solve.solves) : "",
                                       fin ? num(last.total_s) : ""));
@@ -377,6 +440,38 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
       row["message"] = (spec.edits.size() > 1 ? "edit " + std::to_string(done - 1) + ": " : std::string()) +
                        last.solve.summary.message;
     row["message"] = explicit_note + row["message"];
+    row["handle_reach"] = num(reach);
+    row["explicit_length_error"] = num(explicit_error);
+    row["unplaceable_midpoints"] = std::to_string(unplaceable);
+    if (row["termination"] == to_string(Termination::Converged) && !(undone_note + unmet_note).empty()) {
+      if (!spec.accept_partial_edit)
+        row["termination"] = std::string(to_string(undone_note.empty() ? Termination::ConstraintsUnmet : Termination::EditUndone));
+      row["message"] = undone_note + unmet_note + row["message"];
+    }
+    row["plane"] = !input_plane.planar ? "not_planar" : every_edit_in_plane ? "kept" : "free";
+    row["second_order_space"] = last.solved_in_plane ? "in_plane" : "3d";
+    if (input_plane.planar) {
+      const double off = distance_from_plane(current.points, input_plane);
+      row["out_of_plane"] = num(off);
+      // Solved in the plane but not in it: the rows were not met (measured on the result).
+      if (every_edit_in_plane && off > kPlanarTolerance * input_plane.size &&
+          row["termination"] == to_string(Termination::Converged)) {
+        row["termination"] = std::string(to_string(Termination::ConstraintsUnmet));
+        row["message"] = "the planar curve left its plane by " + num(off) + " (" + num(off / input_plane.size) +
+                         " of its size, tolerance " + num(kPlanarTolerance) + "); " + row["message"];
+      }
+    }
+    if (input_plane.planar) {
+      // Crossings the edits made (the input's own are not the edit's doing).
+      const int before = count_self_crossings(spec.curve.points, spec.curve.closed, input_plane);
+      const int after = count_self_crossings(current.points, current.closed, input_plane);
+      row["self_crossings"] = std::to_string(after);
+      if (after > before && row["termination"] == to_string(Termination::Converged)) {
+        row["termination"] = std::string(to_string(Termination::Folded));
+        row["message"] = "the result crosses itself: " + std::to_string(after - before) + " crossing(s) of segment pairs the input " +
+                         "did not have; " + row["message"];
+      }
+    }
     if (spec.final_curve) write_polyline(current, out.final_path());
   } catch (const OutputError& e) {  // results incomplete: not a finished run
     row["termination"] = std::string(to_string(Termination::OutputFailed));

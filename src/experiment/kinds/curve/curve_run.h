@@ -22,6 +22,11 @@ struct CurveRunSpec : RunBasics {
   Polyline curve;
   std::vector<CurveEdit> edits;
   EditingOptions editing;  // `editing:` block, the same for every edit
+  //! editing.partial_edit: accept — an edit the explicit step or the constraints could not
+  //! honour (handles pulled back or undone, attracting-curve lengths left wrong) still ends
+  //! converged, its message saying what happened; fail (default) — it ends edit_undone or
+  //! constraints_unmet.
+  bool accept_partial_edit = false;
   double beta = 0.5;
   std::unique_ptr<CurveEnergy> smoothness;
   std::vector<std::unique_ptr<CurveConstraintKind>> constraints;

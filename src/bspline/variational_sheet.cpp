@@ -142,7 +142,7 @@ struct CellKey {
 }  // namespace
 
 std::vector<CellError> constraint_errors(const VariationalSheet& sheet, const std::vector<SheetConstraint>& constraints) {
-  return constraint_errors(sheet, constraints, [&](std::size_t i, double t) { return polyline_at(constraints[i].curve.space, t); });
+  return constraint_errors(sheet, constraints, [&](std::size_t i, double t) { return curve_target_at(constraints[i].curve, t); });
 }
 
 std::vector<CellError> constraint_errors(const VariationalSheet& sheet, const std::vector<SheetConstraint>& constraints,
@@ -199,13 +199,20 @@ namespace {
 // (bspline/curve_fidelity.h).
 void check_curve_convergence(const VariationalSheet& sheet, const SheetEnergy& energy, const std::vector<SheetConstraint>& constraints,
                              const RefinementOptions& options, Backend backend, DesignReport& report) {
+  const Eigen::Vector2d& span_size = sheet.surface().shape().span_size;
   if (const auto conflict = curve_conflict(sheet, constraints, options.curve_conflict_tolerance)) {
     report.qp.summary.termination = Termination::ConstraintsUnmet;
-    report.message = describe(*conflict, constraints) + " (tolerance: refinement.curve_conflict_tolerance " +
+    report.message = describe(*conflict, constraints, span_size) + " (tolerance: refinement.curve_conflict_tolerance " +
                      sci(options.curve_conflict_tolerance) + " of the sheet's size)";
     return;
   }
-  if (options.curve_limit_share <= 0) return;
+  if (const auto conflict = curve_slope_conflict(sheet, constraints, options.curve_slope_tolerance)) {
+    report.qp.summary.termination = Termination::ConstraintsUnmet;
+    report.message = describe(*conflict, constraints, span_size) + " (tolerance: refinement.curve_slope_tolerance " +
+                     sci(options.curve_slope_tolerance) + ")";
+    return;
+  }
+  if (options.curve_limit_share <= 0 || !options.curve_probe) return;
   // A curve met to the requested refinement tolerance is what was asked.
   if (options.tolerance > 0 && report.max_constraint_error <= options.tolerance) return;
   const CurveConvergence c =

@@ -101,6 +101,14 @@ struct RefinementOptions {
   double curve_error_factor = 2;
   double curve_limit_share = 0.5;
   double curve_conflict_tolerance = 1e-3;
+  //! A tangent or normal on a weak curve's path whose derivative differs from the curve's slope
+  //! there by more than this (a slope: world length per design length) is a conflict
+  //! (bspline/slope_conflict.h): constraints_unmet.
+  double curve_slope_tolerance = 1e-3;
+  //! Whether this solve runs the resolution probe (curve_fidelity.h: an alone solve and two
+  //! refined solves per curve, many times the step's own solve). The exact conflict checks
+  //! (positions, slopes) run on every solve whatever this says.
+  bool curve_probe = true;
 };
 
 //! The spans whose refinement §4.4 asks for: those holding a cell with error above the

@@ -51,7 +51,22 @@ int VariationalSheet::refine(const std::vector<SpanId>& spans) {
   }
   std::size_t after = 0;
   for (int l = 0; l < surface_.level_count(); ++l) after += surface_.span_count(l);
+  if (after != before) thin_plate_.reset();
   return static_cast<int>(after - before);
+}
+
+const VariationalSheet::ThinPlate& VariationalSheet::thin_plate(const TensionWeights& weights, Backend backend) const {
+  const bool same = thin_plate_ && thin_plate_->backend == backend && thin_plate_->weights.alpha == weights.alpha &&
+                    thin_plate_->weights.beta == weights.beta && thin_plate_->H.rows() == surface_.dof_count();
+  if (!same) {
+    auto fresh = std::make_shared<ThinPlate>();
+    fresh->weights = weights;
+    fresh->backend = backend;
+    fresh->H = thin_plate_hessian(surface_, weights, backend);
+    fresh->K = thin_plate_square_root(surface_, weights);
+    thin_plate_ = std::move(fresh);
+  }
+  return *thin_plate_;
 }
 
 namespace {
@@ -103,8 +118,9 @@ qp::QuadraticProgram assemble(const VariationalSheet& sheet, const SheetEnergy& 
     p.K = p.H;
     p.f = sheet.rest();
   } else {
-    p.H = thin_plate_hessian(s, energy.weights, backend);
-    p.K = thin_plate_square_root(s, energy.weights);
+    const VariationalSheet::ThinPlate& plate = sheet.thin_plate(energy.weights, backend);
+    p.H = plate.H;
+    p.K = plate.K;
     p.f = energy.rest_shape ? Eigen::MatrixXd(p.H * sheet.rest()) : Eigen::MatrixXd::Zero(s.dof_count(), 3);
   }
   std::vector<ConstraintRows> rows;

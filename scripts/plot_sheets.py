@@ -4,10 +4,11 @@
   plot_sheets.py steps RUN_DIR OUT.png --title TEXT [--labels L0 L1 ...]
       one rendered panel per design step (vtk/<run_id>_step<k>.vtp, coloured by displacement)
   plot_sheets.py cells RUN_DIR OUT.png --title TEXT
-  plot_sheets.py runs RUN_DIR OUT.png --title TEXT --label FORMAT --profile-v V --spans-v N --per-span K
+  plot_sheets.py runs RUN_DIR OUT.png --title TEXT --label FORMAT --profile-v V --size-v S --spans-v N --per-span K
       one rendered panel per run of a sweep (its last step), plus the height profile z(x) of
-      every run along the grid line v = V of final/<run_id>.obj (N base spans in v, K samples
-      per span); FORMAT is a Python format over the runs.csv row (dots in names -> _)
+      every run along the line v = V (design units, as the config's (u, v); the sheet S long
+      in v) of final/<run_id>.obj (N base spans in v, K samples per span); FORMAT is a Python
+      format over the runs.csv row (dots in names -> _)
       constraint error per leaf cell after every solve of the last step (cells.csv: the first,
       unrefined solve and each refinement round), above the surface before and after refinement
   plot_sheets.py convergence RUN_DIR OUT.png --title TEXT
@@ -128,11 +129,11 @@ def read_obj_vertices(path):
         return [tuple(map(float, line.split()[1:4])) for line in f if line.startswith("v ")]
 
 
-def runs_figure(run_dir, out, title, label, profile_v, spans_v, per_span):
+def runs_figure(run_dir, out, title, label, profile_v, size_v, spans_v, per_span):
     runs = read_csv(os.path.join(run_dir, "runs.csv"))
     fig, axes = plt.subplots(1, 2, figsize=(4.2 * (len(runs) + 1), 3.9), squeeze=False,
                              gridspec_kw={"width_ratios": [len(runs), 1]})
-    column = int(round(profile_v * per_span))
+    column = int(round(profile_v / size_v * spans_v * per_span))  # design units -> sample index
     names, vtps = [], []
     for r in runs:
         vtps.append(sorted(step_files(os.path.join(run_dir, "vtk", r["run_id"] + "_step*.vtp")))[-1])
@@ -147,7 +148,7 @@ def runs_figure(run_dir, out, title, label, profile_v, spans_v, per_span):
     axes[0][0].axis("off")
     axes[0][1].set_xlabel("x")
     axes[0][1].set_ylabel("z")
-    axes[0][1].set_title(f"profile along v = {profile_v}", fontsize=10)
+    axes[0][1].set_title(f"profile along v = {profile_v:g} (design units)", fontsize=10)
     axes[0][1].legend(fontsize=7)
     fig.suptitle(title)
     fig.tight_layout()
@@ -196,6 +197,7 @@ def main():
     p.add_argument("--labels", nargs="*", default=[])
     p.add_argument("--label", default="{run_id}")
     p.add_argument("--profile-v", type=float, default=0)
+    p.add_argument("--size-v", type=float, default=1)
     p.add_argument("--spans-v", type=int, default=1)
     p.add_argument("--per-span", type=int, default=6)
     a = p.parse_args()
@@ -206,7 +208,7 @@ def main():
     elif a.kind == "convergence":
         convergence_figure(a.run_dir, a.out, a.title)
     else:
-        runs_figure(a.run_dir, a.out, a.title, a.label, a.profile_v, a.spans_v, a.per_span)
+        runs_figure(a.run_dir, a.out, a.title, a.label, a.profile_v, a.size_v, a.spans_v, a.per_span)
 
 
 if __name__ == "__main__":

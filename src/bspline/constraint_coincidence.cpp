@@ -64,7 +64,7 @@ std::vector<Coincidence> coincidences(const std::vector<SheetConstraint>& constr
   std::vector<Coincidence> out;
   const auto add = [&](std::size_t curve, std::size_t other, double t, const Vec3* asked_there) {
     const SheetConstraint& c = constraints[curve];
-    const double gap = asked_there ? (polyline_at(c.curve.space, t) - *asked_there).norm() : 0.0;
+    const double gap = asked_there ? (curve_target_at(c.curve, t) - *asked_there).norm() : 0.0;
     out.push_back({static_cast<int>(curve), static_cast<int>(other), polyline_at(c.curve.uv, t), t, gap});
   };
   for (std::size_t i = 0; i < constraints.size(); ++i) {
@@ -76,7 +76,7 @@ std::vector<Coincidence> coincidences(const std::vector<SheetConstraint>& constr
       if (o.kind == SheetConstraint::Kind::Curve) {
         if (j < i && weak_curve(o)) continue;  // each weak pair once
         for (const auto& [ti, tj] : shared_points(path, o.curve.uv, on_path)) {
-          const Vec3 there = polyline_at(o.curve.space, tj);
+          const Vec3 there = curve_target_at(o.curve, tj);
           add(i, j, ti, &there);
         }
         continue;
@@ -96,15 +96,16 @@ std::optional<Coincidence> conflicting_coincidence(const std::vector<SheetConstr
   return worst;
 }
 
-std::string describe(const Coincidence& c, const std::vector<SheetConstraint>& constraints) {
+std::string describe(const Coincidence& c, const std::vector<SheetConstraint>& constraints, const Eigen::Vector2d& span_size) {
   const auto name = [&](int k) {
     const std::string& l = constraints[static_cast<std::size_t>(k)].label;
     return l.empty() ? "constraint " + std::to_string(k) : l;
   };
   const SheetConstraint& o = constraints[static_cast<std::size_t>(c.other)];
   static const char* const kinds[] = {" (a point)", " (a tangent)", " (a normal)", " (a curve)"};
+  const Eigen::Vector2d uv = c.uv.cwiseProduct(span_size);
   return name(c.other) + kinds[static_cast<int>(o.kind)] + " lies on the path of curve " +
-         name(c.curve) + " at (u, v) = (" + sci(c.uv.x()) + ", " + sci(c.uv.y()) + ") in spans, t = " + sci(c.t) +
+         name(c.curve) + " at (u, v) = (" + sci(uv.x()) + ", " + sci(uv.y()) + "), t = " + sci(c.t) +
          ", and asks a position " + sci(c.gap) + " away from the curve's there: no surface meets both";
 }
 

@@ -37,7 +37,8 @@ std::vector<Coincidence> coincidences(const std::vector<SheetConstraint>& constr
 std::optional<Coincidence> conflicting_coincidence(const std::vector<SheetConstraint>& constraints, double on_path,
                                                    double tolerance);
 
-//! The message of a conflict: both constraints, where and what each asks.
-std::string describe(const Coincidence& c, const std::vector<SheetConstraint>& constraints);
+//! The message of a conflict: both constraints, where (design units: (u, v) in spans times
+//! span_size, SheetShape::span_size) and what each asks.
+std::string describe(const Coincidence& c, const std::vector<SheetConstraint>& constraints, const Eigen::Vector2d& span_size);
 
 }  // namespace fairshape::bspline

@@ -26,7 +26,7 @@ Eigen::VectorXd error_profile(const HierarchicalSurface& s, const Eigen::MatrixX
   for (int k = 0; k <= samples; ++k) {
     const double t = static_cast<double>(k) / samples;
     const Eigen::Vector2d uv = polyline_at(c.curve.uv, t);
-    e[k] = (s.position(P, uv.x(), uv.y()) - polyline_at(c.curve.space, t)).norm();
+    e[k] = (s.position(P, uv.x(), uv.y()) - curve_target_at(c.curve, t)).norm();
   }
   return e;
 }
@@ -208,6 +208,11 @@ double on_path_distance(const VariationalSheet& sheet) {
 std::optional<Coincidence> curve_conflict(const VariationalSheet& sheet, const std::vector<SheetConstraint>& constraints,
                                           double conflict_tolerance) {
   return conflicting_coincidence(constraints, on_path_distance(sheet), conflict_tolerance * surface_size(sheet));
+}
+
+std::optional<SlopeMismatch> curve_slope_conflict(const VariationalSheet& sheet, const std::vector<SheetConstraint>& constraints,
+                                                  double slope_tolerance) {
+  return slope_conflict(constraints, sheet.surface().shape().span_size, on_path_distance(sheet), slope_tolerance);
 }
 
 CurveConvergence curve_convergence(const VariationalSheet& sheet, const SheetEnergy& energy,

@@ -26,6 +26,7 @@
 #include <string>
 
 #include "fairshape/bspline/constraint_coincidence.h"
+#include "fairshape/bspline/slope_conflict.h"
 #include "fairshape/bspline/variational_sheet.h"
 
 namespace fairshape::bspline {
@@ -57,6 +58,11 @@ struct CurveConvergence {
 //! position more than conflict_tolerance × the surface's extent from the curve's: the largest.
 std::optional<Coincidence> curve_conflict(const VariationalSheet& sheet, const std::vector<SheetConstraint>& constraints,
                                           double conflict_tolerance);
+
+//! A tangent or normal on a weak curve constraint's path whose slope differs from the curve's
+//! there by more than slope_tolerance (bspline/slope_conflict.h): the largest.
+std::optional<SlopeMismatch> curve_slope_conflict(const VariationalSheet& sheet, const std::vector<SheetConstraint>& constraints,
+                                                  double slope_tolerance);
 
 //! The probe of every weak (mortar) curve constraint of a solved sheet: its pieces' errors
 //! against alone_factor × the error alone there and conflict_tolerance × the surface's extent,

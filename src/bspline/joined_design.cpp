@@ -202,7 +202,7 @@ void measure(const JoinedDesign& design, const JoinedProgram& jp, const Eigen::M
       report.sheet_residual[k] = std::hypot(report.sheet_residual[k], block_norm(S + C + j));
     }
     report.sheet_errors[k] = constraint_errors(*s.sheet, all, [&](std::size_t i, double t) {
-      return joined_to[i] ? joined_to[i]->position(t) : polyline_at(all[i].curve.space, t);
+      return joined_to[i] ? joined_to[i]->position(t) : curve_target_at(all[i].curve, t);
     });
   }
   for (std::size_t k = 0; k < C; ++k) {
@@ -304,7 +304,12 @@ void check_sheet_curves(const JoinedDesign& design, const RefinementOptions& ref
     const JoinedSheet& s = design.sheets[k];
     if (const auto conflict = curve_conflict(*s.sheet, s.constraints, refinement.curve_conflict_tolerance)) {
       report.qp.summary.termination = Termination::ConstraintsUnmet;
-      append(describe(*conflict, s.constraints));
+      append(describe(*conflict, s.constraints, s.sheet->surface().shape().span_size));
+      return;
+    }
+    if (const auto conflict = curve_slope_conflict(*s.sheet, s.constraints, refinement.curve_slope_tolerance)) {
+      report.qp.summary.termination = Termination::ConstraintsUnmet;
+      append(describe(*conflict, s.constraints, s.sheet->surface().shape().span_size));
       return;
     }
     if (refinement.curve_limit_share <= 0) continue;

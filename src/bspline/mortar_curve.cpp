@@ -155,8 +155,13 @@ int mortar_multiplier_count(const HierarchicalSurface& s, const std::vector<Eige
   return trace_multipliers(s, uv, ArcLength(uv).length(), knots).size();
 }
 
-MortarRows mortar_rows(const HierarchicalSurface& s, const std::vector<Eigen::Vector2d>& uv, const ClampedKnotBasis& target,
-                       Multipliers multipliers, const SparseMatrix* target_map) {
+namespace {
+// mortar_rows, and with `traced` also ∫ψ_j traced(c(s)) ds / ∫ψ_j into *traced_means (m × 3): a
+// target that is the surface a curve was traced on, integrated exactly like the rows (its
+// grid's crossings are breaks too; along a straight piece it is a polynomial of degree ≤ 2r).
+MortarRows mortar_rows_with(const HierarchicalSurface& s, const std::vector<Eigen::Vector2d>& uv, const ClampedKnotBasis& target,
+                            Multipliers multipliers, const SparseMatrix* target_map, const SurfaceTrace* traced,
+                            Eigen::MatrixXd* traced_means) {
   check_uv_curve(s, uv);
   const ArcLength arc(uv);
   const double L = arc.length();
@@ -175,7 +180,7 @@ MortarRows mortar_rows(const HierarchicalSurface& s, const std::vector<Eigen::Ve
   std::vector<double> breaks = arc.S;
   for (double tk : target.breaks()) breaks.push_back(arc.s_of(tk));
   breaks.insert(breaks.end(), knots.begin(), knots.end());
-  const double grid = std::ldexp(1.0, s.level_count() - 1);
+  const double grid = std::ldexp(1.0, std::max(s.level_count(), traced ? traced->surface.level_count() : 0) - 1);
   for (std::size_t k = 0; k + 1 < uv.size(); ++k)
     for (int axis = 0; axis < 2; ++axis) grid_crossings(uv, arc, k, axis, grid, [&](double sk, long long) { breaks.push_back(sk); });
   std::sort(breaks.begin(), breaks.end());
@@ -191,17 +196,20 @@ MortarRows mortar_rows(const HierarchicalSurface& s, const std::vector<Eigen::Ve
   BasisRow row;
   std::vector<double> psi, x;
   int first = 0, first_x = 0;
+  Eigen::MatrixXd means = Eigen::MatrixXd::Zero(traced ? m : 0, 3);
   for_each_gauss_point(breaks, L, g, [&](double sq, double w) {
     const double tq = arc.t_of(sq);
     const Eigen::Vector2d c = polyline_at(uv, tq);
     s.basis(c.x(), c.y(), row);
     target.evaluate(tq, first_x, x);
     multipliers_at(sq, tq, first, psi);
+    const Vec3 traced_here = traced ? Vec3(traced->surface.position(traced->P, c.x(), c.y())) : Vec3::Zero();
     for (std::size_t a = 0; a < psi.size(); ++a) {
       const double wa = w * psi[a];
       if (wa == 0) continue;
       const int j = (first + static_cast<int>(a)) % m;  // a periodic W's functions wrap round
       mass[j] += wa;
+      if (traced) means.row(j) += wa * traced_here.transpose();
       for (const BasisEntry& e : row) ta.emplace_back(j, e.dof, wa * e.value);
       for (std::size_t i = 0; i < x.size(); ++i) tb.emplace_back(j, first_x + static_cast<int>(i), wa * x[i]);
     }
@@ -223,18 +231,38 @@ MortarRows mortar_rows(const HierarchicalSurface& s, const std::vector<Eigen::Ve
   const Eigen::VectorXd inverse_mass = mass.cwiseInverse();
   out.A = inverse_mass.asDiagonal() * out.A;
   out.B = inverse_mass.asDiagonal() * out.B;
+  if (traced) *traced_means = inverse_mass.asDiagonal() * means;
   return out;
+}
+}  // namespace
+
+MortarRows mortar_rows(const HierarchicalSurface& s, const std::vector<Eigen::Vector2d>& uv, const ClampedKnotBasis& target,
+                       Multipliers multipliers, const SparseMatrix* target_map) {
+  return mortar_rows_with(s, uv, target, multipliers, target_map, nullptr, nullptr);
 }
 
 ConstraintRows mortar_curve_rows(const HierarchicalSurface& s, const CurveAttachment& curve) {
   check_curve_attachment(s, curve);
   // The fixed space curve is the target whose coefficients are known: its points, on the hat
   // functions of a polyline equally spaced in t.
-  MortarRows rows = mortar_rows(s, curve.uv, polyline_basis(curve.space.size()));
+  // A traced target: the traced surface itself along the path (its means, exact) plus the
+  // polyline of the edits' offsets at the samples.
+  Eigen::MatrixXd traced_means;
+  MortarRows rows = mortar_rows_with(s, curve.uv, polyline_basis(curve.space.size()), Multipliers::SurfaceTrace, nullptr,
+                                     curve.traced.get(), &traced_means);
   Eigen::MatrixXd D(static_cast<Eigen::Index>(curve.space.size()), 3);
-  for (std::size_t k = 0; k < curve.space.size(); ++k) D.row(static_cast<Eigen::Index>(k)) = curve.space[k].transpose();
+  const double last = static_cast<double>(curve.space.size() - 1);
+  for (std::size_t k = 0; k < curve.space.size(); ++k) {
+    Vec3 d = curve.space[k];
+    if (curve.traced) {
+      const Eigen::Vector2d c = polyline_at(curve.uv, static_cast<double>(k) / last);
+      d -= curve.traced->surface.position(curve.traced->P, c.x(), c.y());
+    }
+    D.row(static_cast<Eigen::Index>(k)) = d.transpose();
+  }
   ConstraintRows out;
   out.C = rows.B * D;
+  if (curve.traced) out.C += traced_means;
   out.A = std::move(rows.A);
   return out;
 }

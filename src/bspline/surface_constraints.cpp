@@ -91,6 +91,22 @@ Point polyline_at(const std::vector<Point>& pts, double t) {
 template Eigen::Vector2d polyline_at(const std::vector<Eigen::Vector2d>&, double);
 template Vec3 polyline_at(const std::vector<Vec3>&, double);
 
+Vec3 curve_target_at(const CurveAttachment& curve, double t) {
+  if (!curve.traced) return polyline_at(curve.space, t);
+  // The edits' offset is the polyline of space − traced through the samples around t.
+  const std::size_t n = curve.space.size();
+  const double x = std::clamp(t, 0.0, 1.0) * static_cast<double>(n - 1);
+  const std::size_t k = std::min(static_cast<std::size_t>(x), n - 2);
+  const double a = x - static_cast<double>(k);
+  const auto traced_at = [&](double tt) {
+    const Eigen::Vector2d c = polyline_at(curve.uv, tt);
+    return Vec3(curve.traced->surface.position(curve.traced->P, c.x(), c.y()));
+  };
+  const double t0 = static_cast<double>(k) / static_cast<double>(n - 1), t1 = static_cast<double>(k + 1) / static_cast<double>(n - 1);
+  const Vec3 offset = (1 - a) * (curve.space[k] - traced_at(t0)) + a * (curve.space[k + 1] - traced_at(t1));
+  return traced_at(t) + offset;
+}
+
 void check_curve_attachment(const HierarchicalSurface& s, const CurveAttachment& curve) {
   if (curve.uv.size() < 2 || curve.space.size() < 2)
     throw InvalidInput("curve constraint: needs at least two (u, v) points and two space points");

@@ -15,6 +15,7 @@
 //             values spread down to rounding: the solvers' rank tolerance picks the surface.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -28,12 +29,27 @@ struct ConstraintRows {
   Eigen::MatrixXd C;   // m × 3
 };
 
+//! A surface a space curve was traced on, kept as it was then: the curve's exact target along
+//! its (u, v) path is this surface there (plus any edits), not the chords between its samples
+//! (papers/welch-witkin/README.md, "Curves traced on the current surface").
+struct SurfaceTrace {
+  HierarchicalSurface surface;
+  Eigen::MatrixXd P;
+};
+
 //! A curve in the parameter domain (a polyline in (u, v)) and the space curve it must follow,
-//! both parameterized by t ∈ [0, 1] with their points equally spaced in t.
+//! both parameterized by t ∈ [0, 1] with their points equally spaced in t. With `traced` the
+//! target is traced(c(t)) + the polyline of (space − traced at the samples): the surface it was
+//! traced on, exactly, moved by the edits (which are sampled); `space` holds its samples.
 struct CurveAttachment {
   std::vector<Eigen::Vector2d> uv;
   std::vector<Vec3> space;
+  std::shared_ptr<const SurfaceTrace> traced;
 };
+
+//! The target D(t) of a curve constraint: polyline_at(space, t), or with `traced` the traced
+//! surface at c(t) plus the edits' offset there.
+Vec3 curve_target_at(const CurveAttachment& curve, double t);
 
 enum class CurveQuadrature { Exact, Reduced };
 enum class CurveFormulation { Mortar, Paper };

@@ -122,28 +122,38 @@ SparseMatrix hessian_optimized(const HierarchicalSurface& s, const TensionWeight
   const GaussRule g = gauss_legendre(s.degree() + 1);
   const TermRows terms = term_rows(w);
   const std::vector<SpanId> cells = s.leaf_cells();
-  // One dense local matrix Kᵀ_cell K_cell per cell, written into its own slice of the triplets.
-  std::vector<Triplets> per_cell(cells.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 16), [&](const tbb::blocked_range<std::size_t>& range) {
-    BasisRow row;
-    Eigen::MatrixXd Kc, local;
-    std::vector<int> dofs;
-    for (std::size_t c = range.begin(); c != range.end(); ++c) {
-      cell_block(s, cells[c], g, terms, row, dofs, Kc);
-      local.noalias() = Kc.transpose() * Kc;
-      Triplets& out = per_cell[c];
-      out.reserve(dofs.size() * dofs.size());
-      for (std::size_t a = 0; a < dofs.size(); ++a)
-        for (std::size_t b = 0; b < dofs.size(); ++b) out.emplace_back(dofs[a], dofs[b], local(a, b));
-    }
-  });
-  std::size_t total = 0;
-  for (const auto& t : per_cell) total += t.size();
-  Triplets all;
-  all.reserve(total);
-  for (const auto& t : per_cell) all.insert(all.end(), t.begin(), t.end());
+  // One dense local matrix Kᵀ_cell K_cell per cell. A leaf cell at depth L meets (r+1)²
+  // functions of every layer up to L, so its block has ((r+1)²(L+1))² entries: the triplets of
+  // every cell at once grew as depth² × cells. Cells go in batches, each summed into H, so only
+  // one batch's triplets are held (papers/welch-witkin/README.md, "Memory of deep refinement").
+  constexpr std::size_t kBatch = 256;
   SparseMatrix H(s.dof_count(), s.dof_count());
-  H.setFromTriplets(all.begin(), all.end());
+  std::vector<Triplets> per_cell(std::min(kBatch, cells.size()));
+  for (std::size_t start = 0; start < cells.size(); start += kBatch) {
+    const std::size_t end = std::min(cells.size(), start + kBatch);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(start, end, 16), [&](const tbb::blocked_range<std::size_t>& range) {
+      BasisRow row;
+      Eigen::MatrixXd Kc, local;
+      std::vector<int> dofs;
+      for (std::size_t c = range.begin(); c != range.end(); ++c) {
+        cell_block(s, cells[c], g, terms, row, dofs, Kc);
+        local.noalias() = Kc.transpose() * Kc;
+        Triplets& out = per_cell[c - start];
+        out.clear();
+        out.reserve(dofs.size() * dofs.size());
+        for (std::size_t a = 0; a < dofs.size(); ++a)
+          for (std::size_t b = 0; b < dofs.size(); ++b) out.emplace_back(dofs[a], dofs[b], local(a, b));
+      }
+    });
+    std::size_t total = 0;
+    for (std::size_t c = 0; c < end - start; ++c) total += per_cell[c].size();
+    Triplets batch;
+    batch.reserve(total);
+    for (std::size_t c = 0; c < end - start; ++c) batch.insert(batch.end(), per_cell[c].begin(), per_cell[c].end());
+    SparseMatrix part(s.dof_count(), s.dof_count());
+    part.setFromTriplets(batch.begin(), batch.end());
+    H += part;
+  }
   return H;
 }
 #endif

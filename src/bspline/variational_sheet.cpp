@@ -51,7 +51,22 @@ int VariationalSheet::refine(const std::vector<SpanId>& spans) {
   }
   std::size_t after = 0;
   for (int l = 0; l < surface_.level_count(); ++l) after += surface_.span_count(l);
+  if (after != before) thin_plate_.reset();
   return static_cast<int>(after - before);
+}
+
+const VariationalSheet::ThinPlate& VariationalSheet::thin_plate(const TensionWeights& weights, Backend backend) const {
+  const bool same = thin_plate_ && thin_plate_->backend == backend && thin_plate_->weights.alpha == weights.alpha &&
+                    thin_plate_->weights.beta == weights.beta && thin_plate_->H.rows() == surface_.dof_count();
+  if (!same) {
+    auto fresh = std::make_shared<ThinPlate>();
+    fresh->weights = weights;
+    fresh->backend = backend;
+    fresh->H = thin_plate_hessian(surface_, weights, backend);
+    fresh->K = thin_plate_square_root(surface_, weights);
+    thin_plate_ = std::move(fresh);
+  }
+  return *thin_plate_;
 }
 
 namespace {
@@ -103,8 +118,9 @@ qp::QuadraticProgram assemble(const VariationalSheet& sheet, const SheetEnergy& 
     p.K = p.H;
     p.f = sheet.rest();
   } else {
-    p.H = thin_plate_hessian(s, energy.weights, backend);
-    p.K = thin_plate_square_root(s, energy.weights);
+    const VariationalSheet::ThinPlate& plate = sheet.thin_plate(energy.weights, backend);
+    p.H = plate.H;
+    p.K = plate.K;
     p.f = energy.rest_shape ? Eigen::MatrixXd(p.H * sheet.rest()) : Eigen::MatrixXd::Zero(s.dof_count(), 3);
   }
   std::vector<ConstraintRows> rows;
@@ -142,7 +158,7 @@ struct CellKey {
 }  // namespace
 
 std::vector<CellError> constraint_errors(const VariationalSheet& sheet, const std::vector<SheetConstraint>& constraints) {
-  return constraint_errors(sheet, constraints, [&](std::size_t i, double t) { return polyline_at(constraints[i].curve.space, t); });
+  return constraint_errors(sheet, constraints, [&](std::size_t i, double t) { return curve_target_at(constraints[i].curve, t); });
 }
 
 std::vector<CellError> constraint_errors(const VariationalSheet& sheet, const std::vector<SheetConstraint>& constraints,
@@ -199,13 +215,20 @@ namespace {
 // (bspline/curve_fidelity.h).
 void check_curve_convergence(const VariationalSheet& sheet, const SheetEnergy& energy, const std::vector<SheetConstraint>& constraints,
                              const RefinementOptions& options, Backend backend, DesignReport& report) {
+  const Eigen::Vector2d& span_size = sheet.surface().shape().span_size;
   if (const auto conflict = curve_conflict(sheet, constraints, options.curve_conflict_tolerance)) {
     report.qp.summary.termination = Termination::ConstraintsUnmet;
-    report.message = describe(*conflict, constraints) + " (tolerance: refinement.curve_conflict_tolerance " +
+    report.message = describe(*conflict, constraints, span_size) + " (tolerance: refinement.curve_conflict_tolerance " +
                      sci(options.curve_conflict_tolerance) + " of the sheet's size)";
     return;
   }
-  if (options.curve_limit_share <= 0) return;
+  if (const auto conflict = curve_slope_conflict(sheet, constraints, options.curve_slope_tolerance)) {
+    report.qp.summary.termination = Termination::ConstraintsUnmet;
+    report.message = describe(*conflict, constraints, span_size) + " (tolerance: refinement.curve_slope_tolerance " +
+                     sci(options.curve_slope_tolerance) + ")";
+    return;
+  }
+  if (options.curve_limit_share <= 0 || !options.curve_probe) return;
   // A curve met to the requested refinement tolerance is what was asked.
   if (options.tolerance > 0 && report.max_constraint_error <= options.tolerance) return;
   const CurveConvergence c =

@@ -56,9 +56,22 @@ class VariationalSheet {
   //! control vector is carried into the new basis exactly. Returns the spans added.
   int refine(const std::vector<SpanId>& spans);
 
+  //! The thin-plate H (eq. 5) and its square root K for these weights on this surface, kept
+  //! until the surface is refined or other weights are asked for: a design session's steps
+  //! (a drag, an added constraint) keep the surface, and assembling H was most of such a step
+  //! (at 32 × 32 spans, 104 of 122 ms with a 0.8 ms solve; papers/welch-witkin/README.md).
+  struct ThinPlate {
+    TensionWeights weights;
+    Backend backend = Backend::Optimized;
+    SparseMatrix H, K;
+  };
+  const ThinPlate& thin_plate(const TensionWeights& weights, Backend backend) const;
+
  private:
   HierarchicalSurface surface_;
   Eigen::MatrixXd P_, rest_, remembered_;
+  // Shared by copies (the same surface) until one of them refines.
+  mutable std::shared_ptr<const ThinPlate> thin_plate_;
 };
 
 //! The program of one sheet: H, f of the energy and the stacked constraint rows, over the
@@ -101,6 +114,14 @@ struct RefinementOptions {
   double curve_error_factor = 2;
   double curve_limit_share = 0.5;
   double curve_conflict_tolerance = 1e-3;
+  //! A tangent or normal on a weak curve's path whose derivative differs from the curve's slope
+  //! there by more than this (a slope: world length per design length) is a conflict
+  //! (bspline/slope_conflict.h): constraints_unmet.
+  double curve_slope_tolerance = 1e-3;
+  //! Whether this solve runs the resolution probe (curve_fidelity.h: an alone solve and two
+  //! refined solves per curve, many times the step's own solve). The exact conflict checks
+  //! (positions, slopes) run on every solve whatever this says.
+  bool curve_probe = true;
 };
 
 //! The spans whose refinement §4.4 asks for: those holding a cell with error above the

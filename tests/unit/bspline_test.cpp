@@ -225,7 +225,7 @@ TEST_CASE("thin plate H: exact quadrature, symmetric PSD with the expected null 
 TEST_CASE("B-spline constraints: domain checks and curve rows that reproduce a curve the surface contains", "[bspline]") {
   HierarchicalSurface s({4, 4, 3, false});
   CHECK_THROWS_WITH(point_rows(s, 4.5, 1, Vec3::Zero()), Catch::Contains("outside the parameter domain"));
-  CurveAttachment leaving{{{1, 1}, {3, 5}}, {Vec3::Zero(), Vec3::Ones()}};
+  CurveAttachment leaving{{{1, 1}, {3, 5}}, {Vec3::Zero(), Vec3::Ones()}, nullptr};
   CHECK_THROWS_WITH(curve_rows(s, leaving, CurveQuadrature::Exact), Catch::Contains("(u, v) point 1"));
   // A surface that contains the space curve satisfies the rows exactly.
   const Eigen::MatrixXd P = random_coefficients(s.dof_count(), 4);

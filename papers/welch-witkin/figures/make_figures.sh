@@ -25,12 +25,12 @@ build/bin/fairshape run configs/welch-witkin/fig2_free.yaml --out $out-fig2-free
 keep $out-fig2-free fig2_free
 build/bin/fairshape run configs/welch-witkin/fig3.yaml --out $out-fig3 --force
 /usr/bin/python3 scripts/plot_sheets.py cells $out-fig3 papers/welch-witkin/figures/fig3.png \
-  --title "Figure 3: one bicubic span, four points and a curve; automatic refinement by constraint error"
+  --title "Figure 3: a 4 x 4-span bicubic sheet, four points and a curve; automatic refinement by constraint error"
 keep $out-fig3 fig3
 build/bin/fairshape run configs/welch-witkin/metrics.yaml --out $out-metrics --force
 /usr/bin/python3 scripts/plot_sheets.py runs $out-metrics papers/welch-witkin/figures/metrics.png \
   --title "Section 4.1: one point pulled up; thin plate (eq. 6) vs control-point displacement, plain and refined sheet" \
-  --label "{energy_metric}, {dofs} unknowns" --profile-v 4 --spans-v 8 --per-span 8
+  --label "{energy_metric}, {dofs} unknowns" --profile-v 1 --size-v 2 --spans-v 8 --per-span 8
 cp $out-metrics/runs.csv papers/welch-witkin/data/metrics_runs.csv
 # qr_penalty without refinement steps does not meet the constraints: said in its row, exit 3.
 build/bin/fairshape run configs/welch-witkin/solvers.yaml --out $out-solvers --force || [ $? -eq 3 ]

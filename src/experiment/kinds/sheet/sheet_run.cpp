@@ -119,8 +119,12 @@ SpaceCurveSpec read_curve(Config& c, double chord_tolerance) {
                                                     ? ": a traced curve is closed when its uv curve is (from_surface.uv: {..., closed: true})"
                                                     : ": give either from_surface or a curve form, not both"));
     s.samples = c.get_int("samples", s.samples, 2, kMaxCurveSamples, "points of the space curve (equally spaced in t)");
-    Config fs_ = c.child("from_surface", "trace the curve on a sheet's initial surface: {sheet, uv}");
+    Config fs_ = c.child("from_surface", "trace the curve on a sheet's surface: {sheet, uv, surface}");
     s.from_sheet = fs_.require<std::string>("sheet", "sheet name");
+    s.trace_current = fs_.get_choice("surface", "initial", {"initial", "current"},
+                                     "initial: the sheet before any step; current: the sheet as the steps before the curve's "
+                                     "first use left it (the paper's operation: adding the curve moves nothing), its exact "
+                                     "surface the target") == "current";
     const SampledCurve<2> uv = read_uv_curve(fs_, "uv", "(u, v) curve on that sheet", chord_tolerance);
     if (uv.points.empty() && !documenting) throw InvalidConfig(fs_.key_path("uv") + ": required key is missing");
     s.uv = uv.points;
@@ -144,6 +148,11 @@ SpaceCurveSpec read_curve(Config& c, double chord_tolerance) {
     s.edits.push_back(ed);
   }
   read_variational(c, s);
+  // A variational curve starts from its traced shape before any step (the run's joint program
+  // is built with it up front).
+  if (s.variational && s.trace_current)
+    throw InvalidConfig(c.key_path("from_surface") + ".surface: 'current' is for fixed curves; a variational curve is traced "
+                        "on the initial surface (valid here: initial)");
   c.check_no_unknown_keys();
   return s;
 }
@@ -231,7 +240,7 @@ static SheetRunSpec read_sheet_run(const std::vector<std::string>& search_dirs, 
   for (Config c : root.child_list("sheets", "hierarchical B-spline sheets")) s.sheets.push_back(read_sheet(c, search_dirs));
   if (s.sheets.empty()) throw InvalidConfig("sheets: at least one sheet");
   // Before the curves: arcs and B-splines are sampled finely enough for the tolerance (curve_forms.h).
-  Config rc = root.child("refinement", "automatic refinement (§4.4) and the curve check: {tolerance, max_level, max_rounds, curve_error_factor, curve_limit_share, curve_conflict_tolerance, estimate_objective_error}");
+  Config rc = root.child("refinement", "automatic refinement (§4.4) and the curve check: {tolerance, max_level, max_rounds, curve_error_factor, curve_limit_share, curve_conflict_tolerance, curve_slope_tolerance, curve_probe, estimate_objective_error}");
   s.refinement.tolerance = rc.get_number("tolerance", 0, 0, 1e12, "constraint error per leaf cell above which it is refined (0: off)");
   s.refinement.max_level = rc.get_int("max_level", 4, 1, bspline::HierarchicalSurface::kMaxLevel, "deepest layer");
   s.refinement.max_rounds = rc.get_int("max_rounds", 8, 1, 100, "refine-and-solve rounds at most");
@@ -246,6 +255,14 @@ static SheetRunSpec read_sheet_run(const std::vector<std::string>& search_dirs, 
       "curve_conflict_tolerance", 1e-3, 0, 1,
       "a point or curve on a curve constraint's path asking a position more than this share of the surface's size (the "
       "diagonal of its extent over the domain) away is a conflict (constraints_unmet); also the floor of the unresolved check");
+  s.refinement.curve_slope_tolerance = rc.get_number(
+      "curve_slope_tolerance", 1e-3, 0, 1e6,
+      "a tangent or normal on a curve constraint's path whose derivative differs from the curve's slope there by more "
+      "than this (world length per design length) is a conflict (constraints_unmet)");
+  s.probe_every_step = rc.get_choice("curve_probe", "last_step", {"last_step", "every_step"},
+                                     "when the curve resolution probe runs: after the last step only (a drag's intermediate "
+                                     "steps keep the exact conflict checks, which cost geometry only) or after every step") ==
+                       "every_step";
   s.estimate_objective_error = rc.get<bool>("estimate_objective_error", false,
                                             "after the last step, solve once more with every cell refined and report the change");
   rc.check_no_unknown_keys();
@@ -445,12 +462,16 @@ std::vector<Vec3> curve_at_step(const SpaceCurveSpec& c, const std::vector<Vec3>
 // (solved with them, free_curves.h).
 std::vector<SheetConstraint> active_constraints(const SheetRunSpec& spec, std::size_t k, int step,
                                                 const std::map<std::string, std::vector<Vec3>>& curves_now,
+                                                const std::map<std::string, std::shared_ptr<const bspline::SurfaceTrace>>& traced_on,
                                                 const bspline::HierarchicalSurface& initial_surface, const Eigen::MatrixXd& initial_P) {
   std::vector<SheetConstraint> active;
   for (const SheetConstraintSpec& cs : spec.constraints) {
     if (!cs.active_at(step) || cs.sheet != spec.sheets[k].name || cs.joins_free_curve) continue;  // joints: free_curves.h
     SheetConstraint c = cs.constraint;
-    if (!cs.curve.empty()) c.curve.space = curves_now.at(cs.curve);
+    if (!cs.curve.empty()) {
+      c.curve.space = curves_now.at(cs.curve);
+      if (const auto t = traced_on.find(cs.curve); t != traced_on.end()) c.curve.traced = t->second;
+    }
     if (cs.relative) c.target += initial_surface.position(initial_P, c.u, c.v);
     for (const PointMove& m : cs.moves)
       if (m.step <= step) c.target += m.by;
@@ -512,11 +533,23 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
       return std::size_t{0};
     };
     std::map<std::string, std::vector<Vec3>> base_curves;
-    for (const SpaceCurveSpec& c : spec.curves) {
+    const auto trace = [&](const SpaceCurveSpec& c) {
       const std::size_t k = sheet_of(c.from_sheet);
-      base_curves[c.name] = c.from_sheet.empty() ? c.points
-                                                 : bspline::surface_curve(sheets[k].surface(), sheets[k].coefficients(), c.uv, c.samples);
+      base_curves[c.name] = bspline::surface_curve(sheets[k].surface(), sheets[k].coefficients(), c.uv, c.samples);
+    };
+    for (const SpaceCurveSpec& c : spec.curves) {
+      if (c.from_sheet.empty()) base_curves[c.name] = c.points;
+      else trace(c);
     }
+    // Curves traced on the current surface: traced again at their first step, before it is
+    // solved, and that surface kept as their target.
+    std::map<std::string, std::shared_ptr<const bspline::SurfaceTrace>> traced_on;
+    const auto first_use = [&](const SpaceCurveSpec& c) {
+      int first = -1;
+      for (const SheetConstraintSpec& cs : spec.constraints)
+        if (cs.curve == c.name && (first < 0 || cs.step < first)) first = cs.step;
+      return std::max(first, 0);
+    };
     FreeCurves free_curves(spec, base_curves);
     std::map<std::string, std::vector<Vec3>> final_curves;  // the space curves at the last step
     double analyze_s = 0, solve_s = 0, energy = 0, residual = 0, max_err = 0, cond = 0;
@@ -537,15 +570,25 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
           energies[k].rest_shape = a.kind == RestShapeAction::Kind::Install;
         }
       }
+      for (const SpaceCurveSpec& c : spec.curves) {
+        if (!c.trace_current || first_use(c) != step) continue;
+        trace(c);
+        const std::size_t k = sheet_of(c.from_sheet);
+        traced_on[c.name] = std::make_shared<const bspline::SurfaceTrace>(
+            bspline::SurfaceTrace{sheets[k].surface(), sheets[k].coefficients()});
+      }
       std::map<std::string, std::vector<Vec3>> curves_now;
       for (const SpaceCurveSpec& c : spec.curves) curves_now[c.name] = curve_at_step(c, base_curves.at(c.name), step);
       ConstraintOverlay overlay;
       std::vector<std::vector<SheetConstraint>> actives;
       for (std::size_t k = 0; k < sheets.size(); ++k)
-        actives.push_back(active_constraints(spec, k, step, curves_now, initial_surfaces[k], initial_P[k]));
+        actives.push_back(active_constraints(spec, k, step, curves_now, traced_on, initial_surfaces[k], initial_P[k]));
       // Sheets joined to variational curves first, with them (their curves' shapes into curves_now).
       const JoinedStep joined = free_curves.solve_step(spec, step, sheets, energies, actives, curves_now, overlay);
       final_curves = curves_now;
+      // The resolution probe costs many solves: on the last step only unless asked for every step.
+      bspline::RefinementOptions refinement_now = spec.refinement;
+      refinement_now.curve_probe = spec.probe_every_step || step + 1 == spec.steps();
       for (std::size_t k = 0; k < sheets.size(); ++k) {
         const std::vector<SheetConstraint>& active = actives[k];
         const auto joint = joined.sheets.find(k);
@@ -556,7 +599,7 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
         add_to_overlay(active, initial_surfaces[k], initial_P[k], overlay);
         const bspline::DesignReport r = joint != joined.sheets.end()
                                             ? joint->second.report
-                                            : bspline::solve_sheet(sheets[k], energies[k], active, *spec.solver, spec.refinement, spec.implementation);
+                                            : bspline::solve_sheet(sheets[k], energies[k], active, *spec.solver, refinement_now, spec.implementation);
         const auto& s = sheets[k].surface();
         out.add_row("steps", {std::to_string(step), spec.sheets[k].name, std::to_string(s.dof_count()),
                       std::to_string(s.level_count()), std::to_string(r.constraint_rows), std::to_string(r.qp.dropped_rows),
@@ -638,7 +681,7 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
     if (spec.estimate_objective_error && row["termination"] == to_string(Termination::Converged)) {
       double energy_change = 0, surface_change = 0;
       for (std::size_t k = 0; k < sheets.size(); ++k) {
-        const auto active = active_constraints(spec, k, spec.steps() - 1, final_curves, initial_surfaces[k], initial_P[k]);
+        const auto active = active_constraints(spec, k, spec.steps() - 1, final_curves, traced_on, initial_surfaces[k], initial_P[k]);
         if (active.empty()) continue;
         const bspline::ObjectiveErrorEstimate e =
             bspline::estimate_objective_error(sheets[k], energies[k], active, *spec.solver, spec.implementation);

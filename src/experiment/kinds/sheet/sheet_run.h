@@ -39,7 +39,12 @@ struct SpaceCurveEdit {
 
 struct SpaceCurveSpec {
   std::string name;
-  std::string from_sheet;                 // non-empty: traced on this sheet's initial surface
+  std::string from_sheet;                 // non-empty: traced on this sheet ...
+  //! ... as it is at the curve's first step (the first step a constraint uses it), after the
+  //! steps before (`from_surface.surface: current`, the paper's promotion of a surface curve), or
+  //! as it was before any step (`initial`). A curve traced on the current surface keeps that
+  //! surface as its exact target (bspline::SurfaceTrace), so adding it moves nothing.
+  bool trace_current = false;
   std::vector<Eigen::Vector2d> uv;        // ... along this uv curve (curve_forms.h), `samples` points
   std::vector<Vec3> points;               // or given as points, arc or bspline, sampled already
   int samples = 65;
@@ -108,6 +113,9 @@ struct SheetRunSpec : RunBasics {
   bspline::SheetEnergy energy;
   bspline::RefinementOptions refinement;
   bool estimate_objective_error = false;
+  //! The resolution probe of the curve constraints (bspline/curve_fidelity.h) after every step's
+  //! solve, or only after the last step's (the design released; `refinement.curve_probe`).
+  bool probe_every_step = false;
   std::unique_ptr<qp::QpSolver> solver;
   int samples_per_span = 6;
   VtkPolicy vtk = VtkPolicy::Final;  // vtk/<run>_step<k>.vtp: the last step, or every step

@@ -135,6 +135,9 @@ optimization:
   beta: 0.1
   constraints: [{type: segment_lengths}, {type: pin, points: endpoints}]
   solver: {type: linearized, max_solves: 500, linearized: {linearization: newton}}
+# The drag asks for more length than the curve has near the handle (it is pulled back 4 % of the
+# curve's size): the command line ends edit_undone unless allowed; the comparison is of the points.
+editing: {partial_edit: accept}
 output: {vtk: none}
 """
     expected = cli_curve(tmp_path, "drag", config)

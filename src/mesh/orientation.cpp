@@ -88,6 +88,13 @@ FoldReport flipped_faces(const SurfaceMesh& mesh, const MatrixX3& result) {
       });
 }
 
+void mark_flipped(SurfaceMesh& mesh, const FoldReport& folds) {
+  Eigen::MatrixXd flipped = Eigen::MatrixXd::Zero(mesh.n_vertices(), 1);
+  for (int f : folds.flipped)
+    for (int v : mesh.face_vertices(f)) flipped(v, 0) = 1.0;
+  mesh.vertex_data["flipped"] = flipped;
+}
+
 FoldReport flipped_triangles(const std::vector<std::array<int, 3>>& triangles, const MatrixX3& rest, const MatrixX3& result) {
   if (rest.rows() != result.rows())
     throw InvalidInput("fold check: " + std::to_string(result.rows()) + " result positions for " +

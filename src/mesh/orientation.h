@@ -33,6 +33,11 @@ struct FoldReport {
 //! \throw InvalidInput if `result` does not have one row per vertex.
 FoldReport flipped_faces(const SurfaceMesh& mesh, const MatrixX3& result);
 
+//! Sets `mesh`'s vertex array "flipped": 1 on the corners of the faces `folds` found turned
+//! over, 0 elsewhere — where a fold is, for the viewer. `folds` must come from flipped_faces on
+//! this mesh's topology.
+void mark_flipped(SurfaceMesh& mesh, const FoldReport& folds);
+
 //! The same comparison for triangles given by their corners, on a patch of a surface (the
 //! present faces of a sparse level): `rest` and `result` hold the same vertices.
 //! \throw InvalidInput for a corner out of range or position counts that differ.

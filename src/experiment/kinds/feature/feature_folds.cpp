@@ -14,11 +14,4 @@ void report_folds(const FoldReport& folds, MetricRow& row) {
   row["message"] = "folded: " + folds.describe() + miss;
 }
 
-void mark_flipped(SurfaceMesh& fine, const FoldReport& folds) {
-  Eigen::MatrixXd flipped = Eigen::MatrixXd::Zero(fine.n_vertices(), 1);
-  for (int f : folds.flipped)
-    for (int v : fine.face_vertices(f)) flipped(v, 0) = 1.0;
-  fine.vertex_data["flipped"] = flipped;
-}
-
 }  // namespace fairshape

@@ -6,15 +6,11 @@
 
 #include "fairshape/experiment/run_outputs.h"
 #include "fairshape/mesh/orientation.h"
-#include "fairshape/mesh/surface_mesh.h"
 
 namespace fairshape {
 
 //! runs.csv's flipped_faces; with a flip, termination `folded` and a message naming it (and the
 //! profile miss the row already had, if any).
 void report_folds(const FoldReport& folds, MetricRow& row);
-
-//! The faces a fold turned over, as the vertex array `flipped` (1 on their corners) for the viewer.
-void mark_flipped(SurfaceMesh& fine, const FoldReport& folds);
 
 }  // namespace fairshape

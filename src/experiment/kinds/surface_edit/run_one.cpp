@@ -273,10 +273,7 @@ void report_result(const SurfaceEditSpec& spec, const RunOutputs& out, const Mul
   const OrientationCheck orientation = report_orientation(rest, edited, placed, row);
   SurfaceMesh result = result_mesh(rest.mesh(rest.levels()), finest.positions(), rest.levels(), placed);
   if (region) result.vertex_data["influence_region"] = region->cast<double>();
-  Eigen::MatrixXd flipped = Eigen::MatrixXd::Zero(result.n_vertices(), 1);
-  for (int f : orientation.folds.flipped)
-    for (int v : result.face_vertices(f)) flipped(v, 0) = 1.0;
-  result.vertex_data["flipped"] = flipped;  // where a fold is, for the viewer
+  mark_flipped(result, orientation.folds);
   write_geometry(spec, out, result, reanalysed);
   if (spec.output.vtk != VtkPolicy::None)
     write_constraint_overlay(placed, edited, (fs::path(out.dir) / "vtk" / (out.run_id + "_constraints.vtp")).string());

@@ -13,7 +13,10 @@ class EditResult:
     """delta: n×3 float64 deformation of the edited level (a new array); positions: that level's
     rest positions + delta; hierarchy: a new MultiresSurface with the edit synthesized to the
     finest level (local details kept); summary: how the solve ended; plus timings (s), the
-    constraint residual ‖AΔP − C‖_F and counts."""
+    constraint residual ‖AΔP − C‖_F and counts. flipped_faces: faces of the finest level turned
+    over against the rest surface; normal_error_deg: the largest angle of a normal constraint's
+    achieved normal from its target (−1 without one). Either a fold or a normal met by its
+    reverse ends the edit `folded`, never a success."""
 
     delta: np.ndarray
     positions: np.ndarray
@@ -25,6 +28,8 @@ class EditResult:
     constraint_residual: float
     analyze_s: float
     solve_s: float
+    flipped_faces: int
+    normal_error_deg: float
 
 
 def _flatten(terms, what):
@@ -65,7 +70,8 @@ def edit(hierarchy, energies, constraints, level=-1, mode="paper", solver=None, 
     rest = hierarchy.positions(r["level"])
     result = EditResult(delta=r["delta"], positions=rest + r["delta"], hierarchy=r["hierarchy"], summary=summary,
                         level=r["level"], n_dofs=r["n_dofs"], constrained_vertices=r["constrained_vertices"],
-                        constraint_residual=r["constraint_residual"], analyze_s=r["analyze_s"], solve_s=r["solve_s"])
+                        constraint_residual=r["constraint_residual"], analyze_s=r["analyze_s"], solve_s=r["solve_s"],
+                        flipped_faces=r["flipped_faces"], normal_error_deg=r["normal_error_deg"])
     if check and not summary.succeeded:
         raise SolveFailed(f"edit: {summary.termination}: {summary.message}", result)
     return result

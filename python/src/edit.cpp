@@ -12,6 +12,7 @@
 #include "convert.h"
 #include "fairshape/design/edit_assembly.h"
 #include "fairshape/design/edit_solve.h"
+#include "fairshape/design/orientation_check.h"
 #include "fairshape/experiment/components.h"
 #include "fairshape/qp/qp_solver.h"
 
@@ -107,16 +108,33 @@ py::dict edit(const MultiresSurface& rest, const py::list& energies, const py::l
   }
   EditSolution sol;
   MultiresSurface edited = rest;
+  OrientationCheck checked;
   int n_dofs = 0;
   {
     py::gil_scoped_release release;
-    DesignConstraints placed;
-    const EditProblem p = assemble_edit_problem(t.terms, rest, l, placed);
-    n_dofs = static_cast<int>(p.H.rows());
-    sol = solve_edit(p, mode, *solver, backend, {}, nullptr, qp);
-    if (sol.delta.allFinite()) {
+    const auto solve_once = [&] {
+      DesignConstraints placed;
+      const EditProblem p = assemble_edit_problem(t.terms, rest, l, placed);
+      n_dofs = static_cast<int>(p.H.rows());
+      sol = solve_edit(p, mode, *solver, backend, {}, nullptr, qp);
+      edited = rest;
+      checked = {};
+      if (!sol.delta.allFinite()) return;
       edited.set_level_positions(l, rest.mesh(l).positions() + MatrixX3(sol.delta));
       edited.synthesize_from(l, DetailSpace::Local);
+      checked = check_orientation(rest, edited, placed);  // as a config run's result is checked
+    };
+    solve_once();
+    if (checked.reversed_auto) {  // normal rows `auto`: frame rows, as a config run does (run_one.cpp)
+      const std::string first = checked.describe();
+      t.terms.frame_rows_for_auto_normals = true;
+      solve_once();
+      sol.summary.message = "tangent rows " + first + ", so solved again with frame rows" +
+                            (sol.summary.message.empty() ? "" : "; " + sol.summary.message);
+    }
+    if (checked.folded() && sol.summary.succeeded()) {
+      sol.summary.termination = Termination::Folded;
+      sol.summary.message += (sol.summary.message.empty() ? "" : "; ") + checked.describe();
     }
   }
   const std::string outcome = std::string(to_string(sol.summary.termination)) + ": " + sol.summary.message;
@@ -134,6 +152,8 @@ py::dict edit(const MultiresSurface& rest, const py::list& energies, const py::l
   out["solve_s"] = sol.solve_s;
   out["constraint_residual"] = sol.constraint_residual;
   out["constrained_vertices"] = sol.constrained_vertices;
+  out["flipped_faces"] = static_cast<int>(checked.folds.flipped.size());
+  out["normal_error_deg"] = checked.normal_error_deg;
   out["delta"] = py::cast(std::move(sol.delta));  // moved into the array: no copy
   out["hierarchy"] = py::cast(std::move(edited));
   return out;

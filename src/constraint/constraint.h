@@ -35,15 +35,25 @@ struct PointConstraint {
   SurfacePoint surface = {};  // non-empty: the limit point there moves by `offset` (vertex, on_limit unused)
 };
 
+// How a normal constraint's rows impose it (papers/boier-martin/README.md, "Folds and reversed
+// normals"). §4.2's two rows make the tangents perpendicular to N, which −N satisfies as well;
+// the frame rows prescribe the tangents themselves, turned with the normal, so only N does.
+enum class NormalRows {
+  Auto,     // tangent; an edit whose answer meets N by its reverse is solved again with frame
+  Tangent,  // §4.2: Q_u · N = Q_v · N = 0 (two rows coupling x, y and z)
+  Frame,    // Q_u = R Q_u⁰, Q_v = R Q_v⁰, R the shortest rotation of the rest normal onto N
+};
+
 // The normal at `vertex` should be `normal` (unit): the quadratic fit's tangents Q_u, Q_v
 // (divided differences of the rest shape) are made perpendicular to it — two linear rows that
-// couple x, y and z.
+// couple x, y and z — or, with frame rows, equal to the rest ones turned onto it.
 struct NormalConstraint {
   int level = 0;
   int vertex = 0;
   Vec3 normal = Vec3::UnitZ();
   std::string label;
   SurfacePoint surface = {};  // non-empty: the rows are N·∂S/∂u = N·∂S/∂v = 0 there instead
+  NormalRows rows = NormalRows::Auto;
 };
 
 // A curve constraint's chain of snapped vertices, in order along the curve (for drawing it).

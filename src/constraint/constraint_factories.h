@@ -23,6 +23,8 @@ std::unique_ptr<Constraint> prescribed_offset(VertexSelection selection, const V
 std::unique_ptr<Constraint> make_fixed(Config& cfg);
 std::unique_ptr<Constraint> make_position(Config& cfg);
 std::unique_ptr<Constraint> make_normal(Config& cfg);
+//! The `rows` names of a normal constraint (constraint.h NormalRows).
+const NameTable<NormalRows>& normal_rows_names();
 std::unique_ptr<Constraint> make_rigid(Config& cfg);
 std::unique_ptr<Constraint> make_curve(Config& cfg);
 

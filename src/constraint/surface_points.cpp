@@ -93,8 +93,9 @@ int anchor(const SurfacePoint& sp) { return sp.corners.empty() ? 0 : sp.corners.
 class AtSurfacePoint : public Constraint {
  public:
   enum class Asks { Offset, Normal };
-  AtSurfacePoint(SurfacePointSelection where, Asks asks, Vec3 value, std::string who)
-      : where_(std::move(where)), asks_(asks), value_(value), who_(std::move(who)) {}
+  AtSurfacePoint(SurfacePointSelection where, Asks asks, Vec3 value, std::string who,
+                 NormalRows rows = NormalRows::Auto)
+      : where_(std::move(where)), asks_(asks), value_(value), who_(std::move(who)), rows_(rows) {}
   void add_to(const LevelMeshes&, int, DesignConstraints&) const override {
     throw InvalidInput(who_ + ": a point of the limit surface needs the subdivision rules (add_on_surface)");
   }
@@ -106,7 +107,7 @@ class AtSurfacePoint : public Constraint {
       refuse_normal_on_crease_point(mesh_at(level), rules, level, sp.at, level < finest, who_);
     const int v = anchor(sp);
     if (asks_ == Asks::Offset) out.points.push_back({level, v, false, value_, who_, std::move(sp)});
-    else out.normals.push_back({level, v, value_, who_, std::move(sp)});
+    else out.normals.push_back({level, v, value_, who_, std::move(sp), rows_});
   }
 
  private:
@@ -114,6 +115,7 @@ class AtSurfacePoint : public Constraint {
   Asks asks_;
   Vec3 value_;  // the offset, or the unit normal
   std::string who_;
+  NormalRows rows_;  // a normal's
 };
 
 }  // namespace
@@ -123,10 +125,11 @@ std::unique_ptr<Constraint> surface_point_offset(SurfacePointSelection where, co
   return std::make_unique<AtSurfacePoint>(std::move(where), AtSurfacePoint::Asks::Offset, offset, std::move(who));
 }
 
-std::unique_ptr<Constraint> surface_point_normal(SurfacePointSelection where, const Vec3& normal, std::string who) {
+std::unique_ptr<Constraint> surface_point_normal(SurfacePointSelection where, const Vec3& normal, NormalRows rows,
+                                                 std::string who) {
   if (!normal.allFinite() || normal.norm() == 0) throw InvalidInput(who + ": the normal is zero or not finite");
   return std::make_unique<AtSurfacePoint>(std::move(where), AtSurfacePoint::Asks::Normal, normal.normalized(),
-                                          std::move(who));
+                                          std::move(who), rows);
 }
 
 }  // namespace fairshape

@@ -46,6 +46,7 @@ SurfacePoint make_surface_point(const LimitEvaluator& evaluator, const FaceParam
 //! `position`/`fixed` at a surface point: its limit point moves by `offset`.
 std::unique_ptr<Constraint> surface_point_offset(SurfacePointSelection where, const Vec3& offset, std::string who);
 //! `normal` at a surface point: the limit normal there becomes `normal`.
-std::unique_ptr<Constraint> surface_point_normal(SurfacePointSelection where, const Vec3& normal, std::string who);
+std::unique_ptr<Constraint> surface_point_normal(SurfacePointSelection where, const Vec3& normal, NormalRows rows,
+                                                 std::string who);
 
 }  // namespace fairshape

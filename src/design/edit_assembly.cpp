@@ -62,17 +62,24 @@ EditProblem assemble_edit_problem(const EditTerms& terms, const MultiresSurface&
     };
     p.levels = ops;
   }
-  const LevelMeshes mesh_at = [&h](int l) -> const SurfaceMesh& { return h.mesh(l); };
-  for (const Constraint* c : terms.constraints) c->add_on_surface(mesh_at, h.levels(), h.options(), placed);
+  for (const Constraint* c : terms.constraints) place_constraint(terms, *c, h, placed);
   p.constraints = propagate_constraints(h, level, placed);
   return p;
 }
 
+void place_constraint(const EditTerms& terms, const Constraint& c, const MultiresSurface& h, DesignConstraints& out) {
+  const LevelMeshes mesh_at = [&h](int l) -> const SurfaceMesh& { return h.mesh(l); };
+  const std::size_t first = out.normals.size();
+  c.add_on_surface(mesh_at, h.levels(), h.options(), out);
+  if (!terms.frame_rows_for_auto_normals) return;
+  for (std::size_t i = first; i < out.normals.size(); ++i)
+    if (out.normals[i].rows == NormalRows::Auto) out.normals[i].rows = NormalRows::Frame;
+}
+
 void check_edit(const EditTerms& terms, const MultiresSurface& h, int coarse, int level) {
   if (terms.energies.empty()) throw InvalidInput("edit: no energy term");
-  const LevelMeshes mesh_at = [&h](int l) -> const SurfaceMesh& { return h.mesh(l); };
   DesignConstraints placed;
-  for (const Constraint* c : terms.constraints) c->add_on_surface(mesh_at, h.levels(), h.options(), placed);
+  for (const Constraint* c : terms.constraints) place_constraint(terms, *c, h, placed);
   for (int l = coarse; l <= level; ++l) {
     for (const WeightedEnergy& e : terms.energies) e.energy->check_applicable(h.mesh(l));
     check_constraints(h, l, placed);

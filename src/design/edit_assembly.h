@@ -37,7 +37,14 @@ struct EditTerms {
   bool positions = false;
   //! Attach the levels below (LevelOperators) for a multilevel solver.
   bool levels = false;
+  //! Normal constraints with rows `auto` are imposed by frame rows (constraint.h NormalRows):
+  //! set when their tangent rows gave an answer with a reversed normal.
+  bool frame_rows_for_auto_normals = false;
 };
+
+//! Appends constraint `c` as placed on the levels of `h` (with its subdivision rules) to `out`,
+//! its normal rows resolved as `terms` says.
+void place_constraint(const EditTerms& terms, const Constraint& c, const MultiresSurface& h, DesignConstraints& out);
 
 //! Each vertex's star (the vertices of its faces, itself first) and its mean squared distance
 //! to them: what multigrid's stiff-star patches need from a level (solver/level_operators.h).

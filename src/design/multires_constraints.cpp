@@ -81,6 +81,19 @@ std::array<Eigen::SparseVector<double>, 2> tangent_rows(const SurfaceMesh& mesh,
   return rows;
 }
 
+// a · P: the tangent that row a measures on positions P.
+Vec3 tangent_at(const Eigen::SparseVector<double>& a, const MatrixX3& P) {
+  Vec3 q = Vec3::Zero();
+  for (Eigen::SparseVector<double>::InnerIterator e(a); e; ++e) q += e.value() * P.row(e.index()).transpose();
+  return q;
+}
+
+// The rows of normal constraint `nc` on its level's vertices: the tangents of the vertex's
+// local fit, or ∂S/∂u, ∂S/∂v at a surface point.
+std::array<Eigen::SparseVector<double>, 2> rows_of(const SurfaceMesh& mesh, const NormalConstraint& nc) {
+  return nc.surface.empty() ? tangent_rows(mesh, nc.vertex) : derivative_rows(mesh, nc.surface);
+}
+
 // a · P · N: the component along N of the tangent that row a measures on the positions P of `now`.
 double along(const Eigen::SparseVector<double>& a, const SurfaceMesh& now, const Vec3& N) {
   double d = 0;
@@ -181,11 +194,12 @@ void add_normal_rows(const MultiresSurface& h, int l, const std::vector<NormalCo
   std::vector<double> c;
   for (const NormalConstraint* requested : distinct_normals(h, l, normals)) {
     const NormalConstraint& nc = *requested;
+    if (nc.rows == NormalRows::Frame) continue;  // rows of the point kind (add_frame_rows)
     const Vec3 N = nc.normal.normalized();
     auto it = prolongation_to.find(nc.level);
     if (it == prolongation_to.end()) it = prolongation_to.emplace(nc.level, RowSparseMatrix(h.prolongation(l, nc.level))).first;
     const SurfaceMesh& mesh = h.mesh(nc.level);
-    for (const auto& a : nc.surface.empty() ? tangent_rows(mesh, nc.vertex) : derivative_rows(mesh, nc.surface)) {
+    for (const auto& a : rows_of(mesh, nc)) {
       // a · ΔP^k = (a P_{l→k}) · ΔP^l: the row on the edit level, times N on each coordinate block.
       Eigen::SparseVector<double> row(n);
       for (Eigen::SparseVector<double>::InnerIterator e(a); e; ++e)
@@ -202,12 +216,62 @@ void add_normal_rows(const MultiresSurface& h, int l, const std::vector<NormalCo
   out.C_coupled = Eigen::Map<const Eigen::VectorXd>(c.data(), static_cast<Eigen::Index>(c.size()));
 }
 
+// What frame rows ask of normal constraint `nc`'s tangents: the rest ones (of `h`) turned by the
+// shortest rotation of the rest normal — oriented like the faces, as achieved_normal reports it —
+// onto N. Minus where they are on `now`: the deformation still missing.
+std::array<Vec3, 2> frame_targets(const SurfaceMesh& rest, const SurfaceMesh& now, const NormalConstraint& nc) {
+  const Vec3 rest_normal = achieved_normal(rest, rest.positions(), nc);
+  const Eigen::Matrix3d R = Eigen::Quaterniond::FromTwoVectors(rest_normal, nc.normal.normalized()).toRotationMatrix();
+  const auto rows = rows_of(rest, nc);
+  std::array<Vec3, 2> missing;
+  for (int r = 0; r < 2; ++r) missing[r] = R * tangent_at(rows[r], rest.positions()) - tangent_at(rows[r], now.positions());
+  return missing;
+}
+
+// The frame rows of the normal constraints with rows: frame, appended to the point rows (papers/
+// boier-martin/README.md, "Folds and reversed normals"): each tangent row a of level k is a row of
+// the point kind on the edit level, (a P_{l→k}) ΔP^l = R Q⁰ − Q — one row, three target columns —
+// so N is met with its own orientation (Q_u × Q_v = R (Q_u⁰ × Q_v⁰)).
+void add_frame_rows(const MultiresSurface& h, int l, const std::vector<NormalConstraint>& normals,
+                    const MultiresSurface* current, LinearConstraints& out) {
+  std::vector<const NormalConstraint*> framed;
+  for (const NormalConstraint* nc : distinct_normals(h, l, normals))
+    if (nc->rows == NormalRows::Frame) framed.push_back(nc);
+  if (framed.empty()) return;
+  const int n = h.mesh(l).n_vertices();
+  const Eigen::Index first = out.A.rows();
+  Triplets t;
+  for (int k = 0; k < out.A.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator e(out.A, k); e; ++e) t.emplace_back(static_cast<int>(e.row()), static_cast<int>(e.col()), e.value());
+  out.C.conservativeResize(first + 2 * static_cast<Eigen::Index>(framed.size()), 3);
+  std::map<int, RowSparseMatrix> prolongation_to;
+  Eigen::Index r = first;
+  for (const NormalConstraint* nc : framed) {
+    auto it = prolongation_to.find(nc->level);
+    if (it == prolongation_to.end()) it = prolongation_to.emplace(nc->level, RowSparseMatrix(h.prolongation(l, nc->level))).first;
+    const SurfaceMesh& rest = h.mesh(nc->level);
+    const std::array<Vec3, 2> missing = frame_targets(rest, current ? current->mesh(nc->level) : rest, *nc);
+    const auto rows = rows_of(rest, *nc);
+    for (int q = 0; q < 2; ++q, ++r) {
+      for (Eigen::SparseVector<double>::InnerIterator e(rows[q]); e; ++e)
+        for (RowSparseMatrix::InnerIterator p(it->second, e.index()); p; ++p)
+          t.emplace_back(static_cast<int>(r), static_cast<int>(p.col()), e.value() * p.value());
+      out.C.row(r) = missing[q].transpose();
+    }
+  }
+  out.A.resize(r, n);
+  out.A.setFromTriplets(t.begin(), t.end());
+}
+
 }  // namespace
 
 LinearConstraints propagate_constraints(const MultiresSurface& h, int l, const DesignConstraints& dc,
                                         const MultiresSurface* current) {
   LinearConstraints out = propagate_constraints(h, l, dc.points, current);
-  if (!dc.normals.empty()) add_normal_rows(h, l, dc.normals, current, out);
+  if (!dc.normals.empty()) {
+    add_frame_rows(h, l, dc.normals, current, out);
+    add_normal_rows(h, l, dc.normals, current, out);
+  }
   return out;
 }
 
@@ -219,12 +283,17 @@ LinearConstraints missing_targets(const MultiresSurface& h, const DesignConstrai
   for (std::size_t r = 0; r < points.size(); ++r)
     out.C.row(static_cast<Eigen::Index>(r)) = (points[r]->offset - moved_so_far(h, current, *points[r], limit_rows)).transpose();
   std::vector<double> c;
+  for (const NormalConstraint* nc : distinct_normals(h, 0, dc.normals)) {  // in add_frame_rows' order
+    if (nc->rows != NormalRows::Frame) continue;
+    const std::array<Vec3, 2> missing = frame_targets(h.mesh(nc->level), current.mesh(nc->level), *nc);
+    out.C.conservativeResize(out.C.rows() + 2, 3);
+    for (int q = 0; q < 2; ++q) out.C.row(out.C.rows() - 2 + q) = missing[q].transpose();
+  }
   for (const NormalConstraint* nc : distinct_normals(h, 0, dc.normals)) {
+    if (nc->rows == NormalRows::Frame) continue;
     const Vec3 N = nc->normal.normalized();
     const SurfaceMesh& now = current.mesh(nc->level);
-    const SurfaceMesh& mesh = h.mesh(nc->level);
-    for (const auto& a : nc->surface.empty() ? tangent_rows(mesh, nc->vertex) : derivative_rows(mesh, nc->surface))
-      c.push_back(-along(a, now, N));
+    for (const auto& a : rows_of(h.mesh(nc->level), *nc)) c.push_back(-along(a, now, N));
   }
   out.C_coupled = Eigen::Map<const Eigen::VectorXd>(c.data(), static_cast<Eigen::Index>(c.size()));
   return out;
@@ -241,21 +310,12 @@ void check_constraints(const MultiresSurface& h, int l, const DesignConstraints&
 
 Vec3 estimated_normal(const SurfaceMesh& D_mesh, const MatrixX3& positions, int vertex) {
   const auto rows = tangent_rows(D_mesh, vertex);
-  Vec3 q[2] = {Vec3::Zero(), Vec3::Zero()};
-  for (int r = 0; r < 2; ++r)
-    for (Eigen::SparseVector<double>::InnerIterator e(rows[r]); e; ++e)
-      q[r] += e.value() * positions.row(e.index()).transpose();
-  return q[0].cross(q[1]).normalized();
+  return tangent_at(rows[0], positions).cross(tangent_at(rows[1], positions)).normalized();
 }
 
 Vec3 achieved_normal(const SurfaceMesh& mesh, const MatrixX3& positions, const NormalConstraint& nc) {
-  const auto rows = nc.surface.empty() ? tangent_rows(mesh, nc.vertex) : derivative_rows(mesh, nc.surface);
-  const auto cross_at = [&rows](const MatrixX3& P) {
-    Vec3 q[2] = {Vec3::Zero(), Vec3::Zero()};
-    for (int r = 0; r < 2; ++r)
-      for (Eigen::SparseVector<double>::InnerIterator e(rows[r]); e; ++e) q[r] += e.value() * P.row(e.index()).transpose();
-    return Vec3(q[0].cross(q[1]));
-  };
+  const auto rows = rows_of(mesh, nc);
+  const auto cross_at = [&rows](const MatrixX3& P) { return Vec3(tangent_at(rows[0], P).cross(tangent_at(rows[1], P))); };
   // The tangents' order is the local fit's, not the faces': orient by the rest surface.
   const Vec3 faces = nc.surface.empty() ? area_normal(mesh, mesh.positions(), nc.vertex)
                                         : vector_area(mesh, mesh.positions(), nc.surface.at.face);

@@ -31,8 +31,9 @@ OrientationCheck check_orientation(const MultiresSurface& rest, const MultiresSu
     const double cosine = n.dot(nc.normal.normalized());
     const double deg = std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / std::numbers::pi;
     c.normal_error_deg = std::max(c.normal_error_deg, deg);
-    if (cosine < 0 && std::find(c.reversed.begin(), c.reversed.end(), nc.label) == c.reversed.end())
-      c.reversed.push_back(nc.label);
+    if (cosine >= 0) continue;
+    c.reversed_auto |= nc.rows == NormalRows::Auto;
+    if (std::find(c.reversed.begin(), c.reversed.end(), nc.label) == c.reversed.end()) c.reversed.push_back(nc.label);
   }
   return c;
 }

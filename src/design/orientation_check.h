@@ -2,7 +2,8 @@
 // §4.2; papers/boier-martin/README.md, "Folds and reversed normals"). The linear rows of a
 // normal constraint (Q_u · N = Q_v · N = 0) are met by −N as well as N, and no energy term
 // sees orientation, so a converged solve can answer with a surface turned over; a run is only
-// a success when this check finds neither a flipped face nor a reversed normal.
+// a success when this check finds neither a flipped face nor a reversed normal. A normal
+// constraint with rows `auto` is then imposed by frame rows, which only N meets (constraint.h).
 #pragma once
 
 #include <string>
@@ -18,6 +19,7 @@ struct OrientationCheck {
   FoldReport folds;                   // the finest level, against the rest surface
   double normal_error_deg = -1;       // the largest angle of an achieved normal from its target (−1: none)
   std::vector<std::string> reversed;  // normal constraints met by their reverse (angle above 90°)
+  bool reversed_auto = false;         // one of them has rows `auto`: frame rows would orient it
   bool folded() const { return !folds.flipped.empty() || !reversed.empty(); }
   //! What turned over, for a run's message ("" when nothing did).
   std::string describe() const;

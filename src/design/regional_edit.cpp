@@ -45,12 +45,11 @@ std::vector<PlacedTerm> place_terms(const EditTerms& terms, const MultiresSurfac
   if (edit_level < 0 || edit_level > h.levels())
     throw InvalidInput("edit level " + std::to_string(edit_level) + " outside the hierarchy [0, " +
                        std::to_string(h.levels()) + "]");
-  const LevelMeshes mesh_at = [&h](int l) -> const SurfaceMesh& { return h.mesh(l); };
   std::vector<PlacedTerm> out;
   for (std::size_t i = 0; i < terms.constraints.size(); ++i) {
     PlacedTerm t;
     t.influence = terms.influence(i);
-    terms.constraints[i]->add_on_surface(mesh_at, h.levels(), h.options(), t.placed);
+    place_constraint(terms, *terms.constraints[i], h, t.placed);
     t.label = !t.placed.points.empty()    ? t.placed.points.front().label
               : !t.placed.normals.empty() ? t.placed.normals.front().label
                                           : "constraint " + std::to_string(i);

@@ -30,6 +30,27 @@ rc=0
 "$FS" run "$S/tip.yaml" --out "$S/ladder" --set 'problem={constraint_mode: paper, accuracy: converged, coarse_level: 1}' \
   --set solver.type=multigrid_cg --set solver.tolerance=1e-12 --set solver.max_iterations=300 2> "$S/ladder.txt" > /dev/null \
   || { cat "$S/ladder.txt" >&2; fail "the converged ladder with a normal constraint"; }
+# A normal ~104 degrees from the fingertip's rest normal: §4.2's tangent rows are met by its
+# reverse (rows: tangent keeps that answer, `folded`); rows auto (the default) solves again with
+# frame rows, which meet the target itself.
+TURN=(--set 'constraints.2={type: normal, nearest: [0.132, -0.038, 0.5], normal: [0, 1, 0]}')
+"$FS" run "$S/tip.yaml" --out "$S/tangent" "${TURN[@]}" --set constraints.2.rows=tangent > /dev/null 2>&1 || true
+"$FS" run "$S/tip.yaml" --out "$S/frame" "${TURN[@]}" > /dev/null 2>&1 || true
+$PY - "$S" <<'PYEOF'
+import csv, sys
+row = lambda case: list(csv.DictReader(open(f"{sys.argv[1]}/{case}/runs.csv")))[0]
+tangent, frame = row("tangent"), row("frame")
+assert tangent["termination"] == "folded" and float(tangent["normal_error_deg"]) > 179, tangent
+assert "met by the reverse of the target" in tangent["message"], tangent["message"]
+assert "solved again" not in tangent["message"], tangent["message"]
+assert "so solved again with frame rows" in frame["message"], frame["message"]
+assert float(frame["normal_error_deg"]) < 1e-3, frame
+assert float(frame["constraint_violation"]) < 1e-6, frame
+# Turning the tip that far may still fold faces around it: then it says so, never `converged`.
+assert (frame["termination"] == "converged") == (int(frame["flipped_faces"]) == 0), frame
+print("orientation: a reversed normal re-solved with frame rows:", frame["normal_error_deg"], "degrees,",
+      frame["flipped_faces"], "faces flipped")
+PYEOF
 $PY - "$S" <<'PYEOF'
 import csv, sys
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader

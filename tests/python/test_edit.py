@@ -96,3 +96,27 @@ def test_gil_is_released_during_the_edit(cow_hierarchy):
         ticks += 1
     t.join()
     assert ticks > 10000, ticks
+
+
+def test_a_reversed_normal_is_never_a_success(cow_hierarchy):
+    """§4.2's tangent rows hold for −N as well as N: an answer with the reverse normal ends `folded`
+    (rows='tangent'); rows 'auto' (the default) solves again with frame rows, which meet N itself."""
+    back, nose = selections(cow_hierarchy)
+    finest = cow_hierarchy.mesh(cow_hierarchy.levels)
+    n0 = fairshape.limit_normals(finest, scheme=cow_hierarchy.scheme)[nose[0]]
+    side = np.cross(n0, [0.0, 0.0, 1.0] if abs(n0[2]) < 0.9 else [1.0, 0.0, 0.0])
+    target = -n0 + 0.18 * side / np.linalg.norm(side)  # about 170 degrees from the rest normal
+    held = [fairshape.fixed(back), fairshape.fixed(nose)]
+
+    def normal(**rows):
+        return fairshape.constraint("normal", vertices=nose.tolist(), normal=target.tolist(), **rows)
+
+    tangent = fairshape.edit(cow_hierarchy, [ENERGY], held + [normal(rows="tangent")], mode="kkt", check=False)
+    assert tangent.summary.termination == "folded" and not tangent.summary.succeeded
+    assert tangent.normal_error_deg > 90 and "met by the reverse" in tangent.summary.message
+    with pytest.raises(fairshape.SolveFailed, match="folded"):
+        fairshape.edit(cow_hierarchy, [ENERGY], held + [normal(rows="tangent")], mode="kkt")
+    frame = fairshape.edit(cow_hierarchy, [ENERGY], held + [normal()], mode="kkt", check=False)
+    assert "so solved again with frame rows" in frame.summary.message
+    assert frame.normal_error_deg < 1e-3 and frame.constraint_residual < 1e-9
+    assert frame.summary.succeeded == (frame.flipped_faces == 0)

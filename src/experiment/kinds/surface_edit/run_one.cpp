@@ -119,7 +119,7 @@ std::vector<const ReferenceSolution*> reference_solutions(const SurfaceEditSpec&
   std::vector<const ReferenceSolution*> refs(scales.size(), nullptr);
   if (!spec.output.reference_solution) return refs;
   const auto key = [&](std::size_t s) {
-    std::string k = spec.system_key + "|optimum";
+    std::string k = spec.problem_key() + "|optimum";
     return s + 1 == scales.size() ? k : k.append("|scale ").append(num(scales[s]));
   };
   std::unique_ptr<Solver> direct;
@@ -255,9 +255,9 @@ void count_curve_points(const DesignConstraints& placed, MetricRow& row) {
 // What every edit reports of its result and writes: the detail change (the edited finest
 // level re-analysed), the spike ratio, the geometry and the constraints' overlay. `region`
 // (regional edits): the finest level's influence_region array.
-void report_result(const SurfaceEditSpec& spec, const RunOutputs& out, const MultiresSurface& rest,
-                   const MultiresSurface& edited, const DesignConstraints& placed, const Eigen::MatrixXd& delta,
-                   const Eigen::VectorXi* region, MetricRow& row) {
+OrientationCheck report_result(const SurfaceEditSpec& spec, const RunOutputs& out, const MultiresSurface& rest,
+                               const MultiresSurface& edited, const DesignConstraints& placed, const Eigen::MatrixXd& delta,
+                               const Eigen::VectorXi* region, MetricRow& row) {
   const SurfaceMesh& finest = edited.mesh(edited.levels());
   // The edited surface analysed anew: its details are what the edit left of the rest
   // shape's (synthesize_from keeps the rest details, whatever the energy did to them).
@@ -277,12 +277,13 @@ void report_result(const SurfaceEditSpec& spec, const RunOutputs& out, const Mul
   write_geometry(spec, out, result, reanalysed);
   if (spec.output.vtk != VtkPolicy::None)
     write_constraint_overlay(placed, edited, (fs::path(out.dir) / "vtk" / (out.run_id + "_constraints.vtp")).string());
+  return orientation;
 }
 
 // Constraints with regions of influence of their own (design/regional_edit.h): solved in
 // passes, coarse to fine; the yardstick is the same passes with CHOLMOD on the free vertices.
-void execute_regional(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& out, const MultiresSurface& rest,
-                      int level, MetricRow& row) {
+OrientationCheck execute_regional(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& out,
+                                  const MultiresSurface& rest, int level, MetricRow& row) {
   const EditTerms terms = spec.edit_terms();
   // Under §5's ladder the whole-level passes are solved on it (design/regional_edit.h).
   const std::optional<PassLadder> ladder =
@@ -310,7 +311,7 @@ void execute_regional(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
   row["constraint_violation"] = num(r.constraint_violation);
   row["termination"] = std::string(to_string(r.summary.termination));
   row["message"] = r.summary.message;
-  if (r.passes.size() != 0 && !is_success(r.summary.termination)) return;
+  if (r.passes.size() != 0 && !is_success(r.summary.termination)) return {};
   const int finest = rest.levels();
   const Eigen::MatrixXd moved = r.edited.mesh(finest).positions() - rest.mesh(finest).positions();
   row["region_fraction"] = num((r.region.array() > 0).count() / static_cast<double>(r.region.size()));
@@ -332,7 +333,7 @@ void execute_regional(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
   const Eigen::MatrixXd delta = r.edited.mesh(level).positions() - rest.mesh(level).positions();
   row["energy"] = num(edit_energy(at_edit, delta));
   if (spec.output.reference_solution) {
-    const std::string key = spec.system_key + "|regional optimum";
+    const std::string key = spec.problem_key() + "|regional optimum";
     if (!cache.reference_solution(key)) {
       // The yardstick: the same passes solved exactly (KKT, CHOLMOD) — whatever mode or ladder
       // the run uses, each pass is the same constrained problem (one reference per problem).
@@ -347,7 +348,7 @@ void execute_regional(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
     }
     if (const ReferenceSolution* ref = cache.reference_solution(key)) row["error_vs_reference"] = num(relative_error(moved, ref->u));
   }
-  report_result(spec, out, rest, r.edited, r.placed, moved, &r.region, row);
+  return report_result(spec, out, rest, r.edited, r.placed, moved, &r.region, row);
 }
 
 // time_s: the run's own time. The shared work done during it (a hierarchy, a reference solve)
@@ -487,7 +488,10 @@ void RunCache::store_reference_solution(const std::string& key, ReferenceSolutio
   setups_.built.push_back({reference_id(key), std::move(what), seconds});
 }
 
-MetricRow execute_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& out) {
+namespace {
+
+// One solve of the run's edit; `checked`: what its result's orientation check found.
+MetricRow attempt_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& out, OrientationCheck& checked) {
   MetricRow row;
   for (const auto& c : metric_columns()) row[c] = "";
   row["unused_keys"] = spec.unused_keys_cell();
@@ -502,7 +506,7 @@ MetricRow execute_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
     }
     const int level = spec.edit_level < 0 ? rest.levels() : spec.edit_level;
     if (is_regional(spec.edit_terms())) {
-      execute_regional(spec, cache, out, rest, level, row);
+      checked = execute_regional(spec, cache, out, rest, level, row);
       charge_shared_setups(cache, out, total, row);
       return row;
     }
@@ -582,7 +586,7 @@ MetricRow execute_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
       MultiresSurface edited = rest;
       edited.set_level_positions(level, rest.mesh(level).positions() + MatrixX3(sol.delta));
       edited.synthesize_from(level, DetailSpace::Local);
-      report_result(spec, out, rest, edited, placed, sol.delta, nullptr, row);
+      checked = report_result(spec, out, rest, edited, placed, sol.delta, nullptr, row);
       write_ladder(spec, out, rest, ladder, coarse, level_solutions);
     }
   } catch (const SolverError& e) {
@@ -598,6 +602,27 @@ MetricRow execute_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
   charge_shared_setups(cache, out, total, row);
   if (row["peak_rss_mb"].empty()) row["peak_rss_mb"] = num(peak_rss_mb());  // a run that failed before or in its solve
   return row;
+}
+
+}  // namespace
+
+MetricRow execute_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& out) {
+  OrientationCheck checked;
+  MetricRow row = attempt_run(spec, cache, out, checked);
+  if (!checked.reversed_auto) return row;
+  // §4.2's tangent rows were met by the reverse of a normal left to rows `auto`: the same edit
+  // again with frame rows, which only the target meets (papers/boier-martin/README.md, "Folds and
+  // reversed normals"). Its result replaces the first one's files; the row says both.
+  const std::string first = checked.describe();
+  const double first_s = std::stod(row["time_s"]);
+  spec.frame_rows_for_auto_normals = true;
+  MetricRow again = attempt_run(spec, cache, out, checked);
+  spec.frame_rows_for_auto_normals = false;
+  again["time_s"] = num(first_s + (again["time_s"].empty() ? 0.0 : std::stod(again["time_s"])));
+  again["message"] = "tangent rows " + first + ", so solved again with frame rows" +
+                     (spec.output.iterations ? " (iterations.csv holds both solves)" : "") +
+                     (again["message"].empty() ? "" : "; " + again["message"]);
+  return again;
 }
 
 }  // namespace fairshape

@@ -31,6 +31,7 @@ EditTerms SurfaceEditSpec::edit_terms() const {
     t.influences.push_back(c.influence);
   }
   t.positions = formulation == Formulation::Position;
+  t.frame_rows_for_auto_normals = frame_rows_for_auto_normals;
   // The levels below: only a multilevel solver reads them (the run's, or the cascade's relaxation).
   t.levels = solver->uses_levels() ||
              (accuracy.mode == AccuracyMode::Improved && accuracy.relaxation.rfind("multigrid", 0) == 0);

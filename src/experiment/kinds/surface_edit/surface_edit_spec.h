@@ -79,6 +79,11 @@ struct SurfaceEditSpec : RunBasics {
   ConstraintMode constraint_mode = ConstraintMode::Kkt;
   //! The energies and constraints as the design module takes them (pointers into this spec).
   EditTerms edit_terms() const;
+  //! Set while a run solves its edit again with frame rows for its `auto` normals, after their
+  //! tangent rows gave a reversed normal (run_one.cpp); not a config key.
+  bool frame_rows_for_auto_normals = false;
+  //! system_key, told apart when frame rows replace the tangent rows (another problem).
+  std::string problem_key() const { return system_key + (frame_rows_for_auto_normals ? "|frame rows" : ""); }
   //! The QP modes: problem.<mode>, the options of that mode's solver (src/qp's schema).
   YAML::Node qp_options;
   Config qp_config() const;

@@ -6,17 +6,15 @@
       the surface without the features (the finest level of the result minus its `displacement`
       array: `OUT_DIR/<RUN_ID>_input.vtp`) and the feature curves laid on it (each point of the
       run's overlay curves, which lie on the result, moved back by the displacement of the
-      result's nearest vertex), written as an
-      overlay for `fairshape render --overlay` (`OUT_DIR/<RUN_ID>_input_overlay.vtp`, with a
-      level-0 edit's held vertices and handle when --edit is given): the input panel of a
-      figure, what the designer drew on.
+      result's nearest vertex), written as an overlay for `fairshape render --overlay`
+      (`OUT_DIR/<RUN_ID>_input_overlay.vtp`, with a level-0 edit's held vertices and handle when
+      --edit is given): the input panel of a figure, what the designer drew on.
   ks_panels.py compose OUT.png --title TEXT [--columns N] PANEL.png ...
       one figure from several `fairshape render` images (each with its own colour bar, when the
       panels need different arrays or ranges), in rows of N under a title; the figure is
-      stored with an adaptive 256-colour palette to keep it small.
+      stored with a 256-colour palette of its own colours (dithered) to keep it small.
 """
 import argparse
-import glob
 import os
 import sys
 
@@ -35,20 +33,6 @@ def read_vtp(path):
     return r.GetOutput()
 
 
-def read_polylines(path):
-    """An OBJ of `v` and `l` lines: the points and each line's point indices (0-based)."""
-    pts, lines = [], []
-    for line in open(path):
-        f = line.split()
-        if not f:
-            continue
-        if f[0] == "v":
-            pts.append([float(x) for x in f[1:4]])
-        elif f[0] == "l":
-            lines.append([int(x) - 1 for x in f[1:]])
-    return np.array(pts), lines
-
-
 def make_input(a):
     result = read_vtp(os.path.join(a.run_dir, "vtk", a.run_id + ".vtp"))
     p = vtk_to_numpy(result.GetPoints().GetData())
@@ -65,12 +49,12 @@ def make_input(a):
     w.Write()
     # The curves: moved back by the displacement of the nearest result vertex (the feature moves
     # its crest along the normal by about h; the nearest vertex is within half a finest edge).
+    # The run's overlay holds each curve where the feature is on the result (README, "Exports");
+    # curves/<run>_*.obj hold them on the surface each was drawn on, which for a finer feature
+    # is the surface with the coarser features.
     locator = vtk.vtkPointLocator()
     locator.SetDataSet(result)
     locator.BuildLocator()
-    # The run's overlay holds each curve where the feature is on the result (`curves_on_finest_result`);
-    # curves/<run>_*.obj hold them on the surface each was drawn on, which for a finer feature
-    # is the surface with the coarser features.
     shown = read_vtp(os.path.join(a.run_dir, "vtk", a.run_id + "_constraints.vtp"))
     kind = vtk_to_numpy(shown.GetPointData().GetArray("kind"))
     q = vtk_to_numpy(shown.GetPoints().GetData())

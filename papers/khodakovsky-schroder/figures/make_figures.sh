@@ -18,34 +18,52 @@ patch_view=(--up z --view front --elevation 40 --azimuth 10 --zoom 1.35 --width 
 # miss is in runs.csv and features.csv, which are kept with the figure.
 run() { build/bin/fairshape run "configs/khodakovsky-schroder/$1.yaml" --out "$out-$1" --force || [ $? -eq 3 ]
         cp "$out-$1/features.csv" "$data/$1_features.csv"; cp "$out-$1/runs.csv" "$data/$1_runs.csv"; cp "$out-$1/run.json" "$data/$1_run.json"; }
+# Figures 11, 14, 15 and 17 and the adaptive helmet are put together from several `fairshape
+# render` calls (ks_panels.py compose): an input panel (the surface without features and the
+# curves drawn on it: ks_panels.py input), and panels that colour different arrays, each on its
+# own scale.
+ks=papers/khodakovsky-schroder/figures/ks_panels.py
+row() { awk -F, -v n="$2" 'NR == n + 1 { print $1 }' "$1/runs.csv"; }   # the run id of runs.csv's n-th row
+col() { /usr/bin/python3 -c 'import csv, sys; print(f"{int(float(list(csv.DictReader(open(sys.argv[1])))[0][sys.argv[2]])):,}")' \
+          "$1/runs.csv" "$2"; }   # a count from runs.csv's first row, with thousands separators
+num() { /usr/bin/python3 -c 'import csv, sys; print(f"{float(list(csv.DictReader(open(sys.argv[1])))[0][sys.argv[2]]):.4g}")' \
+          "$1/runs.csv" "$2"; }   # a number from runs.csv's first row, 4 digits
+tmp=$out-panels; mkdir -p "$tmp"
+patch=(--up z --view front --azimuth 15 --zoom 1.35 --width 620 --height 500)
+panel=("${patch[@]}" --elevation 30); above=("${patch[@]}" --elevation 55)
+# Figure 11 (§2.3-2.4): the input with the three curves, and the result with the curves where the
+# features are and the neighbourhoods outlined (the paper draws the outline on the drawn level).
 run fig11
-/usr/bin/python3 scripts/panels.py --allow-unmet $out-fig11 $figs/fig11.png --rest data/ks_patch.off \
-  --title "Figure 11/16: three overlapping feature lines drawn on level 2 (two ridges, one groove), level 4 shown" \
-  --label "{vertices_moved:.0f} vertices moved, max {max_displacement:.3f}" --render "${patch_view[@]}"
-build/bin/fairshape render "$out-fig11/adaptive/$(tail -1 $out-fig11/runs.csv | cut -d, -f1).obj" $figs/fig11_adaptive.png \
+id=$(row $out-fig11 1)
+/usr/bin/python3 $ks input $out-fig11 $id $tmp
+view11=(--up z --view front --elevation 40 --azimuth 10 --zoom 1.35 --width 800 --height 620)
+build/bin/fairshape render $tmp/${id}_input.vtp $tmp/f11a.png --overlay $tmp/${id}_input_overlay.vtp \
+  --label "input: the patch (level 4) and the curves drawn on level 2" "${view11[@]}"
+build/bin/fairshape render $out-fig11@$id $tmp/f11b.png --array displacement --component normal \
+  --colour-label "normal displacement" "${view11[@]}" \
+  --label "result, level 4: $(col $out-fig11 vertices_moved) vertices moved (outlined), max $(num $out-fig11 max_displacement)"
+/usr/bin/python3 $ks compose $figs/fig11.png --columns 2 $tmp/f11{a,b}.png \
+  --title "Figure 11/16: three overlapping feature lines drawn on level 2 (two ridges, one groove; orange: curves)"
+build/bin/fairshape render "$out-fig11/adaptive/$id.obj" $figs/fig11_adaptive.png \
   --edges --flat --up z --view top --zoom 1.3 --width 900 --height 700 --title "Figure 11: the adaptive mesh"
-# Figure 11 on the helmet, the paper's subject: seen from above the crown, curves drawn, the
-# features' neighbourhoods outlined, signed colouring (ridges warm, grooves cool).
+# Figure 11 on the helmet, the paper's subject: seen from above the crown, the input with the
+# curves, the result with the curves, the features' neighbourhoods outlined, signed colouring.
 run fig11_helmet
-/usr/bin/python3 scripts/panels.py --allow-unmet $out-fig11_helmet $figs/fig11_helmet.png --rest data/helmet.off \
-  --title "Figure 11 on the helmet: three overlapping feature lines drawn on level 2 (two ridges, one groove), level 4 shown" \
-  --label "{vertices_moved:.0f} vertices moved, max {max_displacement:.4f}" \
-  --render --view top --up z --focus 0.04 0.0 0.33 --radius 0.2 --width 900 --height 700 --component normal \
-  --colour-label "normal displacement"
+id=$(row $out-fig11_helmet 1)
+/usr/bin/python3 $ks input $out-fig11_helmet $id $tmp
+view11h=(--view top --up z --focus 0.04 0.0 0.33 --radius 0.2 --width 800 --height 620)
+build/bin/fairshape render $tmp/${id}_input.vtp $tmp/f11ha.png --overlay $tmp/${id}_input_overlay.vtp \
+  --label "input: the helmet (level 4) and the curves drawn on level 2" "${view11h[@]}"
+build/bin/fairshape render $out-fig11_helmet@$id $tmp/f11hb.png --array displacement --component normal \
+  --colour-label "normal displacement" "${view11h[@]}" \
+  --label "result, level 4: $(col $out-fig11_helmet vertices_moved) vertices moved (outlined), max $(num $out-fig11_helmet max_displacement)"
+/usr/bin/python3 $ks compose $figs/fig11_helmet.png --columns 2 $tmp/f11h{a,b}.png \
+  --title "Figure 11 on the helmet: three overlapping feature lines drawn on level 2 (two ridges, one groove; orange: curves)"
 run fig16
 /usr/bin/python3 scripts/panels.py --allow-unmet $out-fig16 $figs/fig16.png --columns 3 \
   --title "Figure 16: one parameter at a time (radius, crease, groove, left/right ratio, end height ratio)" \
   --label "r {feature_defaults_radius}, h {feature_defaults_height}, crease {feature_defaults_crease}, L/R {feature_defaults_left_right_ratio}, end {feature_defaults_end_height_ratio}" \
   --render "${patch_view[@]}"
-# Figures 14, 15 and 17 and the adaptive helmet are put together from several `fairshape render`
-# calls (ks_panels.py compose): their panels colour different arrays, each on its own scale.
-ks=papers/khodakovsky-schroder/figures/ks_panels.py
-row() { awk -F, -v n="$2" 'NR == n + 1 { print $1 }' "$1/runs.csv"; }   # the run id of runs.csv's n-th row
-col() { /usr/bin/python3 -c 'import csv, sys; print(f"{int(float(list(csv.DictReader(open(sys.argv[1])))[0][sys.argv[2]])):,}")' \
-          "$1/runs.csv" "$2"; }   # a count from runs.csv's first row, with thousands separators
-tmp=$out-panels; mkdir -p "$tmp"
-patch=(--up z --view front --azimuth 15 --zoom 1.35 --width 620 --height 500)
-panel=("${patch[@]}" --elevation 30); above=("${patch[@]}" --elevation 55)
 # Figure 14 (§2.6, features on two levels): the input with the three curves; each level's own
 # layer (`feature_displacement` of levels/<run>_level<l>.vtp: the offsets that level's features
 # put on its control points, the layer kept apart from the surface), each on its own scale; the

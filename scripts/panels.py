@@ -97,7 +97,7 @@ def step_panels(a):
         sys.exit("panels: --steps needs one --label format (over steps.csv's columns)")
     rows = [r for r in csv.DictReader(open(os.path.join(a.run_dir, "steps.csv"))) if r["run_id"] == a.steps]
     vtk = os.path.join(a.run_dir, "vtk")
-    inputs = [os.path.join(vtk, f"{a.steps}_step{r['step']}.vtp") for r in rows]
+    inputs = [os.path.join(a.inputs_from or vtk, f"{a.steps}_step{r['step']}.vtp") for r in rows]
     missing = [f for f in inputs if not os.path.exists(f)]
     if not rows or missing:
         sys.exit(f"panels: run {a.steps} has no drag steps in {a.run_dir} (output.vtk: all writes them): {missing[:1]}")

@@ -309,7 +309,7 @@ def cmd_shrink(a):
         im = Image.open(path).convert("RGB")
         before = os.path.getsize(path)
         tmp = path + ".tmp.png"
-        im.quantize(colors=256, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE).save(tmp, optimize=True)
+        im.quantize(colors=256, method=Image.Quantize.FASTOCTREE, dither=Image.Dither.FLOYDSTEINBERG).save(tmp, optimize=True)
         os.replace(tmp, path)
         print(f"{path}: {before // 1024} KB -> {os.path.getsize(path) // 1024} KB")
 

@@ -6,6 +6,7 @@
 # draw what the paper draws (the propagated constraints close up, the rotation's arc and axis)
 # through figure_tools.py. Last, readme_numbers.py rewrites the README's tables from data/.
 #   bash papers/boier-martin/figures/make_figures.sh [fig1 fig2 fig7 fig7_vase fig8 fig9 fig9_vase numbers]   (after `make build`)
+# (fig8_render: Figure 8's panels from the last fig8 run, without running it again.)
 set -euo pipefail
 cd "$(dirname "$0")/../../.."
 figures=("$@")
@@ -43,7 +44,7 @@ fig8_errors() {
   "${tools[@]}" error $out "$converged" $copies $(awk -F, 'NR > 1 {print $1}' $out/runs.csv)
   "${tools[@]}" rest $out/vtk/$converged.vtp $copies/rest.vtp
   /usr/bin/python3 scripts/panels.py $out papers/boier-martin/figures/fig8.png --inputs-from $copies --allow-folded \
-    --array error --colour-label "distance to the converged answer" --rest $copies/rest.vtp \
+    --array error --colour-label "distance to converged" --rest $copies/rest.vtp \
     --title "One nose pull at the accuracies of §5 (colour: each vertex's distance to the converged answer)" \
     --label "interactive: error {error_vs_reference:.1e}, {solve_s:.2f} s; {flipped_faces:.0f} face flipped ({termination})" \
     --label "improved, 10 Gauss-Seidel sweeps per level (the paper's): error {error_vs_reference:.1e}" \
@@ -51,7 +52,7 @@ fig8_errors() {
     --label "improved, 2 multigrid-CG iterations per level (default): error {error_vs_reference:.1e}" \
     --label "improved, 5 multigrid-CG iterations per level: error {error_vs_reference:.1e}" \
     --label "converged (the reference): error {error_vs_reference:.1e}, {solve_s:.2f} s" \
-    --columns 4 --render "${cow_view[@]}" --width 640 --height 450
+    --columns 4 --render "${cow_view[@]}" --width 560 --height 400
 }
 
 # Figure 8 d-f: the default improved run's ladder (columns: run_id, accuracy, relaxation, sweeps):
@@ -66,11 +67,11 @@ fig8_ladder() {
     --array constrained --colour-label "reached by the constraints" --flat \
     --title "The cascade's levels 2, 3, 4 (2 multigrid-CG iterations per level): the optimized control mesh and the constraints propagated to it" \
     --label "level 2: control mesh" --label "level 3: control mesh" --label "level 4: control mesh" \
-    --view front --zoom 1.5 --width 640 --height 420
+    --view front --zoom 1.5 --width 560 --height 370
   build/bin/fairshape render $copies/level2_zoom.vtp $copies/level3_zoom.vtp $copies/level4_zoom.vtp $copies/zoom.png \
     --array constrained --colour-label "reached by the constraints" --flat --edges \
     --label "level 2, under the nose: the handle's propagated rows" --label "level 3" --label "level 4: the handle's own vertex" \
-    --view front --elevation -50 --azimuth 30 --width 640 --height 420
+    --view front --elevation -50 --azimuth 30 --width 560 --height 370
   "${tools[@]}" compose papers/boier-martin/figures/fig8_levels.png $copies/whole.png $copies/zoom.png
   cp results/figures/fig8/steps.csv papers/boier-martin/data/fig8_steps.csv
 }
@@ -93,7 +94,7 @@ PY
     --title "Inner rim of an annulus turned about z (axis and arc drawn) and lifted by 0.4, outer rim fixed (red: the turned rim; grey: the fixed one)" \
     --label "turned 45 degrees: energy {energy:.3g}, constraint residual {constraint_violation:.0e}, {flipped_faces:.0f} faces flipped" \
     --label "turned 60 degrees: energy {energy:.3g}, constraint residual {constraint_violation:.0e}, {flipped_faces:.0f} faces flipped" \
-    --render --view front --azimuth 20 --elevation 35 --width 700 --height 600 --edges
+    --render --view front --azimuth 20 --elevation 35 --width 620 --height 530 --edges
 }
 
 for f in "${figures[@]}"; do
@@ -102,20 +103,20 @@ for f in "${figures[@]}"; do
             --title "Regions of influence (§4.2). Top: the nose pulled on level 0 or 1 changes the head (b). Bottom, close up: a bump on the back solved on level 2 or 3 stays local (c). Colour: displacement; wireframe: the base patches, as edited" \
             --label "(b) nose, influence level 0: {region_fraction:.0%} of the surface in its region, detail change {detail_change:.3f}" \
             --label "nose, influence level 1: {region_fraction:.0%}, detail change {detail_change:.3f}" \
-            --columns 3 --render "${cow_view[@]}" --control-level 0 --width 700 --height 490
+            --columns 3 --render "${cow_view[@]}" --control-level 0 --width 620 --height 430
           mv papers/boier-martin/figures/fig1.png results/figures/fig1/top.png
           /usr/bin/python3 scripts/panels.py results/figures/fig1 results/figures/fig1/bottom.png --runs 6,7,8 --title "" \
             --label "bump on the back, level 2, 2 rings: {region_fraction:.1%} of the surface, a peak" \
             --label "(c) bump on the back, level 2, 8 rings: {region_fraction:.1%}, smooth" \
             --label "bump on the back, level 3, 8 rings: {region_fraction:.1%}" \
-            --render --view front --focus 0.05 0.25 0.0 --radius 0.12 --width 700 --height 420
+            --render --view front --focus 0.05 0.25 0.0 --radius 0.12 --width 620 --height 370
           "${tools[@]}" compose papers/boier-martin/figures/fig1.png results/figures/fig1/top.png results/figures/fig1/bottom.png ;;
     fig2) figure fig2 fig2_nose_pull --rest "$(rest_hierarchy)" --allow-folded \
             --title "Nose pulled on the finest level of a Catmull-Clark hierarchy (colour: displacement; grey: held vertices)" \
             --label "thin plate, back third held: the front collapses ({flipped_faces:.0f} faces flipped, detail change {detail_change:.2f})" \
             --label "(b) thin plate, held but for the nose's level-1 region: smoothed ({flipped_faces:.0f} faces flipped, {detail_change:.2f})" \
             --label "(c) detail-preserving, back third held: detail change {detail_change:.2f}, {flipped_faces:.0f} flipped" \
-            --columns 2 --render "${cow_view[@]}" --width 700 --height 490 ;;
+            --columns 2 --render "${cow_view[@]}" --width 660 --height 460 ;;
     fig7) figure fig7 fig7_constraint_kinds --rest "$(rest_hierarchy)" \
             --title "Point, normal and curve constraints, detail-preserving energy, hooves fixed (colour: displacement)" \
             --label "{kind} constraints: detail change {detail_change:.3f}" \
@@ -125,6 +126,11 @@ for f in "${figures[@]}"; do
           mkdir -p papers/boier-martin/data
           cp "$out/runs.csv" papers/boier-martin/data/fig8_runs.csv
           cp "$out/run.json" papers/boier-martin/data/fig8_run.json
+          fig8_errors
+          fig8_ladder ;;
+    fig8_render)  # Figure 8's panels again from results/figures/fig8 (its run takes ~10 minutes)
+          cp results/figures/fig8/runs.csv papers/boier-martin/data/fig8_runs.csv
+          cp results/figures/fig8/run.json papers/boier-martin/data/fig8_run.json
           fig8_errors
           fig8_ladder ;;
     fig9) out=results/figures/fig9
@@ -151,14 +157,15 @@ for f in "${figures[@]}"; do
           cp "$out/runs.csv" papers/boier-martin/data/fig9_vase_runs.csv
           cp "$out/steps.csv" papers/boier-martin/data/fig9_vase_steps.csv ;;
     numbers) ;;
-    *) echo "unknown figure '$f' (choose from fig1 fig2 fig7 fig7_vase fig8 fig9 fig9_vase numbers)" >&2; exit 2 ;;
+    *) echo "unknown figure '$f' (choose from fig1 fig2 fig7 fig7_vase fig8 fig8_render fig9 fig9_vase numbers)" >&2; exit 2 ;;
   esac
 done
 
-# Renders above ~400 KB are rewritten with a 256-colour palette (the repository keeps them).
+# Renders above 600 KB are rewritten with a 256-colour palette (the repository keeps them; the
+# palette bands the shading a little, so the panels above are sized to stay below it).
 for f in "${figures[@]}"; do
-  for png in papers/boier-martin/figures/"$f".png papers/boier-martin/figures/"$f"_levels.png; do
-    [ -f "$png" ] && [ "$(stat -c %s "$png")" -gt 400000 ] && "${tools[@]}" shrink "$png"
+  for png in papers/boier-martin/figures/"${f%_render}".png papers/boier-martin/figures/"${f%_render}"_levels.png; do
+    [ -f "$png" ] && [ "$(stat -c %s "$png")" -gt 600000 ] && "${tools[@]}" shrink "$png"
   done
 done
 

@@ -106,7 +106,8 @@ def fig8():
     for r in rows("fig8_runs.csv"):
         mode, relax = names.get((r["problem.accuracy"], r["problem.relaxation"], r["problem.relaxation_sweeps"]),
                                 (r["problem.accuracy"], r["problem.relaxation"]))
-        body.append([mode, relax, sci(r["error_vs_reference"]), sci(r.get("energy_vs_optimum"), 2),
+        e = num(r.get("energy_vs_optimum"))
+        body.append([mode, relax, sci(r["error_vs_reference"]), "–" if e is None else f"{e:.4g}",
                      count(r.get("flipped_faces")), r["termination"], fixed(r["solve_s"], 2), fixed(r["analyze_s"], 1)])
     return table(["mode", "relaxation per level (levels 3, 4)", "error vs converged", "energy vs optimum",
                   "flipped faces", "termination", "solve (s)", "analysis (s)"], body)

@@ -37,7 +37,8 @@ print(f"fairshape {fairshape.__version__}; outputs under {out}")
 
 # --- 1. The demo through fairshape.run ---------------------------------------------------
 # The config's sweep zips three runs: the thin plate with the back third fixed, the thin
-# plate with everything but the head fixed, and the detail-preserving energy. Both thin plates
+# plate with everything but the nose's level-1 region of influence fixed, and the
+# detail-preserving energy. Both thin plates
 # fold the surface where they fair the details away, as the config expects (its `expect` column).
 demo = fairshape.run("configs/demo.yaml", out=os.path.join(out, "demo"), smoke=True, force=True)
 print(demo[["param.energy", "n_fine", "iterations", "detail_change", "flipped_faces", "termination"]].to_string())

@@ -51,6 +51,21 @@ assert (frame["termination"] == "converged") == (int(frame["flipped_faces"]) == 
 print("orientation: a reversed normal re-solved with frame rows:", frame["normal_error_deg"], "degrees,",
       frame["flipped_faces"], "faces flipped")
 PYEOF
+# A drag (§5's ladder, 3 steps): every step before the last is checked for folds in steps.csv,
+# and a step that folded is named in the run's message.
+"$FS" run "$S/tip.yaml" --out "$S/drag" --set 'problem={constraint_mode: paper, accuracy: interactive, coarse_level: 1, drag_steps: 3}' \
+  > /dev/null 2>&1 || true
+$PY - "$S" <<'PYEOF'
+import csv, sys
+d = sys.argv[1]
+run = list(csv.DictReader(open(f"{d}/drag/runs.csv")))[0]
+steps = list(csv.DictReader(open(f"{d}/drag/steps.csv")))
+assert [s["step"] for s in steps] == ["1", "2", "3"], steps
+assert all(s["flipped_faces"].isdigit() for s in steps[:-1]) and steps[-1]["flipped_faces"] == "", steps
+for s in steps[:-1]:
+    assert (int(s["flipped_faces"]) > 0) == (f"{s['step']} (" in run["message"] and "folded on the way" in run["message"]), (s, run["message"])
+print("orientation: drag steps' flipped faces", [s["flipped_faces"] for s in steps[:-1]], "last", run["flipped_faces"])
+PYEOF
 $PY - "$S" <<'PYEOF'
 import csv, sys
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader

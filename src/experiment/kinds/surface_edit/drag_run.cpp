@@ -43,7 +43,7 @@ PassLadder pass_ladder(const SurfaceEditSpec& spec, Solver* finest) {
 
 DragOutcome run_drag(const SurfaceEditSpec& spec, const RunOutputs& out, const EditLadder& ladder,
                      const std::vector<const ReferenceSolution*>& references, const IterationCallback& last_step,
-                     bool write_steps, const StepCallback& on_step) {
+                     bool write_steps, const StepCheck& check, const StepCallback& on_step) {
   const AccuracyOptions& a = spec.accuracy;
   const Backend backend = spec.implementation;
   MultilevelEdit edit(ladder, a.ladder(), ladder_direct_solver(backend), ladder_relaxer(a, backend), *spec.solver, backend,
@@ -59,12 +59,22 @@ DragOutcome run_drag(const SurfaceEditSpec& spec, const RunOutputs& out, const E
     // rather than a NaN a plot would draw as a gap or a reader take for a number.
     const bool failed = !result.last.delta.allFinite() || result.last.summary.termination == Termination::NumericalFailure;
     const bool measurable = ref && !failed && ref->u.allFinite();
+    // Every step is a surface the designer sees: a fold on the way is said even when the last
+    // step's surface is clean (papers/boier-martin/README.md, "Folds and reversed normals").
+    std::string flipped;
+    if (!failed && !last && check) {
+      const OrientationCheck c = check(result.last.delta);
+      flipped = std::to_string(c.folds.flipped.size());
+      if (c.folded())
+        result.folded_steps += (result.folded_steps.empty() ? "" : ", ") + std::to_string(s + 1) + " (" +
+                               (c.folds.flipped.empty() ? "a reversed normal" : flipped + " faces") + ")";
+    }
     if (write_steps)
       out.add_row("steps", {std::to_string(s + 1), num(scales[s]), std::string(to_string(a.ladder())), num(result.last.solve_s),
                    std::to_string(result.last.summary.iterations),
                    measurable ? num(relative_error(result.last.delta, ref->u)) : "",
                    std::isfinite(result.last.constraint_residual) ? num(result.last.constraint_residual) : "",
-                   ref ? num(ref->solve_s) : ""});
+                   ref ? num(ref->solve_s) : "", flipped});
     if (failed) break;  // the later steps would start from nothing; the run reports this one's failure
   }
   result.level_solutions = edit.level_solutions();

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "fairshape/design/multilevel_edit.h"
+#include "fairshape/design/orientation_check.h"
 #include "fairshape/design/regional_edit.h"
 #include "fairshape/experiment/kinds/surface_edit/run_one.h"
 
@@ -29,15 +30,20 @@ std::vector<double> drag_scales(int steps);
 struct DragOutcome {
   EditSolution last;                            // the final step (scale 1)
   std::vector<Eigen::MatrixXd> level_solutions;  // its deformation on each level of the ladder
+  //! Earlier steps whose surface folded (what the designer saw on the way), "" when none.
+  std::string folded_steps;
 };
 
 //! Called after each step s = 1..steps with its edit-level deformation (e.g. to write it).
 using StepCallback = std::function<void(int step, const Eigen::MatrixXd& delta)>;
+//! The orientation check of a step's edit-level deformation (its surface synthesized).
+using StepCheck = std::function<OrientationCheck(const Eigen::MatrixXd& delta)>;
 
 //! `references[s]` is CHOLMOD's solution of step s (or null); `last_step` receives the final
-//! step's iterations. steps.csv gets a row per step when `write_steps`.
+//! step's iterations. steps.csv gets a row per step when `write_steps`, with the flipped faces
+//! `check` finds on every step before the last (the run's own check measures the last).
 DragOutcome run_drag(const SurfaceEditSpec& spec, const RunOutputs& out, const EditLadder& ladder,
                      const std::vector<const ReferenceSolution*>& references, const IterationCallback& last_step,
-                     bool write_steps, const StepCallback& on_step = {});
+                     bool write_steps, const StepCheck& check, const StepCallback& on_step = {});
 
 }  // namespace fairshape

@@ -143,6 +143,15 @@ std::vector<const ReferenceSolution*> reference_solutions(const SurfaceEditSpec&
   return refs;
 }
 
+// `rest` with the edit level moved by `delta` and the finer levels synthesized from it, their
+// local details kept (§3): the surface an edit-level answer stands for.
+MultiresSurface with_deformation(const MultiresSurface& rest, int level, const Eigen::MatrixXd& delta) {
+  MultiresSurface edited = rest;
+  edited.set_level_positions(level, rest.mesh(level).positions() + MatrixX3(delta));
+  edited.synthesize_from(level, DetailSpace::Local);
+  return edited;
+}
+
 // The paper's split, or §5's ladder, may answer with more energy than the optimum of the same
 // problem; above this factor the run says so (measured: papers/boier-martin/README.md, "Paper
 // mode against the optimum" — 1.008× for the converged ladder, 2.6× interactive, 2,636× a
@@ -370,8 +379,9 @@ void charge_shared_setups(RunCache& cache, const RunOutputs& out, const Timer& t
 }  // namespace
 
 const std::vector<std::string>& step_columns() {
-  static const std::vector<std::string> cols{"step", "scale", "accuracy", "solve_s", "iterations",
-                                             "error_vs_reference", "constraint_violation", "reference_solve_s"};
+  static const std::vector<std::string> cols{"step",       "scale",           "accuracy",
+                                             "solve_s",    "iterations",      "error_vs_reference",
+                                             "constraint_violation", "reference_solve_s", "flipped_faces"};
   return cols;
 }
 
@@ -535,21 +545,24 @@ MetricRow attempt_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
     IterationSink sink(spec, out, rest.mesh(level), level, placed, problem, reference ? &reference->u : nullptr);
     EditSolution sol;
     std::vector<Eigen::MatrixXd> level_solutions;
+    std::string folded_on_the_way;  // a drag's earlier steps that folded
     const IterationCallback cb = std::ref(sink);
     if (spec.accuracy.multilevel()) {
       // output.vtk: all records the drag: each step's surface, for a strip (Figure 9, bottom).
       std::vector<std::pair<double, std::string>> steps;
       const StepCallback write_step = [&](int step, const Eigen::MatrixXd& delta) {
-        MultiresSurface edited = rest;
-        edited.set_level_positions(level, rest.mesh(level).positions() + MatrixX3(delta));
-        edited.synthesize_from(level, DetailSpace::Local);
+        const MultiresSurface edited = with_deformation(rest, level, delta);
         const std::string file = out.run_id + "_step" + std::to_string(step) + ".vtp";
         write_vtp(result_mesh(rest.mesh(rest.levels()), edited.mesh(rest.levels()).positions(), rest.levels(), placed),
                   (fs::path(out.dir) / "vtk" / file).string());
         steps.emplace_back(step, file);
       };
-      DragOutcome drag = run_drag(spec, out, ladder, references, cb, true,
+      const StepCheck check_step = [&](const Eigen::MatrixXd& delta) {
+        return check_orientation(rest, with_deformation(rest, level, delta), placed);
+      };
+      DragOutcome drag = run_drag(spec, out, ladder, references, cb, true, check_step,
                                   spec.output.vtk == VtkPolicy::All ? write_step : StepCallback());
+      folded_on_the_way = std::move(drag.folded_steps);
       if (!steps.empty()) write_pvd(steps, (fs::path(out.dir) / "vtk" / (out.run_id + "_steps.pvd")).string());
       sol = std::move(drag.last);
       level_solutions = std::move(drag.level_solutions);
@@ -581,11 +594,11 @@ MetricRow attempt_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
     if (sol.summary.error_estimate >= 0) row["error_estimate"] = num(sol.summary.error_estimate);
     row["termination"] = std::string(to_string(sol.summary.termination));
     row["message"] = sol.summary.message;
+    if (!folded_on_the_way.empty())
+      row["message"] += (row["message"].empty() ? "" : "; ") + ("drag steps folded on the way: " + folded_on_the_way);
     if (sol.delta.allFinite() && sol.summary.termination != Termination::NumericalFailure) {
       measure_accuracy(spec, problem, sol, reference, row);
-      MultiresSurface edited = rest;
-      edited.set_level_positions(level, rest.mesh(level).positions() + MatrixX3(sol.delta));
-      edited.synthesize_from(level, DetailSpace::Local);
+      const MultiresSurface edited = with_deformation(rest, level, sol.delta);
       checked = report_result(spec, out, rest, edited, placed, sol.delta, nullptr, row);
       write_ladder(spec, out, rest, ladder, coarse, level_solutions);
     }

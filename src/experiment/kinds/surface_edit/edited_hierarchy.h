@@ -16,7 +16,9 @@ struct EditedHierarchy {
 
 //! The edit `spec` describes (energies, constraints with or without regions of influence, the
 //! edit level, the constraint mode and solver) solved on `rest`. The §5 ladder and the
-//! rotation-aware rounds are not supported here. \throw InvalidInput naming what is not
+//! rotation-aware rounds are not supported here. The result is checked as a surface-edit run's:
+//! a fold or a reversed normal ends `folded` (normals with rows `auto` are solved again with
+//! frame rows first). \throw InvalidInput naming what is not
 //! supported or what the constraints' placement refuses; SolverError from the solve.
 EditedHierarchy edited_hierarchy(SurfaceEditSpec& spec, const MultiresSurface& rest);
 

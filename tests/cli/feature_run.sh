@@ -274,4 +274,17 @@ expect_error 2 "adaptive.placement_max_faces: only with adaptive.evaluation: spa
 expect_error 2 "features\[1\]: design steps (step, until, moves, changes)" -- "$FS" run $C $S --set adaptive.evaluation=sparse --set features.1.step=1 --out "$SCRATCH/x"
 expect_error 2 "adaptive.evaluation: unknown value 'dense' (valid: uniform, sparse)" -- "$FS" run $C --set adaptive.evaluation=dense --out "$SCRATCH/x"
 expect_error 2 "adaptive.surface_angle_deg: only with adaptive.evaluation: sparse" -- "$FS" run $C --set adaptive.surface_angle_deg=3 --out "$SCRATCH/x"
+# The surface edit under the features is checked as a surface edit's result: a handle pulled
+# sideways through a 1-ring region folds the patch, and the run ends `folded` (exit 3) saying
+# it was the edit, before any feature is drawn on the folded surface.
+rc=0
+"$FS" run configs/khodakovsky-schroder/fig15.yaml --smoke --out "$SCRATCH/edit_folds" --set 'edit.constraints.2.offset=[0.6, 0, 0]' \
+  --set edit.constraints.2.influence_rings=1 > /dev/null 2>&1 || rc=$?
+[ "$rc" -eq 3 ] || fail "a folding edit under the features exits $rc, not 3"
+$PY - "$SCRATCH/edit_folds/runs.csv" <<'PYEOF'
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert rows and all(r["termination"] == "folded" and r["message"].startswith("the edit: ") and "faces flipped" in r["message"]
+                    for r in rows), [(r["termination"], r["message"][:120]) for r in rows]
+PYEOF
 echo "feature_run: ok"

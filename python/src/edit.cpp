@@ -112,29 +112,22 @@ py::dict edit(const MultiresSurface& rest, const py::list& energies, const py::l
   int n_dofs = 0;
   {
     py::gil_scoped_release release;
-    const auto solve_once = [&] {
+    // Checked as a config run's result is, normals left to rows `auto` solved again with frame
+    // rows when they come out reversed (design/orientation_check.h).
+    const std::string note = solve_orienting_normals([&](bool frame_rows) {
+      t.terms.frame_rows_for_auto_normals = frame_rows;
       DesignConstraints placed;
       const EditProblem p = assemble_edit_problem(t.terms, rest, l, placed);
       n_dofs = static_cast<int>(p.H.rows());
       sol = solve_edit(p, mode, *solver, backend, {}, nullptr, qp);
-      edited = rest;
-      checked = {};
-      if (!sol.delta.allFinite()) return;
-      edited.set_level_positions(l, rest.mesh(l).positions() + MatrixX3(sol.delta));
-      edited.synthesize_from(l, DetailSpace::Local);
-      checked = check_orientation(rest, edited, placed);  // as a config run's result is checked
-    };
-    solve_once();
-    if (checked.reversed_auto) {  // normal rows `auto`: frame rows, as a config run does (run_one.cpp)
-      const std::string first = checked.describe();
-      t.terms.frame_rows_for_auto_normals = true;
-      solve_once();
-      sol.summary.message = "tangent rows " + first + ", so solved again with frame rows" +
-                            (sol.summary.message.empty() ? "" : "; " + sol.summary.message);
-    }
+      edited = sol.delta.allFinite() ? with_deformation(rest, l, sol.delta) : rest;
+      checked = sol.delta.allFinite() ? check_orientation(rest, edited, placed) : OrientationCheck{};
+      return checked;
+    });
+    sol.summary.message = noted(note, sol.summary.message);
     if (checked.folded() && sol.summary.succeeded()) {
       sol.summary.termination = Termination::Folded;
-      sol.summary.message += (sol.summary.message.empty() ? "" : "; ") + checked.describe();
+      sol.summary.message = noted(sol.summary.message, checked.describe());
     }
   }
   const std::string outcome = std::string(to_string(sol.summary.termination)) + ": " + sol.summary.message;

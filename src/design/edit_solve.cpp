@@ -192,4 +192,11 @@ EditSolution solve_edit(const EditProblem& p, ConstraintMode mode, Solver& free_
   return PreparedEdit(p, mode, free_solver, backend, std::move(qp_options)).solve(p.constraints.C, cb, initial);
 }
 
+MultiresSurface with_deformation(const MultiresSurface& rest, int level, const Eigen::MatrixXd& delta) {
+  MultiresSurface edited = rest;
+  edited.set_level_positions(level, rest.mesh(level).positions() + MatrixX3(delta));
+  edited.synthesize_from(level, DetailSpace::Local);
+  return edited;
+}
+
 }  // namespace fairshape

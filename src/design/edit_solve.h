@@ -118,4 +118,8 @@ class PreparedEdit {
 //! [C stacked by coordinate; the coupled targets]: the right-hand side of the coupled system.
 Eigen::MatrixXd stacked_targets(const LinearConstraints& lc, const Eigen::MatrixXd& C);
 
+//! `rest` with level `level` moved by `delta` and the finer levels synthesized from it, their
+//! local details kept (§3): the surface an edit-level answer stands for.
+MultiresSurface with_deformation(const MultiresSurface& rest, int level, const Eigen::MatrixXd& delta);
+
 }  // namespace fairshape

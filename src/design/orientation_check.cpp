@@ -38,4 +38,15 @@ OrientationCheck check_orientation(const MultiresSurface& rest, const MultiresSu
   return c;
 }
 
+std::string solve_orienting_normals(const std::function<OrientationCheck(bool frame_rows)>& solve) {
+  const OrientationCheck with_tangent_rows = solve(false);
+  if (!with_tangent_rows.reversed_auto) return "";
+  solve(true);
+  return "tangent rows " + with_tangent_rows.describe() + ", so solved again with frame rows";
+}
+
+std::string noted(const std::string& note, const std::string& message) {
+  return note.empty() || message.empty() ? note + message : note + "; " + message;
+}
+
 }  // namespace fairshape

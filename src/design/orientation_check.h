@@ -6,6 +6,7 @@
 // constraint with rows `auto` is then imposed by frame rows, which only N meets (constraint.h).
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -28,5 +29,14 @@ struct OrientationCheck {
 //! `edited` is `rest` with an edit applied (same levels and topology).
 OrientationCheck check_orientation(const MultiresSurface& rest, const MultiresSurface& edited,
                                    const DesignConstraints& placed);
+
+//! An edit solved with §4.2's tangent rows and, when its result meets a normal left to rows
+//! `auto` by its reverse, solved again with frame rows (constraint.h NormalRows): `solve(frame)`
+//! solves (frame: EditTerms::frame_rows_for_auto_normals), keeps its result and returns that
+//! result's check. Returns what the final result's message starts with: "" after one solve.
+std::string solve_orienting_normals(const std::function<OrientationCheck(bool frame_rows)>& solve);
+
+//! `note` put before `message` ("; " between them when both say something).
+std::string noted(const std::string& note, const std::string& message);
 
 }  // namespace fairshape

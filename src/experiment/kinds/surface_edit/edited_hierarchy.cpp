@@ -24,8 +24,7 @@ EditedHierarchy solve_once(SurfaceEditSpec& spec, const MultiresSurface& rest, i
                                       spec.qp_config());
   EditedHierarchy out{rest, sol.summary};
   if (sol.delta.allFinite() && sol.summary.termination != Termination::NumericalFailure) {
-    out.edited.set_level_positions(level, rest.mesh(level).positions() + MatrixX3(sol.delta));
-    out.edited.synthesize_from(level, DetailSpace::Local);
+    out.edited = with_deformation(rest, level, sol.delta);
     checked = check_orientation(rest, out.edited, placed);
   }
   return out;
@@ -40,18 +39,17 @@ EditedHierarchy edited_hierarchy(SurfaceEditSpec& spec, const MultiresSurface& r
     throw InvalidInput("problem.rotation_iterations: rotation-aware rounds do not combine with other layers");
   const int level = spec.edit_level < 0 ? rest.levels() : spec.edit_level;
   OrientationCheck checked;
-  EditedHierarchy out = solve_once(spec, rest, level, checked);
-  if (checked.reversed_auto) {  // normal rows `auto`: frame rows, as a surface-edit run does (run_one.cpp)
-    const std::string first = checked.describe();
-    spec.frame_rows_for_auto_normals = true;
+  EditedHierarchy out{rest, {}};
+  const std::string note = solve_orienting_normals([&](bool frame_rows) {
+    spec.frame_rows_for_auto_normals = frame_rows;
     out = solve_once(spec, rest, level, checked);
-    spec.frame_rows_for_auto_normals = false;
-    out.summary.message = "tangent rows " + first + ", so solved again with frame rows" +
-                          (out.summary.message.empty() ? "" : "; " + out.summary.message);
-  }
+    return checked;
+  });
+  spec.frame_rows_for_auto_normals = false;
+  out.summary.message = noted(note, out.summary.message);
   if (checked.folded() && is_success(out.summary.termination)) {  // the layers above would hide it
     out.summary.termination = Termination::Folded;
-    out.summary.message += (out.summary.message.empty() ? "" : "; ") + checked.describe();
+    out.summary.message = noted(out.summary.message, checked.describe());
   }
   return out;
 }

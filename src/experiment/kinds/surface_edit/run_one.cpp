@@ -143,15 +143,6 @@ std::vector<const ReferenceSolution*> reference_solutions(const SurfaceEditSpec&
   return refs;
 }
 
-// `rest` with the edit level moved by `delta` and the finer levels synthesized from it, their
-// local details kept (§3): the surface an edit-level answer stands for.
-MultiresSurface with_deformation(const MultiresSurface& rest, int level, const Eigen::MatrixXd& delta) {
-  MultiresSurface edited = rest;
-  edited.set_level_positions(level, rest.mesh(level).positions() + MatrixX3(delta));
-  edited.synthesize_from(level, DetailSpace::Local);
-  return edited;
-}
-
 // The paper's split, or §5's ladder, may answer with more energy than the optimum of the same
 // problem; above this factor the run says so (measured: papers/boier-martin/README.md, "Paper
 // mode against the optimum" — 1.008× for the converged ladder, 2.6× interactive, 2,636× a
@@ -620,22 +611,23 @@ MetricRow attempt_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
 }  // namespace
 
 MetricRow execute_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& out) {
-  OrientationCheck checked;
-  MetricRow row = attempt_run(spec, cache, out, checked);
-  if (!checked.reversed_auto) return row;
-  // §4.2's tangent rows were met by the reverse of a normal left to rows `auto`: the same edit
-  // again with frame rows, which only the target meets (papers/boier-martin/README.md, "Folds and
-  // reversed normals"). Its result replaces the first one's files; the row says both.
-  const std::string first = checked.describe();
-  const double first_s = std::stod(row["time_s"]);
-  spec.frame_rows_for_auto_normals = true;
-  MetricRow again = attempt_run(spec, cache, out, checked);
+  // A normal left to rows `auto` and met by its reverse: the edit is solved again with frame
+  // rows (papers/boier-martin/README.md, "Folds and reversed normals"); the second solve's
+  // files replace the first's, and its row counts both solves' time.
+  MetricRow row;
+  double earlier_s = 0;
+  const std::string note = solve_orienting_normals([&](bool frame_rows) {
+    if (frame_rows) earlier_s = std::stod(row["time_s"]);
+    spec.frame_rows_for_auto_normals = frame_rows;
+    OrientationCheck checked;
+    row = attempt_run(spec, cache, out, checked);
+    return checked;
+  });
   spec.frame_rows_for_auto_normals = false;
-  again["time_s"] = num(first_s + (again["time_s"].empty() ? 0.0 : std::stod(again["time_s"])));
-  again["message"] = "tangent rows " + first + ", so solved again with frame rows" +
-                     (spec.output.iterations ? " (iterations.csv holds both solves)" : "") +
-                     (again["message"].empty() ? "" : "; " + again["message"]);
-  return again;
+  if (note.empty()) return row;
+  row["time_s"] = num(earlier_s + (row["time_s"].empty() ? 0.0 : std::stod(row["time_s"])));
+  row["message"] = noted(note + (spec.output.iterations ? " (iterations.csv holds both solves)" : ""), row["message"]);
+  return row;
 }
 
 }  // namespace fairshape

@@ -283,13 +283,14 @@ LinearConstraints missing_targets(const MultiresSurface& h, const DesignConstrai
   for (std::size_t r = 0; r < points.size(); ++r)
     out.C.row(static_cast<Eigen::Index>(r)) = (points[r]->offset - moved_so_far(h, current, *points[r], limit_rows)).transpose();
   std::vector<double> c;
-  for (const NormalConstraint* nc : distinct_normals(h, 0, dc.normals)) {  // in add_frame_rows' order
+  const std::vector<const NormalConstraint*> normals = distinct_normals(h, 0, dc.normals);
+  for (const NormalConstraint* nc : normals) {  // in add_frame_rows' order
     if (nc->rows != NormalRows::Frame) continue;
     const std::array<Vec3, 2> missing = frame_targets(h.mesh(nc->level), current.mesh(nc->level), *nc);
     out.C.conservativeResize(out.C.rows() + 2, 3);
     for (int q = 0; q < 2; ++q) out.C.row(out.C.rows() - 2 + q) = missing[q].transpose();
   }
-  for (const NormalConstraint* nc : distinct_normals(h, 0, dc.normals)) {
+  for (const NormalConstraint* nc : normals) {
     if (nc->rows == NormalRows::Frame) continue;
     const Vec3 N = nc->normal.normalized();
     const SurfaceMesh& now = current.mesh(nc->level);

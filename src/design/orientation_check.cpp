@@ -21,11 +21,11 @@ std::string OrientationCheck::describe() const {
   return os.str();
 }
 
-OrientationCheck check_orientation(const MultiresSurface& rest, const MultiresSurface& edited,
-                                   const DesignConstraints& placed) {
-  OrientationCheck c;
-  const int finest = rest.levels();
-  c.folds = flipped_faces(rest.mesh(finest), edited.mesh(finest).positions());
+namespace {
+
+// The achieved normal of every normal constraint against its target, into c.
+void check_normals(const MultiresSurface& rest, const MultiresSurface& edited, const DesignConstraints& placed,
+                   OrientationCheck& c) {
   for (const NormalConstraint& nc : placed.normals) {
     const Vec3 n = achieved_normal(rest.mesh(nc.level), edited.mesh(nc.level).positions(), nc);
     const double cosine = n.dot(nc.normal.normalized());
@@ -35,6 +35,28 @@ OrientationCheck check_orientation(const MultiresSurface& rest, const MultiresSu
     c.reversed_auto |= nc.rows == NormalRows::Auto;
     if (std::find(c.reversed.begin(), c.reversed.end(), nc.label) == c.reversed.end()) c.reversed.push_back(nc.label);
   }
+}
+
+}  // namespace
+
+OrientationCheck check_orientation(const MultiresSurface& rest, const MultiresSurface& edited,
+                                   const DesignConstraints& placed) {
+  OrientationCheck c;
+  const int finest = rest.levels();
+  c.folds = flipped_faces(rest.mesh(finest), edited.mesh(finest).positions());
+  check_normals(rest, edited, placed, c);
+  return c;
+}
+
+StepOrientationCheck::StepOrientationCheck(const MultiresSurface& rest, int level, const DesignConstraints& placed)
+    : rest_(rest), level_(level), placed_(placed), edited_(rest), rest_faces_(rest.mesh(rest.levels())) {}
+
+OrientationCheck StepOrientationCheck::operator()(const Eigen::MatrixXd& delta) {
+  edited_.set_level_positions(level_, rest_.mesh(level_).positions() + MatrixX3(delta));
+  edited_.synthesize_from(level_, DetailSpace::Local);
+  OrientationCheck c;
+  c.folds = rest_faces_.compare(edited_.mesh(rest_.levels()).positions());
+  check_normals(rest_, edited_, placed_, c);
   return c;
 }
 

@@ -30,6 +30,27 @@ struct OrientationCheck {
 OrientationCheck check_orientation(const MultiresSurface& rest, const MultiresSurface& edited,
                                    const DesignConstraints& placed);
 
+//! check_orientation for many edits of one rest surface at one level (a drag's steps): the
+//! edited surface is synthesized into one kept copy, and the rest faces' areas are computed once
+//! (papers/boier-martin/README.md, "Folds and reversed normals": a drag step's check must cost
+//! less than its solve).
+class StepOrientationCheck {
+ public:
+  //! `rest` and `placed` must outlive this.
+  StepOrientationCheck(const MultiresSurface& rest, int level, const DesignConstraints& placed);
+  //! The check of `rest` with `delta` added at `level` and the finer levels synthesized.
+  OrientationCheck operator()(const Eigen::MatrixXd& delta);
+  //! The surface the last call checked.
+  const MultiresSurface& edited() const { return edited_; }
+
+ private:
+  const MultiresSurface& rest_;
+  int level_;
+  const DesignConstraints& placed_;
+  MultiresSurface edited_;
+  RestFaces rest_faces_;
+};
+
 //! An edit solved with §4.2's tangent rows and, when its result meets a normal left to rows
 //! `auto` by its reverse, solved again with frame rows (constraint.h NormalRows): `solve(frame)`
 //! solves (frame: EditTerms::frame_rows_for_auto_normals), keeps its result and returns that

@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 
 #include "fairshape/core/error.h"
+#include "fairshape/core/parallel_for.h"
 
 namespace fairshape {
 
@@ -73,16 +74,33 @@ Vec3 triangle_area(const std::array<int, 3>& t, const MatrixX3& p) {
 
 }  // namespace
 
-FoldReport flipped_faces(const SurfaceMesh& mesh, const MatrixX3& result) {
-  if (result.rows() != mesh.n_vertices())
+FoldReport flipped_faces(const SurfaceMesh& mesh, const MatrixX3& result) { return RestFaces(mesh).compare(result); }
+
+namespace {
+
+std::vector<Vec3> vector_areas(const SurfaceMesh& mesh, const MatrixX3& positions) {
+  std::vector<Vec3> areas(static_cast<std::size_t>(mesh.n_faces()));
+  for_each_range(0, mesh.n_faces(), 1024, [&](const IndexRange<int>& r) {
+    for (int f = r.begin(); f < r.end(); ++f) areas[static_cast<std::size_t>(f)] = vector_area(mesh, positions, f);
+  });
+  return areas;
+}
+
+}  // namespace
+
+RestFaces::RestFaces(const SurfaceMesh& mesh) : mesh_(mesh), areas_(vector_areas(mesh, mesh.positions())) {}
+
+FoldReport RestFaces::compare(const MatrixX3& result) const {
+  if (result.rows() != mesh_.n_vertices())
     throw InvalidInput("fold check: " + std::to_string(result.rows()) + " positions for a mesh of " +
-                       std::to_string(mesh.n_vertices()) + " vertices");
+                       std::to_string(mesh_.n_vertices()) + " vertices");
+  const std::vector<Vec3> now = vector_areas(mesh_, result);
   return compare_faces(
-      mesh.n_faces(), [&](int f) { return vector_area(mesh, mesh.positions(), f); },
-      [&](int f) { return vector_area(mesh, result, f); },
+      mesh_.n_faces(), [&](int f) { return areas_[static_cast<std::size_t>(f)]; },
+      [&](int f) { return now[static_cast<std::size_t>(f)]; },
       [&](int f) {
         Vec3 centroid = Vec3::Zero();
-        const std::vector<int> corners = mesh.face_vertices(f);
+        const std::vector<int> corners = mesh_.face_vertices(f);
         for (int v : corners) centroid += result.row(v).transpose();
         return Vec3(centroid / static_cast<double>(corners.size()));
       });

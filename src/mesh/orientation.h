@@ -33,6 +33,19 @@ struct FoldReport {
 //! \throw InvalidInput if `result` does not have one row per vertex.
 FoldReport flipped_faces(const SurfaceMesh& mesh, const MatrixX3& result);
 
+//! flipped_faces against one rest surface for many results (a drag's steps): the rest faces'
+//! vector areas are computed once, the result's in parallel.
+class RestFaces {
+ public:
+  explicit RestFaces(const SurfaceMesh& mesh);
+  //! flipped_faces(mesh, result), with the mesh this was built from.
+  FoldReport compare(const MatrixX3& result) const;
+
+ private:
+  const SurfaceMesh& mesh_;
+  std::vector<Vec3> areas_;
+};
+
 //! Sets `mesh`'s vertex array "flipped": 1 on the corners of the faces `folds` found turned
 //! over, 0 elsewhere — where a fold is, for the viewer. `folds` must come from flipped_faces on
 //! this mesh's topology.

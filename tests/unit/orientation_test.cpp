@@ -4,7 +4,9 @@
 
 #include <Eigen/Geometry>
 
+#include "fairshape/design/edit_solve.h"
 #include "fairshape/design/multires_constraints.h"
+#include "fairshape/design/orientation_check.h"
 #include "fairshape/mesh/orientation.h"
 #include "test_support.h"
 
@@ -93,4 +95,30 @@ TEST_CASE("a patch of triangles given by corners folds where its mesh does", "[o
   CHECK(flipped_triangles(triangles, m.positions(), m.positions()).flipped.empty());
   triangles.push_back({0, 1, static_cast<int>(m.n_vertices())});  // a corner past the vertices
   CHECK_THROWS_AS(flipped_triangles(triangles, m.positions(), folded), InvalidInput);
+}
+
+TEST_CASE("a drag's kept check reports what a fresh check of each step's surface reports", "[orientation]") {
+  // StepOrientationCheck reuses one synthesized surface and the rest areas across calls: each
+  // call must still be the check of that step alone, whatever came before it.
+  const MultiresSurface rest(test::grid(4), {}, 2, Backend::Optimized);
+  const int level = 1, v = center_vertex(rest.mesh(level));
+  DesignConstraints placed;
+  NormalConstraint nc;
+  nc.level = level;
+  nc.vertex = v;
+  nc.normal = Vec3::UnitZ();
+  placed.normals.push_back(nc);
+  StepOrientationCheck step(rest, level, placed);
+  for (const double push : {0.0, 0.6, 0.05, 0.6, 0.0}) {
+    Eigen::MatrixXd delta = Eigen::MatrixXd::Zero(rest.mesh(level).n_vertices(), 3);
+    delta(v, 0) = push;  // 0.6 drags the vertex across its neighbours: a fold
+    const OrientationCheck kept = step(delta);
+    const OrientationCheck fresh = check_orientation(rest, with_deformation(rest, level, delta), placed);
+    CHECK(kept.folds.flipped == fresh.folds.flipped);
+    CHECK(kept.folded() == fresh.folded());
+    CHECK(kept.normal_error_deg == Approx(fresh.normal_error_deg).margin(1e-12));
+    CHECK((step.edited().mesh(2).positions() - with_deformation(rest, level, delta).mesh(2).positions()).norm() < 1e-12);
+    if (push == 0.6) CHECK(!kept.folds.flipped.empty());
+    if (push == 0.0) CHECK(!kept.folded());
+  }
 }

@@ -139,7 +139,8 @@ def fig9_vase():
     columns = [("step", "step", str), ("solve (s)", "solve_s", lambda v: fixed(v, 4)),
                ("error vs CHOLMOD (finest level)", "error_vs_reference", lambda v: sci(v, 3)),
                ("constraint violation", "constraint_violation", sci),
-               ("CHOLMOD's prefactored solve (s)", "reference_solve_s", lambda v: fixed(v, 3))]
+               ("CHOLMOD's prefactored solve (s)", "reference_solve_s", lambda v: fixed(v, 3)),
+               ("fold check (s)", "check_s", lambda v: fixed(v, 4) if v else "")]
     columns = [c for c in columns if any(r.get(c[1]) for r in steps)]  # the data's, not empty ones
     body = [[f(r[key]) for _, key, f in columns] for r in steps]
     run = rows("fig9_vase_runs.csv")[0]

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "fairshape/core/config.h"
+#include "fairshape/core/timer.h"
 #include "fairshape/experiment/metric_format.h"
 #include "fairshape/problem/constrained_system.h"
 
@@ -53,7 +54,6 @@ DragOutcome run_drag(const SurfaceEditSpec& spec, const RunOutputs& out, const E
   for (std::size_t s = 0; s < scales.size(); ++s) {
     const bool last = s + 1 == scales.size();
     result.last = edit.solve(scales[s], last ? last_step : IterationCallback());
-    if (on_step && result.last.delta.allFinite()) on_step(static_cast<int>(s) + 1, result.last.delta);
     const ReferenceSolution* ref = references[s];
     // A step that failed (or a reference that did) has no error to report: the cell stays empty
     // rather than a NaN a plot would draw as a gap or a reader take for a number.
@@ -61,20 +61,23 @@ DragOutcome run_drag(const SurfaceEditSpec& spec, const RunOutputs& out, const E
     const bool measurable = ref && !failed && ref->u.allFinite();
     // Every step is a surface the designer sees: a fold on the way is said even when the last
     // step's surface is clean (papers/boier-martin/README.md, "Folds and reversed normals").
-    std::string flipped;
+    std::string flipped, check_s;
     if (!failed && !last && check) {
+      const Timer timer;
       const OrientationCheck c = check(result.last.delta);
+      check_s = num(timer.seconds());
       flipped = std::to_string(c.folds.flipped.size());
       if (c.folded())
         result.folded_steps += (result.folded_steps.empty() ? "" : ", ") + std::to_string(s + 1) + " (" +
                                (c.folds.flipped.empty() ? "a reversed normal" : flipped + " faces") + ")";
     }
+    if (on_step && result.last.delta.allFinite()) on_step(static_cast<int>(s) + 1, result.last.delta);
     if (write_steps)
       out.add_row("steps", {std::to_string(s + 1), num(scales[s]), std::string(to_string(a.ladder())), num(result.last.solve_s),
                    std::to_string(result.last.summary.iterations),
                    measurable ? num(relative_error(result.last.delta, ref->u)) : "",
                    std::isfinite(result.last.constraint_residual) ? num(result.last.constraint_residual) : "",
-                   ref ? num(ref->solve_s) : "", flipped});
+                   ref ? num(ref->solve_s) : "", flipped, check_s});
     if (failed) break;  // the later steps would start from nothing; the run reports this one's failure
   }
   result.level_solutions = edit.level_solutions();

@@ -34,14 +34,15 @@ struct DragOutcome {
   std::string folded_steps;
 };
 
-//! Called after each step s = 1..steps with its edit-level deformation (e.g. to write it).
+//! Called after each step s = 1..steps (after its check) with its edit-level deformation (e.g. to write it).
 using StepCallback = std::function<void(int step, const Eigen::MatrixXd& delta)>;
 //! The orientation check of a step's edit-level deformation (its surface synthesized).
 using StepCheck = std::function<OrientationCheck(const Eigen::MatrixXd& delta)>;
 
 //! `references[s]` is CHOLMOD's solution of step s (or null); `last_step` receives the final
 //! step's iterations. steps.csv gets a row per step when `write_steps`, with the flipped faces
-//! `check` finds on every step before the last (the run's own check measures the last).
+//! `check` finds on every step before the last (the run's own check measures the last) and
+//! the check's time.
 DragOutcome run_drag(const SurfaceEditSpec& spec, const RunOutputs& out, const EditLadder& ladder,
                      const std::vector<const ReferenceSolution*>& references, const IterationCallback& last_step,
                      bool write_steps, const StepCheck& check, const StepCallback& on_step = {});

@@ -372,7 +372,7 @@ void charge_shared_setups(RunCache& cache, const RunOutputs& out, const Timer& t
 const std::vector<std::string>& step_columns() {
   static const std::vector<std::string> cols{"step",       "scale",           "accuracy",
                                              "solve_s",    "iterations",      "error_vs_reference",
-                                             "constraint_violation", "reference_solve_s", "flipped_faces"};
+                                             "constraint_violation", "reference_solve_s", "flipped_faces", "check_s"};
   return cols;
 }
 
@@ -541,16 +541,18 @@ MetricRow attempt_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
     if (spec.accuracy.multilevel()) {
       // output.vtk: all records the drag: each step's surface, for a strip (Figure 9, bottom).
       std::vector<std::pair<double, std::string>> steps;
+      StepOrientationCheck step_check(rest, level, placed);
+      const int n_steps = static_cast<int>(drag_scales(spec.accuracy.drag_steps).size());
       const StepCallback write_step = [&](int step, const Eigen::MatrixXd& delta) {
-        const MultiresSurface edited = with_deformation(rest, level, delta);
+        // Steps before the last were synthesized by their check (run_drag checks, then calls this).
+        if (step == n_steps) step_check(delta);
+        const MultiresSurface& edited = step_check.edited();
         const std::string file = out.run_id + "_step" + std::to_string(step) + ".vtp";
         write_vtp(result_mesh(rest.mesh(rest.levels()), edited.mesh(rest.levels()).positions(), rest.levels(), placed),
                   (fs::path(out.dir) / "vtk" / file).string());
         steps.emplace_back(step, file);
       };
-      const StepCheck check_step = [&](const Eigen::MatrixXd& delta) {
-        return check_orientation(rest, with_deformation(rest, level, delta), placed);
-      };
+      const StepCheck check_step = std::ref(step_check);
       DragOutcome drag = run_drag(spec, out, ladder, references, cb, true, check_step,
                                   spec.output.vtk == VtkPolicy::All ? write_step : StepCallback());
       folded_on_the_way = std::move(drag.folded_steps);

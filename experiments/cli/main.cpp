@@ -125,6 +125,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 64));
   c_ren->add_option("--tube-radius", fig.style.tube_radius, "curves' tube radius, as a fraction of the model's diagonal")
       ->capture_default_str()->check(finite_at_least(0, true));
+  c_ren->add_option("--overlay-tube-radius", fig.style.overlay_curve_radius,
+                    "the overlays' curves (constraint and feature curves): their tube radius, as a fraction of the "
+                    "model's diagonal; outlines are half of it")
+      ->capture_default_str()->check(finite_at_least(0, true));
 
   fairshape::SweepOptions run;
   std::string shard = "0/1", worker;

@@ -297,9 +297,9 @@ void render_figure(const FigureSpec& spec, const std::string& png_path) {
     const bool wanted = spec.overlays || (i == 0 && spec.focus_on_constraints);
     const vtkSmartPointer<vtkPolyData> own = wanted && !src.overlay_path.empty() ? load_overlay(src.overlay_path) : nullptr;
     if (spec.overlays && own)
-      for (const auto& prop : overlay_props(own, diagonal)) r->AddViewProp(prop);
+      for (const auto& prop : overlay_props(own, diagonal, spec.style.overlay_curve_radius)) r->AddViewProp(prop);
     for (const std::string& o : spec.extra_overlays)
-      for (const auto& prop : overlay_props(load_overlay(o), diagonal)) r->AddViewProp(prop);
+      for (const auto& prop : overlay_props(load_overlay(o), diagonal, spec.style.overlay_curve_radius)) r->AddViewProp(prop);
     window->AddRenderer(r);
     if (i == 0) {
       ViewSpec view = spec.view;

@@ -78,7 +78,7 @@ vtkSmartPointer<vtkActor> tubes(vtkPolyData* lines, double radius, const Colour&
 
 }  // namespace
 
-std::vector<vtkSmartPointer<vtkProp>> overlay_props(vtkPolyData* overlay, double d) {
+std::vector<vtkSmartPointer<vtkProp>> overlay_props(vtkPolyData* overlay, double d, double curve_radius) {
   std::vector<vtkSmartPointer<vtkProp>> props;
   vtkDataArray* kind = overlay->GetPointData()->GetArray(kOverlayKind);
   if (overlay->GetNumberOfLines() > 0) {
@@ -98,8 +98,8 @@ std::vector<vtkSmartPointer<vtkProp>> overlay_props(vtkPolyData* overlay, double
       lines->SetLines(cells);
       props.push_back(tubes(lines, radius * d, c));
     };
-    draw(curve_lines, 0.0018, kCurve);  // thin: fine features stay visible beside it
-    draw(outline_lines, 0.0009, kOutline);
+    draw(curve_lines, curve_radius, kCurve);
+    draw(outline_lines, 0.5 * curve_radius, kOutline);
   }
   vtkDataArray* offset = overlay->GetPointData()->GetArray(kOverlayOffset);
   vtkDataArray* normal = overlay->GetPointData()->GetArray(kOverlayNormal);

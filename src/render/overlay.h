@@ -13,6 +13,7 @@
 
 namespace fairshape::render {
 
-std::vector<vtkSmartPointer<vtkProp>> overlay_props(vtkPolyData* overlay, double scene_diagonal);
+//! `curve_radius`: the curves' tubes, × the scene's diagonal (SurfaceStyle::overlay_curve_radius).
+std::vector<vtkSmartPointer<vtkProp>> overlay_props(vtkPolyData* overlay, double scene_diagonal, double curve_radius);
 
 }  // namespace fairshape::render

@@ -36,6 +36,9 @@ struct SurfaceStyle {
   bool edges = false;         // the rendered mesh's edges
   int control_level = -1;     // ≥ 0: that level of the source's hierarchy as a wireframe
   double tube_radius = 0.004; // curves, × the scene's diagonal
+  //! Curves of an overlay (constraint and feature curves), thinner by default so that a fine
+  //! feature beside its curve stays visible; outlines are drawn at half of it.
+  double overlay_curve_radius = 0.0018;
 };
 
 //! The scalar `c` asks for on `data`, named "__scalar". \throw InvalidInput for an unknown

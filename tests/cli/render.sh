@@ -91,6 +91,24 @@ assert red[0] > 0.55 and red[1] < 0.35 and red[2] < 0.35, f"pixel {r, c} under t
 r2, c2 = pixel((0.0, -0.5, 0.0))  # elsewhere on the grid: its plain colour
 assert img[r2, c2][1] > 0.45, f"plain surface expected at {r2, c2}, got {img[r2, c2]}"
 PYEOF
+# An overlay's curves follow --overlay-tube-radius: five times the radius covers several times the pixels.
+printf 'v -0.8 0.0 0.0\nv 0.8 0.0 0.0\nl 1 2\n' > "$S/line.obj"
+for r in 0.002 0.01; do
+  "$FS" render "$S/ridge_groove.vtp" "$S/tube_$r.png" "${TOP[@]}" --overlay "$S/line.obj" --overlay-tube-radius "$r" ||
+    fail "render with --overlay-tube-radius $r"
+done
+"$FS" render "$S/ridge_groove.vtp" "$S/no_tube.png" "${TOP[@]}" || fail "render without the curve"
+$PY - "$S" <<'PYEOF'
+import sys
+import numpy as np
+import matplotlib.image as mpimg
+d = sys.argv[1]
+base = mpimg.imread(f"{d}/no_tube.png")[:, :, :3]
+covered = {r: int((np.abs(mpimg.imread(f"{d}/tube_{r}.png")[:, :, :3] - base).sum(axis=2) > 0.1).sum()) for r in ("0.002", "0.01")}
+assert covered["0.002"] > 0, "the thin curve drew nothing"
+assert covered["0.01"] > 3 * covered["0.002"], f"pixels covered by the curve at radius 0.002 and 0.01: {covered}"
+PYEOF
+expect_error 2 "overlay-tube-radius" -- "$FS" render "$S/ridge_groove.vtp" "$S/x.png" --overlay-tube-radius -1
 # Two panels share one range: the half-height grid is paler than the full one beside it, not
 # stretched to the same colours.
 "$FS" render "$S/half.vtp" "$S/ridge_groove.vtp" "$S/pair.png" --array displacement "${TOP[@]}" --label half --label full ||

@@ -95,6 +95,33 @@ def fig2():
                   "termination"], body)
 
 
+def constraint_kind(row):
+    """point, normal or curve: the kind a Figure 7 run adds to its fixed region."""
+    c = row["constraints"]
+    if "type: curve" in c:
+        where = "limit points" if "limit_points" in c else "snapped vertices"
+        return "curve" + (f" ({count(row['curve_points'])} {where})" if num(row.get("curve_points")) else "")
+    return "normal" if "type: normal" in c else "point"
+
+
+def fig7():
+    body = [[constraint_kind(r), count(r["n_constrained"]), fixed(r["detail_change"]), fixed(r["spike_ratio"]),
+             count(r.get("flipped_faces")), sci(r["constraint_violation"], 0), r["termination"]]
+            for r in rows("fig7_runs.csv")]
+    return table(["constraints", "constrained vertices", "detail change", "spike ratio", "flipped faces",
+                  "constraint residual", "termination"], body)
+
+
+def fig7_vase():
+    body = []
+    for r in rows("fig7_vase_runs.csv"):
+        e = num(r.get("energy_vs_optimum"))
+        body.append([constraint_kind(r), fixed(r["spike_ratio"], 2), "–" if e is None else f"{e:.3f}",
+                     count(r.get("flipped_faces")), sci(r["constraint_violation"], 0), r["termination"]])
+    return table(["constraints (paper mode)", "spike ratio", "energy vs the KKT optimum", "flipped faces",
+                  "constraint residual", "termination"], body)
+
+
 def fig8():
     names = {("interactive", "gauss_seidel", "10"): ("interactive", "–"),
              ("improved", "gauss_seidel", "10"): ("improved (the paper's)", "10 Gauss-Seidel sweeps"),
@@ -148,7 +175,7 @@ def fig9_vase():
         f"\n\nThe run: {run['termination']}, {count(run.get('flipped_faces'))} faces flipped at its last step."
 
 
-BLOCKS = {"fig1": fig1, "fig2": fig2, "fig8": fig8, "fig8_ladder": fig8_ladder, "fig9": fig9, "fig9_vase": fig9_vase}
+BLOCKS = {"fig1": fig1, "fig2": fig2, "fig7": fig7, "fig7_vase": fig7_vase, "fig8": fig8, "fig8_ladder": fig8_ladder, "fig9": fig9, "fig9_vase": fig9_vase}
 
 
 def main():

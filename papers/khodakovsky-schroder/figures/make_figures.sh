@@ -31,34 +31,30 @@ num() { /usr/bin/python3 -c 'import csv, sys; print(f"{float(list(csv.DictReader
 tmp=$out-panels; mkdir -p "$tmp"
 patch=(--up z --view front --azimuth 15 --zoom 1.35 --width 620 --height 500)
 panel=("${patch[@]}" --elevation 30); above=("${patch[@]}" --elevation 55)
-# Figure 11 (§2.3-2.4): the input with the three curves, and the result with the curves where the
+# Figure 11 (§2.3-2.4): the input with the curves, and the result with the curves where the
 # features are and the neighbourhoods outlined (the paper draws the outline on the drawn level).
-run fig11
-id=$(row $out-fig11 1)
-/usr/bin/python3 $ks input $out-fig11 $id $tmp
-view11=(--up z --view front --elevation 40 --azimuth 10 --zoom 1.35 --width 800 --height 620)
-build/bin/fairshape render $tmp/${id}_input.vtp $tmp/f11a.png --overlay $tmp/${id}_input_overlay.vtp \
-  --label "input: the patch (level 4) and the curves drawn on level 2" "${view11[@]}"
-build/bin/fairshape render $out-fig11@$id $tmp/f11b.png --array displacement --component normal \
-  --colour-label "normal displacement" "${view11[@]}" \
-  --label "result, level 4: $(col $out-fig11 vertices_moved) vertices moved (outlined), max $(num $out-fig11 max_displacement)"
-/usr/bin/python3 $ks compose $figs/fig11.png --columns 2 $tmp/f11{a,b}.png \
-  --title "Figure 11/16: three overlapping feature lines drawn on level 2 (two ridges, one groove; orange: curves)"
-build/bin/fairshape render "$out-fig11/adaptive/$id.obj" $figs/fig11_adaptive.png \
+# fig11_pair NAME SUBJECT TITLE VIEW...: the input and result panels of run NAME side by side.
+fig11_pair() {
+  local name=$1 subject=$2 title=$3; shift 3
+  run $name
+  local id; id=$(row $out-$name 1)
+  /usr/bin/python3 $ks input $out-$name $id $tmp
+  build/bin/fairshape render $tmp/${id}_input.vtp $tmp/${name}_a.png --overlay $tmp/${id}_input_overlay.vtp \
+    --label "input: $subject (level 4) and the curves drawn on level 2" "$@"
+  build/bin/fairshape render $out-$name@$id $tmp/${name}_b.png --array displacement --component normal \
+    --colour-label "normal displacement" "$@" \
+    --label "result, level 4: $(col $out-$name vertices_moved) vertices moved (outlined), max $(num $out-$name max_displacement)"
+  /usr/bin/python3 $ks compose $figs/$name.png --columns 2 $tmp/${name}_{a,b}.png --title "$title"
+}
+fig11_pair fig11 "the patch" \
+  "Figure 11/16: three overlapping feature lines drawn on level 2 (two ridges, one groove; orange: curves)" \
+  --up z --view front --elevation 40 --azimuth 10 --zoom 1.35 --width 800 --height 620
+build/bin/fairshape render "$out-fig11/adaptive/$(row $out-fig11 1).obj" $figs/fig11_adaptive.png \
   --edges --flat --up z --view top --zoom 1.3 --width 900 --height 700 --title "Figure 11: the adaptive mesh"
-# Figure 11 on the helmet, the paper's subject: seen from above the crown, the input with the
-# curves, the result with the curves, the features' neighbourhoods outlined, signed colouring.
-run fig11_helmet
-id=$(row $out-fig11_helmet 1)
-/usr/bin/python3 $ks input $out-fig11_helmet $id $tmp
-view11h=(--view top --up z --focus 0.04 0.0 0.33 --radius 0.2 --width 800 --height 620)
-build/bin/fairshape render $tmp/${id}_input.vtp $tmp/f11ha.png --overlay $tmp/${id}_input_overlay.vtp \
-  --label "input: the helmet (level 4) and the curves drawn on level 2" "${view11h[@]}"
-build/bin/fairshape render $out-fig11_helmet@$id $tmp/f11hb.png --array displacement --component normal \
-  --colour-label "normal displacement" "${view11h[@]}" \
-  --label "result, level 4: $(col $out-fig11_helmet vertices_moved) vertices moved (outlined), max $(num $out-fig11_helmet max_displacement)"
-/usr/bin/python3 $ks compose $figs/fig11_helmet.png --columns 2 $tmp/f11h{a,b}.png \
-  --title "Figure 11 on the helmet: three overlapping feature lines drawn on level 2 (two ridges, one groove; orange: curves)"
+# On the helmet, the paper's subject: seen from above the crown, signed colouring.
+fig11_pair fig11_helmet "the helmet" \
+  "Figure 11 on the helmet: three overlapping feature lines drawn on level 2 (two ridges, one groove; orange: curves)" \
+  --view top --up z --focus 0.04 0.0 0.33 --radius 0.2 --width 800 --height 620
 run fig16
 /usr/bin/python3 scripts/panels.py --allow-unmet $out-fig16 $figs/fig16.png --columns 3 \
   --title "Figure 16: one parameter at a time (radius, crease, groove, left/right ratio, end height ratio)" \

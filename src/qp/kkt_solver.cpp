@@ -12,7 +12,10 @@
 // largest entry near 1) and factored again, so the verdict does not depend on how far H's
 // diagonal spreads — 8 orders on a dense scan under one subdivision level, where the LU called
 // a well-posed edit singular. (Not always: on well-scaled systems the plain one's answers are
-// the more exact, e.g. the rotation-aware rounds' energies on the cow.) Optimized:
+// the more exact, e.g. the rotation-aware rounds' energies on the cow.) When even the
+// equilibrated system looks singular, the unknowns that rows of their own pin (held vertices)
+// are eliminated and the smaller program, whose H is then positive definite, is solved by the
+// range-space method (pinned_reduction.h) — the same minimizer. Optimized:
 // UMFPACK (symmetric strategy), whose symbolic analysis is reused while the pattern stays the
 // same; reference: Eigen SparseLU.
 #include <Eigen/SparseLU>
@@ -29,6 +32,8 @@
 #include "fairshape/problem/least_squares.h"
 #include "fairshape/qp/kkt_solver.h"
 #include "fairshape/qp/constraint_policy.h"
+#include "fairshape/qp/pinned_reduction.h"
+#include "fairshape/qp/range_space_solver.h"
 
 namespace fairshape::qp {
 
@@ -221,7 +226,46 @@ void KktSolver::analyze(const QuadraticProgram& qp) {
     reduced_ = true;
   }
   conditioning_ = constraint_conditioning(H_, A_, policy_.rank_tolerance);
+  prepare_pinned_fallback();
   analyze_s_ = timer.seconds();
+}
+
+void KktSolver::prepare_pinned_fallback() {
+  pinned_.reset();
+  pinned_solver_.reset();
+  if (!main_->singular) return;
+  auto reduction = std::make_unique<PinnedReduction>(H_, A_original_);
+  if (!reduction->any() || reduction->free_rows().rows() > RangeSpaceSolver::kMaxRows) return;
+  QuadraticProgram reduced;
+  reduced.H = reduction->free_hessian();
+  reduced.A = reduction->free_rows();
+  reduced.f = Eigen::MatrixXd::Zero(reduced.H.rows(), 1);
+  reduced.b = Eigen::MatrixXd::Zero(reduced.A.rows(), 1);
+  pinned_solver_ = std::make_unique<RangeSpaceSolver>(policy_);
+  pinned_solver_->analyze(reduced);
+  pinned_ = std::move(reduction);
+}
+
+QpReport KktSolver::solve_pinned(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) {
+  const Eigen::MatrixXd f_free = pinned_->reduced_f(f, b), b_free = pinned_->reduced_b(b);
+  QpReport out = pinned_solver_->solve(f_free, b_free);
+  // Iterative refinement: the correction δ of p minimizes ½δᵀHδ − δᵀ(f − Hp) subject to
+  // Aδ = b − Ap, the same program with the residuals as right-hand sides. H_FF spans as many
+  // orders as H's diagonal did, so one solve leaves digits that the next ones recover.
+  for (int step = 0; step < 2 && out.summary.termination == Termination::Converged && out.p.allFinite(); ++step) {
+    const SparseMatrix& H = pinned_->free_hessian();
+    const SparseMatrix& A = pinned_->free_rows();
+    const QpReport correction = pinned_solver_->solve(f_free - H * out.p, b_free - A * out.p);
+    if (correction.summary.termination != Termination::Converged || !correction.p.allFinite()) break;
+    out.p += correction.p;
+  }
+  out.p = out.p.allFinite() && out.p.size() ? pinned_->expand(out.p, b) : Eigen::MatrixXd::Zero(H_.rows(), f.cols());
+  const std::string note = "the Lagrange system looked singular, also equilibrated: " + std::to_string(pinned_->n_pinned()) +
+                           " unknowns pinned by rows of their own eliminated, the rest solved by the range-space method";
+  out.summary.message = out.summary.message.empty() ? note : note + "; " + out.summary.message;
+  // Judged on the original program: every row, the pinning ones included.
+  assess(out, {H_, f, A_original_, b, scaling_, conditioning_}, policy_);
+  return out;
 }
 
 int KktSolver::symbolic_analyses() const { return main_ ? main_->lu->analyses() : 0; }
@@ -256,6 +300,7 @@ QpReport KktSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) {
   FAIRSHAPE_ASSERT(main_, "KktSolver::solve before analyze");
   if (f.rows() != H_.rows() || b.rows() != A_.rows() || (b.rows() && b.cols() != f.cols()))
     throw InvalidInput("KKT solve: right-hand sides do not match the analyzed program");
+  if (main_->singular && pinned_solver_) return solve_pinned(f, b);
   const Eigen::MatrixXd unit_b = scaling_.d.asDiagonal() * b;
   QpReport out = solve_with(*main_, f, unit_b);
   if (out.summary.termination == Termination::Converged && out.dropped_rows > 0 && !reduced_ &&

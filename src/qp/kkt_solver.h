@@ -12,6 +12,8 @@
 namespace fairshape::qp {
 
 class LuFactor;  // kkt_solver.cpp: UMFPACK or SparseLU
+class PinnedReduction;
+class RangeSpaceSolver;
 
 //! [H sAᵀ; sA −δI]: the Lagrange matrix with scaled constraint rows (δ = 0: the exact system).
 SparseMatrix lagrange_matrix(const SparseMatrix& H, const SparseMatrix& A, double scale, double regularization = 0);
@@ -30,6 +32,8 @@ class KktSolver final : public QpSolver {
   struct System;
   std::unique_ptr<System> build(CompressedRows rows, std::unique_ptr<LuFactor> recycled);
   QpReport solve_with(const System& sys, const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) const;
+  void prepare_pinned_fallback();
+  QpReport solve_pinned(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b);
 
   Backend backend_;
   ConstraintPolicy policy_;
@@ -40,6 +44,10 @@ class KktSolver final : public QpSolver {
   double scale_ = 1;
   std::unique_ptr<System> main_, least_squares_;
   bool reduced_ = false;  // main_ works on R₁Pᵀ rather than a subset of A's rows
+  // When main_ stays singular: the unknowns pinned by rows of their own eliminated, the rest by
+  // the range-space method (kkt_solver.cpp).
+  std::unique_ptr<PinnedReduction> pinned_;
+  std::unique_ptr<RangeSpaceSolver> pinned_solver_;
 };
 
 }  // namespace fairshape::qp

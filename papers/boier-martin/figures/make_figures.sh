@@ -5,12 +5,12 @@
 # Figure 8's panels are coloured by the distance to the converged answer, and Figures 8 and 9
 # draw what the paper draws (the propagated constraints close up, the rotation's arc and axis)
 # through figure_tools.py. Last, readme_numbers.py rewrites the README's tables from data/.
-#   bash papers/boier-martin/figures/make_figures.sh [fig1 fig2 fig7 fig7_vase fig8 fig9 fig9_vase numbers]   (after `make build`)
+#   bash papers/boier-martin/figures/make_figures.sh [fig1 fig2 fig7 fig7_vase fig8 fig9 fig9_vase dense_scan_kkt numbers]   (after `make build`)
 # (fig8_render: Figure 8's panels from the last fig8 run, without running it again.)
 set -euo pipefail
 cd "$(dirname "$0")/../../.."
 figures=("$@")
-[ ${#figures[@]} -gt 0 ] || figures=(fig1 fig2 fig7 fig7_vase fig8 fig9 fig9_vase)
+[ ${#figures[@]} -gt 0 ] || figures=(fig1 fig2 fig7 fig7_vase fig8 fig9 fig9_vase dense_scan_kkt)
 cow_view=(--view front --zoom 1.5)
 
 figure() {  # name config panels-arguments...
@@ -156,8 +156,12 @@ for f in "${figures[@]}"; do
           mkdir -p papers/boier-martin/data
           cp "$out/runs.csv" papers/boier-martin/data/fig9_vase_runs.csv
           cp "$out/steps.csv" papers/boier-martin/data/fig9_vase_steps.csv ;;
+    dense_scan_kkt) out=results/figures/dense_scan_kkt  # numbers only: "KKT on badly scaled systems"
+          build/bin/fairshape run configs/boier-martin/dense_scan_kkt.yaml --out "$out" --force
+          mkdir -p papers/boier-martin/data
+          cp "$out/runs.csv" papers/boier-martin/data/dense_scan_kkt_runs.csv ;;
     numbers) ;;
-    *) echo "unknown figure '$f' (choose from fig1 fig2 fig7 fig7_vase fig8 fig8_render fig9 fig9_vase numbers)" >&2; exit 2 ;;
+    *) echo "unknown figure '$f' (choose from fig1 fig2 fig7 fig7_vase fig8 fig8_render fig9 fig9_vase dense_scan_kkt numbers)" >&2; exit 2 ;;
   esac
 done
 

@@ -1,8 +1,11 @@
 # Helpers for the command-line tests. $1 of each test script is the fairshape binary.
 set -euo pipefail
 FS="$1"
-SCRATCH="${SCRATCH:-$(mktemp -d)}"
-rm -rf "$SCRATCH" && mkdir -p "$SCRATCH"
+# Each run gets a folder of its own under the test's ($SCRATCH from ctest): the script of an
+# interrupted run, left running, then never shares files with the next run's. Removed when the
+# script succeeds, kept (and named) when it fails. A script with an EXIT trap of its own keeps it.
+if [ -n "${SCRATCH:-}" ]; then mkdir -p "$SCRATCH" && SCRATCH="$(mktemp -d "$SCRATCH/r.XXXXXX")"; else SCRATCH="$(mktemp -d)"; fi
+trap 'rc=$?; if [ "$rc" -eq 0 ]; then rm -rf "$SCRATCH"; else echo "scratch kept: $SCRATCH" >&2; fi' EXIT
 PY=/usr/bin/python3
 
 fail() { echo "FAIL: $*" >&2; exit 1; }

@@ -164,8 +164,8 @@ TEST_CASE("KKT on a clamped chain too stiff for its Lagrange system: the held un
     INFO(r.summary.message);
     REQUIRE(r.summary.termination == Termination::Converged);
     CHECK(r.summary.message.find("range-space method") != std::string::npos);
-    // H_FF's condition is about 1e13: a backward-stable solve is good to about 1e-3 of that in
-    // the worst case; measured 1.5e-6.
+    // H_FF's condition is about 1e13, so a backward-stable solve's error is bounded only by
+    // κ·ε ≈ 1e-3; measured 1.5e-6.
     CHECK((r.p.col(0) - expected).norm() <= 1e-5 * expected.norm());
     CHECK(std::abs(0.5 * (r.p(n - 2, 0) + r.p(n - 1, 0)) - 1.0) < 1e-10);
   }

@@ -24,30 +24,13 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-// An 8 × 8-span bicubic sheet of size 2 × 2 in the z = 0 plane, thin plate with slight tension.
+// The flat 8 × 8 sheet (test::flat_sheet), thin plate with slight tension.
 struct Fixture {
-  SheetShape shape{8, 8, 3, false, {0.25, 0.25}};
-  SheetPlacement placement;
   SheetEnergy energy;
-  VariationalSheet sheet;
-  Fixture() : sheet(make()) { energy.weights.alpha = 0.01 * Eigen::Matrix2d::Identity(); }
-  VariationalSheet make() {
-    placement.size_u = placement.size_v = 2;
-    const HierarchicalSurface s(shape);
-    return VariationalSheet(shape, initial_coefficients(placement, s));
-  }
-  // Pins at the four corners' inner points, where the flat sheet is.
-  std::vector<SheetConstraint> pins() const {
-    std::vector<SheetConstraint> out;
-    for (double u : {0.5, 7.5})
-      for (double v : {0.5, 7.5}) {
-        SheetConstraint c;
-        c.u = u, c.v = v;
-        c.target = sheet.surface().position(sheet.coefficients(), u, v);
-        out.push_back(c);
-      }
-    return out;
-  }
+  VariationalSheet sheet = test::flat_sheet();
+  SheetShape shape = sheet.surface().shape();
+  Fixture() { energy.weights.alpha = 0.01 * Eigen::Matrix2d::Identity(); }
+  std::vector<SheetConstraint> pins() const { return test::corner_pins(sheet); }
 };
 
 // Collocation rows built from the basis (value or a design-unit derivative combination).

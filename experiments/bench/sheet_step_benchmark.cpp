@@ -2,8 +2,12 @@
 // pins, a lifted diagonal curve constraint, one point dragged): bspline::solve_sheet as a run
 // calls it per step — assemble, (re)factor or reuse, solve, the constraint errors and the exact
 // conflict checks — with and without the curve resolution probe (bspline/curve_fidelity.h), and
-// the parts alone, so the checks' share of a step is read off one run. Medians:
-// --benchmark_repetitions.
+// the parts alone, so the checks' share of a step is read off one run; KKT and QR-penalty with
+// their factorizations kept across the drag and factored every step (reuse_factorization: false),
+// the same-run baseline. Medians: --benchmark_repetitions; the README's table
+// (papers/welch-witkin/README.md, "A drag step and its checks") reads
+//   --benchmark_filter='checks_only|Assemble|StepChecks' --benchmark_repetitions=5
+//   --benchmark_report_aggregates_only=true --benchmark_out=papers/welch-witkin/data/bench/sheet_step_benchmark.json
 #include <benchmark/benchmark.h>
 
 #include <cmath>

@@ -81,7 +81,7 @@ namespace {
 // A program over the stacked unknowns [x; y; z] (rows coupling the coordinates) or over the
 // control points' n × 3 coordinates (x, y and z sharing H and A).
 bool is_stacked(const qp::QuadraticProgram& program, const VariationalSheet& sheet) {
-  return program.H.rows() == 3 * static_cast<Eigen::Index>(sheet.surface().dof_count());
+  return program.hessian().rows() == 3 * static_cast<Eigen::Index>(sheet.surface().dof_count());
 }
 Eigen::MatrixXd in_program_shape(const Eigen::MatrixXd& P, bool stacked) {
   return stacked ? Eigen::MatrixXd(Eigen::Map<const Eigen::VectorXd>(P.data(), P.size())) : P;
@@ -113,11 +113,16 @@ double objective_value(const VariationalSheet& sheet, const SheetEnergy& energy,
   const bool stacked = is_stacked(program, sheet);
   const Eigen::MatrixXd rest = in_program_shape(sheet.rest(), stacked);
   return qp::objective(program, in_program_shape(sheet.coefficients(), stacked)) +
-         (about_rest ? 0.5 * (rest.transpose() * (program.H * rest)).trace() : 0.0);
+         (about_rest ? 0.5 * (rest.transpose() * (program.hessian() * rest)).trace() : 0.0);
 }
 
-qp::QuadraticProgram assemble(const VariationalSheet& sheet, const SheetEnergy& energy,
-                              const std::vector<SheetConstraint>& constraints, Backend backend, bool square_root) {
+namespace {
+// assemble(), and with borrow_H the program lends the sheet's cached H (QuadraticProgram::
+// borrowed_H) instead of copying it, unless a coupled row stacks the coordinates: solve_sheet's
+// programs live only while the sheet keeps its surface (README, "Memory of deep refinement").
+qp::QuadraticProgram assemble_program(const VariationalSheet& sheet, const SheetEnergy& energy,
+                                      const std::vector<SheetConstraint>& constraints, Backend backend, bool square_root,
+                                      bool borrow_H) {
   const HierarchicalSurface& s = sheet.surface();
   qp::QuadraticProgram p;
   if (energy.metric == ShapeMetric::Displacement) {
@@ -127,9 +132,12 @@ qp::QuadraticProgram assemble(const VariationalSheet& sheet, const SheetEnergy& 
     p.f = sheet.rest();
   } else {
     const VariationalSheet::ThinPlate& plate = sheet.thin_plate(energy.weights, backend);
-    p.H = plate.H;
+    const bool coupled_rows = std::any_of(constraints.begin(), constraints.end(),
+                                          [](const SheetConstraint& c) { return c.kind == SheetConstraint::Kind::Normal; });
+    if (borrow_H && !coupled_rows) p.borrowed_H = &plate.H;
+    else p.H = plate.H;
     if (square_root) p.K = sheet.thin_plate_square_root(energy.weights, backend);
-    p.f = energy.rest_shape ? Eigen::MatrixXd(p.H * sheet.rest()) : Eigen::MatrixXd::Zero(s.dof_count(), 3);
+    p.f = energy.rest_shape ? Eigen::MatrixXd(plate.H * sheet.rest()) : Eigen::MatrixXd::Zero(s.dof_count(), 3);
   }
   std::vector<ConstraintRows> rows;
   std::vector<CoupledRows> coupled;
@@ -161,6 +169,12 @@ qp::QuadraticProgram assemble(const VariationalSheet& sheet, const SheetEnergy& 
   p.A = all.A;
   p.b = all.C;
   return p;
+}
+}  // namespace
+
+qp::QuadraticProgram assemble(const VariationalSheet& sheet, const SheetEnergy& energy,
+                              const std::vector<SheetConstraint>& constraints, Backend backend, bool square_root) {
+  return assemble_program(sheet, energy, constraints, backend, square_root, /*borrow_H=*/false);
 }
 
 namespace {
@@ -278,7 +292,8 @@ DesignReport solve_sheet(VariationalSheet& sheet, const SheetEnergy& energy, con
   for (;;) {
     // K only for the solver that factors it (README, "Memory of deep refinement").
     const bool square_root = dynamic_cast<const qp::QrPenaltySolver*>(&solver) != nullptr;
-    const qp::QuadraticProgram program = assemble(sheet, energy, constraints, backend, square_root);
+    // H lent, not copied: the program ends with this round, before any refinement.
+    const qp::QuadraticProgram program = assemble_program(sheet, energy, constraints, backend, square_root, /*borrow_H=*/true);
     solver.analyze(program);
     report.analyze_s += solver.analyze_seconds();
     const Timer timer;

@@ -4,12 +4,12 @@
 # (build, max_level, dofs, peak RSS, wall time) to data/memory_rss.csv. The peak is
 # /usr/bin/time's maximum resident set, which any build reports (older ones have no
 # peak_rss_mb column), so two builds are compared by the same measure:
-#   bash papers/welch-witkin/figures/memory_sweep.sh BINARY LABEL [LEVELS...]   (default 3 4 5 6)
+#   bash papers/welch-witkin/figures/memory_sweep.sh BINARY LABEL [LEVELS...]   (default 3 4 5 6 7 8)
 set -euo pipefail
 cd "$(dirname "$0")/../../.."
 bin=$1 label=$2
 shift 2
-levels=${*:-3 4 5 6}
+levels=${*:-3 4 5 6 7 8}
 csv=papers/welch-witkin/data/memory_rss.csv
 [ -f "$csv" ] || echo "build,max_level,dofs,peak_rss_mb,time_s" > "$csv"
 for level in $levels; do

@@ -44,7 +44,7 @@ def drag_step():
     return table(["drag step (32 × 32 spans, 1,225 unknowns, exact checks)", "median ms", "analyze ms", "solve ms",
                   "vs factored every step"], body) + \
         f"\n\nMedians of {m['BM_SheetDragStep/kkt_checks_only']['repetitions']} repetitions, one run, " \
-        f"{context['date'][:10]}, {context['num_cpus']} cores (shared with other builds: the ratios are the result)."
+        f"{context['date'][:10]}, {context['num_cpus']} cores (shared with other work: the ratios are the result)."
 
 
 def memory():

@@ -11,6 +11,7 @@
 
 #include "fairshape/bspline/region_constraint.h"
 #include "fairshape/bspline/ribbon_constraint.h"
+#include "fairshape/bspline/sheet_file.h"
 #include "fairshape/bspline/sheet_geometry.h"
 #include "fairshape/bspline/variational_sheet.h"
 #include "fairshape/core/config.h"
@@ -225,4 +226,55 @@ TEST_CASE("offset, ribbon and region keys in a sheet config: the example runs, b
   CHECK_THROWS_WITH(refused("constraints.6.corners", "[[1, 1], [3, 2]]"), Contains("constraints[6].corners[1]"));
   CHECK_THROWS_WITH(refused("constraints.6.shift", "[0, 0, 1]"), Contains("shift"));
   CHECK_THROWS_WITH(refused("constraints.4.from", "[0.5]"), Contains("[u, v]"));
+}
+
+TEST_CASE("offset: initial, ribbon cross_tangent: current and region surface: initial take the surfaces they name",
+          "[sheet][primitives]") {
+  // Step 0 lifts the middle; step 1 adds an offset pair at its initial offset, a ribbon along
+  // v = 1.25 keeping the slope the step-0 sheet has there, and a region holding the initial
+  // (flat) sheet in a corner, while the middle is lifted further. 16 × 16 spans: each away from
+  // the others' reach (a region determines every control point reaching it, r spans around).
+  const char* cfg = R"(
+name: held
+sheets: [{name: s, spans: [16, 16], size: [2, 2]}]
+energy: {alpha: 0.01, beta: 1}
+curves:
+  - {name: line, from_surface: {sheet: s, uv: [[0.75, 1.25], [1.5, 1.25]], surface: current}, samples: 9}
+output: {vtk: all}
+constraints:
+  - {type: point, uv: [0.125, 0.125], by: [0, 0, 0]}
+  - {type: point, uv: [1.875, 0.125], by: [0, 0, 0]}
+  - {type: point, uv: [0.125, 1.875], by: [0, 0, 0]}
+  - {type: point, uv: [1.875, 1.875], by: [0, 0, 0]}
+  - {type: point, uv: [1, 1], by: [0, 0, 0.3], moves: [{step: 1, by: [0, 0, 0.2]}]}
+  - {type: offset, uv: [1.5, 0.5], from: [1.0, 0.75], offset: initial, step: 1}
+  - {type: ribbon, curve: line, cross_tangent: current, step: 1}
+  - {type: region, corners: [[0, 1.5], [0.25, 1.75]], surface: initial, step: 1}
+)";
+  const auto dir = test::scratch_dir("sheet_primitives_held");
+  create_run_folders(dir.string());
+  SheetRunSpec spec = SheetRunSpec::from_config(YAML::Load(cfg));
+  const MetricRow row = execute_sheet_run(spec, RunOutputs{dir.string(), "held", true, nullptr});
+  INFO(row.at("message"));
+  REQUIRE(row.at("termination") == "converged");
+  const VariationalSheet step0 = load_sheet((dir / "sheets" / "held_step0_s.sheet").string());
+  const VariationalSheet last = load_sheet((dir / "sheets" / "held_s.sheet").string());
+  const auto at = [](const VariationalSheet& s, double u, double v) {  // design units: 8 spans per unit
+    return Vec3(s.surface().position(s.coefficients(), 8 * u, 8 * v));
+  };
+  // The offset pair keeps the initial sheet's offset (0.5, −0.25, 0), though step 0 bent the sheet.
+  const Vec3 initial_offset(0.5, -0.25, 0);
+  CHECK((at(last, 1.5, 0.5) - at(last, 1.0, 0.75) - initial_offset).norm() < 1e-9);
+  CHECK((at(step0, 1.5, 0.5) - at(step0, 1.0, 0.75) - initial_offset).norm() > 1e-2);
+  // The ribbon keeps step 0's slope across its line (to its left: +v), not the flat sheet's.
+  const std::vector<Eigen::Vector2d> line{{6, 10}, {12, 10}};
+  for (double t : {0.25, 0.5, 0.75}) {
+    const Vec3 before = cross_tangent_at(step0.surface(), step0.coefficients(), line, t);
+    CHECK((cross_tangent_at(last.surface(), last.coefficients(), line, t) - before).norm() < 1e-8);
+    CHECK((before - Vec3(0, 1, 0)).norm() > 1e-3);
+  }
+  // The region is the flat initial sheet again.
+  for (double u : {0.0, 0.1, 0.25})
+    for (double v : {1.5, 1.7})
+      CHECK(std::abs(at(last, u, v).z()) < 1e-9);
 }

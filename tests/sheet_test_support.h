@@ -27,6 +27,14 @@ inline std::vector<std::vector<std::string>> run_sheet_steps(const YAML::Node& c
   return tables.rows().at("steps");
 }
 
+//! The four push-pins of the sheet configs' tests (design units, a 2 × 2 sheet held where it
+//! is): `constraints:` items, to be followed by the test's own.
+inline const char* const kCornerPinsYaml = R"(
+  - {type: point, uv: [0.125, 0.125], by: [0, 0, 0]}
+  - {type: point, uv: [1.875, 0.125], by: [0, 0, 0]}
+  - {type: point, uv: [0.125, 1.875], by: [0, 0, 0]}
+  - {type: point, uv: [1.875, 1.875], by: [0, 0, 0]})";
+
 //! An 8 × 8-span bicubic sheet of size 2 × 2 in the z = 0 plane (a span is 0.25 design units).
 inline bspline::VariationalSheet flat_sheet() {
   const bspline::SheetShape shape{8, 8, 3, false, {0.25, 0.25}};

@@ -234,18 +234,14 @@ TEST_CASE("offset: initial, ribbon cross_tangent: current and region surface: in
   // v = 1.25 keeping the slope the step-0 sheet has there, and a region holding the initial
   // (flat) sheet in a corner, while the middle is lifted further. 16 × 16 spans: each away from
   // the others' reach (a region determines every control point reaching it, r spans around).
-  const char* cfg = R"(
+  const std::string cfg = std::string(R"(
 name: held
 sheets: [{name: s, spans: [16, 16], size: [2, 2]}]
 energy: {alpha: 0.01, beta: 1}
 curves:
   - {name: line, from_surface: {sheet: s, uv: [[0.75, 1.25], [1.5, 1.25]], surface: current}, samples: 9}
 output: {vtk: all}
-constraints:
-  - {type: point, uv: [0.125, 0.125], by: [0, 0, 0]}
-  - {type: point, uv: [1.875, 0.125], by: [0, 0, 0]}
-  - {type: point, uv: [0.125, 1.875], by: [0, 0, 0]}
-  - {type: point, uv: [1.875, 1.875], by: [0, 0, 0]}
+constraints:)") + test::kCornerPinsYaml + R"(
   - {type: point, uv: [1, 1], by: [0, 0, 0.3], moves: [{step: 1, by: [0, 0, 0.2]}]}
   - {type: offset, uv: [1.5, 0.5], from: [1.0, 0.75], offset: initial, step: 1}
   - {type: ribbon, curve: line, cross_tangent: current, step: 1}

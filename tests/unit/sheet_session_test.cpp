@@ -16,16 +16,12 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-const char* kSession = R"(
+const std::string kSession = std::string(R"(
 name: session
 sheets: [{name: s, spans: [8, 8], size: [2, 2]}]
 energy: {alpha: 0.01, beta: 1}
 output: {vtk: none}
-constraints:
-  - {type: point, uv: [0.125, 0.125], by: [0, 0, 0]}
-  - {type: point, uv: [1.875, 0.125], by: [0, 0, 0]}
-  - {type: point, uv: [0.125, 1.875], by: [0, 0, 0]}
-  - {type: point, uv: [1.875, 1.875], by: [0, 0, 0]}
+constraints:)") + test::kCornerPinsYaml + R"(
   - {type: point, uv: [1, 1], by: [0, 0, 0.3], moves: [{step: 1, by: [0, 0, 0.2]}]}
   - {type: point, uv: [0.5, 1.5], by: [0, 0, -0.2], until: 2}
 actions:

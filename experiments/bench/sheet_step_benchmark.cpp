@@ -2,8 +2,12 @@
 // pins, a lifted diagonal curve constraint, one point dragged): bspline::solve_sheet as a run
 // calls it per step — assemble, (re)factor or reuse, solve, the constraint errors and the exact
 // conflict checks — with and without the curve resolution probe (bspline/curve_fidelity.h), and
-// the parts alone, so the checks' share of a step is read off one run. Medians:
-// --benchmark_repetitions.
+// the parts alone, so the checks' share of a step is read off one run; KKT and QR-penalty with
+// their factorizations kept across the drag and factored every step (reuse_factorization: false),
+// the same-run baseline. Medians: --benchmark_repetitions; the README's table
+// (papers/welch-witkin/README.md, "A drag step and its checks") reads
+//   --benchmark_filter='checks_only|Assemble|StepChecks' --benchmark_repetitions=5
+//   --benchmark_report_aggregates_only=true --benchmark_out=papers/welch-witkin/data/bench/sheet_step_benchmark.json
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -66,15 +70,18 @@ struct DragSession {
   void drag(int step) { constraints.back().target.z() = base_height + 0.01 * ((step % 2) ? 1 : -1); }
 };
 
-std::unique_ptr<qp::QpSolver> make(const std::string& name) {
-  Config cfg(YAML::Load("{}"), "solver");
+// options: the solver's block, e.g. "{reuse_factorization: false}" (every step factored, as
+// before KKT and QR-penalty kept their factorizations across a drag).
+std::unique_ptr<qp::QpSolver> make(const std::string& name, const std::string& options = "{}") {
+  Config cfg(YAML::Load(options), "solver");
   return qp::qp_solver_registry().create(name, Backend::Optimized, cfg);
 }
 
 // A whole step as the sheet run takes it (solve_sheet), with the probe or the exact checks only.
-void BM_SheetDragStep(benchmark::State& state, const std::string& solver_name, bool probe, bool steep) {
+void BM_SheetDragStep(benchmark::State& state, const std::string& solver_name, bool probe, bool steep,
+                      const std::string& solver_options = "{}") {
   DragSession d(steep);
-  auto solver = make(solver_name);
+  auto solver = make(solver_name, solver_options);
   RefinementOptions options;
   options.curve_probe = probe;
   int step = 0;
@@ -88,6 +95,7 @@ void BM_SheetDragStep(benchmark::State& state, const std::string& solver_name, b
   state.counters["solve_ms"] = 1e3 * r.solve_s;
   state.counters["analyze_ms"] = 1e3 * r.analyze_s;
   state.counters["converged"] = r.qp.summary.termination == Termination::Converged;
+  state.counters["energy"] = r.energy;
 }
 
 // The parts of a step alone: the program's assembly, and the checks every step keeps (pointwise
@@ -116,6 +124,11 @@ BENCHMARK_CAPTURE(BM_SheetDragStep, range_space_steep_checks_only, std::string("
 BENCHMARK_CAPTURE(BM_SheetDragStep, range_space_steep_with_probe, std::string("range_space"), true, true)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_SheetDragStep, kkt_checks_only, std::string("kkt"), false, false)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_SheetDragStep, kkt_with_probe, std::string("kkt"), true, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_SheetDragStep, kkt_refactored_checks_only, std::string("kkt"), false, false,
+                  std::string("{reuse_factorization: false}"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_SheetDragStep, qr_penalty_checks_only, std::string("qr_penalty"), false, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_SheetDragStep, qr_penalty_refactored_checks_only, std::string("qr_penalty"), false, false,
+                  std::string("{reuse_factorization: false}"))->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SheetAssemble)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SheetStepChecks)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

@@ -41,6 +41,25 @@ ConstraintRows point_rows(const HierarchicalSurface& s, double u, double v, cons
   return single_row(s, row, &BasisEntry::value, target);
 }
 
+ConstraintRows offset_rows(const HierarchicalSurface& s, const Eigen::Vector2d& at, const Eigen::Vector2d& from, const Vec3& offset) {
+  check_in_domain(s, at.x(), at.y(), "offset constraint");
+  check_in_domain(s, from.x(), from.y(), "offset constraint, from");
+  if (!offset.allFinite()) throw InvalidInput("offset constraint: the offset is not finite");
+  if (at == from) throw InvalidInput("offset constraint: the point and the point it is offset from are the same");
+  BasisRow a, b;
+  s.basis(at.x(), at.y(), a);
+  s.basis(from.x(), from.y(), b);
+  Triplets t;  // duplicates (functions reaching both points) are summed by setFromTriplets
+  for (const BasisEntry& e : a) t.emplace_back(0, e.dof, e.value);
+  for (const BasisEntry& e : b) t.emplace_back(0, e.dof, -e.value);
+  ConstraintRows out;
+  out.A.resize(1, s.dof_count());
+  out.A.setFromTriplets(t.begin(), t.end());
+  out.A.prune(0.0);
+  out.C = offset.transpose();
+  return out;
+}
+
 ConstraintRows tangent_rows(const HierarchicalSurface& s, double u, double v, int direction, const Vec3& target) {
   check_in_domain(s, u, v, "tangent constraint");
   FAIRSHAPE_ASSERT(direction == 0 || direction == 1, "tangent direction must be 0 (u) or 1 (v)");

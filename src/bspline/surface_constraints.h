@@ -1,6 +1,8 @@
 // The geometric constraints of Welch & Witkin §4.2 as linear rows on a hierarchical B-spline
 // surface's control vector, shared by x, y and z (A p = C, C with three columns):
 //   point     w(u₀, v₀) = x                                     one row
+//   offset    w(u₀, v₀) − w(u₁, v₁) = d: §4.2.1's "offset relationships between points", one
+//             row relating the two points (linear, shared by x, y and z like the point row)
 //   tangent   D_u w or D_v w at (u₀, v₀) = t, in design units      one row
 //   normal    n · D_u w = 0 and n · D_v w = 0 at (u₀, v₀): two rows coupling x, y and z
 //             (CoupledRows over the stacked unknowns [x; y; z]), so the tangent plane turns to
@@ -62,6 +64,9 @@ void check_curve_attachment(const HierarchicalSurface& s, const CurveAttachment&
 void check_in_domain(const HierarchicalSurface& s, double u, double v, const std::string& what);
 
 ConstraintRows point_rows(const HierarchicalSurface& s, double u, double v, const Vec3& target);
+//! w(at) − w(from) = offset. \throw InvalidInput for a point outside the domain, the two points
+//! equal (the row would vanish) or a non-finite offset.
+ConstraintRows offset_rows(const HierarchicalSurface& s, const Eigen::Vector2d& at, const Eigen::Vector2d& from, const Vec3& offset);
 //! direction 0: D_u, 1: D_v.
 ConstraintRows tangent_rows(const HierarchicalSurface& s, double u, double v, int direction, const Vec3& target);
 //! Rows over the stacked unknowns [x; y; z] (3 × dofs columns), targets one column.

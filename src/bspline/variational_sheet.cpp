@@ -9,10 +9,13 @@
 
 #include "fairshape/bspline/curve_fidelity.h"
 #include "fairshape/bspline/mortar_curve.h"
+#include "fairshape/bspline/region_constraint.h"
+#include "fairshape/bspline/ribbon_constraint.h"
 #include "fairshape/core/error.h"
 #include "fairshape/core/message_format.h"
 #include "fairshape/core/timer.h"
 #include "fairshape/problem/constrained_system.h"
+#include "fairshape/qp/qr_penalty_solver.h"
 
 namespace fairshape::bspline {
 
@@ -63,17 +66,22 @@ const VariationalSheet::ThinPlate& VariationalSheet::thin_plate(const TensionWei
     fresh->weights = weights;
     fresh->backend = backend;
     fresh->H = thin_plate_hessian(surface_, weights, backend);
-    fresh->K = thin_plate_square_root(surface_, weights);
     thin_plate_ = std::move(fresh);
   }
   return *thin_plate_;
+}
+
+const SparseMatrix& VariationalSheet::thin_plate_square_root(const TensionWeights& weights, Backend backend) const {
+  const ThinPlate& plate = thin_plate(weights, backend);
+  if (!plate.K) plate.K = std::make_shared<const SparseMatrix>(bspline::thin_plate_square_root(surface_, weights));
+  return *plate.K;
 }
 
 namespace {
 // A program over the stacked unknowns [x; y; z] (rows coupling the coordinates) or over the
 // control points' n × 3 coordinates (x, y and z sharing H and A).
 bool is_stacked(const qp::QuadraticProgram& program, const VariationalSheet& sheet) {
-  return program.H.rows() == 3 * static_cast<Eigen::Index>(sheet.surface().dof_count());
+  return program.hessian().rows() == 3 * static_cast<Eigen::Index>(sheet.surface().dof_count());
 }
 Eigen::MatrixXd in_program_shape(const Eigen::MatrixXd& P, bool stacked) {
   return stacked ? Eigen::MatrixXd(Eigen::Map<const Eigen::VectorXd>(P.data(), P.size())) : P;
@@ -105,11 +113,16 @@ double objective_value(const VariationalSheet& sheet, const SheetEnergy& energy,
   const bool stacked = is_stacked(program, sheet);
   const Eigen::MatrixXd rest = in_program_shape(sheet.rest(), stacked);
   return qp::objective(program, in_program_shape(sheet.coefficients(), stacked)) +
-         (about_rest ? 0.5 * (rest.transpose() * (program.H * rest)).trace() : 0.0);
+         (about_rest ? 0.5 * (rest.transpose() * (program.hessian() * rest)).trace() : 0.0);
 }
 
-qp::QuadraticProgram assemble(const VariationalSheet& sheet, const SheetEnergy& energy,
-                              const std::vector<SheetConstraint>& constraints, Backend backend) {
+namespace {
+// assemble(), and with borrow_H the program lends the sheet's cached H (QuadraticProgram::
+// borrowed_H) instead of copying it, unless a coupled row stacks the coordinates: solve_sheet's
+// programs live only while the sheet keeps its surface (README, "Memory of deep refinement").
+qp::QuadraticProgram assemble_program(const VariationalSheet& sheet, const SheetEnergy& energy,
+                                      const std::vector<SheetConstraint>& constraints, Backend backend, bool square_root,
+                                      bool borrow_H) {
   const HierarchicalSurface& s = sheet.surface();
   qp::QuadraticProgram p;
   if (energy.metric == ShapeMetric::Displacement) {
@@ -119,9 +132,12 @@ qp::QuadraticProgram assemble(const VariationalSheet& sheet, const SheetEnergy& 
     p.f = sheet.rest();
   } else {
     const VariationalSheet::ThinPlate& plate = sheet.thin_plate(energy.weights, backend);
-    p.H = plate.H;
-    p.K = plate.K;
-    p.f = energy.rest_shape ? Eigen::MatrixXd(p.H * sheet.rest()) : Eigen::MatrixXd::Zero(s.dof_count(), 3);
+    const bool coupled_rows = std::any_of(constraints.begin(), constraints.end(),
+                                          [](const SheetConstraint& c) { return c.kind == SheetConstraint::Kind::Normal; });
+    if (borrow_H && !coupled_rows) p.borrowed_H = &plate.H;
+    else p.H = plate.H;
+    if (square_root) p.K = sheet.thin_plate_square_root(energy.weights, backend);
+    p.f = energy.rest_shape ? Eigen::MatrixXd(plate.H * sheet.rest()) : Eigen::MatrixXd::Zero(s.dof_count(), 3);
   }
   std::vector<ConstraintRows> rows;
   std::vector<CoupledRows> coupled;
@@ -133,6 +149,12 @@ qp::QuadraticProgram assemble(const VariationalSheet& sheet, const SheetEnergy& 
         case SheetConstraint::Kind::Normal: coupled.push_back(normal_rows(s, c.u, c.v, c.target)); break;
         case SheetConstraint::Kind::Curve:
           rows.push_back(c.formulation == CurveFormulation::Mortar ? mortar_curve_rows(s, c.curve) : curve_rows(s, c.curve, c.quadrature));
+          if (c.ribbon) rows.push_back(cross_tangent_rows(s, c.curve.uv, c.cross, c.surface.get()));
+          break;
+        case SheetConstraint::Kind::Offset: rows.push_back(offset_rows(s, {c.u, c.v}, c.other, c.target)); break;
+        case SheetConstraint::Kind::Region:
+          FAIRSHAPE_ASSERT(c.surface != nullptr, "a region constraint needs its target surface");
+          rows.push_back(region_rows(s, {c.u, c.v}, c.other, *c.surface, c.target));
           break;
       }
     } catch (const InvalidInput& e) {
@@ -147,6 +169,12 @@ qp::QuadraticProgram assemble(const VariationalSheet& sheet, const SheetEnergy& 
   p.A = all.A;
   p.b = all.C;
   return p;
+}
+}  // namespace
+
+qp::QuadraticProgram assemble(const VariationalSheet& sheet, const SheetEnergy& energy,
+                              const std::vector<SheetConstraint>& constraints, Backend backend, bool square_root) {
+  return assemble_program(sheet, energy, constraints, backend, square_root, /*borrow_H=*/false);
 }
 
 namespace {
@@ -173,6 +201,18 @@ std::vector<CellError> constraint_errors(const VariationalSheet& sheet, const st
   for (std::size_t i = 0; i < constraints.size(); ++i) {
     const SheetConstraint& c = constraints[i];
     if (c.kind == SheetConstraint::Kind::Point) record(c.u, c.v, (s.position(P, c.u, c.v) - c.target).norm());
+    if (c.kind == SheetConstraint::Kind::Offset) {  // the relation's error, at both its points
+      const double e = (s.position(P, c.u, c.v) - s.position(P, c.other.x(), c.other.y()) - c.target).norm();
+      record(c.u, c.v, e);
+      record(c.other.x(), c.other.y(), e);
+    }
+    if (c.kind == SheetConstraint::Kind::Region)  // |w − W| on a grid in every finest cell of R
+      for_each_region_sample(s, {c.u, c.v}, c.other, 4, [&](double u, double v) {
+        record(u, v, (s.position(P, u, v) - c.surface->surface.position(c.surface->P, u, v) - c.target).norm());
+      });
+    // A ribbon's cross-tangent error is a slope, not a distance: the per-cell errors (which drive
+    // refinement) measure its position only (papers/welch-witkin/README.md, "Offsets, ribbons
+    // and regions").
     if (c.kind != SheetConstraint::Kind::Curve) continue;
     // Samples dense enough to see every finest cell the curve crosses several times.
     const int samples = curve_samples(s, c.curve.uv);
@@ -250,7 +290,10 @@ DesignReport solve_sheet(VariationalSheet& sheet, const SheetEnergy& energy, con
                          qp::QpSolver& solver, const RefinementOptions& refinement, Backend backend) {
   DesignReport report;
   for (;;) {
-    const qp::QuadraticProgram program = assemble(sheet, energy, constraints, backend);
+    // K only for the solver that factors it (README, "Memory of deep refinement").
+    const bool square_root = dynamic_cast<const qp::QrPenaltySolver*>(&solver) != nullptr;
+    // H lent, not copied: the program ends with this round, before any refinement.
+    const qp::QuadraticProgram program = assemble_program(sheet, energy, constraints, backend, square_root, /*borrow_H=*/true);
     solver.analyze(program);
     report.analyze_s += solver.analyze_seconds();
     const Timer timer;

@@ -27,13 +27,23 @@ struct SheetEnergy {
 };
 
 struct SheetConstraint {
-  enum class Kind { Point, Tangent, Normal, Curve } kind = Kind::Point;
+  //! Offset: w(u, v) − w(other) = target (§4.2.1). Region: w = surface + target over the
+  //! rectangle from (u, v) to other (§4.2.2, bspline/region_constraint.h).
+  enum class Kind { Point, Tangent, Normal, Curve, Offset, Region } kind = Kind::Point;
   double u = 0, v = 0;
   int direction = 0;  // tangent: 0 = D_u, 1 = D_v
-  Vec3 target = Vec3::Zero();  // point / tangent target, normal direction
+  Vec3 target = Vec3::Zero();  // point / tangent target, normal direction, offset, region shift
+  Eigen::Vector2d other = Eigen::Vector2d::Zero();  // offset: the point it is offset from; region: far corner
   CurveAttachment curve;
   CurveFormulation formulation = CurveFormulation::Mortar;
   CurveQuadrature quadrature = CurveQuadrature::Exact;  // the paper's formulation only
+  //! A curve that is a ribbon (§5): its position rows and the cross-tangent rows of
+  //! bspline/ribbon_constraint.h, whose target is `cross`, or `surface`'s cross derivative.
+  bool ribbon = false;
+  Vec3 cross = Vec3::Zero();
+  //! Region: the target surface (before the shift); ribbon: the surface whose cross
+  //! derivative is held (null: `cross`).
+  std::shared_ptr<const SurfaceTrace> surface;
   std::string label;  // for messages: "constraints[2]"
 };
 
@@ -60,12 +70,17 @@ class VariationalSheet {
   //! until the surface is refined or other weights are asked for: a design session's steps
   //! (a drag, an added constraint) keep the surface, and assembling H was most of such a step
   //! (at 32 × 32 spans, 104 of 122 ms with a 0.8 ms solve; papers/welch-witkin/README.md).
+  //! K is assembled on first use (square_root()): only QR-penalty factors it, and at depth it
+  //! is as large as H (papers/welch-witkin/README.md, "Memory of deep refinement").
   struct ThinPlate {
     TensionWeights weights;
     Backend backend = Backend::Optimized;
-    SparseMatrix H, K;
+    SparseMatrix H;
+    mutable std::shared_ptr<const SparseMatrix> K;  // null until asked for
   };
   const ThinPlate& thin_plate(const TensionWeights& weights, Backend backend) const;
+  //! K of thin_plate(weights, backend), assembled once per surface and weights.
+  const SparseMatrix& thin_plate_square_root(const TensionWeights& weights, Backend backend) const;
 
  private:
   HierarchicalSurface surface_;
@@ -78,8 +93,10 @@ class VariationalSheet {
 //! control points' n × 3 coordinates, or over the stacked unknowns [x; y; z] (3n × 1, H and K
 //! block-diagonal) when a constraint couples the coordinates (normals).
 //! \throw InvalidInput from the constraints (domain, degenerate normals, ...).
+//! square_root: whether the program carries K (QR-penalty factors [μA; K]; KKT and range space
+//! never read it, and without it QR-penalty derives one from H).
 qp::QuadraticProgram assemble(const VariationalSheet& sheet, const SheetEnergy& energy,
-                              const std::vector<SheetConstraint>& constraints, Backend backend);
+                              const std::vector<SheetConstraint>& constraints, Backend backend, bool square_root = true);
 
 //! Q of the sheet's current coefficients: ½pᵀHp (eq. 4), or ½(p − p̂)ᵀH(p − p̂) about the rest
 //! shape (eq. 6, the displacement metric), from the program assemble() built for it.

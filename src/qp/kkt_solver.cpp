@@ -30,6 +30,7 @@
 #include "fairshape/core/message_format.h"
 #include "fairshape/core/timer.h"
 #include "fairshape/problem/least_squares.h"
+#include "fairshape/qp/same_matrix.h"
 #include "fairshape/qp/kkt_solver.h"
 #include "fairshape/qp/constraint_policy.h"
 #include "fairshape/qp/pinned_reduction.h"
@@ -168,7 +169,7 @@ struct KktSolver::System {
   bool singular = false;
 };
 
-KktSolver::KktSolver(Backend backend, ConstraintPolicy policy) : backend_(backend), policy_(policy) {
+KktSolver::KktSolver(Backend backend, ConstraintPolicy policy, bool reuse) : backend_(backend), policy_(policy), reuse_(reuse) {
   require_backend(backend);
 }
 KktSolver::~KktSolver() = default;
@@ -191,6 +192,7 @@ bool factor_nonsingular(LuFactor& lu, const SparseMatrix& K) {
 }  // namespace
 
 std::unique_ptr<KktSolver::System> KktSolver::build(CompressedRows rows, std::unique_ptr<LuFactor> recycled) {
+  ++factorizations_;
   auto sys = std::make_unique<System>();
   sys->rows = std::move(rows);
   sys->K = lagrange_matrix(H_, sys->rows.rows, scale_);
@@ -208,6 +210,13 @@ std::unique_ptr<KktSolver::System> KktSolver::build(CompressedRows rows, std::un
 void KktSolver::analyze(const QuadraticProgram& qp) {
   validate(qp);
   const Timer timer;
+  // Everything analyze() derives (dropped rows, the factored system, the conditioning) depends
+  // on H and A only: a step that keeps both keeps it, and solve() takes the new f and b.
+  reused_ = reuse_ && main_ && same_matrix(qp.hessian(), H_) && same_matrix(qp.A, A_original_);
+  if (reused_) {
+    analyze_s_ = timer.seconds();
+    return;
+  }
   H_ = qp.hessian();
   A_original_ = qp.A;
   scaling_ = scale_rows(qp.A);  // unit rows: one meaning of "dependent" for every kind of row

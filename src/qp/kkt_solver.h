@@ -20,13 +20,19 @@ SparseMatrix lagrange_matrix(const SparseMatrix& H, const SparseMatrix& A, doubl
 
 class KktSolver final : public QpSolver {
  public:
-  explicit KktSolver(Backend backend, ConstraintPolicy policy = {});
+  //! reuse: keep the factored system across analyze() calls with the same H and A.
+  explicit KktSolver(Backend backend, ConstraintPolicy policy = {}, bool reuse = true);
   ~KktSolver() override;
   void analyze(const QuadraticProgram& qp) override;
   QpReport solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) override;
   //! Symbolic analyses of the main system so far: analyze() on a program with the same
   //! sparsity pattern (new weights, a new rest shape) factors numerically only.
   int symbolic_analyses() const;
+  //! Numeric factorizations so far, and whether the last analyze() kept the factored system:
+  //! a program with the same H and A as the last one (a drag step: only f and b change) is
+  //! not factored again (papers/welch-witkin/README.md, "A drag step and its checks").
+  int factorizations() const { return factorizations_; }
+  bool reused_factorization() const { return reused_; }
 
  private:
   struct System;
@@ -48,6 +54,8 @@ class KktSolver final : public QpSolver {
   // the range-space method (kkt_solver.cpp).
   std::unique_ptr<PinnedReduction> pinned_;
   std::unique_ptr<RangeSpaceSolver> pinned_solver_;
+  int factorizations_ = 0;
+  bool reuse_ = true, reused_ = false;
 };
 
 }  // namespace fairshape::qp

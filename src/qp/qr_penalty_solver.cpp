@@ -1,4 +1,5 @@
 #include "fairshape/qp/qr_penalty_solver.h"
+#include "fairshape/qp/same_matrix.h"
 
 #include <Eigen/SPQRSupport>
 #include <Eigen/SparseCholesky>
@@ -62,6 +63,15 @@ void factor_r(QR& qr, const SparseMatrix& M, SparseMatrix& R, Eigen::VectorXi& p
 void QrPenaltySolver::analyze(const QuadraticProgram& qp) {
   validate(qp);
   const Timer timer;
+  // R depends on H (through K), A and μ only: a step that keeps them keeps R. A solve that
+  // raised μ left R at the raised one; a fresh analyze() starts from options_.mu, so that R
+  // is not the one to keep.
+  reused_ = options_.reuse_factorization && factorizations_ > 0 && mu_ == options_.mu && same_matrix(qp.hessian(), H_) &&
+            same_matrix(qp.A, A_original_) && (qp.K.size() == 0 || same_matrix(qp.K, K_));
+  if (reused_) {
+    analyze_s_ = timer.seconds();
+    return;
+  }
   H_ = qp.hessian();
   A_original_ = qp.A;
   scaling_ = scale_rows(qp.A);  // unit rows: μ weighs every kind of row alike
@@ -74,6 +84,7 @@ void QrPenaltySolver::analyze(const QuadraticProgram& qp) {
 }
 
 void QrPenaltySolver::factor(double mu) {
+  ++factorizations_;
   mu_ = mu;
   const double diag = H_.rows() ? H_.diagonal().cwiseAbs().maxCoeff() : 0.0;
   double a_max = 0;

@@ -34,6 +34,8 @@ struct QrPenaltyOptions {
   //! large); false: R alone, corrected semi-normal equations (fast, cond²·ε before correction).
   bool orthogonal = false;
   ConstraintPolicy policy;
+  //! Keep the factorization across analyze() calls with the same H, K and A (a drag step).
+  bool reuse_factorization = true;
 };
 
 class QrPenaltySolver final : public QpSolver {
@@ -44,6 +46,9 @@ class QrPenaltySolver final : public QpSolver {
   QpReport solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) override;
   //! The absolute weight of the constraint rows (μ times the scale ratio) of the last factorization.
   double weight() const { return weight_; }
+  //! Factorizations so far, and whether the last analyze() kept the previous one.
+  int factorizations() const { return factorizations_; }
+  bool reused_factorization() const { return reused_; }
 
  private:
   void factor(double mu);  // [μA; K] = Q R
@@ -64,6 +69,8 @@ class QrPenaltySolver final : public QpSolver {
   double weight_ = 1;
   int rank_ = 0;
   double condition_ = 0;
+  int factorizations_ = 0;
+  bool reused_ = false;
 };
 
 //! A K with KᵀK = H for a PSD H that came without its sum-of-squares form: K = D^½ Lᵀ P from

@@ -1,4 +1,8 @@
 #include "fairshape/qp/range_space_solver.h"
+#include "fairshape/qp/same_matrix.h"
+
+#include "fairshape/qp/kkt_solver.h"
+#include "fairshape/qp/qr_penalty_solver.h"
 #include "fairshape/qp/constraint_policy.h"
 #include "fairshape/qp/row_dependence.h"
 
@@ -38,13 +42,6 @@ RangeSpaceSolver::RangeSpaceSolver(ConstraintPolicy policy) : chol_(std::make_un
 RangeSpaceSolver::~RangeSpaceSolver() = default;
 
 namespace {
-bool same_matrix(const SparseMatrix& a, const SparseMatrix& b) {
-  if (a.rows() != b.rows() || a.cols() != b.cols() || a.nonZeros() != b.nonZeros()) return false;
-  const SparseMatrix x = a - b;
-  for (Eigen::Index i = 0; i < x.nonZeros(); ++i)
-    if (x.valuePtr()[i] != 0) return false;
-  return true;
-}
 using RowKey = std::vector<std::pair<int, double>>;
 std::vector<RowKey> row_keys(const SparseMatrix& A) {
   std::vector<RowKey> keys(static_cast<std::size_t>(A.rows()));
@@ -299,6 +296,8 @@ QpReport RangeSpaceSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd
 }
 
 std::string factorization_note(const QpSolver& solver) {
+  if (const auto* kkt = dynamic_cast<const KktSolver*>(&solver)) return kkt->reused_factorization() ? "reused" : "factored";
+  if (const auto* qr = dynamic_cast<const QrPenaltySolver*>(&solver)) return qr->reused_factorization() ? "reused" : "factored";
   const auto* rs = dynamic_cast<const RangeSpaceSolver*>(&solver);
   if (!rs || !rs->last_update()) return "factored";
   return "updated (+" + std::to_string(rs->last_update()->added) + " -" + std::to_string(rs->last_update()->removed) + " rows)";

@@ -71,7 +71,8 @@ class RangeSpaceSolver final : public QpSolver {
 
 //! How `solver`'s last analyze() got its factor, for reports (steps.csv's `factorization`): the
 //! range-space solver updates it across design steps that only add or remove constraints,
-//! "updated (+a -r rows)"; the others factor anew, "factored".
+//! "updated (+a -r rows)"; KKT and QR-penalty keep theirs while H and A are unchanged,
+//! "reused"; otherwise "factored".
 std::string factorization_note(const QpSolver& solver);
 
 }  // namespace fairshape::qp

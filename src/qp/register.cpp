@@ -9,6 +9,12 @@
 namespace fairshape::qp {
 
 namespace {
+bool read_reuse_factorization(Config& cfg) {
+  return cfg.get<bool>("reuse_factorization", true,
+                       "keep the factorization while H and A are unchanged (a drag step: only targets move); false: "
+                       "factor at every step (for measurements)");
+}
+
 QrPenaltyOptions read_penalty(Config& cfg) {
   QrPenaltyOptions o;
   o.mu = cfg.get_number("mu", o.mu, 1e-6, 1e12,
@@ -25,6 +31,7 @@ QrPenaltyOptions read_penalty(Config& cfg) {
   o.orthogonal = cfg.get_enum("solve", false, solves,
                               "semi_normal: R only (corrected semi-normal equations, fast); orthogonal: through Q (slow, accurate)");
   o.policy = read_constraint_policy(cfg);
+  o.reuse_factorization = read_reuse_factorization(cfg);
   return o;
 }
 // Every linear solver, both back ends: the split's free unknowns.
@@ -57,7 +64,8 @@ void register_qp_solvers(QpSolverRegistry& r) {
               : "Lagrange system (eq. 9): dependent rows dropped by a rank-revealing QR (dense pivoted, SuiteSparseQR when large), "
                 "UMFPACK factors (symbolic analysis reused)",
           [backend](Config& cfg) -> std::unique_ptr<QpSolver> {
-            return std::make_unique<KktSolver>(backend, read_constraint_policy(cfg));
+            const ConstraintPolicy policy = read_constraint_policy(cfg);
+            return std::make_unique<KktSolver>(backend, policy, read_reuse_factorization(cfg));
           });
     r.add("qr_penalty", backend,
           ref ? "penalty least squares [mu A; K] (eq. 10) by Eigen SparseQR, Van Loan refinement"

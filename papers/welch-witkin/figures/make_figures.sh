@@ -27,6 +27,11 @@ build/bin/fairshape run configs/welch-witkin/fig3.yaml --out $out-fig3 --force
 /usr/bin/python3 scripts/plot_sheets.py cells $out-fig3 papers/welch-witkin/figures/fig3.png \
   --title "Figure 3: a 4 x 4-span bicubic sheet, four points and a curve; automatic refinement by constraint error"
 keep $out-fig3 fig3
+build/bin/fairshape run configs/welch-witkin/primitives.yaml --out $out-primitives --force
+/usr/bin/python3 scripts/plot_sheets.py steps $out-primitives papers/welch-witkin/figures/primitives.png \
+  --title "Section 4.2's offsets and regions and section 5's ribbon: a terrace, a lifted region, an offset pair" \
+  --labels "ribbon: curve lifted, slope across it kept flat" "region held, the curve raised beside it" "offset: a point 0.25 above its partner"
+keep $out-primitives primitives
 build/bin/fairshape run configs/welch-witkin/metrics.yaml --out $out-metrics --force
 /usr/bin/python3 scripts/plot_sheets.py runs $out-metrics papers/welch-witkin/figures/metrics.png \
   --title "Section 4.1: one point pulled up; thin plate (eq. 6) vs control-point displacement, plain and refined sheet" \
@@ -39,3 +44,6 @@ build/bin/fairshape run configs/welch-witkin/resolution.yaml --out $out-resoluti
 /usr/bin/python3 scripts/plot_sheets.py convergence $out-resolution papers/welch-witkin/figures/resolution.png \
   --title "Figure 1's design at 8 to 64 base spans (design units): kkt, range_space and qr_penalty"
 cp $out-resolution/runs.csv papers/welch-witkin/data/resolution_runs.csv
+# The README's marked blocks from data/ (the drag-step benchmark and memory sweep data are
+# written by sheet_step_benchmark --benchmark_out and figures/memory_sweep.sh).
+/usr/bin/python3 papers/welch-witkin/figures/readme_numbers.py

@@ -114,6 +114,9 @@ void check_free_curves(SheetRunSpec& s) {
     cs.joins_free_curve = true;
     if (cs.constraint.formulation != bspline::CurveFormulation::Mortar)
       throw InvalidConfig(cs.label + ".formulation: a sheet is joined to a variational curve by the mortar rows only");
+    if (cs.constraint.ribbon)
+      throw InvalidConfig(cs.label + ".type: a ribbon along a variational curve is not supported (valid here: curve; tangent "
+                          "continuity across the joint is type tangent_continuity)");
     joined_sheets.push_back(cs.sheet);
   }
   for (const SheetConstraintSpec& cs : s.constraints)

@@ -10,6 +10,7 @@
 
 #include "fairshape/core/summary.h"
 #include "fairshape/core/config.h"
+#include "fairshape/core/memory.h"
 #include "fairshape/core/timer.h"
 #include "fairshape/experiment/kinds/sheet/constraint_schedule.h"
 #include "fairshape/experiment/kinds/sheet/curve_forms.h"
@@ -157,7 +158,43 @@ SpaceCurveSpec read_curve(Config& c, double chord_tolerance) {
   return s;
 }
 
-const std::vector<std::string> kConstraintTypes{"point", "tangent", "normal", "curve", "curve_point", "curve_tangent"};
+const std::vector<std::string> kConstraintTypes{"point", "tangent", "normal", "curve", "ribbon", "offset", "region", "curve_point", "curve_tangent"};
+
+// A vector key that may instead name a surface to take it from: [x, y, z], or one of `words`
+// (returned; empty for a vector, read into v).
+std::string read_vec3_or_word(Config& c, const std::string& key, const std::vector<std::string>& words, const std::string& fallback,
+                              Vec3& v, const std::string& doc) {
+  if (c.has(key) && c.node()[key].IsScalar()) return c.get_choice(key, fallback, words, doc);
+  if (!c.has(key)) {
+    (void)c.get_choice(key, fallback, words, doc);
+    return fallback;
+  }
+  v = read_vec3(c, key, Vec3::Zero(), doc);
+  return "";
+}
+
+SheetConstraintSpec::Held held_surface(const std::string& word) {
+  return word == "initial" ? SheetConstraintSpec::Held::Initial : SheetConstraintSpec::Held::Current;
+}
+
+// The curve keys of a curve or ribbon constraint.
+void read_curve_keys(Config& c, SheetConstraintSpec& s, double chord_tolerance) {
+  SheetConstraint& k = s.constraint;
+  k.kind = SheetConstraint::Kind::Curve;
+  s.curve = c.require<std::string>("curve", "space curve name");
+  k.curve.uv = read_uv_curve(c, "uv", "(u, v) curve on the sheet (default: the curve's from_surface uv)", chord_tolerance).points;
+  static const NameTable<bspline::CurveFormulation> formulations{{bspline::CurveFormulation::Mortar, "mortar"},
+                                                                 {bspline::CurveFormulation::Paper, "paper"}};
+  k.formulation = c.get_enum("formulation", bspline::CurveFormulation::Mortar, formulations,
+                             "mortar: weak rows against multipliers along the curve (no locking); paper: eq. 7, one row "
+                             "per control point reached (locks; the rank tolerance picks the answer)");
+  static const NameTable<bspline::CurveQuadrature> quadratures{{bspline::CurveQuadrature::Exact, "exact"},
+                                                               {bspline::CurveQuadrature::Reduced, "reduced"}};
+  if (c.has("quadrature") && k.formulation != bspline::CurveFormulation::Paper)
+    throw InvalidConfig(c.key_path("quadrature") + ": applies to formulation: paper only (the mortar rows are integrated exactly)");
+  k.quadrature = c.get_enum("quadrature", bspline::CurveQuadrature::Exact, quadratures,
+                            "formulation paper: eq. 7 integration, exact or reduced (§4.2.2, against locking)");
+}
 
 SheetConstraintSpec read_constraint(Config& c, const std::string& label, const std::string& first_sheet, double chord_tolerance) {
   SheetConstraintSpec s;
@@ -167,26 +204,45 @@ SheetConstraintSpec read_constraint(Config& c, const std::string& label, const s
   s.sheet = c.get<std::string>("sheet", first_sheet, "sheet it acts on (default: the first)");
   read_schedule(c, s.step, s.until);
   SheetConstraint& k = s.constraint;
-  if (type == "curve") {
-    k.kind = SheetConstraint::Kind::Curve;
-    s.curve = c.require<std::string>("curve", "space curve name");
-    k.curve.uv = read_uv_curve(c, "uv", "(u, v) curve on the sheet (default: the curve's from_surface uv)", chord_tolerance).points;
-    static const NameTable<bspline::CurveFormulation> formulations{{bspline::CurveFormulation::Mortar, "mortar"},
-                                                                   {bspline::CurveFormulation::Paper, "paper"}};
-    k.formulation = c.get_enum("formulation", bspline::CurveFormulation::Mortar, formulations,
-                               "mortar: weak rows against multipliers along the curve (no locking); paper: eq. 7, one row "
-                               "per control point reached (locks; the rank tolerance picks the answer)");
-    static const NameTable<bspline::CurveQuadrature> quadratures{{bspline::CurveQuadrature::Exact, "exact"},
-                                                                 {bspline::CurveQuadrature::Reduced, "reduced"}};
-    if (c.has("quadrature") && k.formulation != bspline::CurveFormulation::Paper)
-      throw InvalidConfig(c.key_path("quadrature") + ": applies to formulation: paper only (the mortar rows are integrated exactly)");
-    k.quadrature = c.get_enum("quadrature", bspline::CurveQuadrature::Exact, quadratures,
-                              "formulation paper: eq. 7 integration, exact or reduced (§4.2.2, against locking)");
+  if (type == "curve" || type == "ribbon") {
+    read_curve_keys(c, s, chord_tolerance);
+    if (type == "ribbon") {
+      // The cross slope along the curve (ribbon_constraint.h): the sheet's own, or a fixed vector.
+      k.ribbon = true;
+      const std::string word = read_vec3_or_word(
+          c, "cross_tangent", {"initial", "current"}, "initial", k.cross,
+          "the derivative across the curve (to the left of its direction, per design length): initial | current (the "
+          "sheet's, before any step or at the ribbon's first step) | [x, y, z]");
+      if (!word.empty()) s.held = held_surface(word);
+    }
+  } else if (type == "region") {
+    k.kind = SheetConstraint::Kind::Region;
+    const auto corners = c.require<std::vector<std::vector<double>>>("corners", "the (u, v) rectangle: [[u0, v0], [u1, v1]]");
+    if (!c.documenting()) {
+      if (corners.size() != 2 || corners[0].size() != 2 || corners[1].size() != 2)
+        throw InvalidConfig(c.key_path("corners") + ": expected [[u0, v0], [u1, v1]]");
+      k.u = std::min(corners[0][0], corners[1][0]);
+      k.v = std::min(corners[0][1], corners[1][1]);
+      k.other = {std::max(corners[0][0], corners[1][0]), std::max(corners[0][1], corners[1][1])};
+      if (!(k.other.x() > k.u) || !(k.other.y() > k.v)) throw InvalidConfig(c.key_path("corners") + ": the rectangle is empty");
+    }
+    s.held = held_surface(c.get_choice("surface", "current", {"initial", "current"},
+                                       "the surface the region holds: the sheet before any step, or as it is at the "
+                                       "region's first step"));
+    k.target = read_vec3(c, "by", Vec3::Zero(), "the region moved rigidly by this from that surface");
+    s.moves = read_moves(c, s.step);
   } else {
     const Eigen::Vector2d uv = read_uv(c, "uv", "parameter point [u, v]");
     k.u = uv.x();
     k.v = uv.y();
-    if (type == "point") {
+    if (type == "offset") {
+      k.kind = SheetConstraint::Kind::Offset;
+      k.other = read_uv(c, "from", "the point [u, v] it is offset from");
+      const std::string word = read_vec3_or_word(c, "offset", {"initial"}, "initial", k.target,
+                                                 "w(uv) - w(from): [x, y, z], or initial (as on the initial sheet)");
+      s.relative = !word.empty();
+      s.moves = read_moves(c, s.step);
+    } else if (type == "point") {
       k.kind = SheetConstraint::Kind::Point;
       s.relative = c.has("by");
       if (s.relative && c.has("target")) throw InvalidConfig(c.key_path("by") + ": give target or by, not both");
@@ -286,7 +342,7 @@ static SheetRunSpec read_sheet_run(const std::vector<std::string>& search_dirs, 
   for (std::size_t i = 0; i < s.curves.size(); ++i) curve_names.emplace_back("curves[" + std::to_string(i) + "].name", s.curves[i].name);
   check_distinct_file_names(curve_names);
   k = 0;
-  for (Config c : root.child_list("constraints", "[{type: point|tangent|normal|curve|curve_point|curve_tangent|tangent_continuity, sheet, uv, ...}]")) {
+  for (Config c : root.child_list("constraints", "[{type: point|tangent|normal|curve|ribbon|offset|region|curve_point|curve_tangent|tangent_continuity, sheet, uv, ...}]")) {
     const std::string label = "constraints[" + std::to_string(k++) + "]";
     if (is_curve_constraint(c)) {  // a variational curve's own (free_curves.h)
       s.curve_constraints.push_back(read_curve_constraint(c, label));
@@ -347,10 +403,15 @@ static SheetRunSpec read_sheet_run(const std::vector<std::string>& search_dirs, 
       to_spans(cs.sheet, cs.constraint.curve.uv, cs.label);
       continue;
     }
+    const bool two_points = cs.constraint.kind == SheetConstraint::Kind::Offset || cs.constraint.kind == SheetConstraint::Kind::Region;
     std::vector<Eigen::Vector2d> at{{cs.constraint.u, cs.constraint.v}};
-    to_spans(cs.sheet, at, cs.label);
+    to_spans(cs.sheet, at, cs.label + (two_points ? (cs.constraint.kind == SheetConstraint::Kind::Offset ? ".uv" : ".corners[0]") : ""));
     cs.constraint.u = at[0].x();
     cs.constraint.v = at[0].y();
+    if (!two_points) continue;
+    std::vector<Eigen::Vector2d> other{cs.constraint.other};
+    to_spans(cs.sheet, other, cs.label + (cs.constraint.kind == SheetConstraint::Kind::Offset ? ".from" : ".corners[1]"));
+    cs.constraint.other = other[0];
   }
   Config ec = root.child("energy", "objective (§4.1): {metric, alpha, beta, rest_shape}");
   static const NameTable<bspline::ShapeMetric> metrics{{bspline::ShapeMetric::ThinPlate, "thin_plate"},
@@ -424,7 +485,7 @@ const std::vector<std::string>& sheet_metric_columns() {
   static const std::vector<std::string> cols{
       "sheets", "steps", "dofs", "levels", "constraint_rows", "dropped_rows", "constraint_residual", "max_constraint_error",
       "energy", "spans_refined", "refinement_rounds", "objective_error_estimate", "surface_change_estimate",
-      "condition_estimate", "analyze_s", "solve_s", "time_s", "unused_keys", "termination", "message"};
+      "condition_estimate", "analyze_s", "solve_s", "time_s", "peak_rss_mb", "unused_keys", "termination", "message"};
   return cols;
 }
 
@@ -463,6 +524,7 @@ std::vector<Vec3> curve_at_step(const SpaceCurveSpec& c, const std::vector<Vec3>
 std::vector<SheetConstraint> active_constraints(const SheetRunSpec& spec, std::size_t k, int step,
                                                 const std::map<std::string, std::vector<Vec3>>& curves_now,
                                                 const std::map<std::string, std::shared_ptr<const bspline::SurfaceTrace>>& traced_on,
+                                                const std::map<std::string, std::shared_ptr<const bspline::SurfaceTrace>>& held,
                                                 const bspline::HierarchicalSurface& initial_surface, const Eigen::MatrixXd& initial_P) {
   std::vector<SheetConstraint> active;
   for (const SheetConstraintSpec& cs : spec.constraints) {
@@ -473,6 +535,8 @@ std::vector<SheetConstraint> active_constraints(const SheetRunSpec& spec, std::s
       if (const auto t = traced_on.find(cs.curve); t != traced_on.end()) c.curve.traced = t->second;
     }
     if (cs.relative) c.target += initial_surface.position(initial_P, c.u, c.v);
+    if (cs.relative && c.kind == SheetConstraint::Kind::Offset) c.target -= initial_surface.position(initial_P, c.other.x(), c.other.y());
+    if (cs.held != SheetConstraintSpec::Held::None) c.surface = held.at(cs.label);
     for (const PointMove& m : cs.moves)
       if (m.step <= step) c.target += m.by;
     active.push_back(std::move(c));
@@ -515,6 +579,7 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
   row["steps"] = std::to_string(spec.steps());
   row["termination"] = std::string(to_string(Termination::Converged));
   const Timer wall;
+  reset_peak_rss();  // this run's own peak, not an earlier run's of the sweep
   int step = 0;
   try {
     // Sheets, refined up front; curves traced on the initial surfaces.
@@ -544,6 +609,15 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
     // Curves traced on the current surface: traced again at their first step, before it is
     // solved, and that surface kept as their target.
     std::map<std::string, std::shared_ptr<const bspline::SurfaceTrace>> traced_on;
+    // The surfaces regions and ribbons hold, by constraint label: the initial sheet's now, the
+    // current ones at the constraint's first step (before it is solved: adding it moves nothing).
+    std::map<std::string, std::shared_ptr<const bspline::SurfaceTrace>> held;
+    const auto hold = [&](const SheetConstraintSpec& cs) {
+      const std::size_t k = sheet_of(cs.sheet);
+      held[cs.label] = std::make_shared<const bspline::SurfaceTrace>(bspline::SurfaceTrace{sheets[k].surface(), sheets[k].coefficients()});
+    };
+    for (const SheetConstraintSpec& cs : spec.constraints)
+      if (cs.held == SheetConstraintSpec::Held::Initial) hold(cs);
     const auto first_use = [&](const SpaceCurveSpec& c) {
       int first = -1;
       for (const SheetConstraintSpec& cs : spec.constraints)
@@ -577,12 +651,14 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
         traced_on[c.name] = std::make_shared<const bspline::SurfaceTrace>(
             bspline::SurfaceTrace{sheets[k].surface(), sheets[k].coefficients()});
       }
+      for (const SheetConstraintSpec& cs : spec.constraints)
+        if (cs.held == SheetConstraintSpec::Held::Current && cs.step == step) hold(cs);
       std::map<std::string, std::vector<Vec3>> curves_now;
       for (const SpaceCurveSpec& c : spec.curves) curves_now[c.name] = curve_at_step(c, base_curves.at(c.name), step);
       ConstraintOverlay overlay;
       std::vector<std::vector<SheetConstraint>> actives;
       for (std::size_t k = 0; k < sheets.size(); ++k)
-        actives.push_back(active_constraints(spec, k, step, curves_now, traced_on, initial_surfaces[k], initial_P[k]));
+        actives.push_back(active_constraints(spec, k, step, curves_now, traced_on, held, initial_surfaces[k], initial_P[k]));
       // Sheets joined to variational curves first, with them (their curves' shapes into curves_now).
       const JoinedStep joined = free_curves.solve_step(spec, step, sheets, energies, actives, curves_now, overlay);
       final_curves = curves_now;
@@ -681,7 +757,7 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
     if (spec.estimate_objective_error && row["termination"] == to_string(Termination::Converged)) {
       double energy_change = 0, surface_change = 0;
       for (std::size_t k = 0; k < sheets.size(); ++k) {
-        const auto active = active_constraints(spec, k, spec.steps() - 1, final_curves, traced_on, initial_surfaces[k], initial_P[k]);
+        const auto active = active_constraints(spec, k, spec.steps() - 1, final_curves, traced_on, held, initial_surfaces[k], initial_P[k]);
         if (active.empty()) continue;
         const bspline::ObjectiveErrorEstimate e =
             bspline::estimate_objective_error(sheets[k], energies[k], active, *spec.solver, spec.implementation);
@@ -733,6 +809,7 @@ MetricRow execute_sheet_run(SheetRunSpec& spec, const RunOutputs& out) {
     row["message"] = "step " + std::to_string(step) + ": " + e.what();
   }
   row["time_s"] = num(wall.seconds());
+  row["peak_rss_mb"] = num(peak_rss_mb());
   return row;
 }
 

@@ -68,7 +68,10 @@ struct SheetConstraintSpec {
   std::string sheet, curve, label;
   int step = 0;                 // active from this design step ...
   int until = -1;               // ... up to (not including) this one; −1: never removed
-  bool relative = false;        // point: target is an offset from the initial surface point
+  bool relative = false;        // point: target is an offset from the initial surface point; offset: the initial offset
+  //! Region and ribbon: the surface they hold (region: its positions, ribbon: its cross
+  //! derivative), the initial sheet or the sheet as it is at the constraint's first step.
+  enum class Held { None, Initial, Current } held = Held::None;
   std::vector<PointMove> moves;  // point: the target dragged over the steps
   bspline::SheetConstraint constraint;
   //! A curve constraint whose space curve is variational: a joint, solved with the curve.

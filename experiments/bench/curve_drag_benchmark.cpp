@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "curve_wave.h"
 #include "fairshape/core/config.h"
 #include "fairshape/core/timer.h"
 #include "fairshape/curve_design/editing_loop.h"
@@ -20,17 +21,7 @@ using namespace fairshape;
 
 namespace {
 
-// The wave of data/curves/wave129.obj at 2^k + 1 points.
-Polyline wave(int k) {
-  const int n = (1 << k) + 1;
-  Polyline c;
-  c.points.resize(n, 3);
-  for (int i = 0; i < n; ++i) {
-    const double t = static_cast<double>(i) / (n - 1);
-    c.points.row(i) << 2 * t, 0.12 * std::sin(2 * M_PI * t) + 0.015 * std::sin(14 * M_PI * t), 0.0;
-  }
-  return c;
-}
+Polyline wave(int k) { return curve_wave(k); }
 
 CurveEdit drag_step(int k) {
   CurveEdit e;  // default EditingOptions: local explicit step, local frames, support windows, plane kept

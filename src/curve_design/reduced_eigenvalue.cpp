@@ -99,7 +99,7 @@ double gershgorin_bound(const SparseMatrix& W) {
 // Inverse-iteration steps of the one acceleration (a Rayleigh quotient is an upper bound).
 constexpr int kRayleighSteps = 4;
 // Lanczos steps at most (each one banded solve, a tenth of a factorization's cost).
-constexpr int kLanczosSteps = 30;
+constexpr int kLanczosSteps = 12;
 
 }  // namespace
 
@@ -132,8 +132,14 @@ ReducedEigenvalueBracket smallest_reduced_eigenvalue(const LengthProblem& p, con
     const double theta = kkt.lanczos_largest(kLanczosSteps, 0.3 * relative_tolerance);
     if (theta > 0 && 1 / theta < hi) {
       hi = 1 / theta;
-      const double t = hi - 0.9 * std::max(relative_tolerance * hi, floor);
-      if (t > lo && !probe(t)) return out;
+      // Just below the Ritz bound, then (a Ritz value of a cluster converges slowly) walking down
+      // in doubling steps until a probe has no eigenvalue below it: usually one or two probes.
+      const double rho = hi;
+      for (double step = 0.9 * std::max(relative_tolerance * rho, floor); rho - step > lo; step *= 2) {
+        const double t = rho - step;
+        if (!probe(t)) return out;
+        if (lo == t) break;
+      }
     }
   }
   bool accelerated = false;

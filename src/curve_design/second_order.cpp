@@ -113,6 +113,15 @@ SecondOrderCheck second_order_check(const LengthProblem& p, const MatrixX3& X, S
 
 SecondOrderCheck judge_second_order(const LengthProblem& p, LengthSolveReport& rep, bool stationarity_asked, SecondOrderMode mode,
                                     const SecondOrderCheck* made) {
+  // Lengths alone (the paper's rule) claim no optimality: the eigenvalue is only reported, so
+  // it is not paid for above the dense limit (a point away from stationarity usually has an
+  // indefinite reduced Hessian, where the bracket falls back to bisection: many factorizations).
+  if (!made && !stationarity_asked && mode == SecondOrderMode::Inertia && p.n_points() > kSecondOrderDenseLimit) {
+    std::ostringstream m;
+    m << "; lengths alone (stationarity_tolerance 0): second order not estimated above " << kSecondOrderDenseLimit << " points";
+    rep.summary.message += m.str();
+    return {};
+  }
   SecondOrderCheck so = made ? *made : second_order_check(p, rep.points, mode, false);
   if (!so.checked) {
     rep.summary.message += "; " + so.message;

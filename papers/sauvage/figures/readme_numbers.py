@@ -57,6 +57,20 @@ def drag():
             continue
         out.append(f"| {points:,} | {MODES[arg(r, 'mode')]} | {int(r['window_points']):,} | {r['step_ms']:.2f} | "
                    f"{r['solve_ms']:.2f} | {r['check_ms']:.2f} | {100 * r['check_share']:.0f} % | {r['us_per_point']:.2f} |")
+    # The goal: a drag step ≤ 16 ms up to 4k points, never slower per point at a smaller size.
+    out.append("")
+    for mode, label in MODES.items():
+        ok = sorted((2 ** int(arg(r, "log2_segments")) + 1, r) for r in rows
+                    if arg(r, "mode") == mode and not r.get("error_occurred") and "step_ms" in r)
+        if not ok:
+            continue
+        small = [(p, r) for p, r in ok if p <= 4097]
+        worst = max(r["step_ms"] for _, r in small)
+        per_point = [r["us_per_point"] for _, r in ok]
+        monotone = all(a <= b * 1.05 for a, b in zip(per_point, per_point[1:]))
+        out.append(f"- {label}: slowest step up to 4,097 points {worst:.1f} ms "
+                   f"({'within' if worst <= 16 else 'over'} the 16 ms goal); per point "
+                   f"{'never slower at a smaller size (5 % noise allowed)' if monotone else 'slower at some smaller size'}.")
     return "\n".join(out)
 
 

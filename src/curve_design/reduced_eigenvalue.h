@@ -3,7 +3,9 @@
 // of [W − tI, Jᵀ; J, 0] has m + #{eigenvalues of Zᵀ W Z below t} negative pivots (Z orthonormal,
 // so Zᵀ(W − tI)Z = Zᵀ W Z − tI), so each factorization answers "is λ_min below t?" exactly up to
 // rounding, in O(n) on the banded order. The bracket it returns is a guarantee, not an estimate's
-// error bar; O(n · (log log(scale/floor) + log(1/tolerance))) in all. The constraint rows are the
+// error bar. At a minimum Lanczos on the inverse of the factor at 0 (a Ritz value: an upper
+// bound) and a probe or two just below it close the bracket in a handful of factorizations;
+// otherwise bisection, O(n · (log log(scale/floor) + log(1/tolerance))). The constraint rows are the
 // problem's own, so a planar problem (an InPlane row per point, curve_plane.h) is judged in its
 // plane, as the dense check does (papers/sauvage/README.md, "Second-order checks cheaper than the
 // solve").

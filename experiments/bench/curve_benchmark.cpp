@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "curve_wave.h"
 #include "fairshape/core/config.h"
 #include "fairshape/curve_design/editing_loop.h"
 #include "fairshape/curve_design/second_order.h"
@@ -14,17 +15,7 @@ using namespace fairshape;
 
 namespace {
 
-// The wave of data/curves/wave129.obj at any resolution 2^k + 1.
-Polyline wave(int k) {
-  const int n = (1 << k) + 1;
-  Polyline c;
-  c.points.resize(n, 3);
-  for (int i = 0; i < n; ++i) {
-    const double t = static_cast<double>(i) / (n - 1);
-    c.points.row(i) << 2 * t, 0.12 * std::sin(2 * M_PI * t) + 0.015 * std::sin(14 * M_PI * t), 0.0;
-  }
-  return c;
-}
+Polyline wave(int k) { return curve_wave(k); }
 
 struct Setup {
   std::unique_ptr<CurveEnergy> bending;
@@ -157,14 +148,18 @@ void BM_TimeToAccuracy(benchmark::State& state, const std::string& type, const s
   state.counters["length_error"] = error;
   state.counters["distance_to_minimum"] = distance;
 }
-// What every run above spends after its solve: the dense second-order check at the minimum
-// (curve_design/second_order.h), so solve times can be read apart from it.
+// What every run above spends after its solve: the second-order check at the minimum
+// (curve_design/second_order.h), so solve times can be read apart from it. Arg: 0 the default
+// (inertia of the banded KKT factor, the eigenvalue by inertia bisection), 1 the dense
+// eigen-solve (second_order: dense, what every run paid before).
 void BM_SecondOrderCheck(benchmark::State& state) {
   Setup s("trust_region", Backend::Optimized, "{}");
   const PreparedCurveEdit prepared = prepare_editing_loop(wave(7), 7, compress95(), s.objective, Backend::Optimized);
-  for (auto _ : state) benchmark::DoNotOptimize(check_second_order(*prepared.problem, common_minimum()).min_eigenvalue);
+  const SecondOrderMode mode = state.range(0) ? SecondOrderMode::Dense : SecondOrderMode::Inertia;
+  for (auto _ : state)
+    benchmark::DoNotOptimize(second_order_check(*prepared.problem, common_minimum(), mode, false).min_eigenvalue);
 }
-BENCHMARK(BM_SecondOrderCheck)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SecondOrderCheck)->ArgName("dense")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_CAPTURE(BM_TimeToAccuracy, linearized_paper, std::string("linearized"), std::string())
     ->DenseRange(2, 12, 2)->Unit(benchmark::kMillisecond);

@@ -102,7 +102,8 @@ def edit_curve(curve, level, indices, offsets=None, chord_scale=None, wrinkle_le
     ({'type': 'pin', 'points': 'endpoints'}, {'type': 'tangent', ...}); beta: eq. 2's
     (1−β)·smoothness + β·distance to C_A; smoothness: a registered curve energy;
     solver: 'linearized', 'trust_region', ... (fairshape.curve_components()['solvers']) with its
-    options as keywords: length_tolerance=, stationarity_tolerance=, max_solves= and the
+    options as keywords: length_tolerance=, stationarity_tolerance=, max_solves=,
+    second_order='inertia'|'dense'|'off' (how the answer is judged at second order) and the
     solver's own (linearization='newton', initial_radius=, ...); an unknown one raises
     InvalidConfig naming the valid ones. explicit_step 'local'|'sweep', details
     'local_frames'|'global', solve_region 'support'|'curve': the config's editing: block.

@@ -88,7 +88,8 @@ std::unique_ptr<LengthSolver> solver_arg(const std::string& type, const py::dict
   py::dict block, own;
   for (auto [k, v] : options) {
     const std::string key = py::str(k);
-    if (key == "length_tolerance" || key == "stationarity_tolerance" || key == "max_solves") block[k] = v;
+    if (key == "length_tolerance" || key == "stationarity_tolerance" || key == "max_solves" || key == "second_order")
+      block[k] = v;
     else own[k] = v;
   }
   if (!own.empty()) block[type.c_str()] = own;

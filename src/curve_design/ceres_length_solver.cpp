@@ -165,7 +165,7 @@ LengthSolveReport CeresLengthSolver::solve(const LengthProblem& p, const MatrixX
       rep.points = X;
       rep.summary.termination = Termination::Converged;
       rep.summary.message = "converged after " + std::to_string(round + 1) + " augmented-Lagrangian round(s)";
-      judge_second_order(p, rep, o_.tolerances.stationarity > 0);  // a saddle is reported, not converged (no escape here)
+      judge_second_order(p, rep, o_.tolerances.stationarity > 0, o_.tolerances.second_order);  // a saddle is reported, not converged (no escape here)
       return rep;
     }
     for (int r = 0; r < m; ++r) lambda[r] += mu * rows[r].value / p.row_scale(r);

@@ -37,17 +37,25 @@ struct LengthSolveReport {
   int outer_iterations = 0;  // linearizations, or augmented-Lagrangian rounds
   double length_error = 0, pin_error = 0;
   //! The smallest eigenvalue of the reduced Hessian at the answer (curve_design/second_order.h;
-  //! NaN when not checked: not converged, or more points than the dense check takes).
+  //! NaN when not checked: not converged, second_order off, or the check failed).
   double min_reduced_hessian_eig = std::numeric_limits<double>::quiet_NaN();
   int saddle_escapes = 0;  // negative-curvature steps taken away from saddles found on the way (trust_region: accepted ones)
   std::vector<LengthSolveStep> history;
 };
+
+// How a stationary answer is judged at second order (second_order.h; papers/sauvage/README.md,
+// "Second-order checks cheaper than the solve"): Inertia, the banded KKT factor's inertia for the
+// verdict and bisection on it for the smallest eigenvalue, O(n) at any size; Dense, the reduced
+// Hessian's full eigen-decomposition, O(n³), up to kSecondOrderDenseLimit points; Off, no check
+// (the answer is first-order only, and says so).
+enum class SecondOrderMode { Inertia, Dense, Off };
 
 // Stopping rule shared by the solvers.
 struct LengthTolerances {
   double length = 1e-10;       // max relative segment-length error (the floor grows like n·ε)
   double stationarity = 1e-8;  // 0: stop on lengths alone, as the paper does
   int max_solves = 200;
+  SecondOrderMode second_order = SecondOrderMode::Inertia;
 };
 
 class LengthSolver {

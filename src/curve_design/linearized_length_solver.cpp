@@ -176,8 +176,9 @@ LengthSolveReport LinearizedLengthSolver::solve(const LengthProblem& p, const Ma
       // Stationary is not yet minimal: at a saddle, step off it along negative curvature and go
       // on; after o_.saddle_escapes the saddle is reported (not_a_minimum).
       const bool may_escape = o_.tolerances.stationarity > 0 && rep.saddle_escapes < o_.saddle_escapes;
-      const SecondOrderCheck so = may_escape ? check_second_order(p, rep.points) : SecondOrderCheck{};
-      if (so.checked && !so.is_minimum(kSecondOrderTolerance)) {
+      const SecondOrderMode mode = o_.tolerances.second_order;
+      const SecondOrderCheck so = may_escape ? second_order_check(p, rep.points, mode, true) : SecondOrderCheck{};
+      if (so.checked && !so.is_minimum(kSecondOrderTolerance) && so.direction.rows() == p.n_points()) {
         ++rep.saddle_escapes;
         window_start = best_progress = INFINITY;  // a new descent: the stall window restarts
         rep.points = escape_saddle(p, rep.points, so.direction);
@@ -185,7 +186,7 @@ LengthSolveReport LinearizedLengthSolver::solve(const LengthProblem& p, const Ma
         merit = MeritHistory{};
         continue;
       }
-      judge_second_order(p, rep, o_.tolerances.stationarity > 0);
+      judge_second_order(p, rep, o_.tolerances.stationarity > 0, mode, may_escape ? &so : nullptr);
       if (rep.saddle_escapes > 0) rep.summary.message += " (" + std::to_string(rep.saddle_escapes) + " saddle(s) left on the way)";
       return rep;
     }

@@ -15,6 +15,12 @@ LengthTolerances read_tolerances(Config& c) {
   t.stationarity = c.get_number("stationarity_tolerance", t.stationarity, 0, 1,
                                 "and |grad F + J^T lambda| / (|QX| + |b|) is below (0: lengths alone, as the paper)");
   t.max_solves = c.get_int("max_solves", t.max_solves, 1, 1000000, "give up after this many linear solves");
+  static const NameTable<SecondOrderMode> modes{
+      {SecondOrderMode::Inertia, "inertia"}, {SecondOrderMode::Dense, "dense"}, {SecondOrderMode::Off, "off"}};
+  t.second_order = c.get_enum("second_order", SecondOrderMode::Inertia, modes,
+                              "how a stationary answer is judged: inertia (LDLT inertia of the banded KKT factor, smallest "
+                              "eigenvalue by inertia bisection, O(n) at any size), dense (the reduced Hessian's eigen-solve, "
+                              "O(n^3), curves up to 600 points) or off (not checked: first order only)");
   return t;
 }
 
@@ -55,7 +61,7 @@ LengthSolverRegistry::Factory trust_region(Backend backend) {
     o.stall_window = own.get_int("stall_window", o.stall_window, 1, 1000000,
                                  "iterations without a decrease of the objective (or stationarity) before 'stalled'");
     o.dense_limit = own.get_int("dense_limit", o.dense_limit, 0, 5000,
-                                "up to this many points the reduced Hessian is formed densely every iteration");
+                                "with second_order: dense, up to this many points the reduced Hessian is formed densely every iteration");
     o.block_size = own.get_int("block_size", o.block_size, 1, 64,
                                "above dense_limit: soft modes followed by block inverse iteration, the step exact in their span "
                                "(1: one eigenvector per iteration, the method before)");

@@ -3,10 +3,12 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 #include <algorithm>
+#include <sstream>
 
 #include "fairshape/core/message_format.h"
 #include "fairshape/curve_design/kkt_factor.h"
 #include "fairshape/curve_design/length_manifold.h"
+#include "fairshape/curve_design/reduced_eigenvalue.h"
 
 namespace fairshape {
 
@@ -61,21 +63,68 @@ int reduced_hessian_negative_count(const LengthProblem& p, const MatrixX3& X, do
   return negative < 0 ? -1 : std::max(negative - p.n_constraint_rows(), 0);
 }
 
-SecondOrderCheck judge_second_order(const LengthProblem& p, LengthSolveReport& rep, bool stationarity_asked) {
-  SecondOrderCheck so = check_second_order(p, rep.points);
+const char* to_string(SecondOrderMode mode) {
+  switch (mode) {
+    case SecondOrderMode::Inertia: return "inertia";
+    case SecondOrderMode::Dense: return "dense";
+    case SecondOrderMode::Off: return "off";
+  }
+  return "?";
+}
+
+SecondOrderCheck check_second_order_by_inertia(const LengthProblem& p, const MatrixX3& X, bool want_direction) {
+  SecondOrderCheck out;
+  const ReducedEigenvalueBracket b = smallest_reduced_eigenvalue(p, X);
+  // A bracket at or above −shift already says "none below it"; only a lower one needs the count.
+  const double shift = kSecondOrderTolerance * p.objective_hessian().diagonal().cwiseAbs().maxCoeff();
+  out.negative_count = b.ok && b.lower >= -shift ? 0 : reduced_hessian_negative_count(p, X, shift);
+  if (out.negative_count < 0 || !b.ok) {
+    out.negative_count = -1;
+    out.message = "second order not checked: the KKT factorization failed or gave no inertia";
+    return out;
+  }
+  out.checked = true;
+  out.min_eigenvalue = b.estimate();
+  out.min_eigenvalue_error = 0.5 * (b.upper - b.lower);
+  out.max_abs_eigenvalue = b.scale;
+  if (out.negative_count > 0 && want_direction) out.direction = smallest_reduced_eigenvector(p, X, b);
+  std::ostringstream m;
+  m << "reduced Hessian's smallest eigenvalue in [" << sci(b.lower) << ", " << sci(b.upper) << "] (inertia bisection, "
+    << b.factorizations << " banded factorizations), " << out.negative_count << " below the shift (LDLT inertia)";
+  out.message = m.str();
+  return out;
+}
+
+SecondOrderCheck second_order_check(const LengthProblem& p, const MatrixX3& X, SecondOrderMode mode, bool want_direction) {
+  if (mode == SecondOrderMode::Off) {
+    SecondOrderCheck off;
+    off.message = "second order not checked (second_order: off)";
+    return off;
+  }
+  if (mode == SecondOrderMode::Dense && p.n_points() <= kSecondOrderDenseLimit) return check_second_order(p, X);
+  SecondOrderCheck out = check_second_order_by_inertia(p, X, want_direction);
+  if (mode == SecondOrderMode::Dense) {
+    std::ostringstream m;
+    m << out.message << "; dense check not made: " << p.n_points() << " points (dense limit " << kSecondOrderDenseLimit << ")";
+    out.message = m.str();
+  }
+  return out;
+}
+
+SecondOrderCheck judge_second_order(const LengthProblem& p, LengthSolveReport& rep, bool stationarity_asked, SecondOrderMode mode,
+                                    const SecondOrderCheck* made) {
+  // Lengths alone (the paper's rule) claim no optimality: the eigenvalue is only reported, so
+  // it is not paid for above the dense limit (a point away from stationarity usually has an
+  // indefinite reduced Hessian, where the bracket falls back to bisection: many factorizations).
+  if (!made && !stationarity_asked && mode == SecondOrderMode::Inertia && p.n_points() > kSecondOrderDenseLimit) {
+    std::ostringstream m;
+    m << "; lengths alone (stationarity_tolerance 0): second order not estimated above " << kSecondOrderDenseLimit << " points";
+    rep.summary.message += m.str();
+    return {};
+  }
+  SecondOrderCheck so = made ? *made : second_order_check(p, rep.points, mode, false);
   if (!so.checked) {
-    // Too large for the dense eigenvalues: the inertia says whether, not how negative.
-    const int negative = stationarity_asked ? reduced_hessian_negative_count(p, rep.points) : -1;
-    if (negative > 0) {
-      rep.summary.termination = Termination::NotAMinimum;
-      rep.summary.message = "stationary but not a minimum: the reduced Hessian has " + std::to_string(negative) +
-                            " negative eigenvalue(s) (LDLT inertia of the KKT matrix; smallest not estimated above " +
-                            std::to_string(kSecondOrderDenseLimit) + " points), a constrained saddle";
-    } else {
-      rep.summary.message += negative == 0 ? "; reduced Hessian positive semidefinite by LDLT inertia (smallest eigenvalue not estimated above " +
-                                                 std::to_string(kSecondOrderDenseLimit) + " points)"
-                                           : "; " + so.message;
-    }
+    rep.summary.message += "; " + so.message;
     return so;
   }
   rep.min_reduced_hessian_eig = so.min_eigenvalue;
@@ -88,8 +137,12 @@ SecondOrderCheck judge_second_order(const LengthProblem& p, LengthSolveReport& r
   }
   if (!so.is_minimum(kSecondOrderTolerance)) {
     rep.summary.termination = Termination::NotAMinimum;
-    rep.summary.message = "stationary but not a minimum: the reduced Hessian's smallest eigenvalue is " + sci(so.min_eigenvalue) +
-                          " (largest |eigenvalue| " + sci(so.max_abs_eigenvalue) + "), a constrained saddle";
+    rep.summary.message = so.negative_count >= 0
+                              ? "stationary but not a minimum: " + so.message + ", a constrained saddle"
+                              : "stationary but not a minimum: the reduced Hessian's smallest eigenvalue is " + sci(so.min_eigenvalue) +
+                                    " (largest |eigenvalue| " + sci(so.max_abs_eigenvalue) + "), a constrained saddle";
+  } else if (so.negative_count >= 0) {
+    rep.summary.message += "; " + so.message;
   }
   return so;
 }

@@ -7,6 +7,7 @@
 #include "fairshape/core/message_format.h"
 #include "fairshape/core/timer.h"
 #include "fairshape/curve_design/length_manifold.h"
+#include "fairshape/curve_design/reduced_eigenvalue.h"
 #include "fairshape/curve_design/second_order.h"
 #include "fairshape/curve_design/subspace_step.h"
 
@@ -113,7 +114,10 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
   double radius = o_.initial_radius * lengths.mean() * std::sqrt(static_cast<double>(N));
   const double max_radius = lengths.sum(), min_radius = 1e-15 * std::max(rep.points.cwiseAbs().maxCoeff(), lengths.mean());
   const double q_scale = std::max(p.objective_hessian().diagonal().cwiseAbs().maxCoeff(), 1e-300);
-  const bool dense = N <= o_.dense_limit;
+  // The dense reduced Hessian (an O(n³) eigen-solve per iteration) only when second_order: dense
+  // asks for it; otherwise inertia and inverse iteration on the banded factor at every size.
+  const SecondOrderMode mode = o_.tolerances.second_order;
+  const bool dense = mode == SecondOrderMode::Dense && N <= o_.dense_limit;
   MatrixX3 X = rep.points;
   double F = p.objective(X);
   double best_F = F, best_stat = INFINITY, last_min_eig = std::nan("");
@@ -175,13 +179,18 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
     bool negative = inertia > 0;
     SecondOrderCheck so;
     // At a candidate answer the dense check (up to its limit) also gives the eigenvalue reported.
-    if ((dense && negative) || (first_order && N <= kSecondOrderDenseLimit)) {
+    if ((dense && negative) || (first_order && mode == SecondOrderMode::Dense && N <= kSecondOrderDenseLimit)) {
       so = check_second_order(p, X);
       if (so.checked) {
         negative = so.min_eigenvalue < -kSecondOrderTolerance * so.max_abs_eigenvalue;
         last_min_eig = iterate_min_eig = so.min_eigenvalue;
       }
     }
+    // At the answer without the dense check: the eigenvalue reported is bracketed by inertia
+    // bisection on the banded factor (reduced_eigenvalue.h), O(n), the verdict staying the
+    // inertia's above.
+    ReducedEigenvalueBracket bracket;
+    if (first_order && !negative && !so.checked && mode == SecondOrderMode::Inertia) bracket = smallest_reduced_eigenvalue(p, X);
     bool have_direction = negative && so.checked;
 
     if (first_order && !negative) {
@@ -190,10 +199,15 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
       if (so.checked) {
         rep.min_reduced_hessian_eig = so.min_eigenvalue;
         how = "reduced Hessian's smallest eigenvalue " + sci(so.min_eigenvalue);
+      } else if (inertia < 0) {
+        how = "second order not checked (the inertia check failed)";
+      } else if (bracket.ok) {
+        rep.min_reduced_hessian_eig = bracket.estimate();
+        how = "reduced Hessian positive semidefinite by LDLT inertia, smallest eigenvalue in [" + sci(bracket.lower) + ", " +
+              sci(bracket.upper) + "] (inertia bisection)";
       } else {
-        how = inertia == 0 ? "reduced Hessian positive semidefinite by LDLT inertia (smallest eigenvalue not estimated above " +
-                                 std::to_string(o_.dense_limit) + " points)"
-                           : "second order not checked (the inertia check failed)";
+        how = std::string("reduced Hessian positive semidefinite by LDLT inertia (smallest eigenvalue ") +
+              (mode == SecondOrderMode::Off ? "not estimated: second_order off)" : "not estimated: the bisection failed)");
       }
       return finish(Termination::Converged, "converged after " + std::to_string(rep.solves) + " solve(s), " +
                                                 std::to_string(iterations) + " trust-region iteration(s): " + how +

@@ -7,8 +7,9 @@
 //      cannot be retracted ends `infeasible`;
 //   2. each iteration solves the KKT system of the Lagrangian's Hessian W = Q ⊗ I₃ + Σλ_r∇²f_r
 //      (λ least squares) shifted by σI, σ ≥ 0 the smallest shift that makes the reduced
-//      Hessian Zᵀ(W + σI)Z positive definite (inertia control: the dense reduced Hessian up to
-//      `dense_limit` points, the LDLᵀ pivots' inertia of the optimized KKT factor above), so
+//      Hessian Zᵀ(W + σI)Z positive definite (inertia control: the LDLᵀ pivots' inertia of the
+//      optimized KKT factor; the dense reduced Hessian up to `dense_limit` points only when
+//      second_order: dense asks for it), so
 //      the step s (tangent: J s = 0) minimizes a convex model and never heads for a saddle;
 //   3. at negative curvature adds the eigenvector d of the smallest eigenvalue (the "hard case"
 //      of Moré and Sorensen, "Computing a trust region step", 1983) to fill the radius Δ, so a
@@ -35,7 +36,8 @@ struct TrustRegionOptions {
   //! Iterations without a decrease of F by more than rounding (or of the stationarity) before
   //! the solve stops `stalled`.
   int stall_window = 50;
-  //! Up to this many points the reduced Hessian is formed densely each iteration (its smallest
+  //! With tolerances.second_order Dense (only then: the default is the O(n) inertia at every
+  //! size), up to this many points the reduced Hessian is formed densely each iteration (its smallest
   //! eigenvalue sets the shift, its eigenvector gives the negative-curvature step); above, the
   //! shift is raised until the optimized LDLᵀ's inertia is right (reference: until the step
   //! has positive curvature, which is weaker; the message says which).

@@ -17,6 +17,7 @@
 #include "fairshape/curve_design/editing_loop.h"
 #include "fairshape/curve_design/kkt_factor.h"
 #include "fairshape/curve_design/length_manifold.h"
+#include "fairshape/curve_design/reduced_eigenvalue.h"
 #include "fairshape/curve_design/second_order.h"
 #include "fairshape/experiment/kinds/curve/curve_run.h"
 #include "fairshape/experiment/run_outputs.h"
@@ -244,7 +245,7 @@ TEST_CASE("total length on Figure 1's edit: total met, segments stretched, back 
   const SecondOrderCheck so = check_second_order(p, X);
   REQUIRE(so.checked);
   CHECK(so.min_eigenvalue >= 0);
-  CHECK(rep.min_reduced_hessian_eig == Approx(so.min_eigenvalue).epsilon(1e-6));
+  CHECK(rep.min_reduced_hessian_eig == Approx(so.min_eigenvalue).epsilon(kReducedEigenvalueTolerance));  // the inertia bracket's width
   const double F = p.objective(X), t = 1e-3;
   const auto along = [&](const MatrixX3& d, double h) { return p.objective(retract(p, X + h * d, 1e-15, 100).points); };
   const double curvature = (along(so.direction, t) + along(so.direction, -t) - 2 * F) / (t * t);

@@ -11,6 +11,7 @@
 #include "fairshape/curve_design/editing_loop.h"
 #include "fairshape/curve_design/kkt_factor.h"
 #include "fairshape/curve_design/length_manifold.h"
+#include "fairshape/curve_design/reduced_eigenvalue.h"
 #include "fairshape/curve_design/second_order.h"
 #include "fairshape/curves/multires_polyline.h"
 #include "fairshape/io/mesh_io.h"
@@ -325,7 +326,8 @@ Outcome judge_independently(const LengthProblem& p, const LengthSolveReport& r) 
   if (r.converged()) {
     CHECK(r.length_error <= 1e-11);
     CHECK(p.stationarity(r.points) <= 1e-7);
-    CHECK(r.min_reduced_hessian_eig == Approx(so.min_eigenvalue).margin(1e-9 * so.max_abs_eigenvalue));
+    // Reported from the inertia bracket (second_order: inertia, the default): to its relative width.
+    CHECK(r.min_reduced_hessian_eig == Approx(so.min_eigenvalue).epsilon(kReducedEigenvalueTolerance).margin(1e-9 * so.max_abs_eigenvalue));
     CHECK(so.is_minimum(kSecondOrderTolerance));
     CHECK(projected_descent(p, r.points, so.direction) >= -1e-12 * std::abs(p.objective(r.points)));
     return Outcome::Minimum;
@@ -343,7 +345,9 @@ Outcome judge_independently(const LengthProblem& p, const LengthSolveReport& r) 
 const char* kPaperLoop = "{length_tolerance: 1e-12, max_solves: 5000}";
 const char* kNewtonLoop = "{length_tolerance: 1e-12, max_solves: 5000, linearized: {linearization: newton}}";
 const char* kCeres = "{length_tolerance: 1e-11, stationarity_tolerance: 1e-8, max_solves: 5000}";
-const char* kTrustRegion = "{length_tolerance: 1e-12, max_solves: 500}";
+// 2000: without the dense eigenpair (second_order: inertia, the default) the trust region follows
+// the soft modes by block inverse iteration, more solves per iteration than at 500 before.
+const char* kTrustRegion = "{length_tolerance: 1e-12, max_solves: 2000}";
 
 }  // namespace
 

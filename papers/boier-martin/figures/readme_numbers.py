@@ -11,6 +11,9 @@ import os
 import re
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "scripts"))
+import readme_blocks  # noqa: E402
+
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 DATA = os.path.join(ROOT, "data")
 README = os.path.join(ROOT, "README.md")
@@ -192,38 +195,5 @@ def fig9_vase():
 BLOCKS = {"fig1": fig1, "fig2": fig2, "fig7": fig7, "fig7_vase": fig7_vase, "dense_scan_kkt": dense_scan_kkt, "fig8": fig8, "fig8_ladder": fig8_ladder, "fig9": fig9, "fig9_vase": fig9_vase}
 
 
-def main():
-    check = "--check" in sys.argv[1:]
-    text = open(README).read()
-    stale, missing = [], []
-    for name, make in BLOCKS.items():
-        begin, end = f"<!-- numbers:{name} -->", f"<!-- /numbers:{name} -->"
-        if begin not in text:
-            continue
-        if end not in text:
-            sys.exit(f"readme_numbers: {begin} without {end}")
-        i, j = text.index(begin) + len(begin), text.index(end)
-        try:
-            block = "\n" + make() + "\n"
-        except FileNotFoundError as e:
-            missing.append(f"{name} ({e.filename})")
-            continue
-        if text[i:j] != block:
-            stale.append(name)
-            text = text[:i] + block + text[j:]
-    if check:
-        if stale:
-            print("readme_numbers: stale blocks: " + ", ".join(stale))
-            sys.exit(1)
-        return
-    tmp = README + ".tmp"
-    with open(tmp, "w") as f:
-        f.write(text)
-    os.replace(tmp, README)
-    print("readme_numbers: " + (("rewrote " + ", ".join(stale)) if stale else "every block matches data/"))
-    if missing:
-        sys.exit("readme_numbers: no data for " + ", ".join(missing) + " (run make_figures.sh for them)")
-
-
 if __name__ == "__main__":
-    main()
+    readme_blocks.main(README, BLOCKS)

@@ -3,12 +3,26 @@
 # plots it (scripts/plot_curves.py) into papers/sauvage/figures/figN.png and keeps its CSVs in
 # papers/sauvage/data/. `wrinkle_scale`: the w × e × β sweep of §4's claims, plotted with
 # scripts/plot.py (wavelength and amplitude of C_F − C_A against w, one line per β, e = 0 and 1).
-#   bash papers/sauvage/figures/make_figures.sh [fig1 fig3 fig4 helix wrinkle_scale]   (after `make build`)
+# `bench`: the benchmarks behind scaling.png, time_to_accuracy.png and the README's Performance and
+# "Second-order checks cheaper than the solve" blocks (medians of 5; about 15 minutes on 2 cores),
+# then figures/readme_numbers.py. Not in the default list.
+#   bash papers/sauvage/figures/make_figures.sh [fig1 fig3 fig4 helix wrinkle_scale bench]   (after `make build`)
 set -euo pipefail
 cd "$(dirname "$0")/../../.."
 figures=("$@")
 [ ${#figures[@]} -gt 0 ] || figures=(fig1 fig3 fig4 helix wrinkle_scale)
 for f in "${figures[@]}"; do
+  if [ "$f" = bench ]; then
+    bench=papers/sauvage/data/bench
+    reps=(--benchmark_repetitions=5 --benchmark_report_aggregates_only=true --benchmark_out_format=json)
+    build/bin/curve_benchmark --benchmark_filter='BM_Edit129|BM_EditScaling' "${reps[@]}" --benchmark_out=$bench/curve_benchmark.json
+    build/bin/curve_benchmark --benchmark_filter='BM_TimeToAccuracy|BM_SecondOrderCheck' "${reps[@]}" --benchmark_out=$bench/time_to_accuracy.json
+    build/bin/curve_drag_benchmark "${reps[@]}" --benchmark_out=$bench/curve_drag_benchmark.json
+    /usr/bin/python3 scripts/plot_curve_bench.py $bench/curve_benchmark.json papers/sauvage/figures
+    /usr/bin/python3 scripts/plot_curve_bench.py $bench/time_to_accuracy.json papers/sauvage/figures
+    /usr/bin/python3 papers/sauvage/figures/readme_numbers.py
+    continue
+  fi
   out=results/figures/sauvage-$f
   # Exit 3: a run of the sweep ended short of its tolerance (max_iterations, not_a_minimum); it
   # is in runs.csv with its termination, and the figure shows it.

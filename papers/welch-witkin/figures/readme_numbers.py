@@ -2,9 +2,9 @@
 """The measured numbers papers/welch-witkin/README.md quotes in its marked blocks, generated from
 papers/welch-witkin/data/ (readme_numbers.py [--check]; make_figures.sh runs it).
 
-The block machinery (markers `<!-- numbers:NAME -->` ... `<!-- /numbers:NAME -->`, --check) and
-the number formats are papers/boier-martin/figures/readme_numbers.py's, loaded and pointed at
-this paper's README, data and blocks.
+The block machinery (markers `<!-- numbers:NAME -->` ... `<!-- /numbers:NAME -->`, --check) is
+scripts/readme_blocks.py; the number formats are papers/boier-martin/figures/readme_numbers.py's,
+loaded and pointed at this paper's data.
 """
 import importlib.util
 import json
@@ -77,7 +77,7 @@ def primitives():
     return table(["step", "what", "rows", "dropped", "energy", "max constraint error"], body)
 
 
-shared.BLOCKS = {"ww_drag_step": drag_step, "ww_memory": memory, "ww_primitives": primitives}
+BLOCKS = {"ww_drag_step": drag_step, "ww_memory": memory, "ww_primitives": primitives}
 
 if __name__ == "__main__":
-    shared.main()
+    shared.readme_blocks.main(shared.README, BLOCKS)

@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <sstream>
 
 #include "fairshape/core/summary.h"
 #include "fairshape/core/config.h"
 #include "fairshape/core/timer.h"
 #include "fairshape/curve_design/curve_metrics.h"
 #include "fairshape/curve_design/curve_plane.h"
+#include "fairshape/curve_design/second_order.h"
 #include "fairshape/curve_design/self_crossings.h"
 #include "fairshape/curve_design/edit_support.h"
 #include "fairshape/curves/curve_sampling.h"
@@ -121,6 +123,15 @@ void read_optimization(Config& root, CurveRunSpec& s) {
     throw InvalidConfig(oc.key_path("constraints") + ": lengths are what this editor preserves; include {type: segment_lengths} "
                         "(every segment's length) or {type: total_length} (the curve's total length)");
   read_solver(oc, s);
+  // The dense second-order check is O((3N)³): refused where it would dominate every solve
+  // (papers/sauvage/README.md, "Second-order checks cheaper than the solve").
+  if (s.solver->tolerances().second_order == SecondOrderMode::Dense && s.curve.n_points() > kSecondOrderDenseLimit) {
+    std::ostringstream m;
+    m << oc.key_path("solver") << ".second_order: dense eigen-decomposes the reduced Hessian (O(n^3)) and takes curves of up to "
+      << kSecondOrderDenseLimit << " points; " << s.curve_path << " has " << s.curve.n_points()
+      << " — use inertia (the default: the same verdict from the banded KKT factor's inertia, O(n)) or off";
+    throw InvalidConfig(m.str());
+  }
   if (!total_key.empty() && !s.solver->takes_dense_rows()) {
     std::string takers;
     Config none;
@@ -228,6 +239,9 @@ static CurveRunSpec read_curve_run(const std::vector<std::string>& dirs, Config&
   Config out = root.child("output", "what each run writes");
   s.vtk = read_vtk_policy(out, "every stage of every edit");
   s.final_curve = out.get<bool>("final_curve", true, "write final.obj (final/<run_id>.obj in sweeps)");
+  s.wrinkle_scale = out.get<bool>("wrinkle_scale", true,
+                                  "runs.csv's wrinkle_amplitude, wrinkle_wavelength(_segments): an FFT of the curve per run "
+                                  "(false: left empty)");
   out.check_no_unknown_keys();
   root.check_no_unknown_keys();
   return s;
@@ -420,7 +434,7 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
     row["bending_energy"] = num(m.bending_energy);
     row["distance_to_attractor"] = num(m.distance_to_attractor);
     row["wrinkles"] = std::to_string(m.wrinkles);
-    if (done > 0) {  // what length preservation added to the last edit's attracting curve
+    if (done > 0 && spec.wrinkle_scale) {  // what length preservation added to the last edit's attracting curve
       const WrinkleScale w = wrinkle_scale(current.points, last.attracting, current.closed);
       row["wrinkle_amplitude"] = num(w.amplitude);
       row["wrinkle_wavelength"] = num(w.wavelength);
@@ -431,10 +445,11 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
                 .length_error_max);
     if (!last.solve.history.empty()) row["stationarity"] = num(last.solve.history.back().stationarity);
     // Second order (curve_design/second_order.h): ≥ 0 (to rounding) at a true local minimum.
-    // Empty when the solve did not end at a judged point; not_estimated above the dense limit
-    // (the inertia was checked instead: the message says so).
+    // Empty when the solve did not end at a judged point; not_checked with second_order: off,
+    // not_estimated when the check failed (the message says so).
     if (!std::isnan(last.solve.min_reduced_hessian_eig)) row["min_reduced_hessian_eig"] = num(last.solve.min_reduced_hessian_eig);
-    else if (last.solve.converged()) row["min_reduced_hessian_eig"] = "not_estimated";
+    else if (last.solve.converged())
+      row["min_reduced_hessian_eig"] = spec.solver->tolerances().second_order == SecondOrderMode::Off ? "not_checked" : "not_estimated";
     row["saddle_escapes"] = std::to_string(last.solve.saddle_escapes);
     if (row["message"].empty())  // the last edit's solve (a multi-edit run names which edit)
       row["message"] = (spec.edits.size() > 1 ? "edit " + std::to_string(done - 1) + ": " : std::string()) +

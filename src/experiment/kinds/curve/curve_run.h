@@ -33,6 +33,9 @@ struct CurveRunSpec : RunBasics {
   std::unique_ptr<LengthSolver> solver;
   VtkPolicy vtk = VtkPolicy::Final;
   bool final_curve = true;
+  //! runs.csv's wrinkle_amplitude, wrinkle_wavelength(_segments) (wrinkle_scale.h): an FFT of the
+  //! whole curve per run; false leaves them empty (a designer's drag need not pay for them).
+  bool wrinkle_scale = true;
 
   CurveObjective objective() const;
   //! Reads and checks everything, the curve file included (its point count against the

@@ -74,10 +74,10 @@ void ReducedSystem::set_fixed_values(const Eigen::MatrixXd& values) {
   b = none ? g_free : Eigen::MatrixXd(g_free - coupling * values);
 }
 
-Eigen::MatrixXd ReducedSystem::expand(const Eigen::MatrixXd& u_free) const {
+Eigen::MatrixXd ReducedSystem::expand(const Eigen::MatrixXd& u_free, const Eigen::MatrixXd& values) const {
   Eigen::MatrixXd u(n_full, u_free.cols());
   for (std::size_t i = 0; i < free.size(); ++i) u.row(free[i]) = u_free.row(static_cast<Eigen::Index>(i));
-  for (std::size_t k = 0; k < fixed.size(); ++k) u.row(fixed[k]) = fixed_values.row(static_cast<Eigen::Index>(k));
+  for (std::size_t k = 0; k < fixed.size(); ++k) u.row(fixed[k]) = values.row(static_cast<Eigen::Index>(k));
   return u;
 }
 

@@ -30,7 +30,9 @@ struct ReducedSystem {
   //! \throw InvalidInput for a count mismatch or non-finite values.
   void set_fixed_values(const Eigen::MatrixXd& values);
   //! The full #V × 3 solution from the free unknowns.
-  Eigen::MatrixXd expand(const Eigen::MatrixXd& u_free) const;
+  Eigen::MatrixXd expand(const Eigen::MatrixXd& u_free) const { return expand(u_free, fixed_values); }
+  //! The same with other values of the fixed unknowns (one row each, as many columns as u_free).
+  Eigen::MatrixXd expand(const Eigen::MatrixXd& u_free, const Eigen::MatrixXd& values) const;
   //! The free unknowns of a full solution.
   Eigen::MatrixXd restrict_to_free(const Eigen::MatrixXd& u_full) const;
 };

@@ -1,5 +1,7 @@
 #include "fairshape/qp/pinned_reduction.h"
 
+#include "fairshape/problem/constrained_system.h"
+
 namespace fairshape::qp {
 
 namespace {
@@ -23,7 +25,8 @@ SparseMatrix submatrix(const SparseMatrix& M, const std::vector<int>& rows, cons
 
 }  // namespace
 
-PinnedReduction::PinnedReduction(const SparseMatrix& H, const SparseMatrix& A) : n_(H.rows()) {
+PinnedReduction::PinnedReduction(const SparseMatrix& H, const SparseMatrix& A) {
+  const Eigen::Index n = H.rows();
   // Each row's entries (A is column-major: one pass over its non-zeros).
   std::vector<int> count(static_cast<std::size_t>(A.rows()), 0), only(static_cast<std::size_t>(A.rows()), -1);
   std::vector<double> value(static_cast<std::size_t>(A.rows()), 0.0);
@@ -35,7 +38,7 @@ PinnedReduction::PinnedReduction(const SparseMatrix& H, const SparseMatrix& A) :
         only[r] = static_cast<int>(it.col());
         value[r] = it.value();
       }
-  std::vector<char> is_pinned(static_cast<std::size_t>(n_), 0);
+  std::vector<char> is_pinned(static_cast<std::size_t>(n), 0);
   for (int r = 0; r < A.rows(); ++r) {
     const auto i = static_cast<std::size_t>(r);
     if (count[i] != 1 || is_pinned[static_cast<std::size_t>(only[i])]) continue;
@@ -44,8 +47,8 @@ PinnedReduction::PinnedReduction(const SparseMatrix& H, const SparseMatrix& A) :
   }
   std::vector<int> pinned_unknowns;
   for (const Pin& p : pinned_) pinned_unknowns.push_back(p.unknown);
-  for (int j = 0; j < n_; ++j)
-    if (!is_pinned[static_cast<std::size_t>(j)]) free_.push_back(j);
+  // H_FF, H_FP and the free unknowns as the paper split's elimination of held vertices forms them.
+  energy_ = reduce(H, Eigen::MatrixXd::Zero(n, 1), pinned_unknowns, Eigen::MatrixXd::Zero(n_pinned(), 1));
   // The rows left: those that reach a free unknown (a row among pinned unknowns only is met or
   // not by the pins alone, which the caller's check of every original row sees).
   std::vector<char> reaches_free(static_cast<std::size_t>(A.rows()), 0);
@@ -54,9 +57,7 @@ PinnedReduction::PinnedReduction(const SparseMatrix& H, const SparseMatrix& A) :
       if (it.value() != 0 && !is_pinned[static_cast<std::size_t>(it.col())]) reaches_free[static_cast<std::size_t>(it.row())] = 1;
   for (int r = 0; r < A.rows(); ++r)
     if (reaches_free[static_cast<std::size_t>(r)]) rows_.push_back(r);
-  H_FF_ = submatrix(H, free_, free_);
-  H_FP_ = submatrix(H, free_, pinned_unknowns);
-  A_F_ = submatrix(A, rows_, free_);
+  A_F_ = submatrix(A, rows_, energy_.free);
   A_P_ = submatrix(A, rows_, pinned_unknowns);
 }
 
@@ -67,9 +68,7 @@ Eigen::MatrixXd PinnedReduction::pinned_values(const Eigen::MatrixXd& b) const {
 }
 
 Eigen::MatrixXd PinnedReduction::reduced_f(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) const {
-  Eigen::MatrixXd out(static_cast<Eigen::Index>(free_.size()), f.cols());
-  for (std::size_t i = 0; i < free_.size(); ++i) out.row(static_cast<Eigen::Index>(i)) = f.row(free_[i]);
-  return out - H_FP_ * pinned_values(b);
+  return energy_.restrict_to_free(f) - energy_.coupling * pinned_values(b);
 }
 
 Eigen::MatrixXd PinnedReduction::reduced_b(const Eigen::MatrixXd& b) const {
@@ -79,11 +78,7 @@ Eigen::MatrixXd PinnedReduction::reduced_b(const Eigen::MatrixXd& b) const {
 }
 
 Eigen::MatrixXd PinnedReduction::expand(const Eigen::MatrixXd& p_free, const Eigen::MatrixXd& b) const {
-  Eigen::MatrixXd p(n_, p_free.cols());
-  for (std::size_t i = 0; i < free_.size(); ++i) p.row(free_[i]) = p_free.row(static_cast<Eigen::Index>(i));
-  const Eigen::MatrixXd v = pinned_values(b);
-  for (std::size_t i = 0; i < pinned_.size(); ++i) p.row(pinned_[i].unknown) = v.row(static_cast<Eigen::Index>(i));
-  return p;
+  return energy_.expand(p_free, pinned_values(b));
 }
 
 }  // namespace fairshape::qp

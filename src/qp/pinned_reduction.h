@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "fairshape/core/types.h"
+#include "fairshape/problem/constrained_system.h"
 
 namespace fairshape::qp {
 
@@ -23,7 +24,7 @@ class PinnedReduction {
   bool any() const { return !pinned_.empty(); }
   int n_pinned() const { return static_cast<int>(pinned_.size()); }
   //! H_FF and the rows that still reach a free unknown, restricted to the free unknowns.
-  const SparseMatrix& free_hessian() const { return H_FF_; }
+  const SparseMatrix& free_hessian() const { return energy_.A; }
   const SparseMatrix& free_rows() const { return A_F_; }
   //! The reduced program's right-hand sides for f (n × k) and b (m × k).
   Eigen::MatrixXd reduced_f(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b) const;
@@ -38,11 +39,10 @@ class PinnedReduction {
     int unknown, row;
     double coefficient;
   };
-  Eigen::Index n_ = 0;
   std::vector<Pin> pinned_;
-  std::vector<int> free_;   // free unknown i of the reduced program is unknown free_[i]
-  std::vector<int> rows_;   // reduced row r is row rows_[r] of A
-  SparseMatrix H_FF_, H_FP_, A_F_, A_P_;
+  ReducedSystem energy_;   // H_FF (A), H_FP (coupling) and the free unknowns (free)
+  std::vector<int> rows_;  // reduced row r is row rows_[r] of A
+  SparseMatrix A_F_, A_P_;
 };
 
 }  // namespace fairshape::qp

@@ -7,7 +7,7 @@ FUZZ_RUNS ?= 100000
 BUILD_DIR := build
 FAIRSHAPE := $(BUILD_DIR)/bin/fairshape
 
-.PHONY: deps configure build install test package-test demo sanitize-configure sanitize asan-test fuzz-run bench clean
+.PHONY: deps configure build install test test-long test-all package-test demo sanitize-configure sanitize asan-test fuzz-run bench clean
 
 deps:
 	bash scripts/install-deps.sh
@@ -24,8 +24,14 @@ PREFIX ?= /usr/local
 install: build
 	cmake --install $(BUILD_DIR) --prefix $(PREFIX)
 
+# `make test`: the tests to run often (unit, conformance, Python, the quick command-line ones).
+# `make test-long`: the command-line tests of a minute or more (every config's smoke run, the
+# harness across processes, Slurm, MPI); CI runs both. tests/README.md lists the labels.
 test: build
-	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS) -LE 'slow|package' --timeout 600
+	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS) -LE 'slow|package|long' --timeout 600
+
+test-long: build
+	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS) -L long --timeout 600
 
 test-all: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)

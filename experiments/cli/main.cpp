@@ -144,6 +144,9 @@ int main(int argc, char** argv) {
   c_run->add_flag("--retry-failed", run.retry_failed, "with --resume: run the runs whose row says they failed again");
   c_run->add_flag("--dry-run", run.dry_run, "validate and print the points with their run ids; run nothing");
   c_run->add_flag("--smoke", run.smoke, "run the config's CI-sized variant: its smoke: block of key.path: value overrides");
+  c_run->add_flag("--in-process", run.in_process,
+                  "run in this process, not in a watched worker (for a debugger; a crash then ends the command, "
+                  "--resume continues); only with --jobs 1");
   c_run->add_option("--worker", worker, "internal: set for processes started by --jobs")->group("");
 
   SubmitArgs subm;
@@ -259,6 +262,9 @@ int main(int argc, char** argv) {
       if (run.is_worker) run.worker = fairshape::Slice::parse(worker, "--worker");
       run.argv.assign(argv, argv + argc);
       if (run.retry_failed && !run.resume) throw fairshape::InvalidConfig("--retry-failed needs --resume");
+      if (run.in_process && run.jobs > 1)
+        throw fairshape::InvalidConfig("--in-process runs one point at a time: it needs --jobs 1, not --jobs " +
+                                       std::to_string(run.jobs));
       run.executable = std::filesystem::read_symlink("/proc/self/exe").string();
       if (run.resume && run.out_dir.empty()) throw fairshape::InvalidConfig("--resume needs --out DIR");
       return fairshape::run_sweep(run);

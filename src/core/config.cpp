@@ -33,6 +33,11 @@ void Config::mark(const std::string& key, const std::string& fallback, const std
   if (recorder_) recorder_->push_back({key_path(key), fallback, doc});
 }
 
+void Config::record_effective(const std::string& key, const YAML::Node& value) const {
+  // A clone: the recorded value must not change when the run's tree is edited afterwards.
+  (*RecordEffectiveOptions::current())[key_path(key)] = YAML::Clone(value);
+}
+
 void Config::type_error(const std::string& key, const std::string& expected) const {
   throw InvalidConfig(key_path(key) + ": expected " + expected + ", got '" +
                       yaml_to_string(node_[key]) + "'");

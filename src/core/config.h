@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "fairshape/core/effective_options.h"
 #include "fairshape/core/error.h"
 #include "fairshape/core/name_table.h"
 
@@ -73,6 +74,8 @@ class Config {
 
  private:
   void mark(const std::string& key, const std::string& fallback, const std::string& doc);
+  //! Under RecordEffectiveOptions: this read's key path and the value it returns.
+  void record_effective(const std::string& key, const YAML::Node& value) const;
   [[noreturn]] void type_error(const std::string& key, const std::string& expected) const;
 
   std::vector<std::string> unknown_key_messages() const;
@@ -155,7 +158,14 @@ T Config::get(const std::string& key, const T& fallback, const std::string& doc)
   } else {
     read_keys_->insert(key);
   }
-  if (!has(key)) return fallback;
+  if (!has(key)) {
+    if (RecordEffectiveOptions::current() && !documenting()) {
+      YAML::Node fb;
+      fb = fallback;
+      record_effective(key, fb);
+    }
+    return fallback;
+  }
   T v;
   try {
     v = node_[key].as<T>();
@@ -164,6 +174,7 @@ T Config::get(const std::string& key, const T& fallback, const std::string& doc)
     type_error(key, fb.empty() ? "a value" : "a value like '" + fb + "'");
   }
   if (!config_detail::finite(v)) type_error(key, "finite numbers");
+  if (RecordEffectiveOptions::current()) record_effective(key, node_[key]);
   return v;
 }
 
@@ -181,6 +192,7 @@ T Config::require(const std::string& key, const std::string& doc) {
     type_error(key, doc);
   }
   if (!config_detail::finite(v)) type_error(key, "finite numbers");
+  if (RecordEffectiveOptions::current()) record_effective(key, node_[key]);
   return v;
 }
 

@@ -8,10 +8,13 @@
 #include <cstdio>
 #include <ctime>
 #include <fstream>
+#include <map>
+#include <set>
 #include <filesystem>
 #include <thread>
 
 #include "fairshape/core/atomic_file.h"
+#include "fairshape/core/config.h"
 #include "fairshape/experiment/sha256.h"
 #include "fairshape/experiment/sweep_runner.h"
 #include "fairshape_build_info.h"
@@ -101,8 +104,34 @@ nlohmann::json slice_json(const Slice& s) { return std::to_string(s.index) + "/"
 
 }  // namespace
 
+nlohmann::json effective_options_json(const std::vector<std::pair<std::string, EffectiveOptions>>& runs) {
+  // A key is common when every point read it and all got the same value.
+  std::map<std::string, std::pair<std::string, std::size_t>> seen;  // key -> (first value, points reading it)
+  std::set<std::string> varying;
+  for (const auto& [id, options] : runs)
+    for (const auto& [key, value] : options) {
+      const std::string text = yaml_to_string(value);
+      auto [it, fresh] = seen.try_emplace(key, text, 0);
+      if (!fresh && it->second.first != text) varying.insert(key);
+      ++it->second.second;
+    }
+  for (const auto& [key, first_and_count] : seen)
+    if (first_and_count.second != runs.size()) varying.insert(key);
+  nlohmann::json common = nlohmann::json::object(), by_run = nlohmann::json::object();
+  for (const auto& [id, options] : runs) {
+    nlohmann::json own = nlohmann::json::object();
+    for (const auto& [key, value] : options) {
+      if (varying.count(key)) own[key] = yaml_to_json(value);
+      else if (!common.contains(key)) common[key] = yaml_to_json(value);
+    }
+    if (!own.empty()) by_run[id] = std::move(own);
+  }
+  return {{"common", std::move(common)}, {"by_run", std::move(by_run)}};
+}
+
 RunJournal::RunJournal(const fs::path& dir, const SweepOptions& opt, const YAML::Node& root, const std::string& name,
-                       const std::vector<std::string>& inputs, std::size_t planned, std::size_t already_done)
+                       const std::vector<std::string>& inputs, std::size_t planned, std::size_t already_done,
+                       nlohmann::json effective_options)
     : path_(dir / "run.json") {
   if (fs::exists(path_)) {
     journal_ = read_json(path_.string());
@@ -132,6 +161,7 @@ RunJournal::RunJournal(const fs::path& dir, const SweepOptions& opt, const YAML:
   session["input_sha256"] = hashes;
   session["runs_planned"] = planned;
   session["runs_already_done"] = already_done;
+  session["effective_options"] = std::move(effective_options);
   journal_["sessions"].push_back(session);
   write_json(journal_, path_.string());
 }

@@ -46,6 +46,8 @@ struct Plan {
   std::string name;
   std::vector<std::string> input_files;
   std::vector<std::size_t> selected;  // flat indices of this process's points, in order
+  // What each validated point's reads returned, defaults included (run.json's effective_options).
+  std::vector<std::pair<std::string, EffectiveOptions>> effective;
 };
 
 std::vector<Filter> parse_filters(const std::vector<std::string>& filters, const std::vector<std::string>& swept) {
@@ -158,7 +160,12 @@ Plan make_plan(const SweepOptions& opt, bool validate) {
                             " run: one experiment holds one kind of run");
       plan.kind = &kind;
       if (!validate) continue;
-      const ValidatedRun v = kind.validate(p.config, plan.search_dirs);
+      EffectiveOptions used;
+      const ValidatedRun v = [&] {
+        RecordEffectiveOptions record(used);
+        return kind.validate(p.config, plan.search_dirs);
+      }();
+      plan.effective.emplace_back(p.run_id, std::move(used));
       if (plan.name.empty()) plan.name = v.name;
       inputs.insert(v.input_files.begin(), v.input_files.end());
     } catch (const InvalidConfig& e) {
@@ -290,11 +297,9 @@ MetricRow execute_guarded(Plan& plan, const RunPoint& p, const RunOutputs& out) 
   }
 }
 
-// A worker: runs its points that have no row yet, committing each run's rows together.
-int run_worker(const SweepOptions& opt) {
-  bind_worker_to_supervisor();
-  Plan plan = make_plan(opt, false);
-  const fs::path dir = opt.out_dir;
+// Runs the plan's points that have no row yet in `dir`, committing each run's rows together:
+// a worker's loop, or the whole run's with --in-process. \return 3 if a run failed, else 0.
+int run_points(Plan& plan, const SweepOptions& opt, const fs::path& dir) {
   const std::set<std::string> done = recorded_runs(dir);
   std::vector<std::size_t> todo;  // points are built one at a time: a sweep's configs do not all fit
   for (std::size_t i : plan.selected)
@@ -326,6 +331,13 @@ int run_worker(const SweepOptions& opt) {
   }
   progress.close();
   return failed ? 3 : 0;
+}
+
+// A worker process the supervisor started.
+int run_worker(const SweepOptions& opt) {
+  bind_worker_to_supervisor();
+  Plan plan = make_plan(opt, false);
+  return run_points(plan, opt, opt.out_dir);
 }
 
 }  // namespace
@@ -363,8 +375,14 @@ void check_same_experiment(const fs::path& dir, const YAML::Node& root) {
   throw InvalidConfig(msg + "\nUse another --out for the changed experiment.");
 }
 
+// What the harness keeps only while runs execute: temporaries and the run-in-progress markers.
+void remove_run_markers(const OutputFolder& folder, const fs::path& dir) {
+  folder.remove_temporaries();
+  fs::remove_all(dir / ".fairshape");
+}
+
 int supervise(const SweepOptions& opt) {
-  const Plan plan = make_plan(opt, true);
+  Plan plan = make_plan(opt, true);
   for (const auto& n : plan.notes) std::cerr << "fairshape: " << n << "\n";
   if (opt.dry_run) {
     std::cout << plan.selected.size() << " of " << plan.space->size() << " point(s) (" << plan.kind->name()
@@ -401,11 +419,20 @@ int supervise(const SweepOptions& opt) {
   std::size_t todo = 0;
   for (std::size_t i : plan.selected)
     if (!done.count(plan.space->run_id(i))) ++todo;
-  RunJournal journal(dir, opt, plan.root, plan.name, plan.input_files, plan.selected.size(), done.size());
+  RunJournal journal(dir, opt, plan.root, plan.name, plan.input_files, plan.selected.size(), done.size(),
+                     effective_options_json(plan.effective));
   std::cerr << plan.name << ": " << plan.space->size() << " run(s) in the sweep, " << todo << " to do here"
             << (done.empty() ? "" : " (" + std::to_string(done.size()) + " already done)") << " -> " << dir.string()
             << "\n";
 
+  if (opt.in_process) {
+    // No supervisor, so a crash ends the command: the rows committed before it stay and
+    // --resume runs the rest (the folder's lock is released with the process).
+    const int status = run_points(plan, opt, dir);
+    remove_run_markers(folder, dir);
+    journal.close(status, folder.finished_runs(plan.layout).size());
+    return status;
+  }
   const int jobs = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(opt.jobs), std::max<std::size_t>(todo, 1)));
   const auto argv_of = [&](int w) {
     std::vector<std::string> args{opt.executable, "run", opt.config_path, "--out", dir.string(),
@@ -437,8 +464,7 @@ int supervise(const SweepOptions& opt) {
   };
   const SupervisorResult r = supervise_workers(jobs, argv_of, run_in_progress, on_crash);
   folder.roll_back_orphan_rows(plan.layout, crashed);
-  folder.remove_temporaries();
-  fs::remove_all(dir / ".fairshape");
+  remove_run_markers(folder, dir);
   const int status = r.interrupted_by ? 128 + r.interrupted_by : r.status;
   journal.close(status, folder.finished_runs(plan.layout).size());
   if (r.interrupted_by)

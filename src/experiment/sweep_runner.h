@@ -32,6 +32,9 @@ struct SweepOptions {
   bool dry_run = false;              // --dry-run: print the points and their ids, run nothing
   bool smoke = false;                // --smoke: the config's CI-sized variant (its smoke: block)
   int jobs = 1;
+  // --in-process: run the points in this process (a debugger reaches the paper code) instead of
+  // in a worker the supervisor watches; a crash then ends the command instead of one run.
+  bool in_process = false;
   Slice shard;                 // --shard i/n
   Slice worker;                // internal: --worker i/n, set for processes the supervisor starts
   bool is_worker = false;      // this process is one of them

@@ -34,6 +34,8 @@ class SplitSolver final : public QpSolver {
  private:
   //! ½ p_cᵀ H_cc p_c − f_cᵀ p_c for the constrained unknowns' values `fixed` (touched_ order).
   double constrained_energy(const Eigen::MatrixXd& f, const Eigen::MatrixXd& fixed) const;
+  //! A success whose answer misses its rows (inconsistent rows) becomes constraints_unmet.
+  void judge_rows_met(QpReport& out, const Eigen::MatrixXd& b) const;
 
   std::unique_ptr<Solver> owned_;
   Solver& free_;

@@ -1,4 +1,4 @@
-# Hostile input (issue: every file, parameter and mesh either works or is refused up front).
+# Hostile input: every file, parameter and mesh either works or is refused up front.
 # One line per input: the exit status expected and a fragment of the message. Every command
 # runs under a time limit and a 4 GB address-space limit, so a hang or a blow-up fails here
 # rather than the machine; exit statuses above 128 (a signal) always fail, and so does a
@@ -34,6 +34,7 @@ hostile() {
 }
 
 # --- mesh files ---------------------------------------------------------------------------
+section_meshes() {
 # A fan of n triangles around vertex 1 (`closed`: around the whole circle, a cone).
 fan() {
   $PY - "$1" "$2" "$3" <<'PYEOF'
@@ -307,8 +308,10 @@ hostile 2 "subdivide: level [12] has non-finite positions (vertex [0-9]*): the i
 hostile 2 "subdivide: level [12] has non-finite positions" -- \
   "$FS" subdivide "$H/huge_coordinates.obj" "$H/huge_subdivided.vtm" --scheme catmull-clark --levels 2
 [ -z "$(ls "$H" | grep huge_subdivided)" ] || fail "a refused subdivision left files: $(ls "$H" | grep huge_subdivided)"
+}
 
 # --- configs ------------------------------------------------------------------------------
+section_configs() {
 cfg() { printf '%s\n' "$2" > "$H/$1.yaml"; echo "$H/$1.yaml"; }
 hostile 2 "key 'name' repeats the key of line 1" -- "$FS" run "$(cfg dup_key "name: a
 name: b")" --dry-run
@@ -375,8 +378,10 @@ r = list(csv.DictReader(open(sys.argv[1])))[0]
 assert r["termination"] == "numerical_failure", r["termination"]
 assert "non-finite" in r["message"], r["message"]
 PYEOF
+}
 
 # --- constraints and curves placed on the input's geometry, before anything runs ----------
+section_placement() {
 FIX='{type: fixed, region: {axis: x, from: 0.0, to: 0.3}}'
 hostile 2 "vertex 5 of level 0 has incompatible targets" -- "$FS" run $SMOKE --out "$H/c1" \
   --set 'constraints=[{type: fixed, vertices: [5]}, {type: position, vertices: [5], offset: [1, 0, 0]}]'
@@ -401,8 +406,10 @@ hostile 2 "features on .*ridge_a" -- "$FS" run configs/khodakovsky-schroder/fig1
   --set 'features.0.points=[[-0.8, -0.55, 3.0], [0.8, 0.7, 3.0]]'
 hostile 2 "edits.0 on .*pin: point 100000 is not on the curve" -- "$FS" run configs/sauvage/fig1.yaml --dry-run \
   --set 'optimization.constraints=[{type: segment_lengths}, {type: pin, points: [100000]}]'
+}
 
 # --- command lines ------------------------------------------------------------------------
+section_command_lines() {
 hostile 2 "expected i/n" -- "$FS" run $SMOKE --shard 0/2x --out "$H/s"
 hostile 2 "need 0 <= i < n" -- "$FS" run $SMOKE --shard 2/2 --out "$H/s"
 hostile 2 "--filter" -- "$FS" run configs/examples/solvers_sweep.yaml --filter solver.type=none --out "$H/f"
@@ -428,9 +435,15 @@ for sub in final vtk runs.csv; do
   hostile 2 "linked_$sub/$sub: a symbolic link inside the output folder" -- "$FS" run $SMOKE --out "$H/linked_$sub" "${TWO_RUNS[@]}"
   [ -z "$(ls -A "$H/outside_$sub")" ] || fail "a run wrote through a linked $sub: $(ls -A "$H/outside_$sub")"
 done
+}
 
-[ "$CASES" -ge 60 ] || fail "only $CASES hostile cases"
-# The README quotes this suite's count: it must be the count the suite ran.
-grep -q "hostile_input.sh\`, $CASES hostile inputs" README.md ||
-  fail "README.md's hostile-input count is not this suite's $CASES: update it"
-echo "hostile_input: ok ($CASES cases)"
+# $2: the section this test runs (ctest runs the four side by side: cli.hostile_input.<section>).
+declare -A PHRASE=([meshes]="file" [configs]="config" [placement]="placement" [command_lines]="command-line")
+SECTION="${2:-}"
+[ -n "${PHRASE[$SECTION]:-}" ] || fail "hostile_input.sh SECTION: one of ${!PHRASE[*]}"
+"section_$SECTION"
+[ "$CASES" -ge 10 ] || fail "only $CASES hostile cases in $SECTION"
+# The README quotes each section's count: it must be the count the section ran.
+grep -q "$CASES ${PHRASE[$SECTION]} inputs" README.md ||
+  fail "README.md's count of hostile ${PHRASE[$SECTION]} inputs is not this section's $CASES: update it"
+echo "hostile_input $SECTION: ok ($CASES cases)"

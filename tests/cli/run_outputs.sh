@@ -18,6 +18,15 @@ for key in ["started", "ended", "argv", "input_sha256", "exit_status"]:
     assert key in meta["sessions"][0], key
 for lib in ["eigen", "tbb", "suitesparse_cholmod", "ceres", "vtk", "yaml_cpp"]:
     assert meta["libraries"][lib], lib
+# The options the run used, defaults included: keys the config leaves out are there with their
+# defaults, keys it sets with its values.
+used = meta["sessions"][0]["effective_options"]
+common = used["common"]
+assert used["by_run"] == {}, used["by_run"]  # one run: everything is common
+assert common["solver.type"] == "cholesky", common.get("solver.type")
+assert common["energy[0].type"] == "umbrella_thin_plate" and common["energy[1].weight"] == 0.01, common
+assert "solver.tolerance" not in meta["config"].get("solver", {}) and "solver.tolerance" in common, common
+assert "output.vtk" in common and "problem.formulation" in common, sorted(common)
 rows = list(csv.DictReader(open(f"{out}/runs.csv")))
 assert len(rows) == 1
 r = rows[0]
@@ -33,6 +42,21 @@ PYEOF
   --set solver.type=conjugate_gradient --set solver.max_iterations=20 2>/dev/null || true
 ls "$SCRATCH"/every/vtk/*_it5.vtp >/dev/null || fail "no iteration snapshots"
 ls "$SCRATCH"/every/vtk/*.pvd >/dev/null || fail "no pvd series"
+
+# --in-process: the same rows as a worker's run (nothing but the process differs), and
+# by_run lists the swept key per run while common holds the rest.
+"$FS" run configs/smoke/cow_nose_pull.yaml --out "$SCRATCH/inproc" --in-process \
+  --set 'sweep.solver.type=[cholesky, conjugate_gradient]' --set solver.tolerance=1e-10 2>/dev/null || fail "--in-process run"
+"$FS" run configs/smoke/cow_nose_pull.yaml --out "$SCRATCH/worker" \
+  --set 'sweep.solver.type=[cholesky, conjugate_gradient]' --set solver.tolerance=1e-10 2>/dev/null || fail "worker run"
+rows_equal "$SCRATCH/inproc/runs.csv" "$SCRATCH/worker/runs.csv" || fail "--in-process rows differ from the worker's"
+$PY - "$SCRATCH/inproc/run.json" <<'PYEOF'
+import json, sys
+used = json.load(open(sys.argv[1]))["sessions"][0]["effective_options"]
+assert sorted(r["solver.type"] for r in used["by_run"].values()) == ["cholesky", "conjugate_gradient"], used["by_run"]
+assert "solver.type" not in used["common"] and used["common"]["solver.tolerance"] == 1e-10, used["common"]
+PYEOF
+expect_error 2 "needs --jobs 1" -- "$FS" run configs/smoke/cow_nose_pull.yaml --in-process --jobs 2 --out "$SCRATCH/bad2"
 
 # Subdivision representations: the problem lives on the finest level of the ladder.
 "$FS" run configs/examples/subdivision_ladder.yaml --out "$SCRATCH/ladder" --set 'sweep.input.levels=[1, 2]' 2>/dev/null

@@ -11,44 +11,14 @@
 #include "fairshape/qp/qp_solver.h"
 #include "fairshape/qp/qr_penalty_solver.h"
 #include "fairshape/qp/range_space_solver.h"
+#include "qp_test_programs.h"
 
 using namespace fairshape;
 using namespace fairshape::bspline;
 using namespace fairshape::qp;
+using fairshape::test::SheetProblem;
 
 namespace {
-
-// A 6×6 bicubic sheet with a point constraint at each corner region, a lifted center point and
-// a curve constraint across it: bending energy, flat rest position.
-struct SheetProblem {
-  HierarchicalSurface s{{6, 6, 3, false}};
-  QuadraticProgram qp;
-  int curve_row_count = 0;
-  SheetProblem() {
-    s.refine({{0, 2, 2}, {0, 3, 2}, {0, 2, 3}, {0, 3, 3}});
-    TensionWeights w;
-    w.alpha = 0.1 * Eigen::Matrix2d::Identity();
-    qp.H = thin_plate_hessian(s, w, Backend::Optimized);
-    qp.K = thin_plate_square_root(s, w);
-    qp.f = Eigen::MatrixXd::Zero(s.dof_count(), 3);
-    std::vector<ConstraintRows> parts;
-    for (const auto& [u, v] : std::vector<std::pair<double, double>>{{0.5, 0.5}, {5.5, 0.5}, {0.5, 5.5}, {5.5, 5.5}})
-      parts.push_back(point_rows(s, u, v, Vec3(u, v, 0)));
-    parts.push_back(point_rows(s, 3, 3, Vec3(3, 3, 1.5)));
-    CurveAttachment c;
-    for (int k = 0; k <= 10; ++k) {
-      const double u = 1 + 0.4 * k;
-      c.uv.emplace_back(u, 2.0);
-      c.space.emplace_back(u, 2.0, 0.5 * std::sin(0.3 * k));
-    }
-    const ConstraintRows curve = curve_rows(s, c, CurveQuadrature::Exact);
-    curve_row_count = static_cast<int>(curve.A.rows());
-    parts.push_back(curve);
-    const ConstraintRows all = stack(parts, s.dof_count());
-    qp.A = all.A;
-    qp.b = all.C;
-  }
-};
 
 std::unique_ptr<QpSolver> make(const std::string& name, Backend backend, const std::string& yaml = "{}") {
   Config cfg(YAML::Load(yaml), "solver");

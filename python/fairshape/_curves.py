@@ -236,6 +236,9 @@ def edit_curve(curve, level, indices, offsets=None, chord_scale=None, wrinkle_le
         length = {"type": length}
     if isinstance(constraints, dict):
         constraints = [constraints]
+    known = _fairshape.curve_components()["solvers"]
+    if solver not in known:  # the keyword's own name (the session's reader names optimization.solver.type)
+        raise _fairshape.InvalidConfig(f"solver '{solver}': not a registered length solver (known: {', '.join(known)})")
     solver_block = {"type": solver}
     own = {k: v for k, v in solver_options.items() if k not in _SHARED_SOLVER_KEYS}
     solver_block.update({k: v for k, v in solver_options.items() if k in _SHARED_SOLVER_KEYS})

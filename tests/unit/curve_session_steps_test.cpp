@@ -43,9 +43,9 @@ TEST_CASE("a curve session step by step gives the config run of the same steps b
   const Polyline wave = read_polyline(test::source_path("data/curves/wave129.obj"));
   CurveSession session(wave, 7, settings());
   CurveEdit drag;
-  drag.edit_level = 3;
-  drag.wrinkle_level = 4;
-  drag.moves = {move(4, 0, 0.12)};
+  drag.edit_level = 2;
+  drag.wrinkle_level = 3;
+  drag.moves = {move(4, -0.15, 0.05)};
   for (int k = 1; k <= 3; ++k) {
     const CurveStep s = session.drag_step(drag, 3);
     INFO("drag step " << k << ": " << s.summary.message);
@@ -58,11 +58,11 @@ TEST_CASE("a curve session step by step gives the config run of the same steps b
     CHECK((k < 3 ? s.checks.handle_reach == 1 : s.checks.handle_reach > 0.5));  // judged at the drag's end
     CHECK(s.curve() == session.current().points);
   }
-  CurveEdit two;
-  two.edit_level = 2;
-  two.wrinkle_level = 3;
-  two.moves = {move(3, -0.06, 0.03), move(4, -0.1, 0)};
-  const CurveStep last = session.edit(two);
+  CurveEdit one;
+  one.edit_level = 3;
+  one.wrinkle_level = 4;
+  one.moves = {move(8, -0.02, 0)};
+  const CurveStep last = session.edit(one);
   INFO(last.summary.message);
   CHECK(last.index == 3);
   CHECK(last.succeeded());

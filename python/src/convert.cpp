@@ -45,6 +45,14 @@ Config to_config(const py::dict& options, const std::string& path) {
   return Config(to_yaml(options, path.empty() ? "options" : path), path);
 }
 
+void put_summary(py::dict& out, const SolveSummary& s) {
+  out["termination"] = std::string(to_string(s.termination));
+  out["succeeded"] = is_success(s.termination);
+  out["iterations"] = s.iterations;
+  out["residual"] = s.residual;
+  out["message"] = s.message;
+}
+
 PolygonList faces_from_python(py::handle F) {
   PolygonList faces;
   if (py::isinstance<py::array>(F)) {

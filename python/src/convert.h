@@ -11,6 +11,7 @@
 
 #include "fairshape/core/backend.h"
 #include "fairshape/core/config.h"
+#include "fairshape/core/summary.h"
 #include "fairshape/mesh/surface_mesh.h"
 #include "fairshape/subdivision/scheme.h"
 
@@ -22,6 +23,10 @@ namespace fairshape::python {
 YAML::Node to_yaml(pybind11::handle value, const std::string& where);
 //! A dict (or keyword arguments) as a Config block named `path` ("solver", "constraints[1]").
 Config to_config(const pybind11::dict& options, const std::string& path);
+
+//! A summary as the keys fairshape.Summary is made from: termination, succeeded, iterations,
+//! residual, message.
+void put_summary(pybind11::dict& out, const SolveSummary& s);
 
 //! F as an m×k integer array (any integer dtype) or a sequence of sequences of ints.
 //! \throw InvalidInput for anything else.

@@ -1,9 +1,9 @@
 // The curve editor of Sauvage, Hahmann and Bonneau, "Length preserving multiresolution editing
 // of curves" (src/curves, src/curve_design): a polyline decomposed by the lazy-wavelet filter
-// bank, control points of a level moved, and the editing loop of §4.1 run to its
-// length-constrained optimization (§3), read exactly as a curve config's blocks are
-// (src/experiment/kinds/curve/curve_run.cpp): energies, constraints and solvers by name, every
-// option checked, an unknown one refused naming the valid ones.
+// bank, and the session (curve_session.h) whose steps run the editing loop of §4.1 to its
+// length-constrained optimization (§3). Its keywords are a curve config's blocks, read by the
+// run kind's own reader (src/experiment/kinds/curve/curve_run.cpp): energies, constraints and
+// solvers by name, every option checked, an unknown one refused naming the valid ones.
 // Copies: the points come in as a new n×3 matrix (2-D curves with z = 0, as the library keeps
 // them); every stage comes back as a new n×3 array (the Python side drops z for 2-D curves).
 #include <pybind11/eigen.h>
@@ -16,9 +16,9 @@
 #include "checks.h"
 #include "convert.h"
 #include "fairshape/curve_design/curve_components.h"
-#include "fairshape/curve_design/curve_metrics.h"
-#include "fairshape/curve_design/editing_loop.h"
+#include "fairshape/curve_design/curve_session.h"
 #include "fairshape/curves/multires_polyline.h"
+#include "fairshape/experiment/kinds/curve/curve_run.h"
 
 namespace py = pybind11;
 
@@ -67,202 +67,112 @@ Eigen::MatrixXd curve_details(const Eigen::Ref<const Eigen::MatrixXd>& points, b
   return checked(Eigen::MatrixXd(decompose(c, L, backend).details[static_cast<std::size_t>(level)]), "Curve.details");
 }
 
-EditingOptions editing_arg(const std::string& step, const std::string& details, const std::string& region) {
-  const auto bad = [](const char* key, const std::string& v, const char* valid) {
-    return InvalidConfig(std::string(key) + " '" + v + "': expected " + valid);
-  };
-  if (step != "local" && step != "sweep") throw bad("explicit_step", step, "'local' or 'sweep'");
-  if (details != "local_frames" && details != "global") throw bad("details", details, "'local_frames' or 'global'");
-  if (region != "support" && region != "curve") throw bad("solve_region", region, "'support' or 'curve'");
-  EditingOptions o;
-  o.explicit_step = step == "local" ? ExplicitStep::Local : ExplicitStep::Sweep;
-  o.details = details == "local_frames" ? DetailFrames::LocalFrames : DetailFrames::Global;
-  o.solve_region = region == "support" ? SolveRegion::Support : SolveRegion::Curve;
-  return o;
+// The session's keywords as a curve config's editing: and optimization: blocks, read by the
+// run kind's reader (one parser for both front ends). Options a config would record as unused
+// (a solver's block that is not the chosen solver's) are refused: a keyword does something.
+CurveEditSettings settings_arg(const Polyline& curve, Backend backend, const py::dict& options) {
+  return parse_config(to_yaml(options, "CurveSession"), [&](Config& root) {
+    RunBasics basics;
+    basics.implementation = backend;
+    std::string solver_type;
+    CurveEditSettings settings = read_curve_settings(root, curve, "the session's curve", basics, solver_type);
+    root.check_no_unknown_keys();
+    if (!basics.unused_keys.empty())
+      throw InvalidConfig(basics.unused_keys.front() + ": the options of a solver that is not the chosen one (" + solver_type +
+                          "); give them with its type");
+    return settings;
+  });
 }
 
-// The solver block of a curve config from keyword arguments: the tolerances every solver
-// shares at the top, the rest in the solver's own sub-block (where its factory reads them).
-std::unique_ptr<LengthSolver> solver_arg(const std::string& type, const py::dict& options, Backend backend) {
-  const auto& reg = curve_components().solvers;
-  py::dict block, own;
-  for (auto [k, v] : options) {
-    const std::string key = py::str(k);
-    if (key == "length_tolerance" || key == "stationarity_tolerance" || key == "max_solves" || key == "second_order")
-      block[k] = v;
-    else own[k] = v;
-  }
-  if (!own.empty()) block[type.c_str()] = own;
-  Config sc = to_config(block, "solver");
-  auto solver = reg.create(type, backend, sc);
-  sc.check_no_unknown_keys();
-  return solver;
-}
-
-struct CurveTerms {
-  std::unique_ptr<CurveEnergy> smoothness;
-  std::vector<std::unique_ptr<CurveConstraintKind>> constraints;
-  bool total = false;
-};
-
-// curve_run.cpp's read_optimization checks, on constraint dicts.
-CurveTerms terms_arg(const std::string& smoothness, const py::list& constraints, const EditingOptions& editing,
-                     const LengthSolver& solver, const std::string& solver_type, Backend backend) {
-  const CurveComponents& cc = curve_components();
-  CurveTerms t;
-  std::vector<std::string> smooth = cc.energies.names();
-  smooth.erase(std::remove(smooth.begin(), smooth.end(), "attractor_distance"), smooth.end());
-  if (std::find(smooth.begin(), smooth.end(), smoothness) == smooth.end()) {
-    std::string v;
-    for (const auto& s : smooth) v += (v.empty() ? "" : ", ") + s;
-    throw InvalidConfig("smoothness '" + smoothness + "': expected one of " + v);
-  }
-  Config none;
-  t.smoothness = cc.energies.create(smoothness, backend, none);
-  bool lengths = false;
-  int totals = 0;
-  for (std::size_t i = 0; i < constraints.size(); ++i) {
-    const std::string where = "constraints[" + std::to_string(i) + "]";
-    if (!py::isinstance<py::dict>(constraints[i])) throw InvalidConfig(where + ": expected a dict {'type': name, ...}");
-    Config k = to_config(constraints[i].cast<py::dict>(), where);
-    const std::string type = k.get_choice("type", "segment_lengths", cc.constraints.names(), "constraint kind");
-    t.constraints.push_back(cc.constraints.create(type, backend, k));
-    k.check_no_unknown_keys();
-    lengths |= type == "segment_lengths";
-    if (type == "total_length") ++totals;
-    if ((type == "total_length" || type == "tangent") && editing.solve_region == SolveRegion::Support)
-      throw InvalidConfig(where + ": " + type + " constraints are not solved on the edit's support; "
-                          "give solve_region='curve'");
-  }
-  if (totals > 1) throw InvalidConfig("constraints: a second total_length; keep one");
-  if (lengths && totals)
-    throw InvalidConfig("constraints: total_length and segment_lengths together: the total is the sum of the segments; keep one");
-  if (!lengths && !totals)
-    throw InvalidConfig("constraints: lengths are what this editor preserves; include {'type': 'segment_lengths'} or "
-                        "{'type': 'total_length'} (length='segment_lengths' or 'total_length')");
-  if (totals && !solver.takes_dense_rows()) {
-    std::string takers;
-    for (const auto& name : cc.solvers.names())
-      if (cc.solvers.create(name, Backend::Optimized, none)->takes_dense_rows()) takers += (takers.empty() ? "" : ", ") + name;
-    throw InvalidConfig("solver '" + solver_type + "' does not take the total_length constraint; the solvers that do: " + takers);
-  }
-  t.total = totals > 0;
-  return t;
-}
-
-py::dict edit_curve(const Eigen::Ref<const Eigen::MatrixXd>& points, bool closed, int levels, int level, int wrinkle_level,
-                    const std::vector<int>& indices, const Eigen::Ref<const Eigen::MatrixXd>& offsets,
-                    const std::vector<double>& chord_scales, int drag_steps, const std::string& smoothness, double beta,
-                    const py::list& constraints, const std::string& solver_type, const py::dict& solver_options,
-                    const std::string& explicit_step, const std::string& details, const std::string& solve_region,
-                    const std::string& implementation) {
-  const Backend backend = backend_arg(implementation);
-  const Polyline curve = polyline_arg(points, closed);
-  const int L = levels_arg(curve, levels);
+// An edit's keywords as an edits: entry; the level and control points checked on the session's
+// hierarchy (an index off its level's polygon is an InvalidIndex).
+CurveEditEntry edit_arg(const CurveSession& session, const py::dict& entry, const char* who) {
+  const CurveEditEntry e = parse_config(to_yaml(entry, who), [](Config& c) { return read_curve_edit(c, nullptr); });
+  const int L = session.levels(), level = e.whole.edit_level;
   if (level < 0 || level > L)
-    throw InvalidIndex("edit_curve: level " + std::to_string(level) + " is outside the hierarchy (levels 0.." + std::to_string(L) + ")");
-  if (wrinkle_level != -1 && (wrinkle_level < level || wrinkle_level >= L))
-    throw InvalidInput("edit_curve: wrinkle_level " + std::to_string(wrinkle_level) + " must lie in [level, levels-1] = [" +
-                       std::to_string(level) + ", " + std::to_string(L - 1) + "] or be -1");
-  if (!(beta >= 0 && beta <= 1)) throw InvalidConfig("beta: " + std::to_string(beta) + " is not in [0, 1]");
-  if (drag_steps < 1) throw InvalidConfig("drag_steps: at least 1");
-  const int segments = (closed ? curve.n_points() : curve.n_points() - 1) >> (L - level);
-  const int m = closed ? segments : segments + 1;
-  if (offsets.rows() != static_cast<Eigen::Index>(indices.size()) || (offsets.cols() != 2 && offsets.cols() != 3))
-    throw InvalidInput("edit_curve: offsets must be k×2 or k×3 for k = " + std::to_string(indices.size()) + " indices, got " +
-                       std::to_string(offsets.rows()) + "×" + std::to_string(offsets.cols()));
-  if (chord_scales.size() != indices.size()) throw InvalidInput("edit_curve: one chord scale per index (0: use the offset)");
-  finite_arg(offsets, "edit_curve: offsets");
-  finite_arg(beta, "edit_curve: beta");
-  for (std::size_t i = 0; i < chord_scales.size(); ++i) finite_arg(chord_scales[i], "edit_curve: chord_scales[" + std::to_string(i) + "]");
-  CurveEdit e;
-  e.edit_level = level;
-  e.wrinkle_level = wrinkle_level;
-  e.options = editing_arg(explicit_step, details, solve_region);
-  for (std::size_t i = 0; i < indices.size(); ++i) {
-    if (indices[i] >= m || indices[i] < -m)
-      throw InvalidIndex("edit_curve: index " + std::to_string(indices[i]) + " is not on the level-" + std::to_string(level) +
-                         " polygon of " + std::to_string(m) + " points");
-    if (!(chord_scales[i] >= 0)) throw InvalidInput("edit_curve: chord scales must be ≥ 0");
-    CurveMove mv;
-    mv.index = indices[i];
-    mv.chord_scale = chord_scales[i];
-    for (Eigen::Index c = 0; c < offsets.cols(); ++c) mv.offset[static_cast<int>(c)] = offsets(static_cast<Eigen::Index>(i), c);
-    e.moves.push_back(mv);
-  }
-  const std::unique_ptr<LengthSolver> solver = solver_arg(solver_type, solver_options, backend);
-  const CurveTerms terms = terms_arg(smoothness, constraints, e.options, *solver, solver_type, backend);
-  CurveObjective objective;
-  objective.smoothness = terms.smoothness.get();
-  objective.beta = beta;
-  for (const auto& k : terms.constraints) objective.constraints.push_back(k.get());
+    throw InvalidIndex(std::string(who) + ": level " + std::to_string(level) + " is outside the hierarchy (levels 0.." +
+                       std::to_string(L) + ")");
+  const int m = session.control_points(level);
+  for (const CurveMove& mv : e.whole.moves)
+    if (mv.index >= m || mv.index < -m)
+      throw InvalidIndex(std::string(who) + ": index " + std::to_string(mv.index) + " is not on the level-" +
+                         std::to_string(level) + " polygon of " + std::to_string(m) + " points");
+  return e;
+}
 
-  EditStages first, last;
-  int solves = 0, outer = 0, done = 0;
-  double explicit_s = 0, solve_s = 0, time_s = 0;
-  std::string message;
-  Termination termination = Termination::Converged;
-  Polyline current = curve;
-  {
-    py::gil_scoped_release release;
-    for (const CurveEdit& step : fairshape::drag_steps(e, drag_steps)) {
-      last = run_editing_loop(current, L, step, objective, *solver, backend, &curve);
-      if (done == 0) first = last;
-      ++done;
-      solves += last.solve.solves;
-      outer += last.solve.outer_iterations;
-      explicit_s += last.explicit_s;
-      solve_s += last.solve_s;
-      time_s += last.total_s;
-      current.points = last.final;
-      message = last.solve.summary.message;
-      if (!last.solve.converged()) {
-        termination = last.solve.summary.termination;
-        if (drag_steps > 1) message = "drag step " + std::to_string(done) + ": " + message;
-        break;
-      }
-    }
-  }
-  const std::string outcome = std::string(to_string(termination)) + ": " + message;
-  for (const auto* stage : {&first.reference, &last.edited, &last.attracting, &current.points})
-    finite_result(*stage, "edit_curve: a stage of the edit (" + outcome + ")");
-  const Eigen::VectorXd original = segment_lengths(curve.points, closed);
-  const CurveMetrics metrics = measure_curve(current.points, closed, original, last.attracting);
-  const Eigen::VectorXd l = segment_lengths(current.points, closed);
+py::object optional(double v) { return std::isnan(v) ? py::object(py::none()) : py::cast(v); }
+
+// A step as the dict fairshape.CurveStep is made from.
+py::dict step_dict(const CurveStep& s) {
+  const EditStages& st = s.stages;
+  const CurveStepChecks& c = s.checks;
+  const std::string outcome = std::string(to_string(s.summary.termination)) + ": " + s.summary.message;
+  for (const auto* stage : {&st.reference, &st.edited, &st.attracting, &st.final})
+    finite_result(*stage, "CurveSession: a stage of the edit (" + outcome + ")");
+  py::dict checks;
+  checks["length_error_max"] = c.metrics.length_error_max;
+  checks["length_error_rms"] = c.metrics.length_error_rms;
+  checks["total_length_change"] = c.metrics.total_length_change;
+  checks["bending_energy"] = c.metrics.bending_energy;
+  checks["distance_to_attractor"] = c.metrics.distance_to_attractor;
+  checks["wrinkles"] = c.metrics.wrinkles;
+  checks["length_constraint"] = std::string(st.length_mode == LengthMode::Total ? "total_length" : "segment_lengths");
+  checks["total_length_asked"] = st.total_length_asked;
+  checks["total_length_error"] = c.total_length_error;
+  checks["segment_stretch_min"] = c.segment_stretch_min;
+  checks["segment_stretch_max"] = c.segment_stretch_max;
+  checks["attractor_length_error"] = c.attractor_length_error;
+  checks["moved_outside_support"] = c.moved_outside_support;
+  checks["attractor_moved_outside_support"] = c.attractor_moved_outside_support;
+  checks["handle_reach"] = c.handle_reach;
+  checks["overstretch"] = c.overstretch < 0 ? py::object(py::none()) : py::cast(c.overstretch);
+  checks["out_of_plane"] = optional(c.out_of_plane);
+  checks["left_plane"] = c.left_plane;
+  checks["self_crossings"] = c.self_crossings < 0 ? py::object(py::none()) : py::cast(c.self_crossings);
+  checks["new_self_crossings"] = c.self_crossings < 0 ? 0 : std::max(0, c.self_crossings - c.original_self_crossings);
+  checks["solved_in_plane"] = st.solved_in_plane;
+  checks["explicit_length_error"] = st.explicit_step.length_error;
+  checks["explicit_pull_back"] = st.explicit_step.worst_pull_back;
+  checks["explicit_unreachable_chains"] = st.explicit_step.unreachable_chains;
+  checks["unplaceable_midpoints"] = st.explicit_step.unplaceable_midpoints;
+  checks["stationarity"] = st.solve.history.empty() ? py::object(py::none()) : py::cast(st.solve.history.back().stationarity);
+  checks["min_reduced_hessian_eig"] = optional(st.solve.min_reduced_hessian_eig);
+  checks["saddle_escapes"] = st.solve.saddle_escapes;
+  checks["length_error"] = st.solve.length_error;
   py::dict out;
-  out["levels"] = L;
-  out["termination"] = std::string(to_string(termination));
-  out["succeeded"] = termination == Termination::Converged;
-  out["iterations"] = solves;
-  out["residual"] = last.solve.length_error;
-  out["message"] = message;
-  out["solves"] = solves;
-  out["outer_iterations"] = outer;
-  out["drag_steps_done"] = done;
-  out["length_error"] = last.solve.length_error;
-  out["length_error_max"] = metrics.length_error_max;
-  out["length_error_rms"] = metrics.length_error_rms;
-  out["total_length_change"] = metrics.total_length_change;
-  out["bending_energy"] = metrics.bending_energy;
-  out["distance_to_attractor"] = metrics.distance_to_attractor;
-  out["wrinkles"] = metrics.wrinkles;
-  out["length_constraint"] = std::string(last.length_mode == LengthMode::Total ? "total_length" : "segment_lengths");
-  out["total_length_asked"] = last.total_length_asked;
-  out["total_length_error"] = std::abs(l.sum() - last.total_length_asked) / last.total_length_asked;
-  out["stationarity"] = last.solve.history.empty() ? py::object(py::none()) : py::cast(last.solve.history.back().stationarity);
-  out["min_reduced_hessian_eig"] =
-      std::isnan(last.solve.min_reduced_hessian_eig) ? py::object(py::none()) : py::cast(last.solve.min_reduced_hessian_eig);
-  out["saddle_escapes"] = last.solve.saddle_escapes;
-  out["explicit_pull_back"] = last.explicit_step.worst_pull_back;
-  out["explicit_unreachable_chains"] = last.explicit_step.unreachable_chains;
-  out["explicit_s"] = explicit_s;
-  out["solve_s"] = solve_s;
-  out["time_s"] = time_s;
-  out["moved_points"] = last.moved_points;
-  out["reference"] = py::cast(std::move(first.reference));
-  out["edited"] = py::cast(std::move(last.edited));
-  out["attracting"] = py::cast(std::move(last.attracting));
-  out["final"] = py::cast(std::move(current.points));
+  out["index"] = s.index;
+  out["drag_step"] = s.drag_step;
+  out["drag_steps"] = s.drag_steps;
+  put_summary(out, s.summary);
+  out["solve_converged"] = st.solve.converged();
+  out["solves"] = st.solve.solves;
+  out["outer_iterations"] = st.solve.outer_iterations;
+  out["solve_s"] = s.solve_s;
+  out["check_s"] = s.check_s;
+  out["explicit_s"] = st.explicit_s;
+  out["moved_points"] = st.moved_points;
+  out["checks"] = checks;
+  out["reference"] = py::cast(st.reference);
+  out["edited"] = py::cast(st.edited);
+  out["attracting"] = py::cast(st.attracting);
+  out["final"] = py::cast(st.final);
+  return out;
+}
+
+// The session's verdict so far and its totals (a run's termination, message and counts).
+py::dict outcome_dict(const CurveSession& session) {
+  const SolveSummary s = session.outcome();
+  const CurveSessionTotals& t = session.totals();
+  py::dict out;
+  put_summary(out, s);
+  out["steps"] = t.steps;
+  out["solves"] = t.solves;
+  out["outer_iterations"] = t.outer_iterations;
+  out["handle_reach"] = t.handle_reach;
+  out["time_s"] = t.time_s;
+  out["explicit_s"] = t.explicit_s;
+  out["solve_s"] = t.solve_s;
+  out["check_s"] = t.check_s;
   return out;
 }
 
@@ -276,11 +186,38 @@ void bind_curves(py::module_& m) {
         py::arg("implementation"), "The curve hierarchy's level as points; call fairshape.Curve.level().");
   m.def("_curve_details", &curve_details, py::arg("points"), py::arg("closed"), py::arg("levels"), py::arg("level"),
         py::arg("implementation"), "The curve hierarchy's details d^j; call fairshape.Curve.details().");
-  m.def("_edit_curve", &edit_curve, py::arg("points"), py::arg("closed"), py::arg("levels"), py::arg("level"),
-        py::arg("wrinkle_level"), py::arg("indices"), py::arg("offsets"), py::arg("chord_scales"), py::arg("drag_steps"),
-        py::arg("smoothness"), py::arg("beta"), py::arg("constraints"), py::arg("solver"), py::arg("solver_options"),
-        py::arg("explicit_step"), py::arg("details"), py::arg("solve_region"), py::arg("implementation"),
-        "The curve edit's C++ half; call fairshape.edit_curve().");
+  py::class_<CurveSession>(m, "_CurveSession", "The curve session's C++ half; use fairshape.CurveSession.")
+      .def(py::init([](const Eigen::Ref<const Eigen::MatrixXd>& points, bool closed, int levels, const std::string& implementation,
+                       const py::dict& options) {
+             const Backend backend = backend_arg(implementation);
+             Polyline curve = polyline_arg(points, closed);
+             const int L = levels_arg(curve, levels);
+             CurveEditSettings settings = settings_arg(curve, backend, options);
+             return CurveSession(std::move(curve), L, std::move(settings));
+           }),
+           py::arg("points"), py::arg("closed"), py::arg("levels"), py::arg("implementation"), py::arg("options"))
+      .def("edit", [](CurveSession& s, const py::dict& entry) {
+             const CurveEditEntry e = edit_arg(s, entry, "CurveSession.edit");
+             if (e.drag_steps != 1) throw InvalidConfig("CurveSession.edit: one editing loop; drag_step() takes drag_steps");
+             CurveStep step;
+             {
+               py::gil_scoped_release release;
+               step = s.edit(e.whole);
+             }
+             return step_dict(step);
+           }, py::arg("entry"))
+      .def("drag_step", [](CurveSession& s, const py::dict& entry) {
+             const CurveEditEntry e = edit_arg(s, entry, "CurveSession.drag_step");
+             CurveStep step;
+             {
+               py::gil_scoped_release release;
+               step = s.drag_step(e.whole, e.drag_steps);
+             }
+             return step_dict(step);
+           }, py::arg("entry"))
+      .def_property_readonly("points", [](const CurveSession& s) { return Eigen::MatrixXd(s.current().points); })
+      .def_property_readonly("levels", &CurveSession::levels)
+      .def("outcome", &outcome_dict);
   m.def("curve_components", [] {
     const CurveComponents& cc = curve_components();
     py::dict d;

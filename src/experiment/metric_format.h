@@ -1,16 +1,5 @@
-// How numbers are written into the CSV files of a run: 10 significant digits.
+// How numbers are written into the CSV files of a run: 10 significant digits (num, shared with
+// the messages that quote the same measurements).
 #pragma once
 
-#include <sstream>
-#include <string>
-
-namespace fairshape {
-
-inline std::string num(double v) {
-  std::ostringstream os;
-  os.precision(10);
-  os << v;
-  return os.str();
-}
-
-}  // namespace fairshape
+#include "fairshape/core/message_format.h"

@@ -146,3 +146,49 @@ output: {vtk: none}
                              linearization="newton", check=False)
     assert np.abs(r.points3 - expected).max() < 1e-10
     assert r.metrics["drag_steps_done"] == 3 or not r.summary.succeeded
+
+
+SESSION = "tests/data/configs/curve_session_steps.yaml"  # the steps of the test below
+
+
+def test_session_step_by_step_equals_cli(tmp_path):
+    # The bound session, driven one editing loop at a time, ends where `fairshape run` of the
+    # same steps ends, bit for bit (final.obj keeps 17 digits), with the run's verdict.
+    out = tmp_path / "session"
+    cli("run", SESSION, "--out", out)
+    expected = obj_vertices(out / "final.obj")
+    s = fairshape.CurveSession(wave(), optimization={"beta": 0.1, "solver": {
+        "type": "linearized", "max_solves": 500, "linearized": {"linearization": "newton"}}})
+    assert s.levels == 7
+    for k in range(1, 4):
+        step = s.drag_step(2, [{"index": 4, "by": [-0.15, 0.05]}], drag_steps=3, wrinkle_level=3)
+        assert (step.index, step.drag_step, step.drag_steps) == (k - 1, k, 3)
+        assert step.succeeded and step.checks["length_error_max"] < 1e-8
+        assert step.checks["handle_reach"] == 1 if k < 3 else step.checks["handle_reach"] > 0.5
+        assert step.points.shape == (129, 2) and np.array_equal(step.points, s.points)
+    last = s.edit(3, [{"index": 8, "by": [-0.02, 0.0]}], wrinkle_level=4)
+    assert last.index == 3 and last.solve_s > 0 and last.check_s >= 0
+    assert last.checks["self_crossings"] == 0 and last.checks["out_of_plane"] < 1e-12
+    assert np.array_equal(last.points3, expected)
+    assert s.outcome().termination == expected_termination(tmp_path, "session")
+
+
+def test_session_keywords_go_through_the_config_reader():
+    with pytest.raises(fairshape.InvalidConfig, match="optimization.beta: 1.5 is out of range"):
+        fairshape.CurveSession(wave(), optimization={"beta": 1.5})
+    with pytest.raises(fairshape.InvalidConfig, match="optimisation: unknown key"):
+        fairshape.CurveSession(wave(), optimisation={"beta": 0.1})
+    with pytest.raises(fairshape.InvalidConfig, match="sweep: unknown key"):
+        fairshape.CurveSession(wave(), sweep={"optimization.beta": [0.1, 0.2]})
+    with pytest.raises(fairshape.InvalidConfig, match=r"editing.solve_region: unknown value 'window' \(valid: support, curve\)"):
+        fairshape.CurveSession(wave(), editing={"solve_region": "window"})
+    with pytest.raises(fairshape.InvalidConfig, match="solver.trust_region.*not the chosen one"):
+        fairshape.CurveSession(wave(), optimization={"solver": {"type": "linearized", "trust_region": {"initial_radius": 0.5}}})
+    s = fairshape.CurveSession(wave())
+    with pytest.raises(fairshape.InvalidIndex, match="not on the level-2 polygon of 5 points"):
+        s.edit(2, [{"index": 5, "by": [0.1, 0]}])
+    with pytest.raises(fairshape.InvalidConfig, match="exactly one of `by` and `chord_scale`"):
+        s.edit(2, [{"index": 3}])
+    s.drag_step(3, [{"index": 4, "by": [0.0, 0.06]}], drag_steps=2)
+    with pytest.raises(fairshape.InvalidInput, match="under way"):
+        s.edit(2, [{"index": 3, "by": [0.1, 0]}])

@@ -19,7 +19,8 @@ class CurveKind final : public RunKind {
     // lengths can meet, zero-length segments); later edits start from the curve the earlier
     // ones make, so the run checks them.
     try {
-      (void)prepare_editing_loop(spec.curve, spec.levels, spec.edits.front(), spec.objective(), spec.implementation);
+      (void)prepare_editing_loop(spec.curve, spec.levels, spec.edits.front(), spec.settings.objective(),
+                                 spec.implementation);
     } catch (const InvalidInput& e) {
       throw InvalidConfig("edits.0 on " + spec.curve_path + ": " + e.what());
     }

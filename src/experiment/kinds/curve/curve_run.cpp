@@ -11,8 +11,6 @@
 #include "fairshape/curve_design/curve_metrics.h"
 #include "fairshape/curve_design/curve_plane.h"
 #include "fairshape/curve_design/second_order.h"
-#include "fairshape/curve_design/self_crossings.h"
-#include "fairshape/curve_design/edit_support.h"
 #include "fairshape/curves/curve_sampling.h"
 #include "fairshape/curve_design/wrinkle_scale.h"
 #include "fairshape/curves/multires_polyline.h"
@@ -31,24 +29,31 @@ int polygon_points(int n_points, bool closed, int levels, int level) {
   return closed ? segments : segments + 1;
 }
 
-std::vector<CurveEdit> read_edit(Config& ec, const CurveRunSpec& s) {
-  CurveEdit e;
-  const std::string counts = "an open curve of 2^L·k + 1 points (a closed one of 2^L·k, k ≥ 3) has levels 0..L; " +
-                             s.curve_path + " has " + std::to_string(s.curve.n_points()) + " points and " +
-                             std::to_string(s.levels) + " levels";
+}  // namespace
+
+CurveEditEntry read_curve_edit(Config& ec, const CurveRunSpec* on) {
+  CurveEditEntry entry;
+  CurveEdit& e = entry.whole;
   e.edit_level = ec.require<int>("level", "e: the level whose control points are moved (0 = coarsest)");
   e.wrinkle_level = ec.get_int("wrinkle_level", -1, -1, 64,
                                "w in [e, levels-1]: explicit length preservation at level w+1 (-1: none, §3 alone)");
-  if (e.edit_level < 0 || e.edit_level > s.levels)
-    throw InvalidConfig(ec.key_path("level") + ": " + std::to_string(e.edit_level) + " is outside the hierarchy (" + counts + ")");
-  if (e.wrinkle_level != -1 && (e.wrinkle_level < e.edit_level || e.wrinkle_level >= s.levels))
-    throw InvalidConfig(ec.key_path("wrinkle_level") + ": " + std::to_string(e.wrinkle_level) + " must lie in [e, levels-1] = [" +
-                        std::to_string(e.edit_level) + ", " + std::to_string(s.levels - 1) + "] or be -1 (" + counts + ")");
-  const int m = polygon_points(s.curve.n_points(), s.curve.closed, s.levels, e.edit_level);
+  int m = 0;  // control points of level e (with `on`)
+  if (on != nullptr) {
+    const CurveRunSpec& s = *on;
+    const std::string counts = "an open curve of 2^L·k + 1 points (a closed one of 2^L·k, k ≥ 3) has levels 0..L; " +
+                               s.curve_path + " has " + std::to_string(s.curve.n_points()) + " points and " +
+                               std::to_string(s.levels) + " levels";
+    if (e.edit_level < 0 || e.edit_level > s.levels)
+      throw InvalidConfig(ec.key_path("level") + ": " + std::to_string(e.edit_level) + " is outside the hierarchy (" + counts + ")");
+    if (e.wrinkle_level != -1 && (e.wrinkle_level < e.edit_level || e.wrinkle_level >= s.levels))
+      throw InvalidConfig(ec.key_path("wrinkle_level") + ": " + std::to_string(e.wrinkle_level) + " must lie in [e, levels-1] = [" +
+                          std::to_string(e.edit_level) + ", " + std::to_string(s.levels - 1) + "] or be -1 (" + counts + ")");
+    m = polygon_points(s.curve.n_points(), s.curve.closed, s.levels, e.edit_level);
+  }
   for (Config mc : ec.child_list("moves", "control points moved at level e: [{index, by: [x, y, z]} | {index, chord_scale}]")) {
     CurveMove mv;
     mv.index = mc.require<int>("index", "level-e control point (negative: from the end, -1 = last)");
-    if (mv.index >= m || mv.index < -m)
+    if (on != nullptr && (mv.index >= m || mv.index < -m))
       throw InvalidConfig(mc.key_path("index") + ": " + std::to_string(mv.index) + " is not on the level-" +
                           std::to_string(e.edit_level) + " polygon of " + std::to_string(m) + " points");
     const auto by = mc.get<std::vector<double>>("by", {}, "offset [x, y, z] (or [x, y])");
@@ -63,29 +68,32 @@ std::vector<CurveEdit> read_edit(Config& ec, const CurveRunSpec& s) {
     for (std::size_t c = 0; c < by.size(); ++c) mv.offset[static_cast<int>(c)] = by[c];
     e.moves.push_back(mv);
   }
-  const int steps = ec.get_int("drag_steps", 1, 1, 100000,
-                               "editing loops the moves are split into, each from the curve the previous one left");
+  entry.drag_steps = ec.get_int("drag_steps", 1, 1, 100000,
+                                 "editing loops the moves are split into, each from the curve the previous one left");
   ec.check_no_unknown_keys();
-  return drag_steps(e, steps);
+  return entry;
 }
+
+namespace {
 
 // The solver block: common tolerances, then one sub-block per solver name; every present
 // sub-block is validated so sweeping solver.type stays valid, and recorded as unused unless
 // it is the chosen solver's.
-void read_solver(Config& oc, CurveRunSpec& s) {
+void read_solver(Config& oc, CurveEditSettings& st, RunBasics& basics, std::string& solver_type) {
   const auto& reg = curve_components().solvers;
   Config sc = oc.child("solver", "length solver: {type, length_tolerance, stationarity_tolerance, max_solves, <type>: {...}}");
-  s.solver_type = sc.get_choice("type", "linearized", reg.names(), "length solver");
+  solver_type = sc.get_choice("type", "linearized", reg.names(), "length solver");
   for (const auto& name : reg.names())
-    if (name != s.solver_type && sc.has(name)) {
-      (void)reg.create(name, reg.has(name, s.implementation) ? s.implementation : Backend::Optimized, sc);
-      s.note_unused(Config(sc.node()[name], sc.key_path(name)));
+    if (name != solver_type && sc.has(name)) {
+      (void)reg.create(name, reg.has(name, basics.implementation) ? basics.implementation : Backend::Optimized, sc);
+      basics.note_unused(Config(sc.node()[name], sc.key_path(name)));
     }
-  s.solver = reg.create(s.solver_type, s.implementation, sc);
+  st.solver = reg.create(solver_type, basics.implementation, sc);
   sc.check_no_unknown_keys();
 }
 
-void read_optimization(Config& root, CurveRunSpec& s) {
+void read_optimization(Config& root, CurveEditSettings& s, const Polyline& curve, const std::string& curve_name, RunBasics& basics,
+                       std::string& solver_type) {
   const CurveComponents& cc = curve_components();
   Config oc = root.child("optimization", "the length-constrained smoothing that ends every editing loop");
   s.beta = oc.get_number("beta", 0.5, 0, 1, "Sauvage et al. eq. 2: (1-beta)·smoothness + beta·distance to C_A");
@@ -93,12 +101,12 @@ void read_optimization(Config& root, CurveRunSpec& s) {
   smooth.erase(std::remove(smooth.begin(), smooth.end(), "attractor_distance"), smooth.end());
   const std::string sm = oc.get_choice("smoothness", "bending", smooth, "the smoothness energy");
   Config none;
-  s.smoothness = cc.energies.create(sm, s.implementation, none);
+  s.smoothness = cc.energies.create(sm, basics.implementation, none);
   bool has_lengths = false;
   std::string total_key;  // the total_length entry's key, when there is one
   for (Config k : oc.child_list("constraints", "constraints: [{type: segment_lengths} | {type: total_length, value}, {type: pin, points: ...}]")) {
     const std::string type = k.get_choice("type", "segment_lengths", cc.constraints.names(), "constraint kind");
-    s.constraints.push_back(cc.constraints.create(type, s.implementation, k));
+    s.constraints.push_back(cc.constraints.create(type, basics.implementation, k));
     k.check_no_unknown_keys();
     has_lengths |= type == "segment_lengths";
     if (type == "total_length") {
@@ -113,7 +121,7 @@ void read_optimization(Config& root, CurveRunSpec& s) {
                           "(src/curve_design/edit_window.h); set editing.solve_region: curve");
   }
   if (s.constraints.empty()) {
-    s.constraints.push_back(cc.constraints.create("segment_lengths", s.implementation, none));
+    s.constraints.push_back(cc.constraints.create("segment_lengths", basics.implementation, none));
     has_lengths = true;
   }
   if (has_lengths && !total_key.empty())
@@ -122,13 +130,13 @@ void read_optimization(Config& root, CurveRunSpec& s) {
   if (!has_lengths && total_key.empty())
     throw InvalidConfig(oc.key_path("constraints") + ": lengths are what this editor preserves; include {type: segment_lengths} "
                         "(every segment's length) or {type: total_length} (the curve's total length)");
-  read_solver(oc, s);
+  read_solver(oc, s, basics, solver_type);
   // The dense second-order check is O((3N)³): refused where it would dominate every solve
   // (papers/sauvage/README.md, "Second-order checks cheaper than the solve").
-  if (s.solver->tolerances().second_order == SecondOrderMode::Dense && s.curve.n_points() > kSecondOrderDenseLimit) {
+  if (s.solver->tolerances().second_order == SecondOrderMode::Dense && curve.n_points() > kSecondOrderDenseLimit) {
     std::ostringstream m;
     m << oc.key_path("solver") << ".second_order: dense eigen-decomposes the reduced Hessian (O(n^3)) and takes curves of up to "
-      << kSecondOrderDenseLimit << " points; " << s.curve_path << " has " << s.curve.n_points()
+      << kSecondOrderDenseLimit << " points; " << curve_name << " has " << curve.n_points()
       << " — use inertia (the default: the same verdict from the banded KKT factor's inertia, O(n)) or off";
     throw InvalidConfig(m.str());
   }
@@ -137,7 +145,7 @@ void read_optimization(Config& root, CurveRunSpec& s) {
     Config none;
     for (const auto& name : cc.solvers.names())
       if (cc.solvers.create(name, Backend::Optimized, none)->takes_dense_rows()) takers += (takers.empty() ? "" : ", ") + name;
-    throw InvalidConfig(oc.key_path("solver") + ".type: " + s.solver_type + " does not take the total_length constraint (" +
+    throw InvalidConfig(oc.key_path("solver") + ".type: " + solver_type + " does not take the total_length constraint (" +
                         total_key + "); the solvers that do: " + takers);
   }
   oc.check_no_unknown_keys();
@@ -174,12 +182,13 @@ EditingOptions read_editing(Config& root, bool& accept_partial_edit) {
 
 bool is_curve_config(const YAML::Node& c) { return c["input"] && c["input"].IsMap() && c["input"]["curve"]; }
 
-CurveObjective CurveRunSpec::objective() const {
-  CurveObjective o;
-  o.smoothness = smoothness.get();
-  o.beta = beta;
-  for (const auto& k : constraints) o.constraints.push_back(k.get());
-  return o;
+CurveEditSettings read_curve_settings(Config& root, const Polyline& curve, const std::string& curve_name, RunBasics& basics,
+                                      std::string& solver_type) {
+  CurveEditSettings s;
+  s.backend = basics.implementation;
+  s.editing = read_editing(root, s.accept_partial_edit);
+  read_optimization(root, s, curve, curve_name, basics, solver_type);
+  return s;
 }
 
 namespace {
@@ -230,12 +239,13 @@ static CurveRunSpec read_curve_run(const std::vector<std::string>& dirs, Config&
     throw InvalidConfig(in.key_path("levels") + ": " + std::to_string(s.levels) + " levels need " +
                         (s.curve.closed ? "2^L·k points (k ≥ 3)" : "2^L·k + 1 points") + "; " + s.curve_path + " has " +
                         std::to_string(s.curve.n_points()) + " points, which allow " + std::to_string(most));
-  for (Config ec : root.child_list("edits", "editing loops applied in order: [{level, wrinkle_level, moves, drag_steps}]"))
-    for (CurveEdit& e : read_edit(ec, s)) s.edits.push_back(std::move(e));
+  for (Config ec : root.child_list("edits", "editing loops applied in order: [{level, wrinkle_level, moves, drag_steps}]")) {
+    const CurveEditEntry entry = read_curve_edit(ec, &s);
+    for (CurveEdit& e : drag_steps(entry.whole, entry.drag_steps)) s.edits.push_back(std::move(e));
+  }
   if (s.edits.empty()) throw InvalidConfig("edits: at least one edit is required" + root.misspelling_of("edits"));
-  s.editing = read_editing(root, s.accept_partial_edit);
-  for (auto& e : s.edits) e.options = s.editing;
-  read_optimization(root, s);
+  s.settings = read_curve_settings(root, s.curve, s.curve_path, s, s.solver_type);
+  for (auto& e : s.edits) e.options = s.settings.editing;
   Config out = root.child("output", "what each run writes");
   s.vtk = read_vtk_policy(out, "every stage of every edit");
   s.final_curve = out.get<bool>("final_curve", true, "write final.obj (final/<run_id>.obj in sweeps)");
@@ -280,11 +290,6 @@ const std::vector<std::string>& curve_iteration_columns() {
 
 namespace {
 
-// Length preservation is explicit at level w + 1 (Sauvage et al. §4.1): lengths placed
-// analytically, so anything above rounding is a length the step could not place.
-constexpr double kExplicitLengthTolerance = 1e-9;
-bool edits_wrinkle(const CurveEdit& e) { return e.wrinkle_level >= 0; }
-
 const char* const kStages[] = {"reference", "edited", "attracting", "final"};
 
 // `moved`: the edit's handles (fine-level indices), drawn over the stage from where they were
@@ -312,6 +317,72 @@ std::vector<std::string> step_row(int edit, const CurveEdit& e, const char* stag
           num(m.total_length_change), num(m.bending_energy), num(m.distance_to_attractor), std::to_string(m.wrinkles),
           solves, time, std::to_string(e.drag_step) + "/" + std::to_string(e.drag_steps)};
 }
+
+// steps.csv and iterations.csv rows and the stages' curves of one step.
+void write_step(const CurveRunSpec& spec, const RunOutputs& out, const CurveStep& step, const Eigen::VectorXd& original) {
+  const EditStages& last = step.stages;
+  const MatrixX3* stage_points[] = {&last.reference, &last.edited, &last.attracting, &last.final};
+  const CurveEdit& e = spec.edits[static_cast<std::size_t>(step.index)];
+  for (int st = 0; st < 4; ++st) {
+    const bool fin = st == 3;
+    const CurveMetrics m = fin ? step.checks.metrics : measure_curve(*stage_points[st], spec.curve.closed, original, last.attracting);
+    out.add_row("steps", step_row(step.index, e, kStages[st], m, fin ? std::to_string(last.solve.solves) : "",
+                                  fin ? num(last.total_s) : ""));
+    if (spec.vtk != VtkPolicy::None) write_stage(spec, out, step.index, kStages[st], *stage_points[st], last.reference, last);
+  }
+  for (const LengthSolveStep& h : last.solve.history)
+    out.add_row("iterations", {std::to_string(step.index), std::to_string(h.solves), num(h.length_error), num(h.stationarity),
+                               num(h.objective), num(h.seconds)});
+}
+
+// The columns of the last step's result and the session's verdict.
+void fill_result(MetricRow& row, const CurveRunSpec& spec, const CurveSession& session) {
+  const CurveStep& last = *session.last();
+  const CurveStepChecks& c = last.checks;
+  const CurveSessionTotals& t = session.totals();
+  const LengthSolveReport& solve = last.stages.solve;
+  row["length_error_max"] = num(c.metrics.length_error_max);
+  row["length_error_rms"] = num(c.metrics.length_error_rms);
+  row["total_length_change"] = num(c.metrics.total_length_change);
+  // What the last solve was asked to keep, next to what it reached.
+  row["length_constraint"] = last.stages.length_mode == LengthMode::Total ? "total_length" : "segment_lengths";
+  row["total_length_asked"] = num(last.stages.total_length_asked);
+  row["total_length_error"] = num(c.total_length_error);
+  row["segment_stretch_min"] = num(c.segment_stretch_min);
+  row["segment_stretch_max"] = num(c.segment_stretch_max);
+  row["bending_energy"] = num(c.metrics.bending_energy);
+  row["distance_to_attractor"] = num(c.metrics.distance_to_attractor);
+  row["wrinkles"] = std::to_string(c.metrics.wrinkles);
+  if (spec.wrinkle_scale) {  // what length preservation added to the last edit's attracting curve
+    const WrinkleScale w = wrinkle_scale(session.current().points, last.stages.attracting, spec.curve.closed);
+    row["wrinkle_amplitude"] = num(w.amplitude);
+    row["wrinkle_wavelength"] = num(w.wavelength);
+    row["wrinkle_wavelength_segments"] = num(w.wavelength_segments);
+  }
+  row["attractor_length_error"] = num(c.attractor_length_error);
+  if (!solve.history.empty()) row["stationarity"] = num(solve.history.back().stationarity);
+  // Second order (curve_design/second_order.h): ≥ 0 (to rounding) at a true local minimum.
+  // Empty when the solve did not end at a judged point; not_checked with second_order: off,
+  // not_estimated when the check failed (the message says so).
+  if (!std::isnan(solve.min_reduced_hessian_eig)) row["min_reduced_hessian_eig"] = num(solve.min_reduced_hessian_eig);
+  else if (solve.converged())
+    row["min_reduced_hessian_eig"] =
+        session.settings().solver->tolerances().second_order == SecondOrderMode::Off ? "not_checked" : "not_estimated";
+  row["saddle_escapes"] = std::to_string(solve.saddle_escapes);
+  const SolveSummary outcome = session.outcome();
+  row["termination"] = std::string(to_string(outcome.termination));
+  row["message"] = outcome.message;
+  row["handle_reach"] = num(t.handle_reach);
+  row["explicit_length_error"] = num(t.explicit_length_error);
+  row["unplaceable_midpoints"] = std::to_string(t.unplaceable_midpoints);
+  const bool planar = session.original_plane().planar;
+  row["plane"] = !planar ? "not_planar" : t.every_step_in_plane ? "kept" : "free";
+  row["second_order_space"] = last.stages.solved_in_plane ? "in_plane" : "3d";
+  if (planar) {
+    row["out_of_plane"] = num(c.out_of_plane);
+    row["self_crossings"] = std::to_string(c.self_crossings);
+  }
+}
 }  // namespace
 
 MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
@@ -323,186 +394,32 @@ MetricRow execute_curve_run(CurveRunSpec& spec, const RunOutputs& out) {
   row["unused_keys"] = spec.unused_keys_cell();
   row["termination"] = std::string(to_string(Termination::Converged));
   const Timer wall;
-  double time_s = 0, explicit_s = 0, solve_s = 0;
-  int solves = 0, outer = 0, done = 0;
-  double outside_final = 0, outside_attracting = 0;
-  std::string explicit_note;  // an explicit step that could not keep the lengths inside the support
-  // The input's plane: the result's distance from it is measured here, whatever the solver did.
-  const CurvePlane input_plane = fit_plane({&spec.curve.points});
-  bool every_edit_in_plane = true;
-  // Edits not honoured (editing.partial_edit): the worst over the edits, and what happened.
-  double reach = 1, explicit_error = 0;
-  int unplaceable = 0;
-  std::string undone_note, unmet_note;
-  MatrixX3 drag_start, drag_asked;
+  CurveSession session(spec.curve, spec.levels, std::move(spec.settings));
   try {
     const Eigen::VectorXd original = segment_lengths(spec.curve.points, spec.curve.closed);
-    Polyline current = spec.curve;
-    EditStages last;
-    for (std::size_t k = 0; k < spec.edits.size(); ++k) {
-      last = run_editing_loop(current, spec.levels, spec.edits[k], spec.objective(), *spec.solver, spec.implementation, &spec.curve);
-      const int edit = static_cast<int>(k);
-      time_s += last.total_s;
-      explicit_s += last.explicit_s;
-      solve_s += last.solve_s;
-      solves += last.solve.solves;
-      outer += last.solve.outer_iterations;
-      ++done;
-      every_edit_in_plane &= last.solved_in_plane;
-      const double tol = rounding_tolerance(last.reference);
-      outside_final = std::max(outside_final, moved_outside_support(last.reference, last.final, last.support, tol));
-      outside_attracting = std::max(outside_attracting, moved_outside_support(last.reference, last.attracting, last.support, tol));
-      if (last.explicit_step.worst_pull_back > 0)
-        explicit_note += "edit " + std::to_string(k) + ": the edit asks for more length than the curve has inside its support: "
-                         "moved control point(s) pulled back by up to " + num(last.explicit_step.worst_pull_back) +
-                         " (" + num(100 * last.explicit_step.worst_pull_back / (tol * 1e12)) + " % of the curve's size) so the "
-                         "explicit step keeps the lengths locally; ";
-      if (last.explicit_step.unreachable_chains > 0)
-        explicit_note += "edit " + std::to_string(k) + ": explicit step could not keep the lengths inside the support (" +
-                         std::to_string(last.explicit_step.unreachable_chains) +
-                         " level-e segment(s) stretched beyond their reference length, up to " +
-                         num(100 * last.explicit_step.worst_excess) + " % too long: left straight for the optimization); ";
-      // A drag's steps are judged together: from where its handles were before its first step,
-      // against the sum of the displacements its steps asked for.
-      const CurveEdit& e = spec.edits[k];
-      if (e.drag_step == 1) {
-        drag_start = last.reference;
-        drag_asked = MatrixX3::Zero(last.reference.rows(), 3);
-      }
-      drag_asked += last.edited - last.reference;
-      double r = 1, stretch = -1;
-      if (e.drag_step == e.drag_steps) {
-        r = handle_reach(drag_start, drag_start + drag_asked, last.final, last.moved_points);
-        reach = std::min(reach, r);
-        // Where the drag asked its handles to be, against the curve's own lengths.
-        MatrixX3 asked = last.edited;
-        for (int p : last.moved_points) asked.row(p) = drag_start.row(p) + drag_asked.row(p);
-        // (A total length lets segments stretch: only the total bounds a handle's reach there.)
-        if (last.length_mode == LengthMode::Segments)
-          stretch = worst_overstretch(asked, original, spec.curve.closed, 1 << (spec.levels - e.edit_level), last.moved_points);
-      }
-      if (undone_note.empty() && (last.explicit_step.worst_pull_back > 0 || last.explicit_step.unreachable_chains > 0 ||
-                                  r < kUndoneReach || stretch > 1e-9))
-        undone_note = "edit " + std::to_string(k) + " not honoured: " +
-                      (stretch > 1e-9 ? "it puts a handle " + num(100 * stretch) + " % farther from a control point than the curve "
-                                        "between them is long (over-stretched)"
-                       : r < kUndoneReach ? "the result kept " + num(100 * r) + " % of the handles' displacement" +
-                                              (e.drag_steps > 1 ? " over the drag's " + std::to_string(e.drag_steps) + " steps" : "")
-                                        : std::string("the handles were pulled back so the lengths could be kept")) +
-                      " (editing.partial_edit: accept allows it); ";
-      explicit_error = std::max(explicit_error, last.explicit_step.length_error);
-      unplaceable += last.explicit_step.unplaceable_midpoints;
-      if (unmet_note.empty() && edits_wrinkle(spec.edits[k]) && last.explicit_step.length_error > kExplicitLengthTolerance)
-        unmet_note = "edit " + std::to_string(k) + ": the explicit step left the attracting curve's level-" +
-                     std::to_string(spec.edits[k].wrinkle_level + 1) + " lengths up to " +
-                     num(100 * last.explicit_step.length_error) + " % off (" +
-                     std::to_string(last.explicit_step.unplaceable_midpoints) +
-                     " midpoint(s) on chords shorter than the difference of their two lengths, " +
-                     std::to_string(last.explicit_step.unreachable_chains) +
-                     " chain(s) stretched beyond reach; editing.partial_edit: accept allows it); ";
-      const MatrixX3* stage_points[] = {&last.reference, &last.edited, &last.attracting, &last.final};
-      for (int st = 0; st < 4; ++st) {
-        const CurveMetrics m = measure_curve(*stage_points[st], current.closed, original, last.attracting);
-        const bool fin = st == 3;
-        out.add_row("steps", step_row(edit, spec.edits[k], kStages[st], m, fin ? std::to_string(last.solve.solves) : "",
-                                      fin ? num(last.total_s) : ""));
-        if (spec.vtk != VtkPolicy::None) write_stage(spec, out, edit, kStages[st], *stage_points[st], last.reference, last);
-      }
-      for (const LengthSolveStep& h : last.solve.history)
-        out.add_row("iterations", {std::to_string(edit), std::to_string(h.solves), num(h.length_error), num(h.stationarity),
-                                   num(h.objective), num(h.seconds)});
-      current.points = last.final;
-      if (!last.solve.converged()) {  // the budget ran out, or the numerics failed: the solver says which
-        row["termination"] = std::string(to_string(last.solve.summary.termination));
-        row["message"] = "edit " + std::to_string(k) + ": " + last.solve.summary.message;
-        break;
-      }
+    for (const CurveEdit& e : spec.edits) {
+      const CurveStep step = session.edit(e);
+      write_step(spec, out, step, original);
+      if (!step.stages.solve.converged()) break;  // the run stops at the first failed solve
     }
-    const CurveMetrics m = measure_curve(current.points, current.closed, original, last.attracting);
-    row["length_error_max"] = num(m.length_error_max);
-    row["length_error_rms"] = num(m.length_error_rms);
-    row["total_length_change"] = num(m.total_length_change);
-    if (done > 0) {  // what the last solve was asked to keep, next to what it reached
-      const Eigen::VectorXd l = segment_lengths(current.points, current.closed);
-      const Eigen::VectorXd stretch = l.cwiseQuotient(original);
-      row["length_constraint"] = last.length_mode == LengthMode::Total ? "total_length" : "segment_lengths";
-      row["total_length_asked"] = num(last.total_length_asked);
-      row["total_length_error"] = num(std::abs(l.sum() - last.total_length_asked) / last.total_length_asked);
-      row["segment_stretch_min"] = num(stretch.minCoeff());
-      row["segment_stretch_max"] = num(stretch.maxCoeff());
-    }
-    row["bending_energy"] = num(m.bending_energy);
-    row["distance_to_attractor"] = num(m.distance_to_attractor);
-    row["wrinkles"] = std::to_string(m.wrinkles);
-    if (done > 0 && spec.wrinkle_scale) {  // what length preservation added to the last edit's attracting curve
-      const WrinkleScale w = wrinkle_scale(current.points, last.attracting, current.closed);
-      row["wrinkle_amplitude"] = num(w.amplitude);
-      row["wrinkle_wavelength"] = num(w.wavelength);
-      row["wrinkle_wavelength_segments"] = num(w.wavelength_segments);
-    }
-    row["attractor_length_error"] =
-        num(measure_curve(last.attracting, current.closed, segment_lengths(last.reference, current.closed), last.attracting)
-                .length_error_max);
-    if (!last.solve.history.empty()) row["stationarity"] = num(last.solve.history.back().stationarity);
-    // Second order (curve_design/second_order.h): ≥ 0 (to rounding) at a true local minimum.
-    // Empty when the solve did not end at a judged point; not_checked with second_order: off,
-    // not_estimated when the check failed (the message says so).
-    if (!std::isnan(last.solve.min_reduced_hessian_eig)) row["min_reduced_hessian_eig"] = num(last.solve.min_reduced_hessian_eig);
-    else if (last.solve.converged())
-      row["min_reduced_hessian_eig"] = spec.solver->tolerances().second_order == SecondOrderMode::Off ? "not_checked" : "not_estimated";
-    row["saddle_escapes"] = std::to_string(last.solve.saddle_escapes);
-    if (row["message"].empty())  // the last edit's solve (a multi-edit run names which edit)
-      row["message"] = (spec.edits.size() > 1 ? "edit " + std::to_string(done - 1) + ": " : std::string()) +
-                       last.solve.summary.message;
-    row["message"] = explicit_note + row["message"];
-    row["handle_reach"] = num(reach);
-    row["explicit_length_error"] = num(explicit_error);
-    row["unplaceable_midpoints"] = std::to_string(unplaceable);
-    if (row["termination"] == to_string(Termination::Converged) && !(undone_note + unmet_note).empty()) {
-      if (!spec.accept_partial_edit)
-        row["termination"] = std::string(to_string(undone_note.empty() ? Termination::ConstraintsUnmet : Termination::EditUndone));
-      row["message"] = undone_note + unmet_note + row["message"];
-    }
-    row["plane"] = !input_plane.planar ? "not_planar" : every_edit_in_plane ? "kept" : "free";
-    row["second_order_space"] = last.solved_in_plane ? "in_plane" : "3d";
-    if (input_plane.planar) {
-      const double off = distance_from_plane(current.points, input_plane);
-      row["out_of_plane"] = num(off);
-      // Solved in the plane but not in it: the rows were not met (measured on the result).
-      if (every_edit_in_plane && off > kPlanarTolerance * input_plane.size &&
-          row["termination"] == to_string(Termination::Converged)) {
-        row["termination"] = std::string(to_string(Termination::ConstraintsUnmet));
-        row["message"] = "the planar curve left its plane by " + num(off) + " (" + num(off / input_plane.size) +
-                         " of its size, tolerance " + num(kPlanarTolerance) + "); " + row["message"];
-      }
-    }
-    if (input_plane.planar) {
-      // Crossings the edits made (the input's own are not the edit's doing).
-      const int before = count_self_crossings(spec.curve.points, spec.curve.closed, input_plane);
-      const int after = count_self_crossings(current.points, current.closed, input_plane);
-      row["self_crossings"] = std::to_string(after);
-      if (after > before && row["termination"] == to_string(Termination::Converged)) {
-        row["termination"] = std::string(to_string(Termination::Folded));
-        row["message"] = "the result crosses itself: " + std::to_string(after - before) + " crossing(s) of segment pairs the input " +
-                         "did not have; " + row["message"];
-      }
-    }
-    if (spec.final_curve) write_polyline(current, out.final_path());
+    fill_result(row, spec, session);
+    if (spec.final_curve) write_polyline(session.current(), out.final_path());
   } catch (const OutputError& e) {  // results incomplete: not a finished run
     row["termination"] = std::string(to_string(Termination::OutputFailed));
     row["message"] = e.what();
   } catch (const Error& e) {
     row["termination"] = std::string(to_string(Termination::InvalidInput));
-    row["message"] = "edit " + std::to_string(done) + ": " + e.what();
+    row["message"] = "edit " + std::to_string(session.totals().steps) + ": " + e.what();
   }
-  row["edits"] = std::to_string(done);
-  row["moved_outside_support"] = num(outside_final);
-  row["attractor_moved_outside_support"] = num(outside_attracting);
-  row["solves"] = std::to_string(solves);
-  row["outer_iterations"] = std::to_string(outer);
-  row["explicit_s"] = num(explicit_s);
-  row["solve_s"] = num(solve_s);
-  row["time_s"] = num(done ? time_s : wall.seconds());
+  const CurveSessionTotals& t = session.totals();
+  row["edits"] = std::to_string(t.steps);
+  row["moved_outside_support"] = num(t.moved_outside_support);
+  row["attractor_moved_outside_support"] = num(t.attractor_moved_outside_support);
+  row["solves"] = std::to_string(t.solves);
+  row["outer_iterations"] = std::to_string(t.outer_iterations);
+  row["explicit_s"] = num(t.explicit_s);
+  row["solve_s"] = num(t.solve_s);
+  row["time_s"] = num(t.steps ? t.time_s : wall.seconds());
   return row;
 }
 

@@ -103,6 +103,17 @@ py::dict measurement_dict(const FeatureMeasurement& m, const std::map<int, featu
   return d;
 }
 
+// A curve's control points as placed on its level: faces (k) and barycentric coordinates (k×3).
+std::pair<Eigen::VectorXi, Eigen::MatrixXd> placed_points(const feature::FeatureCurve& c) {
+  Eigen::VectorXi faces(static_cast<Eigen::Index>(c.points.size()));
+  Eigen::MatrixXd bary(static_cast<Eigen::Index>(c.points.size()), 3);
+  for (std::size_t k = 0; k < c.points.size(); ++k) {
+    faces[static_cast<Eigen::Index>(k)] = c.points[k].face;
+    bary.row(static_cast<Eigen::Index>(k)) = c.points[k].bary.transpose();
+  }
+  return {faces, bary};
+}
+
 FeatureChecks checks_arg(const std::string& checks) {
   static const NameTable<FeatureChecks> names{{FeatureChecks::Cheap, "cheap"}, {FeatureChecks::Profiles, "profiles"}};
   return names.value(checks, "checks");
@@ -239,12 +250,7 @@ class PyFeatureSession {
   py::dict features() const {
     py::dict out;
     for (const auto& [id, c] : session_->features()) {
-      Eigen::VectorXi faces(static_cast<Eigen::Index>(c.points.size()));
-      Eigen::MatrixXd bary(static_cast<Eigen::Index>(c.points.size()), 3);
-      for (std::size_t k = 0; k < c.points.size(); ++k) {
-        faces[static_cast<Eigen::Index>(k)] = c.points[k].face;
-        bary.row(static_cast<Eigen::Index>(k)) = c.points[k].bary.transpose();
-      }
+      const auto [faces, bary] = placed_points(c);
       py::dict d;
       d["id"] = id;
       d["level"] = c.level;
@@ -364,12 +370,7 @@ py::dict apply_features(const MultiresSurface& hierarchy, const py::list& featur
   // Each feature's surface points as placed (projected world points), for reuse.
   py::list placed;
   for (const auto& [id, c] : session->features()) {
-    Eigen::VectorXi faces(static_cast<Eigen::Index>(c.points.size()));
-    Eigen::MatrixXd bary(static_cast<Eigen::Index>(c.points.size()), 3);
-    for (std::size_t k = 0; k < c.points.size(); ++k) {
-      faces[static_cast<Eigen::Index>(k)] = c.points[k].face;
-      bary.row(static_cast<Eigen::Index>(k)) = c.points[k].bary.transpose();
-    }
+    const auto [faces, bary] = placed_points(c);
     placed.append(py::make_tuple(faces, bary));
   }
   const py::dict m = measurement_dict(measured, session->features());

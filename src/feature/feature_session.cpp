@@ -44,8 +44,9 @@ MultiresSurface& FeatureSession::edit_original() {
 }
 
 const feature::TriangleSurface& FeatureSession::drawn_on(int level) {
+  if (const auto it = drawn_on_.find(level); it != drawn_on_.end()) return it->second;
   const SurfaceMesh& mesh = std::as_const(surface_).original().mesh(level);
-  return drawn_on_.try_emplace(level, mesh, feature::loop_limit_normals(mesh)).first->second;
+  return drawn_on_.try_emplace(level, mesh, feature::loop_limit_normals(mesh)).first->second;  // O(level): once
 }
 
 double FeatureSession::diagonal() {

@@ -102,7 +102,7 @@ TEST_CASE("a feature session driven step by step ends on the config run's surfac
   CHECK(session.features().size() == 3);
 }
 
-TEST_CASE("a feature session refuses what it cannot place and changes nothing; folds and profiles are measured",
+TEST_CASE("a feature session refuses what it cannot place and changes nothing, and measures folds and profiles",
           "[feature][session]") {
   const FeatureRunSpec spec = FeatureRunSpec::from_config(stepped_config(), {});
   FeatureSession session(feature_hierarchy(spec), feature_session_options(spec));

@@ -4,7 +4,7 @@
 
 helmet: configs/khodakovsky-schroder/fig17_study.yaml as written (the helmet at 4 levels, 14
 features placed by geodesics, sections and a file), the largest feature config the tests run;
-then a ridge of world points added on level 1 and moved, and a rib re-parameterized.
+then a groove of world points added on level 1 (across a badge) and moved, and a rib re-parameterized.
 homer: configs/khodakovsky-schroder/adaptive_homer_level2.yaml evaluated uniformly (Homer at 4
 levels: 1,261,570 finest vertices): its ridge between the centres of base faces 3726 and 5117,
 given as world points, on level 2 (the config's) and on level 4 (the finest), each moved by a
@@ -60,7 +60,7 @@ def helmet(repeat):
     s = setup("fig17_study (helmet, 4 levels, 14 features)", **c)
     timed("set rib_mid height 0.012 -> 0.014 (level 1)", lambda: s.set("rib_mid", height=0.014), 1)
     timed("set rib_mid height back", lambda: s.set("rib_mid", height=0.012), 1)
-    s.add(name="dot", level=1, radius=0.04, height=0.008, max_distance=0.05,
+    s.add(name="dot", level=1, radius=0.04, height=-0.008, max_distance=0.05,
           points=[[0.1700, -0.3171, -0.2073], [0.2415, -0.3017, -0.2158]])
     sign = [1]
 
@@ -68,7 +68,7 @@ def helmet(repeat):
         sign[0] = -sign[0]
         return s.move("dot", by=[0.004 * sign[0], 0, 0])
 
-    timed(f"move a level-1 ridge by 0.004 (best of {repeat})", move, repeat)
+    timed(f"move a level-1 groove by 0.004 (best of {repeat})", move, repeat)
 
 
 def homer_points():

@@ -37,6 +37,7 @@ FeatureSession::FeatureSession(MultiresSurface original, const FeatureSessionOpt
 }
 
 MultiresSurface& FeatureSession::edit_original() {
+  changed_ = true;
   drawn_on_.clear();
   diagonal_.reset();
   rest_faces_.reset();
@@ -95,6 +96,7 @@ int FeatureSession::stage_add(feature::FeatureDrawing f) {
   placed.placed.back().id = id;
   staged_.placed.push_back(std::move(placed.placed.back()));
   staged_.added.push_back(id);
+  changed_ = true;
   return id;
 }
 
@@ -149,9 +151,14 @@ FeatureStep FeatureSession::apply(std::vector<FeatureEdit> edits, FeatureChecks 
   step.added.insert(step.added.begin(), staged_.added.begin(), staged_.added.end());
   step.placed.insert(step.placed.begin(), staged_.placed.begin(), staged_.placed.end());
   staged_ = {};
+  changed_ = changed_ || !edits.empty();
   const Timer solve_timer;
   (void)surface_.result();
   step.solve_s = solve_timer.seconds();
+  // A step with nothing to apply recomputes nothing (the surface keeps its last evaluation).
+  if (changed_) step.evaluation = surface_.last_evaluation();
+  else step.evaluation.region = true, step.evaluation.vertices.assign(static_cast<std::size_t>(levels() + 1), {});
+  changed_ = false;
   check_step(step, checks);
   return step;
 }
@@ -172,7 +179,6 @@ FeatureStep FeatureSession::evaluate(FeatureChecks checks) { return apply({}, ch
 // other vertex keeps its value bit for bit, featured_surface.h) and the finest faces turned over.
 void FeatureSession::check_step(FeatureStep& step, FeatureChecks checks) {
   const Timer timer;
-  step.evaluation = surface_.last_evaluation();
   const MultiresSurface& result = surface_.result();
   step.surface = &result;
   const MatrixX3& now = result.mesh(levels()).positions();

@@ -150,6 +150,7 @@ class FeatureSession {
   std::optional<RestFaces> rest_faces_;               // the finest faces without features
   MatrixX3 previous_;                                 // the finest level after the last step
   FeatureStep staged_;                                // what stage_add placed, reported by the next step
+  bool changed_ = true;                               // something to evaluate since the last step
 };
 
 }  // namespace fairshape

@@ -100,6 +100,11 @@ TEST_CASE("a feature session driven step by step ends on the config run's surfac
     CHECK(steps[i].max_change > 0);
   }
   CHECK(session.features().size() == 3);
+  // A step with nothing to apply recomputes and moves nothing.
+  const FeatureStep idle = session.evaluate();
+  CHECK(idle.evaluation.vertices_recomputed == 0);
+  CHECK(idle.vertices_changed == 0);
+  CHECK(same_bits(session.surface(), run.session->surface()));
 }
 
 TEST_CASE("a feature session refuses what it cannot place and changes nothing, and measures folds and profiles",

@@ -21,4 +21,4 @@ from ._solve import solve  # noqa: F401
 from ._run import run  # noqa: F401
 from ._curves import Curve, CurveEditResult, CurveSession, CurveStep, edit_curve  # noqa: F401
 from ._sheets import SheetResult, design_sheet  # noqa: F401
-from ._features import FeatureResult, feature, apply_features  # noqa: F401
+from ._features import FeatureResult, FeatureSession, feature, apply_features  # noqa: F401

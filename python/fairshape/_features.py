@@ -6,6 +6,10 @@ import numpy as np
 
 from . import _fairshape
 
+# The session itself (python/src/features.cpp): set up from a feature config's keys, advanced by
+# add / replace / move / set / remove, each step re-evaluating only the region it reaches.
+FeatureSession = _fairshape.FeatureSession
+
 _PARAMS = ("radius", "left_right_ratio", "height", "crease", "end_height_ratio", "flatness_angle_deg", "max_turn_deg",
            "quadratic", "quadratic_samples", "profile_tolerance", "width_tolerance")
 

@@ -85,3 +85,79 @@ def test_gil_is_released_while_features_are_applied(patch):
         ticks += 1
     t.join()
     assert ticks > 1000, ticks
+
+
+# The session (fairshape.FeatureSession, feature/feature_session.h) driven step by step gives the
+# command line's run of the same design steps, bit for bit: a groove moved, a ridge raised, a
+# feature added, a ridge removed — one edit per step, as the config schedules them.
+SESSION_DEFAULTS = dict(radius=0.18, height=0.05, quadratic=True, profile_tolerance=0.5, width_tolerance=0.5)
+RIDGE_A = dict(name="ridge_a", level=2, points=[[-0.8, -0.55, 0.0587], [-0.2, 0.1, 0.0042], [0.4, 0.25, 0.0155], [0.8, 0.7, 0.0474]])
+RIDGE_B = dict(name="ridge_b", level=2, points=[[-0.75, 0.6, 0.0459], [0.0, 0.35, -0.0073], [0.7, -0.6, 0.0372]])
+GROOVE = dict(name="groove", level=2, height=-0.04, radius=0.12,
+              points=[[-0.6, -0.1, 0.0426], [0.1, -0.45, -0.0109], [0.75, 0.05, 0.0674]])
+LATE = dict(name="late", level=2, height=-0.03, radius=0.1, points=[[-0.5, 0.8, -0.0084], [0.5, 0.8, -0.0084]])
+SESSION_INPUT = dict(mesh="data/ks_patch.off", levels=3)
+
+
+def _flow(d):
+    return "{" + ", ".join(f"{k}: {v}" for k, v in d.items()) + "}"
+
+
+@pytest.fixture(scope="module")
+def stepped_cli(tmp_path_factory):
+    d = tmp_path_factory.mktemp("feature_session")
+    scheduled = [dict(RIDGE_A, until=4), dict(RIDGE_B, changes="[{step: 2, height: 0.1}]"),
+                 dict(GROOVE, moves="[{step: 1, by: [0, -0.2, 0]}]"), dict(LATE, step=3)]
+    config = d / "steps.yaml"
+    config.write_text("name: steps\n"
+                      f"input: {_flow(SESSION_INPUT)}\n"
+                      f"feature_defaults: {_flow(SESSION_DEFAULTS)}\n"
+                      "adaptive: {enabled: false}\noutput: {vtk: none}\n"
+                      "features:\n" + "".join(f"  - {_flow(f)}\n" for f in scheduled))
+    cli("run", config, "--out", d / "out")
+    with open(d / "out" / "steps.csv") as f:
+        steps = list(csv.DictReader(f))
+    return obj_vertices(d / "out" / "final.obj"), steps
+
+
+def test_feature_session_step_by_step_equals_the_cli_run(stepped_cli):
+    expected, rows = stepped_cli
+    s = fairshape.FeatureSession(input=SESSION_INPUT, feature_defaults=SESSION_DEFAULTS, features=[RIDGE_A, RIDGE_B, GROOVE])
+    steps = [s.first_step, s.move("groove", by=[0, -0.2, 0]), s.set("ridge_b", height=0.1), s.add(**LATE), s.remove("ridge_a")]
+    assert np.array_equal(s.positions(), expected)
+    assert [r["evaluation"] for r in rows] == [t["evaluation"] for t in steps] == ["whole"] + ["region"] * 4
+    for r, t in zip(rows, steps):
+        assert int(r["vertices_recomputed"]) == t["vertices_recomputed"]
+        assert r["vertices_changed"] == ("" if t["vertices_changed"] < 0 else str(t["vertices_changed"]))
+        assert t["termination"] == "converged" and t["flipped_faces"] == 0 and t["profiles"] is None
+    assert steps[1]["moved"] == ["groove"] and steps[2]["changed"] == ["ridge_b"] and steps[3]["added"] == ["late"]
+    assert [p["name"] for p in steps[0]["placed"]] == ["ridge_a", "ridge_b", "groove"]
+    assert all(0 < p["farthest"] < p["allowed"] for p in steps[0]["placed"])
+    assert sorted(s.features) == ["groove", "late", "ridge_b"]
+    assert s.features["ridge_b"]["height"] == 0.1
+    # The profiles on request, as features.csv reports them.
+    m = s.measure()
+    assert m["termination"] == "converged" and [f["name"] for f in m["features"]] == ["ridge_b", "groove", "late"]
+    step = s.set("late", height=-0.03, checks="profiles")
+    assert step["profiles"]["termination"] == "converged" and len(step["profiles"]["features"]) == 3
+
+
+def test_feature_session_errors():
+    s = fairshape.FeatureSession(input=SESSION_INPUT, feature_defaults=SESSION_DEFAULTS, features=[GROOVE])
+    before = s.positions()
+    with pytest.raises(fairshape.InvalidConfig, match="'output' is not a session's key"):
+        fairshape.FeatureSession(input=SESSION_INPUT, features=[GROOVE], output={"vtk": "none"})
+    with pytest.raises(fairshape.InvalidConfig, match=r"features\[0\]: step, until, moves and changes"):
+        fairshape.FeatureSession(input=SESSION_INPUT, features=[dict(GROOVE, until=2)])
+    with pytest.raises(fairshape.InvalidConfig, match="unknown key.*radius"):
+        s.set("groove", radious=0.1)
+    with pytest.raises(fairshape.InvalidConfig, match="exists already"):
+        s.add(**GROOVE)
+    with pytest.raises(fairshape.InvalidInput, match="no feature named 'ridge'.*groove"):
+        s.remove("ridge")
+    with pytest.raises(fairshape.InvalidConfig, match="checks: unknown value 'all'"):
+        s.set("groove", checks="all", height=-0.05)
+    with pytest.raises(fairshape.InvalidInput, match="farther|surface"):
+        s.replace("groove", points=[[0, 0, 5], [0.5, 0, 5]])
+    assert np.array_equal(s.positions(), before)  # a refused step changes nothing
+    assert s.move("groove", by=[0, 0.05, 0])["evaluation"] == "region"

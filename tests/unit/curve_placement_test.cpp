@@ -491,7 +491,7 @@ TEST_CASE("placement keys in a feature config: checked at load, errors name the 
   CHECK_THROWS_WITH(placed_features(miss, feature_hierarchy(miss)),
                     Catch::Contains("feature 'rim' (features[0].section)") && Catch::Contains("misses the surface"));
   FeatureRunSpec ok = spec("{name: rim, section: {point: [0, 0, 0], normal: [1, 0.2, 0]}}");
-  feature::FeaturedSurface placed = placed_features(ok, feature_hierarchy(ok));
-  CHECK(placed.features().at(0).points.size() > 5);
-  CHECK_NOTHROW(placed.check_coarsest_features());
+  const std::unique_ptr<FeatureSession> placed = placed_features(ok, feature_hierarchy(ok));
+  CHECK(placed->features().at(0).points.size() > 5);
+  CHECK_NOTHROW(placed->check_coarsest_features());
 }

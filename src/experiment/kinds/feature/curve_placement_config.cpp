@@ -110,7 +110,8 @@ std::optional<feature::CurvePlacement> read_curve_placement(Config& f, const std
 }
 
 // Where the feature's control polygon comes from (one of five keys) and whether it is closed.
-void read_curve_source(Config& c, const std::string& where, const std::vector<std::string>& dirs, FeatureSpec& f) {
+void read_curve_source(Config& c, const std::string& where, const std::vector<std::string>& dirs,
+                       feature::FeatureDrawing& f) {
   if (c.documenting()) {  // the keys of every source, none of them given
     (void)c.get<bool>("closed", false, "the curve closes on itself: no ends, no end caps, a periodic spline");
     (void)read_point_list(c, "points", "world points, projected onto the level's surface");
@@ -142,20 +143,6 @@ void read_curve_source(Config& c, const std::string& where, const std::vector<st
   if (f.curve.closed && f.curve.params.end_height_ratio != 1.0)
     throw InvalidConfig(c.key_path("end_height_ratio") + ": " + std::to_string(f.curve.params.end_height_ratio) +
                         " on a closed curve (the height would jump at the seam; only 1 is allowed)");
-}
-
-void place_on_level(const feature::TriangleSurface& s, double diagonal, FeatureSpec& f) {
-  if (f.placement) {  // a geodesic, a section or a file, on the level as it is before any feature
-    feature::PlacedCurve placed =
-        feature::place_curve(s, *f.placement, f.curve.closed, f.max_distance * diagonal, f.curve.name, f.key);
-    f.curve.points = std::move(placed.points);
-    f.curve.closed = placed.closed;
-    return;
-  }
-  if (f.world_points.empty()) return;  // surface points, as given
-  MatrixX3 P(static_cast<Eigen::Index>(f.world_points.size()), 3);
-  for (std::size_t i = 0; i < f.world_points.size(); ++i) P.row(static_cast<Eigen::Index>(i)) = f.world_points[i].transpose();
-  f.curve.points = feature::project_to_surface(s, P, f.max_distance * diagonal, "feature '" + f.curve.name + "'");
 }
 
 }  // namespace fairshape

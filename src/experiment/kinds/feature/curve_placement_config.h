@@ -8,10 +8,9 @@
 
 #include "fairshape/core/config.h"
 #include "fairshape/feature/curve_placement.h"
+#include "fairshape/feature/feature_drawing.h"
 
 namespace fairshape {
-
-struct FeatureSpec;  // feature_run.h
 
 //! `key` as a list of [x, y, z]. \throw InvalidConfig naming the key and the entry.
 std::vector<Vec3> read_point_list(Config& c, const std::string& key, const std::string& doc);
@@ -31,11 +30,7 @@ int curve_keys_given(const Config& feature);
 //! surface points or a placement tool. `where` is the feature's key ("features[2]").
 //! \throw InvalidConfig naming the key: none or several given, too few points for an open or
 //! closed curve, `closed` with a section, a closed curve with end_height_ratio ≠ 1.
-void read_curve_source(Config& feature, const std::string& where, const std::vector<std::string>& dirs, FeatureSpec& f);
-
-//! f.curve.points on the level `s` the feature is drawn on: its world points projected, or its
-//! placement tool run (`diagonal` scales max_distance). Surface points are left as given.
-//! \throw InvalidInput naming the feature and key.
-void place_on_level(const feature::TriangleSurface& s, double diagonal, FeatureSpec& f);
+void read_curve_source(Config& feature, const std::string& where, const std::vector<std::string>& dirs,
+                       feature::FeatureDrawing& f);
 
 }  // namespace fairshape

@@ -61,7 +61,7 @@ class FeatureKind final : public RunKind {
       throw InvalidConfig("input.mesh: " + spec.mesh_path + ": " + e.what());
     }
     try {
-      placed_features(spec, it->second).check_coarsest_features();
+      placed_features(spec, it->second)->check_coarsest_features();
     } catch (const Error& e) {
       throw InvalidConfig(std::string("features on ") + spec.mesh_path + ": " + e.what());
     }

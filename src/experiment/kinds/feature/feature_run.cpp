@@ -8,13 +8,13 @@
 #include <utility>
 #include <limits>
 #include <map>
+#include <sstream>
 
 #include "fairshape/core/summary.h"
 #include "fairshape/core/config.h"
 #include "fairshape/core/timer.h"
 #include "fairshape/experiment/kinds/feature/curve_placement_config.h"
 #include "fairshape/experiment/kinds/feature/feature_exports.h"
-#include "fairshape/experiment/kinds/feature/feature_folds.h"
 #include "fairshape/experiment/components.h"
 #include "fairshape/experiment/kinds/feature/feature_steps.h"
 #include "fairshape/experiment/kinds/feature/feature_width_check.h"
@@ -103,6 +103,51 @@ feature::FeatureParams read_feature_params(Config& c, const feature::FeaturePara
   return p;
 }
 
+const NameTable<bool>& step_evaluation_names() {
+  static const NameTable<bool> names{{true, "region"}, {false, "whole"}};
+  return names;
+}
+
+FeatureSpec read_feature_entry(Config& c, const std::string& where, const std::vector<std::string>& dirs, int levels,
+                               const feature::FeatureParams& defaults, bool has_edit) {
+  FeatureSpec f;
+  f.curve.name = c.get<std::string>("name", where, "name in outputs and messages");
+  f.curve.level = c.get_int("level", 0, 0, levels, "the hierarchy level the curve is drawn on");
+  f.curve.params = read_feature_params(c, defaults);
+  f.max_distance = c.get_number("max_distance", 0.02, 0, 1, "× bounding-box diagonal: farther points leave the surface");
+  f.after_edit = c.get<bool>("after_edit", false, "drawn on the surface the edit made (default: before it, carried by it)");
+  read_schedule(c, f.step, f.until);
+  f.moves = read_moves(c, f.step);
+  if (!f.moves.empty() && !c.has("points") && !c.documenting())
+    throw InvalidConfig(c.key_path("moves") + ": only a feature given by world `points` is moved (its points are translated "
+                        "and placed again)");
+  for (Config ch : c.child_list("changes", "its parameters from a later step on: [{step, height, radius, crease, ...}]")) {
+    FeatureChange change;
+    change.step = ch.get_int("step", 1, 1, 1000, "design step from which the parameters apply");
+    change.params = read_feature_params(ch, f.changes.empty() ? f.curve.params : f.changes.back().params);
+    ch.check_no_unknown_keys();
+    if (change.step <= f.step || (!f.changes.empty() && change.step <= f.changes.back().step))
+      throw InvalidConfig(ch.key_path("step") + ": " + std::to_string(change.step) +
+                          " must come after the feature's step and its earlier changes");
+    try {
+      change.params.validate(ch.path());
+    } catch (const InvalidInput& e) {
+      throw InvalidConfig(e.what());
+    }
+    f.changes.push_back(change);
+  }
+  if (f.after_edit && !has_edit) throw InvalidConfig(c.key_path("after_edit") + ": there is no edit (give an `edit` block)");
+  f.key = where;
+  read_curve_source(c, where, dirs, f);
+  try {
+    f.curve.params.validate(where);
+  } catch (const InvalidInput& e) {
+    throw InvalidConfig(e.what());
+  }
+  c.check_no_unknown_keys();
+  return f;
+}
+
 bool is_feature_config(const YAML::Node& c) { return c.IsMap() && c["features"].IsDefined(); }
 
 // Every key of the run read from `root` (parse_config: unknown keys reported together).
@@ -121,45 +166,12 @@ static FeatureRunSpec read_feature_run(const std::vector<std::string>& dirs, Con
   Config dc = root.child("feature_defaults", "parameters every feature starts from (sweepable: feature_defaults.height)");
   const feature::FeatureParams defaults = read_feature_params(dc, feature::FeatureParams{});
   dc.check_no_unknown_keys();
+  s.feature_defaults = defaults;
   int k = 0;
   for (Config c : root.child_list("features", "feature curves [{name, level, points | surface_points, ...}]")) {
-    const std::string where = "features[" + std::to_string(k++) + "]";
-    FeatureSpec f;
-    f.curve.name = c.get<std::string>("name", where, "name in outputs and messages");
-    f.curve.level = c.get_int("level", 0, 0, s.levels, "the hierarchy level the curve is drawn on");
-    f.curve.params = read_feature_params(c, defaults);
-    f.max_distance = c.get_number("max_distance", 0.02, 0, 1, "× bounding-box diagonal: farther points leave the surface");
-    f.after_edit = c.get<bool>("after_edit", false, "drawn on the surface the edit made (default: before it, carried by it)");
-    read_schedule(c, f.step, f.until);
-    f.moves = read_moves(c, f.step);
-    if (!f.moves.empty() && !c.has("points") && !c.documenting())
-      throw InvalidConfig(c.key_path("moves") + ": only a feature given by world `points` is moved (its points are translated "
-                          "and placed again)");
-    for (Config ch : c.child_list("changes", "its parameters from a later step on: [{step, height, radius, crease, ...}]")) {
-      FeatureChange change;
-      change.step = ch.get_int("step", 1, 1, 1000, "design step from which the parameters apply");
-      change.params = read_feature_params(ch, f.changes.empty() ? f.curve.params : f.changes.back().params);
-      ch.check_no_unknown_keys();
-      if (change.step <= f.step || (!f.changes.empty() && change.step <= f.changes.back().step))
-        throw InvalidConfig(ch.key_path("step") + ": " + std::to_string(change.step) +
-                            " must come after the feature's step and its earlier changes");
-      try {
-        change.params.validate(ch.path());
-      } catch (const InvalidInput& e) {
-        throw InvalidConfig(e.what());
-      }
-      f.changes.push_back(change);
-    }
-    if (f.after_edit && !s.has_edit) throw InvalidConfig(c.key_path("after_edit") + ": there is no edit (give an `edit` block)");
-    f.key = where;
-    read_curve_source(c, where, dirs, f);
-    try {
-      f.curve.params.validate(where);
-    } catch (const InvalidInput& e) {
-      throw InvalidConfig(e.what());
-    }
-    c.check_no_unknown_keys();
-    s.features.push_back(std::move(f));
+    std::ostringstream where;
+    where << "features[" << k++ << "]";
+    s.features.push_back(read_feature_entry(c, where.str(), dirs, s.levels, defaults, s.has_edit));
   }
   if (s.features.empty()) throw InvalidConfig("features: at least one feature curve");
   std::vector<std::pair<std::string, std::string>> names;
@@ -176,9 +188,8 @@ static FeatureRunSpec read_feature_run(const std::vector<std::string>& dirs, Con
   s.profile_target = root.get_enum("profile_on", feature::ProfileTarget::Limit, feature::profile_target_names(),
                                    "where the profile is exact: limit (the limit surface at the finest vertices), "
                                    "finest (the finest control points) or drawn_level (the paper: the drawn level's control points)");
-  static const NameTable<bool> step_evaluations{{true, "region"}, {false, "whole"}};
   const bool step_key = root.has("step_evaluation");
-  s.region_steps = root.get_enum("step_evaluation", true, step_evaluations,
+  s.region_steps = root.get_enum("step_evaluation", true, step_evaluation_names(),
                                  "design steps: region (recompute what the step's features reach) or whole (the whole "
                                  "hierarchy every step)");
   Config ac = root.child("adaptive", "adaptive output mesh (§2.5): {enabled, evaluation, surface_angle_deg}");
@@ -270,67 +281,74 @@ MultiresSurface feature_hierarchy(const FeatureRunSpec& spec) {
   return MultiresSurface(read_mesh(spec.mesh_path), opt, spec.levels, spec.implementation);
 }
 
-void place_feature(FeatureRunSpec& spec, const feature::FeaturedSurface& surface, FeatureSpec& f,
-                   std::map<int, feature::TriangleSurface>* drawn_on) {
-  const double diag = bounding_diagonal(surface.original().mesh(spec.levels));
-  if (!f.world_points.empty() || f.placement) {
-    const SurfaceMesh& level = surface.original().mesh(f.curve.level);
-    std::map<int, feature::TriangleSurface> own;
-    std::map<int, feature::TriangleSurface>& cache = drawn_on ? *drawn_on : own;
-    const feature::TriangleSurface& s = cache.try_emplace(f.curve.level, level, feature::loop_limit_normals(level)).first->second;
-    place_on_level(s, diag, f);
-  }
-  for (const auto& p : f.curve.points)
-    if (p.face < 0 || p.face >= surface.original().mesh(f.curve.level).n_faces())
-      throw InvalidInput("feature '" + f.curve.name + "': face " + std::to_string(p.face) + " is not a face of level " +
-                         std::to_string(f.curve.level));
-  check_feature_width(f, surface.original().mesh(0), spec.levels);
+FeatureSessionOptions feature_session_options(const FeatureRunSpec& spec) {
+  FeatureSessionOptions o;
+  o.backend = spec.implementation;
+  o.profile_target = spec.profile_target;
+  o.region_steps = spec.region_steps;
+  return o;
 }
 
 namespace {
-// Adds the features of the first step drawn before or after the edit, placed on the surface's
-// current original.
-void place_features(FeatureRunSpec& spec, feature::FeaturedSurface& surface, bool after_edit) {
-  std::map<int, feature::TriangleSurface> drawn_on;  // one per level: its normals and AABB tree
+// Adds the features of the first step drawn before or after the edit, placed on the session's
+// current original; the widths of their later `changes` checked too.
+void place_features(FeatureRunSpec& spec, FeatureSession& session, bool after_edit) {
   for (FeatureSpec& f : spec.features) {
     if (f.after_edit != after_edit || f.step > 0) continue;  // later steps add theirs (feature_steps.h)
-    place_feature(spec, surface, f, &drawn_on);
-    f.id = surface.add(f.curve);
+    f.id = session.stage_add(f);
+    f.curve = session.features().at(f.id);
+    check_feature_width(f, session.original().mesh(0), spec.levels);
   }
 }
 }  // namespace
 
-feature::FeaturedSurface placed_features(FeatureRunSpec& spec, MultiresSurface original) {
-  feature::FeaturedSurface surface(std::move(original), spec.implementation, spec.profile_target);
-  surface.set_region_evaluation(spec.region_steps);
-  const double diag = bounding_diagonal(surface.original().mesh(spec.levels));
-  place_features(spec, surface, false);
+std::unique_ptr<FeatureSession> placed_features(FeatureRunSpec& spec, MultiresSurface original) {
+  auto session = std::make_unique<FeatureSession>(std::move(original), feature_session_options(spec));
+  const double diag = bounding_diagonal(session->original().mesh(spec.levels));
+  place_features(spec, *session, false);
   // The curves are attached to the unedited levels (face, barycentric coordinates), so a base
   // edit carries them.
   if (spec.base_edit.enabled) {
-    MultiresSurface& edited = surface.original();
+    MultiresSurface& edited = session->edit_original();
     edited.set_base_positions(feature::bumped_positions(edited.mesh(0), spec.base_edit.edit, diag));
     edited.synthesize(DetailSpace::Local);
   }
-  return surface;
+  return session;
 }
 
-void place_features_after_edit(FeatureRunSpec& spec, feature::FeaturedSurface& surface) { place_features(spec, surface, true); }
+void place_features_after_edit(FeatureRunSpec& spec, FeatureSession& session) { place_features(spec, session, true); }
 
+OpenedFeatureSession open_feature_session(FeatureRunSpec& spec) {
+  OpenedFeatureSession out;
+  MultiresSurface original = feature_hierarchy(spec);
+  out.diagonal = bounding_diagonal(original.mesh(spec.levels));
+  out.session = placed_features(spec, std::move(original));
+  if (!spec.has_edit) return out;
+  // The detail-preserving edit of the surface without features (Boier-Martin et al.); the
+  // features drawn before it are attached by face and barycentric coordinates and ride on it,
+  // those drawn after it are placed on the edited surface.
+  const Timer timer;
+  EditedHierarchy e = edited_hierarchy(*spec.editor, out.session->original());
+  out.edit_s = timer.seconds();
+  out.edit = e.summary;
+  if (!is_success(e.summary.termination)) return out;
+  out.session->edit_original() = std::move(e.edited);
+  place_features_after_edit(spec, *out.session);
+  return out;
+}
 
 namespace {
 
-// The achieved profile of every feature (issue 24): a row of features.csv each, the worst of them
-// in runs.csv, and a feature outside its tolerance makes the run constraints_unmet, naming it.
-void report_profiles(feature::FeaturedSurface& surface, MetricRow& row, const RunOutputs& out) {
-  const std::vector<feature::FeatureMeasure> measured = feature::measure_features(surface);
+// The session's measurement as a run reports it: a row of features.csv per feature, the worst of
+// them in runs.csv, and the verdict (a feature outside its tolerance: constraints_unmet naming
+// it; a fold outranks it).
+void report_profiles(const FeatureMeasurement& m, FeatureSession& session, MetricRow& row, const RunOutputs& out) {
   // Only the surface profile_on makes exact decides a verdict; the other is reported.
-  const char* gated_on = feature::gates_name(feature::profile_gates(surface.profile_target()));
+  const char* gated_on = feature::gates_name(feature::profile_gates(session.featured().profile_target()));
   int within = 0;
   double fine = 0, limit = 0, height = 0, width = 0;
-  std::string first_miss;
-  for (const feature::FeatureMeasure& f : measured) {
-    const feature::FeatureParams& q = surface.features().at(f.id).params;
+  for (const feature::FeatureMeasure& f : m.features) {
+    const feature::FeatureParams& q = session.features().at(f.id).params;
     const auto& a = f.fine;
     const auto& b = f.limit;
     out.add_row("features", {f.name, std::to_string(f.level), num(q.height), num(q.radius), num(q.right_radius()),
@@ -342,39 +360,19 @@ void report_profiles(feature::FeaturedSurface& surface, MetricRow& row, const Ru
     fine = std::max(fine, a.profile_error), limit = std::max(limit, b.profile_error);
     height = std::max({height, a.height_error, b.height_error});
     width = std::max({width, a.width_error, b.width_error});
-    if (!f.within_tolerance && first_miss.empty()) first_miss = "feature '" + f.name + "' (level " + std::to_string(f.level) + "), " + f.why;
   }
   row["features_within_tolerance"] = std::to_string(within);
   row["worst_profile_error_fine"] = num(fine);
   row["worst_profile_error_limit"] = num(limit);
   row["worst_height_error"] = num(height);
   row["worst_width_error"] = num(width);
-  if (!first_miss.empty()) {
-    row["termination"] = std::string(to_string(Termination::ConstraintsUnmet));
-    row["message"] = std::to_string(measured.size() - static_cast<std::size_t>(within)) + " of " +
-                     std::to_string(measured.size()) + " features miss their tolerance; first: " + first_miss;
+  row["flipped_faces"] = std::to_string(m.folds.flipped.size());
+  if (m.summary.termination != Termination::Converged) {
+    row["termination"] = std::string(to_string(m.summary.termination));
+    row["message"] = m.summary.message;
   }
 }
 
-}  // namespace
-
-namespace {
-// The detail-preserving edit of the surface without features (Boier-Martin et al.); the features
-// drawn before it are attached by face and barycentric coordinates and ride on it, those drawn
-// after it are placed on the edited surface. False (and the row says why) when the edit failed.
-bool apply_edit(FeatureRunSpec& spec, feature::FeaturedSurface& surface, MetricRow& row) {
-  const Timer timer;
-  EditedHierarchy e = edited_hierarchy(*spec.editor, surface.original());
-  row["edit_s"] = num(timer.seconds());
-  if (!is_success(e.summary.termination)) {
-    row["termination"] = std::string(to_string(e.summary.termination));
-    row["message"] = "the edit: " + e.summary.message;
-    return false;
-  }
-  surface.original() = std::move(e.edited);
-  place_features_after_edit(spec, surface);
-  return true;
-}
 }  // namespace
 
 MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
@@ -395,16 +393,22 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
       row["peak_rss_mb"] = num(peak_rss_mb());
       return row;
     }
-    MultiresSurface original = feature_hierarchy(spec);
-    const double diag = bounding_diagonal(original.mesh(spec.levels));
-    feature::FeaturedSurface surface = placed_features(spec, std::move(original));
-    if (spec.has_edit && !apply_edit(spec, surface, row)) {
-      row["time_s"] = num(wall.seconds());
-      return row;
+    OpenedFeatureSession opened = open_feature_session(spec);
+    FeatureSession& session = *opened.session;
+    const double diag = opened.diagonal;
+    if (opened.edit) {
+      row["edit_s"] = num(opened.edit_s);
+      if (!is_success(opened.edit->termination)) {
+        row["termination"] = std::string(to_string(opened.edit->termination));
+        row["message"] = "the edit: " + opened.edit->message;
+        row["time_s"] = num(wall.seconds());
+        return row;
+      }
     }
     // Every design step evaluated (one when nothing is scheduled): the last one's time is apply_s.
-    row["apply_s"] = num(run_feature_steps(spec, surface, out));
-    const MultiresSurface& result = surface.result();
+    row["apply_s"] = num(run_feature_steps(spec, session, out));
+    feature::FeaturedSurface& surface = session.featured();
+    const MultiresSurface& result = session.surface();
     SurfaceMesh fine = result.mesh(spec.levels);
     const MatrixX3 d = fine.positions() - std::as_const(surface).original().mesh(spec.levels).positions();
     const Eigen::VectorXd norms = d.rowwise().norm();
@@ -459,12 +463,11 @@ MetricRow execute_feature_run(FeatureRunSpec& spec, const RunOutputs& out) {
       fine.vertex_data["limit_position"] = limit.positions;
       fine.vertex_data["limit_normal"] = limit.normals;
     }
-    const FoldReport folds = flipped_faces(std::as_const(surface).original().mesh(spec.levels), fine.positions());
-    mark_flipped(fine, folds);
+    const FeatureMeasurement measured = session.measure();
+    mark_flipped(fine, measured.folds);
     if (spec.vtk) write_vtp(fine, (fs::path(out.dir) / "vtk" / (out.run_id + ".vtp")).string());
     write_mesh(fine, out.final_path());
-    report_profiles(surface, row, out);
-    report_folds(folds, row);
+    report_profiles(measured, session, row, out);
   } catch (const OutputError& e) {  // results incomplete: not a finished run
     row["termination"] = std::string(to_string(Termination::OutputFailed));
     row["message"] = e.what();

@@ -5,6 +5,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,7 +16,9 @@
 #include "fairshape/experiment/kinds/sheet/sheet_run.h"
 #include "fairshape/feature/base_edit.h"
 #include "fairshape/feature/curve_placement.h"
+#include "fairshape/feature/feature_drawing.h"
 #include "fairshape/feature/feature_curve.h"
+#include "fairshape/feature/feature_session.h"
 #include "fairshape/feature/featured_surface.h"
 #include "fairshape/subdivision/scheme.h"
 
@@ -33,20 +36,22 @@ struct FeatureChange {
 //! defaulting to `defaults`; out-of-range values are errors naming the key.
 feature::FeatureParams read_feature_params(Config& c, const feature::FeatureParams& defaults);
 
-struct FeatureSpec {
-  feature::FeatureCurve curve;       // points filled in when the run projects `world_points`
+//! A feature of the config: how it is drawn (feature/feature_drawing.h: curve, points or tool,
+//! max_distance, key) and its schedule over the design steps.
+struct FeatureSpec : feature::FeatureDrawing {
   bool after_edit = false;           // drawn on the surface the `edit` made (else before it, carried by it)
   // Over the design steps (feature_steps.h): added at `step`, removed from `until` (−1: never),
   // moved as a whole by `moves` (world points only; they add up), re-parameterized by `changes`.
   int step = 0, until = -1;
   std::vector<PointMove> moves;
   std::vector<FeatureChange> changes;
-  int id = -1;                       // its id in the run's FeaturedSurface while it is there
-  std::vector<Vec3> world_points;    // or given as surface points (curve.points)
-  double max_distance = 0.02;        // × bounding-box diagonal: farther points leave the surface
-  std::optional<feature::CurvePlacement> placement;  // or placed by a tool (geodesic, section, file)
-  std::string key;                   // "features[3]", for messages
+  int id = -1;                       // its id in the run's FeatureSession while it is there
 };
+
+//! One `features:` entry ("features[3]" is `where`), its parameters defaulting to `defaults`.
+//! \throw InvalidConfig naming the key.
+FeatureSpec read_feature_entry(Config& c, const std::string& where, const std::vector<std::string>& dirs, int levels,
+                               const feature::FeatureParams& defaults, bool has_edit);
 
 struct BaseEditSpec {
   bool enabled = false;
@@ -63,6 +68,7 @@ struct FeatureRunSpec : RunBasics {
   //! remeshed or saved, or an edit is given.
   std::shared_ptr<SurfaceEditSpec> editor;
   bool has_edit = false;
+  feature::FeatureParams feature_defaults;  // `feature_defaults`, which every feature starts from
   std::vector<FeatureSpec> features;
   BaseEditSpec base_edit;
   bool adaptive = true;
@@ -94,17 +100,31 @@ const TableSchema& feature_profile_table();
 
 //! The run's Loop hierarchy of input.mesh, without features. \throw Error for the input.
 MultiresSurface feature_hierarchy(const FeatureRunSpec& spec);
-//! `original` with the run's features drawn before the edit placed on it (world points
-//! projected, faces checked) and the base edit applied. \throw InvalidInput naming the feature.
-feature::FeaturedSurface placed_features(FeatureRunSpec& spec, MultiresSurface original);
-//! f.curve.points on the surface's current original at the feature's level: world points
-//! projected, a placement tool run, faces checked (`drawn_on`: the levels' surfaces made so far,
-//! reused). \throw InvalidInput naming the feature.
-void place_feature(FeatureRunSpec& spec, const feature::FeaturedSurface& surface, FeatureSpec& f,
-                   std::map<int, feature::TriangleSurface>* drawn_on = nullptr);
-//! Places the features drawn after the edit on the surface's current original (the edited one).
-//! \throw InvalidInput naming the feature.
-void place_features_after_edit(FeatureRunSpec& spec, feature::FeaturedSurface& surface);
+//! The session options a run's keys give (implementation, profile_on, step_evaluation).
+FeatureSessionOptions feature_session_options(const FeatureRunSpec& spec);
+//! A session on `original` with the run's first features drawn before the edit placed on it
+//! (world points projected, faces and widths checked; ids in spec.features[k].id) and the base
+//! edit applied; not yet evaluated. \throw InvalidInput naming the feature.
+std::unique_ptr<FeatureSession> placed_features(FeatureRunSpec& spec, MultiresSurface original);
+//! Places the first step's features drawn after the edit on the session's current original (the
+//! edited one). \throw InvalidInput naming the feature.
+void place_features_after_edit(FeatureRunSpec& spec, FeatureSession& session);
+
+//! A run's session prepared as the run prepares it: the hierarchy, the first step's features
+//! drawn before the edit, the edit (the radial bump, or the detail-preserving `edit` block), those
+//! drawn after it; not yet evaluated (its first step does that). `edit`: the detail-preserving
+//! edit's outcome, when there is one; when it failed the features drawn after it are not placed.
+struct OpenedFeatureSession {
+  std::unique_ptr<FeatureSession> session;
+  std::optional<SolveSummary> edit;
+  double edit_s = 0;
+  double diagonal = 0;  // of the finest level before any edit (the run's displacement threshold)
+};
+//! \throw Error for the input (as feature_hierarchy and placed_features).
+OpenedFeatureSession open_feature_session(FeatureRunSpec& spec);
+
+//! `step_evaluation`'s values: region (true), whole (false).
+const NameTable<bool>& step_evaluation_names();
 
 //! Writes final.obj (finest level), vtk/<run>.vtp (point arrays displacement, displacement_norm,
 //! limit_position, limit_normal), adaptive/<run>.obj, curves/<run>_<feature>.obj, features.csv,

@@ -5,7 +5,7 @@
 #include <utility>
 
 #include "fairshape/core/error.h"
-#include "fairshape/core/timer.h"
+#include "fairshape/experiment/kinds/feature/feature_width_check.h"
 #include "fairshape/experiment/metric_format.h"
 #include "fairshape/io/vtk_io.h"
 
@@ -52,16 +52,17 @@ FeatureSpec at_step(const FeatureSpec& f, int step) {
 
 }  // namespace
 
-double run_feature_steps(FeatureRunSpec& spec, feature::FeaturedSurface& surface, const RunOutputs& out) {
+double run_feature_steps(FeatureRunSpec& spec, FeatureSession& session, const RunOutputs& out) {
   const int steps = feature_step_count(spec);
-  MatrixX3 before;
   double apply_s = 0;
   for (int step = 0; step < steps; ++step) {
     std::vector<std::string> added, moved, changed, removed;
+    std::vector<FeatureEdit> edits;
+    std::vector<FeatureSpec*> adding, placing;  // in the order of their edits
     for (FeatureSpec& f : spec.features) {
       const std::string& name = f.curve.name;
       if (step > 0 && f.until == step && f.id >= 0) {
-        surface.remove(f.id);
+        edits.push_back(FeatureEdit::remove(f.id));
         f.id = -1;
         removed.push_back(name);
         continue;
@@ -71,41 +72,41 @@ double run_feature_steps(FeatureRunSpec& spec, feature::FeaturedSurface& surface
       const bool adds_now = step > 0 && f.step == step;
       if (!adds_now && !(f.id >= 0 && (moves_now || changes_now))) continue;
       FeatureSpec now = at_step(f, step);
-      try {
-        place_feature(spec, surface, now);
-      } catch (const InvalidInput& e) {
-        throw InvalidInput("step " + std::to_string(step) + ": " + e.what());
-      }
       if (adds_now) {
-        f.id = surface.add(now.curve);
+        edits.push_back(FeatureEdit::add(now));
+        adding.push_back(&f), placing.push_back(&f);
         added.push_back(name);
+      } else if (moves_now) {
+        edits.push_back(FeatureEdit::replace(f.id, now));
+        placing.push_back(&f);
+        moved.push_back(name);
       } else {
-        surface.replace(f.id, now.curve);
-        (moves_now ? moved : changed).push_back(name);
+        edits.push_back(FeatureEdit::set_params(f.id, now.curve.params));
+        changed.push_back(name);
       }
     }
-    const Timer timer;
-    const MultiresSurface* evaluated = nullptr;
+    FeatureStep r;
     try {
-      evaluated = &surface.result();
+      r = session.apply(std::move(edits));
     } catch (const InvalidInput& e) {
       throw InvalidInput("step " + std::to_string(step) + ": " + e.what());
     }
-    const MultiresSurface& result = *evaluated;
-    apply_s = timer.seconds();
-    const MatrixX3& now = result.mesh(spec.levels).positions();
-    const Eigen::VectorXd change = before.size() ? Eigen::VectorXd((now - before).rowwise().norm()) : Eigen::VectorXd();
-    const double diag = (now.colwise().maxCoeff() - now.colwise().minCoeff()).norm();
-    const int active = static_cast<int>(std::count_if(spec.features.begin(), spec.features.end(), [](const FeatureSpec& f) { return f.id >= 0; }));
-    const feature::EvaluationReport& how = surface.last_evaluation();
+    for (std::size_t k = 0; k < adding.size(); ++k) adding[k]->id = r.added[r.added.size() - adding.size() + k];
+    // The widths the placed features take in later `changes` (their own: placing checked them).
+    for (FeatureSpec* f : placing) {
+      FeatureSpec g = *f;
+      g.curve = session.features().at(f->id);
+      check_feature_width(g, session.original().mesh(0), spec.levels);
+    }
+    apply_s = r.solve_s;
+    const int active = static_cast<int>(session.features().size());
     out.add_row("steps", {std::to_string(step), std::to_string(active), joined(added), joined(moved), joined(changed), joined(removed),
-                          change.size() ? std::to_string((change.array() > 1e-12 * diag).count()) : "",
-                          how.region ? "region" : "whole", num(apply_s), std::to_string(how.vertices_recomputed),
-                          change.size() ? num(change.maxCoeff()) : ""});
-    before = now;
+                          r.vertices_changed >= 0 ? std::to_string(r.vertices_changed) : "",
+                          r.evaluation.region ? "region" : "whole", num(apply_s), std::to_string(r.evaluation.vertices_recomputed),
+                          r.vertices_changed >= 0 ? num(r.max_change) : ""});
     if (spec.vtk_every_step && steps > 1) {
-      SurfaceMesh m = result.mesh(spec.levels);
-      m.vertex_data["displacement"] = m.positions() - std::as_const(surface).original().mesh(spec.levels).positions();
+      SurfaceMesh m = r.surface->mesh(spec.levels);
+      m.vertex_data["displacement"] = m.positions() - session.original().mesh(spec.levels).positions();
       write_vtp(m, (fs::path(out.dir) / "vtk" / (out.run_id + "_step" + std::to_string(step) + ".vtp")).string());
     }
   }

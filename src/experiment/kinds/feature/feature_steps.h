@@ -18,9 +18,9 @@ const TableSchema& feature_step_table();
 int feature_step_count(const FeatureRunSpec& spec);
 
 //! Evaluates step 0 (the features placed already) and every later step's additions, moves,
-//! changes and removals; writes steps.csv rows and, with output.vtk: all, vtk/<run>_step<k>.vtp.
+//! changes and removals, each a step of the session (FeatureSession::apply); writes steps.csv rows and, with output.vtk: all, vtk/<run>_step<k>.vtp.
 //! Returns the last step's evaluation time. \throw InvalidInput naming a feature that cannot be
 //! placed or applied.
-double run_feature_steps(FeatureRunSpec& spec, feature::FeaturedSurface& surface, const RunOutputs& out);
+double run_feature_steps(FeatureRunSpec& spec, FeatureSession& session, const RunOutputs& out);
 
 }  // namespace fairshape

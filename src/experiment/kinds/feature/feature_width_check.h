@@ -8,18 +8,12 @@
 #pragma once
 
 #include "fairshape/experiment/kinds/feature/feature_run.h"
+#include "fairshape/feature/feature_drawing.h"
 
 namespace fairshape {
 
-//! The typical finest edge under a placed curve: per control point, the mean edge of the base
-//! face it lies in (uniform face ids: the base ancestor of face f on level l is f / 4^l), halved
-//! for each of `levels` Loop steps; the mean over the points. The same in uniform and sparse runs
-//! (both have the base mesh whole).
-double finest_edge_under(const feature::FeatureCurve& curve, const SurfaceMesh& base, int levels);
-
-//! \throw InvalidConfig naming `f.key`.radius, the smaller radius (with its `changes` too), the
-//! finest edge and what to change (more levels or a wider radius) when a side of `f` is narrower
-//! than two finest edges. \pre f.curve.points placed (uniform face ids of f.curve.level).
+//! feature::check_feature_width for the feature's parameters and every later `changes` entry's.
+//! \throw InvalidConfig naming `f.key`.radius. \pre f.curve.points placed.
 void check_feature_width(const FeatureSpec& f, const SurfaceMesh& base, int levels);
 
 }  // namespace fairshape

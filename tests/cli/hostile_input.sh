@@ -351,6 +351,7 @@ hostile 2 "config file not found" -- "$FS" run "$H/none.yaml"
 # A malformed or non-manifold input mesh is found while validating, before anything runs.
 hostile 2 "input.mesh: .*nonmanifold_edge.off" -- "$FS" run $SMOKE --set "input.mesh=$PWD/tests/data/malformed/nonmanifold_edge.off" --out "$H/bad_mesh"
 [ ! -e "$H/bad_mesh/runs.csv" ] || fail "a malformed input mesh started runs"
+ln -sf /dev/zero "$H/zero.off"
 hostile 2 "input.mesh: .*not a regular file" -- "$FS" run configs/khodakovsky-schroder/fig11.yaml --set "input.mesh=$H/zero.off" --dry-run
 hostile 2 "unknown key" -- "$FS" run $SMOKE --set colour=red --dry-run
 hostile 2 "valid: cholesky" -- "$FS" run $SMOKE --set solver.type=lu --dry-run

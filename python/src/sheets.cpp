@@ -16,6 +16,7 @@
 #include "bindings.h"
 #include "checks.h"
 #include "convert.h"
+#include "sheet_object.h"
 #include "fairshape/bspline/sheet_geometry.h"
 #include "fairshape/bspline/variational_sheet.h"
 #include "fairshape/qp/qp_solver.h"
@@ -24,24 +25,6 @@ namespace py = pybind11;
 
 namespace fairshape::python {
 namespace {
-
-struct Sheet {
-  bspline::SheetShape shape;
-  bspline::VariationalSheet sheet;
-
-  Eigen::Vector2d size() const { return {shape.spans_u * shape.span_size.x(), shape.spans_v * shape.span_size.y()}; }
-  // Design units to base-span units, checked against the domain.
-  Eigen::Vector2d spans(double u, double v, const std::string& what) const {
-    const Eigen::Vector2d s = Eigen::Vector2d(u, v).cwiseQuotient(shape.span_size);
-    if (!sheet.surface().in_domain(s.x(), s.y())) {
-      std::ostringstream m;
-      m << what << ": (u, v) = (" << u << ", " << v << ") is outside the sheet's domain [0, " << size().x() << "] x [0, "
-        << size().y() << "] (design units: the sheet's size)";
-      throw InvalidInput(m.str());
-    }
-    return s;
-  }
-};
 
 Sheet make_sheet(const std::array<int, 2>& spans, int degree, const std::array<double, 2>& size, const Vec3& origin,
                  const Vec3& u_axis, const Vec3& v_axis) {

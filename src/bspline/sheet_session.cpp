@@ -235,12 +235,14 @@ void SheetSession::measure(SheetStep& step) const {
       if (c.sheet != s.sheet) continue;
       SheetConstraintCheck check;
       check.handle = h;
-      check.error = bspline::max_error(bspline::constraint_errors(sh, {c.constraint}));
       const SheetConstraint& k = c.constraint;
       if (k.kind == SheetConstraint::Kind::Point || k.kind == SheetConstraint::Kind::Offset) {
         check.asked = k.target;
         check.achieved = sh.surface().position(sh.coefficients(), k.u, k.v);
         if (k.kind == SheetConstraint::Kind::Offset) check.achieved -= sh.surface().position(sh.coefficients(), k.other.x(), k.other.y());
+        check.error = (check.achieved - check.asked).norm();
+      } else if (k.kind == SheetConstraint::Kind::Curve || k.kind == SheetConstraint::Kind::Region) {
+        check.error = bspline::max_error(bspline::constraint_errors(sh, {k}));
       }
       step.checks.push_back(check);
     }

@@ -12,8 +12,10 @@
 // and the checks (papers/welch-witkin/README.md, "A drag step and its checks").
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -76,12 +78,13 @@ using JointSolve = std::function<std::map<std::size_t, JointSheetReport>(
     std::vector<bspline::VariationalSheet>&, const std::vector<bspline::SheetEnergy>&,
     const std::vector<std::vector<bspline::SheetConstraint>>&)>;
 
-//! One constraint measured on the sheet after the step: its largest error over the leaf cells
-//! (a point's distance from its target, a curve's |w(c(t)) − D(t)| along it, ...), and for a
-//! point or offset what was asked next to what the sheet achieved.
+//! One constraint measured on the sheet after the step: a point's or offset's distance from what
+//! it asked (both given), a curve's or region's largest |w − D| over its samples (§4.4's measure);
+//! a tangent's or normal's is not measured per constraint (NaN: its rows' residual is the
+//! solve's constraint_residual, its agreement with crossing curves the slope-conflict check).
 struct SheetConstraintCheck {
   SheetHandle handle = -1;
-  double error = 0;
+  double error = std::numeric_limits<double>::quiet_NaN();
   Vec3 asked = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
   Vec3 achieved = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
 };
@@ -150,6 +153,9 @@ class SheetSession {
   std::shared_ptr<const bspline::SurfaceTrace> surface_now(std::size_t k) const;
   const std::map<SheetHandle, SessionConstraint>& constraints() const { return constraints_; }
   const SessionConstraint& constraint(SheetHandle h) const;
+  //! Handles below n are the caller's to give (a config numbers its constraints by their place
+  //! in its list): the session numbers the constraints it makes from n on.
+  void reserve_handles(SheetHandle n) { next_handle_ = std::max(next_handle_, n); }
   //! Sheet k's constraints, in handle order.
   std::vector<bspline::SheetConstraint> active(std::size_t k) const;
   const bspline::SheetEnergy& energy(std::size_t k) const { return energies_.at(k); }

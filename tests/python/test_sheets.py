@@ -143,13 +143,18 @@ SCHEDULE = [{"type": "point", "uv": c, "by": [0, 0, 0]} for c in CORNERS] + [
 ACTIONS = [{"step": 3, "do": "install_rest_shape"}, {"step": 4, "do": "melt_rest_shape"}]
 
 
-def test_session_advances_through_a_config_like_the_cli(tmp_path):
+def cli_session(tmp_path):
+    """The scheduled session as a config, and its final.obj vertices from `fairshape run`."""
     import yaml
     config = dict(SESSION, constraints=SCHEDULE, actions=ACTIONS)
     path = tmp_path / "session.yaml"
     path.write_text(yaml.safe_dump(config))
     cli("run", path, "--out", tmp_path / "out")
-    expected = obj_vertices(tmp_path / "out" / "final.obj")
+    return config, obj_vertices(tmp_path / "out" / "final.obj")
+
+
+def test_session_advances_through_a_config_like_the_cli(tmp_path):
+    config, expected = cli_session(tmp_path)
     s = fairshape.SheetSession(**config)
     assert s.steps == 5
     energies = []
@@ -164,12 +169,7 @@ def test_session_advances_through_a_config_like_the_cli(tmp_path):
 
 
 def test_session_steps_by_hand_equal_the_config_run(tmp_path):
-    import yaml
-    config = dict(SESSION, constraints=SCHEDULE, actions=ACTIONS)
-    path = tmp_path / "session.yaml"
-    path.write_text(yaml.safe_dump(config))
-    cli("run", path, "--out", tmp_path / "out")
-    expected = obj_vertices(tmp_path / "out" / "final.obj")
+    _, expected = cli_session(tmp_path)
     s = fairshape.SheetSession(**SESSION)
     for c in CORNERS:
         assert s.add(type="point", uv=c, by=[0, 0, 0]).succeeded
@@ -194,8 +194,8 @@ def test_session_steps_by_hand_equal_the_config_run(tmp_path):
 
 
 def test_session_refuses_what_the_config_refuses():
-    with pytest.raises(fairshape.InvalidConfig, match="sheetz"):
-        fairshape.SheetSession(sheetz=[{"name": "s"}])
+    with pytest.raises(fairshape.InvalidConfig, match="alpah"):
+        fairshape.SheetSession(sheets=[{"name": "s"}], energy={"alpah": 1})
     s = fairshape.SheetSession(**SESSION)
     with pytest.raises(fairshape.InvalidConfig, match="bogus"):
         s.add(type="point", uv=[1, 1], by=[0, 0, 0], bogus=1)

@@ -180,18 +180,18 @@ SheetConstraintRegistry sheet_constraint_registry(const SheetConstraintContext& 
       {"offset", {"§4.2.1: w(uv) − w(from) = offset, one row shared by x, y and z", read_offset}},
       {"region", {"§4.2.2: a (u, v) rectangle holds a surface, moved rigidly by `by`", read_region}},
   };
-  for (Backend b : built_backends()) {
-    for (const auto& [name, entry] : sheet_kinds) {
-      const Reader read = entry.second;
-      r.add(name, b, entry.first, factory([read, ctx](Config& c) { return read(c, ctx); }));
-    }
-    r.add("curve_point", b, "§5: a variational curve's point X(t) = target (or its initial point + by), dragged by moves",
-          factory([ctx](Config& c) { return read_curve_constraint(c, ctx.label); }));
-    r.add("curve_tangent", b, "§5: a variational curve's derivative dX/ds at t = target",
-          factory([ctx](Config& c) { return read_curve_constraint(c, ctx.label); }));
-    r.add("tangent_continuity", b, "§5: two sheets joined to one variational curve made tangent-continuous across it",
-          factory([ctx](Config& c) { return read_tangent_continuity(c, ctx.label); }));
+  // Reading has no back end: each kind is registered once, under the build's fastest.
+  const Backend b = kFastestBackend;
+  for (const auto& [name, entry] : sheet_kinds) {
+    const Reader read = entry.second;
+    r.add(name, b, entry.first, factory([read, ctx](Config& c) { return read(c, ctx); }));
   }
+  r.add("curve_point", b, "§5: a variational curve's point X(t) = target (or its initial point + by), dragged by moves",
+        factory([ctx](Config& c) { return read_curve_constraint(c, ctx.label); }));
+  r.add("curve_tangent", b, "§5: a variational curve's derivative dX/ds at t = target",
+        factory([ctx](Config& c) { return read_curve_constraint(c, ctx.label); }));
+  r.add("tangent_continuity", b, "§5: two sheets joined to one variational curve made tangent-continuous across it",
+        factory([ctx](Config& c) { return read_tangent_continuity(c, ctx.label); }));
   return r;
 }
 

@@ -153,11 +153,12 @@ void write_step_files(const SheetConfigSteps& steps, const SheetConfigStep& st, 
     st.overlay.write(stem + "_constraints.vtp");
     // The step's first solve, before automatic refinement changed it (no "_step" in the name:
     // figure scripts glob the steps).
-    std::vector<bspline::VariationalSheet> first = session.sheets();
-    bool refined = false;
-    for (const SheetSolve& s : st.result.sheets)
-      if (s.report.unrefined) first[s.sheet] = *s.report.unrefined, refined = true;
+    const bool refined = std::any_of(st.result.sheets.begin(), st.result.sheets.end(),
+                                     [](const SheetSolve& s) { return s.report.unrefined != nullptr; });
     if (refined) {
+      std::vector<bspline::VariationalSheet> first = session.sheets();
+      for (const SheetSolve& s : st.result.sheets)
+        if (s.report.unrefined) first[s.sheet] = *s.report.unrefined;
       const std::string before = (fs::path(out.dir) / "vtk" / (out.run_id + "_unrefined" + std::to_string(st.step))).string();
       write_vtp(sheets_mesh(session, first, spec.samples_per_span), before + ".vtp");
       st.overlay.write(before + "_constraints.vtp");

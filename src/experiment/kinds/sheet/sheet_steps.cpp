@@ -79,6 +79,7 @@ SheetConfigSteps::SheetConfigSteps(SheetRunSpec spec) : spec_(std::move(spec)), 
     if (cs.held == SheetConstraintSpec::Held::Initial) held_[cs.label] = session_.surface_now(session_.sheet_index(cs.sheet));
   for (const SpaceCurveSpec& c : spec_.curves) curves_now_[c.name] = curve_at_step(c, base_curves_.at(c.name), 0);
   free_curves_ = std::make_unique<FreeCurves>(spec_, base_curves_);
+  session_.reserve_handles(static_cast<SheetHandle>(spec_.constraints.size()));
 }
 
 // The constraint as it acts at `step`: the space curve as it is then, relative targets resolved

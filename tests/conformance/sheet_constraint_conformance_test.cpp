@@ -64,7 +64,9 @@ const std::map<std::string, Example>& examples() {
       {"curve", {kSheet, "{type: curve, curve: c, uv: [[0.5, 1], [1, 1], [1.5, 1]]}", 0}},
       {"ribbon", {kSheet, "{type: ribbon, curve: c, uv: [[0.5, 1], [1, 1], [1.5, 1]], cross_tangent: [0, 1, 0]}", 0}},
       {"offset", {kSheet, "{type: offset, uv: [1.5, 0.5], from: [0.5, 0.5], offset: [1, 0, 0.2]}", 0}},
-      {"region", {kSheet, "{type: region, corners: [[0.75, 0.5], [1.25, 1.0]], surface: initial, by: [0, 0, 0.05]}", 0}},
+      // Held where it is: lifted, a region on an 8 × 8 sheet ends ill_conditioned (README, "Offsets,
+      // ribbons and regions").
+      {"region", {kSheet, "{type: region, corners: [[0.75, 0.5], [1.25, 1.0]], surface: initial, by: [0, 0, 0]}", 0}},
       {"curve_point", {kJoined, "{type: curve_point, curve: ridge, t: 0.5, by: [0, 0, 0.2]}", 1}},
       {"curve_tangent", {kJoined, "{type: curve_tangent, curve: ridge, t: 0.5, target: [1, 0, 0]}", 1}},
       {"tangent_continuity", {kJoined, "{type: tangent_continuity, curve: ridge, sheets: [lower, upper], keep: [right, left]}", 2}},

@@ -108,7 +108,9 @@ struct SheetStep {
   double max_constraint_error = 0;  // over the solved sheets' leaf cells
   double energy = 0;                // summed over the solved sheets
   double solve_s = 0;  // factorizations and solves
-  double check_s = 0;  // assembly aside, everything else: errors per cell, conflict checks, probe, per-constraint checks
+  //! The rest of the step: the program's assembly, the errors per cell, the conflict checks, the
+  //! probe and the per-constraint checks.
+  double check_s = 0;
   bool solved_any() const { return !sheets.empty(); }
 };
 

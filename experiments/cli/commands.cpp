@@ -12,6 +12,7 @@
 #include "fairshape/curve_design/curve_components.h"
 #include "fairshape/qp/qp_solver.h"
 #include "fairshape/experiment/components.h"
+#include "fairshape/experiment/kinds/sheet/constraint_kinds.h"
 #include "fairshape/energy/local_quadratic.h"
 #include "fairshape/io/json_io.h"
 #include "fairshape/io/matrix_market.h"
@@ -291,6 +292,7 @@ int cmd_list() {
   list_registry("curve constraints (optimization.constraints)", curves.constraints);
   list_registry("length solvers (optimization.solver)", curves.solvers);
   list_registry("constrained solvers (sheet configs: solver; Welch & Witkin eq. 9/10)", qp::qp_solver_registry());
+  list_registry("sheet constraints (sheet configs: constraints[].type; Welch & Witkin §4.2, §5)", sheet_constraint_registry());
   return 0;
 }
 

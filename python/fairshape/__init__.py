@@ -13,6 +13,7 @@ from ._fairshape import (  # noqa: F401  (the public API)
     MultiresSurface, remesh, subdivide, limit_positions, limit_normals, limit_matrix, relative_detail_change,
     stretch_bend_hessian, energy_hessian, components, constraint_modes,
     curve_components, curve_max_levels, Sheet, qp_solvers,
+    SheetSession, SheetStep, SheetSolve, SheetConstraintCheck, SheetConfigStep, FreeCurveStep,
 )
 from ._summary import Summary, SolveFailed, RunFailed  # noqa: F401
 from ._constraints import constraint, fixed, position, energy  # noqa: F401

@@ -16,6 +16,7 @@ void bind_experiment(pybind11::module_& m);
 void bind_remesh(pybind11::module_& m);
 void bind_curves(pybind11::module_& m);
 void bind_sheets(pybind11::module_& m);
+void bind_sheet_session(pybind11::module_& m);  // after bind_sheets: it hands out fairshape.Sheet
 void bind_features(pybind11::module_& m);
 
 }  // namespace fairshape::python

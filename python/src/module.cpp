@@ -15,5 +15,6 @@ PYBIND11_MODULE(_fairshape, m) {
   fairshape::python::bind_remesh(m);
   fairshape::python::bind_curves(m);
   fairshape::python::bind_sheets(m);
+  fairshape::python::bind_sheet_session(m);
   fairshape::python::bind_features(m);
 }

@@ -2,8 +2,8 @@
 // hierarchical B-spline sheet placed as a plane, the objective of §4.1 (stretching α and
 // bending β), point constraints (u, v, target) and curve constraints ((u, v) polyline onto a
 // space polyline, the mortar rows of a sheet config's `{type: curve}`), solved by a named QP
-// solver with the automatic refinement of §4.4, as one step of a sheet run
-// (src/experiment/kinds/sheet/sheet_run.cpp). (u, v) are in design units (the sheet's size),
+// solver with the automatic refinement of §4.4, as one step of a SheetSession
+// (src/bspline/sheet_session.h), the step a sheet run takes. (u, v) are in design units (the sheet's size),
 // as in a config.
 // Copies: coefficients and evaluations come back as new arrays; a solve returns a new Sheet.
 #include <pybind11/eigen.h>
@@ -16,7 +16,9 @@
 #include "bindings.h"
 #include "checks.h"
 #include "convert.h"
+#include "sheet_object.h"
 #include "fairshape/bspline/sheet_geometry.h"
+#include "fairshape/bspline/sheet_session.h"
 #include "fairshape/bspline/variational_sheet.h"
 #include "fairshape/qp/qp_solver.h"
 
@@ -24,24 +26,6 @@ namespace py = pybind11;
 
 namespace fairshape::python {
 namespace {
-
-struct Sheet {
-  bspline::SheetShape shape;
-  bspline::VariationalSheet sheet;
-
-  Eigen::Vector2d size() const { return {shape.spans_u * shape.span_size.x(), shape.spans_v * shape.span_size.y()}; }
-  // Design units to base-span units, checked against the domain.
-  Eigen::Vector2d spans(double u, double v, const std::string& what) const {
-    const Eigen::Vector2d s = Eigen::Vector2d(u, v).cwiseQuotient(shape.span_size);
-    if (!sheet.surface().in_domain(s.x(), s.y())) {
-      std::ostringstream m;
-      m << what << ": (u, v) = (" << u << ", " << v << ") is outside the sheet's domain [0, " << size().x() << "] x [0, "
-        << size().y() << "] (design units: the sheet's size)";
-      throw InvalidInput(m.str());
-    }
-    return s;
-  }
-};
 
 Sheet make_sheet(const std::array<int, 2>& spans, int degree, const std::array<double, 2>& size, const Vec3& origin,
                  const Vec3& u_axis, const Vec3& v_axis) {
@@ -188,12 +172,18 @@ py::dict design_sheet(const Sheet& rest, const Eigen::Ref<const Eigen::MatrixXd>
   refinement.tolerance = tolerance;
   refinement.max_level = max_level;
   refinement.max_rounds = max_rounds;
-  Sheet out_sheet = rest;
-  bspline::DesignReport r;
+  // One step of a session on a copy of the sheet (bspline/sheet_session.h): the same solve and
+  // checks as a sheet run's step.
+  SheetSession session({"sheet"}, {rest.sheet}, SheetSessionOptions{energy, refinement, backend}, std::move(solver));
+  SheetEdits edits;
+  for (bspline::SheetConstraint& c : active) edits.put.push_back({-1, {0, std::move(c)}});
+  SheetStep step;
   {
     py::gil_scoped_release release;
-    r = bspline::solve_sheet(out_sheet.sheet, energy, active, *solver, refinement, backend);
+    step = session.apply(edits);
   }
+  const bspline::DesignReport& r = step.sheets.at(0).report;
+  Sheet out_sheet{rest.shape, session.sheet(0)};
   finite_result(out_sheet.sheet.coefficients(), "design_sheet: the sheet's control points (" +
                                                    std::string(to_string(r.qp.summary.termination)) + ")");
   py::dict out;

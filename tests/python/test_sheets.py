@@ -124,3 +124,87 @@ output: {{samples_per_span: 4, vtk: none}}
     r = fairshape.design_sheet(sheet, CORNERS, np.zeros((4, 3)), relative=True, curves=[(arc_uv, X)], alpha=0.01,
                                samples_per_span=4)
     assert np.abs(r.grid.reshape(-1, 3) - expected).max() < 1e-10
+
+
+# The session (fairshape.SheetSession): a config's steps, and the same steps by hand.
+SESSION = {
+    "name": "py-session",
+    "sheets": [{"name": "s", "spans": [8, 8], "size": [2, 2]}],
+    "energy": {"alpha": 0.01, "beta": 1},
+    "curves": [{"name": "ridge", "points": CURVE}],
+    "solver": {"type": "kkt"},
+    "output": {"samples_per_span": 4, "vtk": "none"},
+}
+SCHEDULE = [{"type": "point", "uv": c, "by": [0, 0, 0]} for c in CORNERS] + [
+    {"type": "point", "uv": [1, 0.75], "by": [0, 0, 0.25], "moves": [{"step": 1, "by": [0, 0.125, 0.25]}]},
+    {"type": "point", "uv": [0.5, 1], "by": [0, 0, -0.125], "until": 2},
+    {"type": "curve", "curve": "ridge", "uv": CURVE_UV},
+]
+ACTIONS = [{"step": 3, "do": "install_rest_shape"}, {"step": 4, "do": "melt_rest_shape"}]
+
+
+def cli_session(tmp_path):
+    """The scheduled session as a config, and its final.obj vertices from `fairshape run`."""
+    import yaml
+    config = dict(SESSION, constraints=SCHEDULE, actions=ACTIONS)
+    path = tmp_path / "session.yaml"
+    path.write_text(yaml.safe_dump(config))
+    cli("run", path, "--out", tmp_path / "out")
+    return config, obj_vertices(tmp_path / "out" / "final.obj")
+
+
+def test_session_advances_through_a_config_like_the_cli(tmp_path):
+    config, expected = cli_session(tmp_path)
+    s = fairshape.SheetSession(**config)
+    assert s.steps == 5
+    energies = []
+    while s.next_step < s.steps:
+        st = s.advance()
+        assert st.succeeded, st.result.message
+        energies.append(st.result.energy)
+    assert np.array_equal(s.sheet().grid(4).reshape(-1, 3), expected)
+    assert energies[3] == pytest.approx(0, abs=1e-9)  # installed: the minimizer of eq. 6 about itself
+    with pytest.raises(fairshape.InvalidInput, match="steps are done"):
+        s.advance()
+
+
+def test_session_steps_by_hand_equal_the_config_run(tmp_path):
+    _, expected = cli_session(tmp_path)
+    s = fairshape.SheetSession(**SESSION)
+    for c in CORNERS:
+        assert s.add(type="point", uv=c, by=[0, 0, 0]).succeeded
+    lifted = s.add(type="point", uv=[1, 0.75], by=[0, 0, 0.25])
+    h = lifted.added[0]
+    second = s.add(type="point", uv=[0.5, 1], by=[0, 0, -0.125]).added[0]
+    assert s.add(type="curve", curve="ridge", uv=CURVE_UV).succeeded
+    asked = next(c.asked for c in lifted.checks if c.handle == h)
+    drag = s.move(h, asked + np.array([0, 0.125, 0.25]), curve_probe=False)
+    check = next(c for c in drag.checks if c.handle == h)
+    assert np.abs(check.achieved - check.asked).max() < 1e-9  # measured on the sheet
+    assert drag.solve_s > 0 and drag.check_s > 0
+    s.remove(second)
+    assert s.install_rest_shape().energy == pytest.approx(0, abs=1e-9)
+    melted = s.melt()
+    assert s.handles == [0, 1, 2, 3, 4, 6]
+    assert np.array_equal(s.sheet().grid(4).reshape(-1, 3), expected)
+    # A refinement step by constraint error (§4.4).
+    before = s.sheet().dofs
+    r = s.refine(0.25 * melted.max_constraint_error)
+    assert r.sheets[0].spans_refined > 0 and s.sheet().dofs > before
+
+
+def test_session_refuses_what_the_config_refuses():
+    with pytest.raises(fairshape.InvalidConfig, match="alpah"):
+        fairshape.SheetSession(sheets=[{"name": "s"}], energy={"alpah": 1})
+    s = fairshape.SheetSession(**SESSION)
+    with pytest.raises(fairshape.InvalidConfig, match="bogus"):
+        s.add(type="point", uv=[1, 1], by=[0, 0, 0], bogus=1)
+    with pytest.raises(fairshape.InvalidConfig, match="outside the sheet's domain"):
+        s.add(type="point", uv=[3, 1], by=[0, 0, 0])
+    with pytest.raises(fairshape.InvalidConfig, match="step"):
+        s.add(type="point", uv=[1, 1], by=[0, 0, 0], step=2)
+    with pytest.raises(fairshape.InvalidConfig, match="pointt"):
+        s.add(type="pointt", uv=[1, 1])
+    with pytest.raises(fairshape.InvalidInput, match="no constraint 5"):
+        s.move(5, [0, 0, 0])
+    assert s.handles == []

@@ -7,6 +7,7 @@
 #include <map>
 #include <set>
 
+#include "fairshape/experiment/kinds/sheet/constraint_kinds.h"
 #include "fairshape/constraint/constraint_factories.h"
 #include "fairshape/core/config.h"
 #include "fairshape/design/edit_assembly.h"
@@ -98,6 +99,7 @@ TEST_CASE("registered names share one style: snake_case, none a punctuation mark
   qp::QpSolverRegistry qp_solvers("qp solver");
   qp::register_qp_solvers(qp_solvers);
   registries.push_back(qp_solvers.names());
+  registries.push_back(sheet_constraint_registry().names());
   std::map<std::string, std::string> by_letters;  // the name without punctuation -> the name
   for (const auto& names : registries)
     for (const auto& name : names) {

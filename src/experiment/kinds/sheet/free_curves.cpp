@@ -183,7 +183,7 @@ struct Group {
 
 }  // namespace
 
-JoinedStep FreeCurves::solve_step(const SheetRunSpec& spec, int step, std::vector<bspline::VariationalSheet>& sheets,
+JoinedStep FreeCurves::solve_step(const SheetRunSpec& spec, int step, qp::QpSolver& solver, std::vector<bspline::VariationalSheet>& sheets,
                                   const std::vector<bspline::SheetEnergy>& energies,
                                   const std::vector<std::vector<bspline::SheetConstraint>>& own,
                                   std::map<std::string, std::vector<Vec3>>& curves_now, ConstraintOverlay& overlay) {
@@ -243,11 +243,11 @@ JoinedStep FreeCurves::solve_step(const SheetRunSpec& spec, int step, std::vecto
           if (g.joints[j]->curve == tc.curve && g.joints[j]->sheet == tc.sheets[side]) joint[side] = static_cast<int>(j);
       if (joint[0] >= 0 && joint[1] >= 0) d.tangent_joints.push_back({joint[0], joint[1], tc.keep_left[0], tc.keep_left[1], tc.label});
     }
-    bspline::JoinedReport r = bspline::solve_joined(d, *spec.solver, spec.implementation, spec.refinement);
+    bspline::JoinedReport r = bspline::solve_joined(d, solver, spec.implementation, spec.refinement);
     for (std::size_t k = 0; k < r.tangent_error.size(); ++k)  // what continuity was achieved, pointwise
       r.message += std::string(r.message.empty() ? "" : "; ") + d.tangent_joints[k].label + ": max |dw1/dn1 + dw2/dn2| " +
                    sci(r.tangent_error[k]);
-    const std::string factorization = qp::factorization_note(*spec.solver);
+    const std::string factorization = qp::factorization_note(solver);
     const bool measured = !r.sheet_energy.empty() || !r.curve_energy.empty();
     for (std::size_t i = 0; i < g.sheets.size(); ++i) {
       JoinedSheetStep& js = out.sheets[g.sheets[i]];

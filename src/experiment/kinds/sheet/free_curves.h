@@ -73,8 +73,8 @@ class FreeCurves {
   //! Solves the step's joined groups, sets the joined sheets' coefficients and the free
   //! curves' control points, puts every free curve's shape into `curves_now` (sampled) and
   //! its curve and point targets into `overlay`. `own[k]`: sheet k's active constraints
-  //! without its joints.
-  JoinedStep solve_step(const SheetRunSpec& spec, int step, std::vector<bspline::VariationalSheet>& sheets,
+  //! without its joints; `solver`: the session's (bspline/sheet_session.h).
+  JoinedStep solve_step(const SheetRunSpec& spec, int step, qp::QpSolver& solver, std::vector<bspline::VariationalSheet>& sheets,
                         const std::vector<bspline::SheetEnergy>& energies, const std::vector<std::vector<bspline::SheetConstraint>>& own,
                         std::map<std::string, std::vector<Vec3>>& curves_now, ConstraintOverlay& overlay);
 

@@ -132,6 +132,16 @@ struct SheetRunSpec : RunBasics {
 };
 
 bool is_sheet_config(const YAML::Node& run_config);
+
+//! The index of the sheet `name`. \throw InvalidConfig naming `key` and the sheets.
+int sheet_config_index(const SheetRunSpec& s, const std::string& name, const std::string& key);
+//! (u, v) points of `sheet` in design units: checked inside its domain (and, on a periodic
+//! sheet, no segment half way round), converted to base spans. \throw InvalidConfig naming `what`.
+void uv_to_spans(const SheetRunSpec& s, const std::string& sheet, std::vector<Eigen::Vector2d>& uv, const std::string& what);
+//! A constraint on a sheet read from a `constraints:` entry (constraint_kinds.h), made ready for
+//! the run: its sheet and space curve exist (a curve's (u, v) default: the curve's own trace),
+//! its (u, v) in base spans. \throw InvalidConfig naming the key.
+void prepare_sheet_constraint(const SheetRunSpec& s, SheetConstraintSpec& cs);
 const std::vector<std::string>& sheet_metric_columns();  // runs.csv
 const std::vector<std::string>& sheet_step_columns();    // steps.csv: one row per step and sheet
 const std::vector<std::string>& sheet_cell_columns();    // cells.csv: constraint error per leaf cell

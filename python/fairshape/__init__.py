@@ -17,7 +17,7 @@ from ._fairshape import (  # noqa: F401  (the public API)
 )
 from ._summary import Summary, SolveFailed, RunFailed  # noqa: F401
 from ._constraints import constraint, fixed, position, energy  # noqa: F401
-from ._edit import edit, EditResult  # noqa: F401
+from ._edit import edit, EditResult, SessionStep, SurfaceEditSession  # noqa: F401
 from ._solve import solve  # noqa: F401
 from ._run import run  # noqa: F401
 from ._curves import Curve, CurveEditResult, CurveSession, CurveStep, edit_curve  # noqa: F401

@@ -1,163 +1,148 @@
-// The constrained edit of Boier-Martin et al. §4.3 on one level of a hierarchy: energies and
-// constraints given as dicts of the config schema ({"type": name, options...}; the Python
-// helpers fairshape.fixed / position / constraint build them), so every registered energy and
-// constraint is available and an unknown option is refused exactly as in a config.
-// Copies: the deformation comes back as a new n×3 array (moved out of the solver's result, not
-// copied again); the edited hierarchy is a new MultiresSurface.
+// Boier-Martin et al.'s edit session (design/surface_edit_session.h) bound for Python: built from
+// a config's keys through the run kind's own reader (SurfaceEditSpec::from_config, one parser:
+// an unknown key or value is refused exactly as in a YAML config), then driven step by step —
+// move, scale, add, remove, solve — with the prepared problem kept between steps.
+// fairshape.edit and fairshape.SurfaceEditSession (python/fairshape/_edit.py) are thin wrappers.
+// Copies: each step's deformation and the vertices come back as new arrays; the hierarchy as a
+// new MultiresSurface.
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
 #include "bindings.h"
 #include "checks.h"
 #include "convert.h"
-#include "fairshape/design/edit_assembly.h"
-#include "fairshape/design/edit_solve.h"
-#include "fairshape/design/orientation_check.h"
 #include "fairshape/experiment/components.h"
-#include "fairshape/qp/qp_solver.h"
+#include "fairshape/experiment/kinds/surface_edit/open_session.h"
+#include "fairshape/experiment/kinds/surface_edit/run_one.h"
 
 namespace py = pybind11;
 
 namespace fairshape::python {
 namespace {
 
-struct OwnedTerms {
-  std::vector<std::unique_ptr<Energy>> energies;
-  std::vector<std::unique_ptr<Constraint>> constraints;
-  EditTerms terms;
-};
-
-std::string type_of(Config& block, const char* what) {
-  return block.require<std::string>("type", std::string(what) + " name (fairshape.components())");
-}
-
-OwnedTerms read_terms(const py::list& energies, const py::list& constraints, Backend backend) {
-  const Components& c = components();
-  OwnedTerms t;
-  if (energies.empty()) throw InvalidConfig("energies: at least one energy term is required, e.g. "
-                                            "[{'type': 'detail_preserving', 'alpha': 0.1, 'beta': 1.0}]");
-  for (std::size_t i = 0; i < energies.size(); ++i) {
-    const std::string where = "energies[" + std::to_string(i) + "]";
-    if (!py::isinstance<py::dict>(energies[i])) throw InvalidConfig(where + ": expected a dict {'type': name, ...}");
-    Config e = to_config(energies[i].cast<py::dict>(), where);
-    const std::string type = type_of(e, "energy");
-    const double weight = e.get_number("weight", 1.0, 0.0, 1e12, "weight of this term");
-    t.energies.push_back(c.energies.create(type, backend, e));
-    e.check_no_unknown_keys();
-    t.terms.energies.push_back({t.energies.back().get(), weight});
-  }
-  for (std::size_t i = 0; i < constraints.size(); ++i) {
-    const std::string where = "constraints[" + std::to_string(i) + "]";
-    if (!py::isinstance<py::dict>(constraints[i])) throw InvalidConfig(where + ": expected a dict {'type': name, ...}");
-    Config k = to_config(constraints[i].cast<py::dict>(), where);
-    const std::string type = type_of(k, "constraint");
-    t.constraints.push_back(c.constraints.create(type, backend, k));
-    k.check_no_unknown_keys();
-    t.terms.constraints.push_back(t.constraints.back().get());
-  }
-  return t;
-}
-
-// The free vertices' solver of the paper mode: the config's solver block, type included.
-std::unique_ptr<Solver> make_solver(const std::string& type, const py::dict& options, Backend backend) {
-  py::dict block(options);
-  if (block.contains("type")) throw InvalidConfig("solver options: give the solver by solver=NAME, not type=");
-  block["type"] = type;
-  Config cfg = to_config(block, "solver");
-  const Components& c = components();
-  (void)cfg.get_choice("type", "cholesky", c.solvers.names(), "solver name");
-  auto solver = c.solvers.create(type, backend, cfg);
-  cfg.check_no_unknown_keys();
-  return solver;
-}
-
-// A QP mode's options (problem.<mode> in a config), checked against its solver's schema now,
-// before any work.
-Config qp_options(const std::string& mode, const py::dict& options, Backend backend) {
-  const auto& registry = qp::qp_solver_registry();
-  Config cfg = to_config(options, "problem." + mode);
-  (void)registry.create(mode, registry.has(mode, backend) ? backend : Backend::Optimized, cfg);
-  cfg.check_no_unknown_keys();
-  return to_config(options, "problem." + mode);
-}
-
-py::dict edit(const MultiresSurface& rest, const py::list& energies, const py::list& constraints, int level,
-              const std::string& mode_name, const std::optional<std::string>& solver_name,
-              const std::string& formulation, const std::string& implementation, const py::dict& options) {
-  const Backend backend = backend_arg(implementation);
-  const ConstraintMode mode = constraint_mode_names().value(mode_name, "mode");
-  if (formulation != "displacement" && formulation != "position")
-    throw InvalidConfig("formulation '" + formulation + "': expected 'displacement' or 'position'");
-  const int l = level < 0 ? rest.levels() + 1 + level : level;
-  if (l < 0 || l > rest.levels())
-    throw InvalidIndex("edit: level " + std::to_string(level) + " is not in the hierarchy (levels 0.." +
-                       std::to_string(rest.levels()) + ", or -1 for the finest)");
-  OwnedTerms t = read_terms(energies, constraints, backend);
-  t.terms.positions = formulation == "position";
-  std::unique_ptr<Solver> solver;
-  Config qp;
-  if (mode == ConstraintMode::Paper) {
-    solver = make_solver(solver_name.value_or("cholesky"), options, backend);
-    t.terms.levels = solver->uses_levels();
-  } else {
-    if (solver_name)
-      throw InvalidConfig("solver='" + *solver_name + "': mode '" + mode_name +
-                          "' solves the whole constrained system itself; the solver is used by mode 'paper' only");
-    qp = qp_options(mode_name, options, backend);
-    solver = make_solver("cholesky", py::dict(), backend);  // not used by a QP mode
-  }
-  EditSolution sol;
-  MultiresSurface edited = rest;
-  OrientationCheck checked;
-  int n_dofs = 0;
-  {
+class PySession {
+ public:
+  // `config`: a run's keys (name optional); `hierarchy`: the surface to edit in memory (then
+  // `input` holds only edit_level), else input.mesh is read and built as a run builds it.
+  PySession(const py::dict& config, const MultiresSurface* hierarchy, const std::vector<std::string>& search_dirs) {
+    YAML::Node node = to_yaml(config, "config");
+    if (!node["name"]) node["name"] = "session";
+    spec_ = hierarchy ? SurfaceEditSpec::from_config(node, components(), *hierarchy)
+                      : SurfaceEditSpec::from_config(node, components(), search_dirs);
     py::gil_scoped_release release;
-    // Checked as a config run's result is, normals left to rows `auto` solved again with frame
-    // rows when they come out reversed (design/orientation_check.h).
-    const std::string note = solve_orienting_normals([&](bool frame_rows) {
-      t.terms.frame_rows_for_auto_normals = frame_rows;
-      DesignConstraints placed;
-      const EditProblem p = assemble_edit_problem(t.terms, rest, l, placed);
-      n_dofs = static_cast<int>(p.H.rows());
-      sol = solve_edit(p, mode, *solver, backend, {}, nullptr, qp);
-      edited = sol.delta.allFinite() ? with_deformation(rest, l, sol.delta) : rest;
-      checked = sol.delta.allFinite() ? check_orientation(rest, edited, placed) : OrientationCheck{};
-      return checked;
-    });
-    sol.summary.message = noted(note, sol.summary.message);
-    if (checked.folded() && sol.summary.succeeded()) {
-      sol.summary.termination = Termination::Folded;
-      sol.summary.message = noted(sol.summary.message, checked.describe());
+    std::shared_ptr<const MultiresSurface> rest;
+    if (hierarchy) {
+      rest = std::make_shared<const MultiresSurface>(*hierarchy);
+    } else {
+      RunCache cache;  // the run kind's hierarchy: the mesh read, subdivided or remeshed
+      rest = std::make_shared<const MultiresSurface>(cache.hierarchy(spec_));
     }
+    session_ = open_session(spec_, rest);
   }
-  const std::string outcome = std::string(to_string(sol.summary.termination)) + ": " + sol.summary.message;
-  finite_result(sol.delta, "edit: the deformation (" + outcome + ")");
-  finite_result(edited, "edit: the edited hierarchy (" + outcome + ")");
-  py::dict out;
-  out["level"] = l;
-  out["n_dofs"] = n_dofs;
-  out["termination"] = std::string(to_string(sol.summary.termination));
-  out["succeeded"] = sol.summary.succeeded();
-  out["iterations"] = sol.summary.iterations;
-  out["residual"] = sol.summary.residual;
-  out["message"] = sol.summary.message;
-  out["analyze_s"] = sol.analyze_s;
-  out["solve_s"] = sol.solve_s;
-  out["constraint_residual"] = sol.constraint_residual;
-  out["constrained_vertices"] = sol.constrained_vertices;
-  out["flipped_faces"] = static_cast<int>(checked.folds.flipped.size());
-  out["normal_error_deg"] = checked.normal_error_deg;
-  out["delta"] = py::cast(std::move(sol.delta));  // moved into the array: no copy
-  out["hierarchy"] = py::cast(std::move(edited));
-  return out;
-}
+
+  py::dict solve(const std::optional<std::string>& mode) {
+    EditStepSpec step;
+    if (mode) {
+      AccuracyOptions a;
+      a.mode = accuracy_mode_names().value(*mode, "mode");
+      step.accuracy = a.mode;
+    }
+    return solved(step);
+  }
+
+  void move(int handle, const Vec3& offset) { session_->move(handle, offset); }
+  void scale(double s) { session_->scale(s); }
+  void remove(int handle) {
+    py::gil_scoped_release release;
+    session_->remove(handle);
+  }
+  int add(const py::dict& constraint) {
+    Config k = to_config(constraint, "add");
+    ConstraintTerm t = read_constraint_term(k, components(), spec_.implementation);
+    py::gil_scoped_release release;
+    return session_->add({t.constraint, t.influence});
+  }
+
+  // The config's own `steps:` solved in turn, as `fairshape run` solves them.
+  py::list replay() {
+    py::list out;
+    for (const EditStepSpec& step : spec_.steps) {
+      {
+        py::gil_scoped_release release;
+        apply_step(step, *session_);
+      }
+      out.append(solved(step));
+    }
+    return out;
+  }
+
+  MatrixX3 vertices() const { return session_->current().mesh(session_->current().levels()).positions(); }
+  MultiresSurface hierarchy() const { return session_->current(); }
+  int level() const { return session_->level(); }
+  std::vector<int> handles() const { return session_->handles(); }
+  int preparations() const { return session_->preparations(); }
+  int scheduled_steps() const { return spec_.scheduled ? static_cast<int>(spec_.steps.size()) : 0; }
+
+ private:
+  py::dict solved(const EditStepSpec& step) {
+    SurfaceEditStep r;
+    {
+      py::gil_scoped_release release;
+      r = solve_step(step, *session_);
+    }
+    const std::string outcome = std::string(to_string(r.summary.termination)) + ": " + r.summary.message;
+    finite_result(r.solution.delta, "edit: the deformation (" + outcome + ")");
+    py::dict d;
+    d["termination"] = std::string(to_string(r.summary.termination));
+    d["succeeded"] = r.summary.succeeded();
+    d["iterations"] = r.summary.iterations;
+    d["residual"] = r.summary.residual;
+    d["message"] = r.summary.message;
+    d["accuracy"] = r.accuracy;
+    d["level"] = session_->level();
+    d["n_dofs"] = r.regional ? 0 : static_cast<int>(session_->problem().H.rows());
+    d["energy"] = r.energy;
+    d["constraint_residual"] = r.constraint_residual;
+    d["constrained_vertices"] = r.solution.constrained_vertices;
+    d["flipped_faces"] = static_cast<int>(r.orientation.folds.flipped.size());
+    d["normal_error_deg"] = r.orientation.normal_error_deg;
+    d["analyze_s"] = r.solution.analyze_s;
+    d["solve_s"] = r.solve_s;
+    d["check_s"] = r.check_s;
+    d["rotation_rounds"] = r.rotation_rounds;
+    d["delta"] = py::cast(std::move(r.solution.delta));  // moved into the array: no copy
+    return d;
+  }
+
+  static const NameTable<AccuracyMode>& accuracy_mode_names() {
+    static const NameTable<AccuracyMode> t{{AccuracyMode::Interactive, "interactive"},
+                                           {AccuracyMode::Improved, "improved"},
+                                           {AccuracyMode::Converged, "converged"}};
+    return t;
+  }
+
+  SurfaceEditSpec spec_;
+  std::unique_ptr<SurfaceEditSession> session_;
+};
 
 }  // namespace
 
 void bind_edit(py::module_& m) {
-  m.def("_edit", &edit, py::arg("hierarchy"), py::arg("energies"), py::arg("constraints"), py::arg("level"),
-        py::arg("mode"), py::arg("solver"), py::arg("formulation"), py::arg("implementation"), py::arg("options"),
-        "The edit's C++ half; call fairshape.edit().");
+  py::class_<PySession>(m, "_SurfaceEditSession", "The session's C++ half; use fairshape.SurfaceEditSession.")
+      .def(py::init<const py::dict&, const MultiresSurface*, const std::vector<std::string>&>(), py::arg("config"),
+           py::arg("hierarchy"), py::arg("search_dirs"))
+      .def("solve", &PySession::solve, py::arg("mode"))
+      .def("move", &PySession::move, py::arg("handle"), py::arg("offset"))
+      .def("scale", &PySession::scale, py::arg("s"))
+      .def("add", &PySession::add, py::arg("constraint"))
+      .def("remove", &PySession::remove, py::arg("handle"))
+      .def("replay", &PySession::replay)
+      .def_property_readonly("vertices", &PySession::vertices)
+      .def_property_readonly("hierarchy", &PySession::hierarchy)
+      .def_property_readonly("level", &PySession::level)
+      .def_property_readonly("handles", &PySession::handles)
+      .def_property_readonly("preparations", &PySession::preparations)
+      .def_property_readonly("scheduled_steps", &PySession::scheduled_steps);
   m.def("constraint_modes", [] { return constraint_mode_names().names(); }, "Names of the edit's constraint modes.");
 }
 

@@ -43,6 +43,10 @@ void check_sizes(const EditProblem& p) {
 
 }  // namespace
 
+double edit_energy(const EditProblem& p, const Eigen::MatrixXd& delta) {
+  return quadratic_energy(p.H, p.g, delta) + p.energy_at_rest;
+}
+
 Eigen::MatrixXd stacked_targets(const LinearConstraints& lc, const Eigen::MatrixXd& C) {
   Eigen::MatrixXd out(3 * C.rows() + lc.C_coupled.rows(), 1);
   out << stack(C), lc.C_coupled;

@@ -115,6 +115,10 @@ class PreparedEdit {
   std::optional<ConstrainedFreedom> freedom_;  // solve_to_optimum's, found on first use
 };
 
+//! The energy of an edit's result (configs/README.md, "energy"): the energy terms of the
+//! deformation ΔP, or of P_rest + ΔP for terms measured on positions. Never negative.
+double edit_energy(const EditProblem& p, const Eigen::MatrixXd& delta);
+
 //! [C stacked by coordinate; the coupled targets]: the right-hand side of the coupled system.
 Eigen::MatrixXd stacked_targets(const LinearConstraints& lc, const Eigen::MatrixXd& C);
 

@@ -87,9 +87,22 @@ Eigen::MatrixXd MultilevelEdit::prolongate(std::size_t from, std::size_t to, con
 }
 
 EditSolution MultilevelEdit::solve(double scale, const IterationCallback& cb) {
+  const auto targets = [&](std::size_t k) { return Eigen::MatrixXd(scale * ladder_.problems[k].constraints.C); };
+  return solve_with(targets, scale, ladder_.problems.back().constraints.C, cb);
+}
+
+EditSolution MultilevelEdit::solve(const Eigen::MatrixXd& C, const IterationCallback& cb) {
+  for (const EditProblem& p : ladder_.problems)
+    if (C.rows() != p.constraints.C.rows() || C.cols() != p.constraints.C.cols())
+      throw InvalidInput("multilevel edit: " + std::to_string(C.rows()) + " targets for " +
+                         std::to_string(p.constraints.C.rows()) + " constraint rows");
+  return solve_with([&C](std::size_t) { return C; }, 1.0, C, cb);
+}
+
+EditSolution MultilevelEdit::solve_with(const std::function<Eigen::MatrixXd(std::size_t)>& targets, double s,
+                                        const Eigen::MatrixXd& edit_C, const IterationCallback& cb) {
   Timer step;
   const std::size_t last = ladder_.problems.size() - 1;
-  const auto targets = [&](std::size_t k) { return Eigen::MatrixXd(scale * ladder_.problems[k].constraints.C); };
   const bool warm = !previous_.empty();
   // The start on level `to`: the previous step's solution there plus the prolongated change
   // of level `from`'s solution (nested iteration for the first step).
@@ -114,7 +127,7 @@ EditSolution MultilevelEdit::solve(double scale, const IterationCallback& cb) {
         out.constraint_residual =
             backend_ == Backend::Reference
                 ? (ladder_.problems[last].constraints.A * out.delta - targets(last)).norm()
-                : parallel_residual_norm(edit_rows_, out.delta, scale, ladder_.problems[last].constraints.C);
+                : parallel_residual_norm(edit_rows_, out.delta, s, edit_C);
 #else
         out.constraint_residual = (ladder_.problems[last].constraints.A * out.delta - targets(last)).norm();
 #endif

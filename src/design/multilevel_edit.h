@@ -55,6 +55,9 @@ class MultilevelEdit {
   //! offsets; 1 = the configured edit). The deformation of level L; summary.iterations
   //! counts the finest level's iterations (converged) or every relaxation sweep (improved).
   EditSolution solve(double scale, const IterationCallback& cb = {});
+  //! One design step with the targets C (m × 3) on every level: the rows are propagated from the
+  //! same placed constraints, so each level's C holds the same targets in the same order.
+  EditSolution solve(const Eigen::MatrixXd& C, const IterationCallback& cb = {});
   //! Replaces every level's linear term g (problems[k]'s layout, n_k × 3) for the next solves
   //! and forgets the previous step, so the next solve starts cold: a regional pass
   //! (design/regional_edit.h) solves for an increment each round, with the energy of the whole
@@ -66,6 +69,9 @@ class MultilevelEdit {
 
  private:
   Eigen::MatrixXd prolongate(std::size_t from_level, std::size_t to_level, const Eigen::MatrixXd& x) const;
+  //! `targets(k)`: level k's; the edit level's residual is measured against s × edit_C.
+  EditSolution solve_with(const std::function<Eigen::MatrixXd(std::size_t)>& targets, double s,
+                          const Eigen::MatrixXd& edit_C, const IterationCallback& cb);
 
   const EditLadder& ladder_;
   Accuracy accuracy_;

@@ -134,23 +134,28 @@ std::vector<const NormalConstraint*> distinct_normals(const MultiresSurface& h, 
 
 // The point constraints after the checks (level, vertex, a finite target), each target once:
 // incompatible targets on one vertex are an error, a repeated identical one is harmless.
-std::vector<const PointConstraint*> distinct_points(const MultiresSurface& h, int l, const std::vector<PointConstraint>& cs) {
-  std::map<std::tuple<int, int, bool>, const PointConstraint*> seen;
+// `row_of` (optional): each constraint's row, index for index with `cs`.
+std::vector<const PointConstraint*> distinct_points(const MultiresSurface& h, int l, const std::vector<PointConstraint>& cs,
+                                                    std::vector<int>* row_of = nullptr) {
+  std::map<std::tuple<int, int, bool>, std::pair<const PointConstraint*, int>> seen;
   std::vector<const PointConstraint*> unique;
   for (const auto& c : cs) {
     check_place(h, l, c.level, c.vertex, c.label);
     if (!c.offset.allFinite()) throw InvalidInput(c.label + ": target is not finite");
     if (!c.surface.empty()) {  // a surface point: its own row, never merged with a vertex's
       check_surface_point(h, c.level, c.surface, c.label);
+      if (row_of) row_of->push_back(static_cast<int>(unique.size()));
       unique.push_back(&c);
       continue;
     }
-    auto [it, inserted] = seen.try_emplace({c.level, c.vertex, c.on_limit}, &c);
+    auto [found, inserted] = seen.try_emplace({c.level, c.vertex, c.on_limit}, &c, static_cast<int>(unique.size()));
+    if (row_of) row_of->push_back(found->second.second);
+    const auto* it = &found->second;  // it->first: the constraint that made the row
     if (inserted) unique.push_back(&c);
-    else if ((it->second->offset - c.offset).norm() > 1e-12 * (1.0 + c.offset.norm())) {
+    else if ((it->first->offset - c.offset).norm() > 1e-12 * (1.0 + c.offset.norm())) {
       std::ostringstream os;
-      os << "vertex " << c.vertex << " of level " << c.level << " has incompatible targets: " << it->second->label
-         << " asks for [" << it->second->offset.transpose() << "], " << c.label << " for [" << c.offset.transpose() << "]";
+      os << "vertex " << c.vertex << " of level " << c.level << " has incompatible targets: " << it->first->label
+         << " asks for [" << it->first->offset.transpose() << "], " << c.label << " for [" << c.offset.transpose() << "]";
       throw InvalidInput(os.str());
     }
   }
@@ -298,6 +303,12 @@ LinearConstraints missing_targets(const MultiresSurface& h, const DesignConstrai
   }
   out.C_coupled = Eigen::Map<const Eigen::VectorXd>(c.data(), static_cast<Eigen::Index>(c.size()));
   return out;
+}
+
+std::vector<int> point_rows(const MultiresSurface& h, int edit_level, const std::vector<PointConstraint>& points) {
+  std::vector<int> rows;
+  (void)distinct_points(h, edit_level, points, &rows);
+  return rows;
 }
 
 void require_fixed_position(const LinearConstraints& lc) { require_fixed_position(lc.A.rows() > 0, lc.coupled()); }

@@ -43,6 +43,10 @@ LinearConstraints propagate_constraints(const MultiresSurface& h, int edit_level
 LinearConstraints missing_targets(const MultiresSurface& h, const DesignConstraints& constraints,
                                   const MultiresSurface& current);
 
+//! The row of propagate_constraints' A (and C) that each of `points` makes, index for index:
+//! points on one vertex with the same target share a row. \throw InvalidInput as propagate_constraints.
+std::vector<int> point_rows(const MultiresSurface& h, int edit_level, const std::vector<PointConstraint>& points);
+
 //! The checks of propagate_constraints that build no row (the levels and vertices exist, the
 //! targets and normals are finite, no two on one vertex conflict) and require_fixed_position:
 //! cheap, for validating a sweep. \throw InvalidInput as they would.

@@ -14,6 +14,7 @@
 #include "fairshape/design/regional_edit.h"
 #include "fairshape/experiment/kinds/surface_edit/constraint_overlay.h"
 #include "fairshape/experiment/kinds/surface_edit/drag_run.h"
+#include "fairshape/experiment/kinds/surface_edit/open_session.h"
 #include "fairshape/experiment/kinds/surface_edit/system_export.h"
 #include "fairshape/experiment/metric_format.h"
 #include "fairshape/experiment/sha256.h"
@@ -31,14 +32,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-
-Eigen::MatrixXd random_start(const SurfaceEditSpec& spec, Eigen::Index rows) {
-  std::mt19937_64 gen(static_cast<std::uint64_t>(spec.seed));
-  std::uniform_real_distribution<double> d(-1.0, 1.0);
-  Eigen::MatrixXd x(rows, 3);
-  for (Eigen::Index i = 0; i < x.size(); ++i) x.data()[i] = d(gen);
-  return x;
-}
 
 // A level with the displacement it received and its constrained vertices, for final.obj and VTK.
 SurfaceMesh result_mesh(const SurfaceMesh& before, const MatrixX3& after, int level,
@@ -62,12 +55,6 @@ SurfaceMesh result_mesh(const SurfaceMesh& before, const MatrixX3& after, int le
     m.vertex_data["target_normal"] = normals;
   }
   return m;
-}
-
-// The energy of the edit's result (configs/README.md, "energy"): the energy terms of the
-// deformation ΔP, or of P_rest + ΔP for terms measured on positions. Never negative.
-double edit_energy(const EditProblem& p, const Eigen::MatrixXd& delta) {
-  return quadratic_energy(p.H, p.g, delta) + p.energy_at_rest;
 }
 
 // Writes iterations.csv rows and VTK snapshots of the edit level while a solve runs. A row's
@@ -115,16 +102,21 @@ class IterationSink {
 // against this optimum, not against itself solved more precisely (papers/boier-martin/README.md,
 // "One reference per problem"). One factorization serves every step that is missing.
 std::vector<const ReferenceSolution*> reference_solutions(const SurfaceEditSpec& spec, RunCache& cache, const EditProblem& p,
-                                                         const std::vector<double>& scales) {
-  std::vector<const ReferenceSolution*> refs(scales.size(), nullptr);
+                                                         const std::vector<Eigen::MatrixXd>& targets) {
+  std::vector<const ReferenceSolution*> refs(targets.size(), nullptr);
   if (!spec.output.reference_solution) return refs;
+  // A drag's step k is scale k/N of the configured targets, a scheduled step its own (the
+  // schedule is part of the problem key).
+  const auto step_name = [&](std::size_t s) {
+    return spec.scheduled ? "step " + std::to_string(s + 1) : "scale " + num(*spec.steps[s].scale);
+  };
   const auto key = [&](std::size_t s) {
     std::string k = spec.problem_key() + "|optimum";
-    return s + 1 == scales.size() ? k : k.append("|scale ").append(num(scales[s]));
+    return s + 1 == targets.size() ? k : k.append("|").append(step_name(s));
   };
   std::unique_ptr<Solver> direct;
   std::unique_ptr<PreparedEdit> exact;  // factored on the first step the cache lacks
-  for (std::size_t s = 0; s < scales.size(); ++s) {
+  for (std::size_t s = 0; s < targets.size(); ++s) {
     if (!cache.reference_solution(key(s))) {
       const Timer yardstick;  // the factorization is charged to the first step that needs it
       if (!exact) {
@@ -132,15 +124,27 @@ std::vector<const ReferenceSolution*> reference_solutions(const SurfaceEditSpec&
         direct = components().solvers.create("cholesky", Backend::Optimized, none);
         exact = std::make_unique<PreparedEdit>(p, ConstraintMode::Kkt, *direct, Backend::Optimized, spec.qp_config());
       }
-      const EditSolution sol = exact->solve(scales[s] * p.constraints.C);
+      const EditSolution sol = exact->solve(targets[s]);
       if (sol.summary.termination != Termination::Converged) continue;
       cache.store_reference_solution(key(s), {sol.delta, sol.solve_s}, yardstick.seconds(),
                                      std::string("reference solution (the exact optimum, KKT") +
-                                         (s + 1 == scales.size() ? ")" : ", drag step " + std::to_string(s + 1) + ")"));
+                                         (s + 1 == targets.size() ? ")" : ", drag step " + std::to_string(s + 1) + ")"));
     }
     refs[s] = cache.reference_solution(key(s));
   }
   return refs;
+}
+
+// The targets of each of the run's steps, found by applying them to the session without solving;
+// the session is left with its configured targets.
+std::vector<Eigen::MatrixXd> step_targets(const SurfaceEditSpec& spec, SurfaceEditSession& session) {
+  std::vector<Eigen::MatrixXd> targets;
+  for (const EditStepSpec& step : spec.steps) {
+    apply_step(step, session);
+    targets.push_back(session.targets());
+  }
+  session.scale(1.0);
+  return targets;
 }
 
 // The paper's split, or §5's ladder, may answer with more energy than the optimum of the same
@@ -149,9 +153,10 @@ std::vector<const ReferenceSolution*> reference_solutions(const SurfaceEditSpec&
 // normal constraint's fin).
 constexpr double kPaperEnergyFactor = 1.5;
 
-void measure_accuracy(const SurfaceEditSpec& spec, const EditProblem& p, const EditSolution& sol,
+void measure_accuracy(const SurfaceEditSpec& spec, const EditProblem& p, const SurfaceEditStep& step,
                       const ReferenceSolution* ref, MetricRow& row) {
-  const double energy = edit_energy(p, sol.delta);
+  const EditSolution& sol = step.solution;
+  const double energy = step.energy;
   row["energy"] = num(energy);
   row["constraint_violation"] = num(sol.constraint_residual);
   if (!ref) return;
@@ -232,15 +237,12 @@ void report_spike(const SurfaceEditSpec& spec, const DesignConstraints& placed, 
 
 // flipped_faces and normal_error_deg, measured on the result whatever the solver certified:
 // a fold or a normal met by its reverse is never a success (design/orientation_check.h).
-OrientationCheck report_orientation(const MultiresSurface& rest, const MultiresSurface& edited,
-                                    const DesignConstraints& placed, MetricRow& row) {
-  OrientationCheck c = check_orientation(rest, edited, placed);
+void report_orientation(const OrientationCheck& c, MetricRow& row) {
   row["flipped_faces"] = std::to_string(c.folds.flipped.size());
   if (c.normal_error_deg >= 0) row["normal_error_deg"] = num(c.normal_error_deg);
-  if (!c.folded()) return c;
+  if (!c.folded()) return;
   row["message"] += (row["message"].empty() ? "" : "; ") + c.describe();
   if (is_success(termination_from_string(row["termination"]))) row["termination"] = std::string(to_string(Termination::Folded));
-  return c;
 }
 
 // curve_points: the vertices the curves snapped, or their points on the limit surface (the
@@ -253,11 +255,11 @@ void count_curve_points(const DesignConstraints& placed, MetricRow& row) {
 }
 
 // What every edit reports of its result and writes: the detail change (the edited finest
-// level re-analysed), the spike ratio, the geometry and the constraints' overlay. `region`
-// (regional edits): the finest level's influence_region array.
+// level re-analysed), the spike ratio, the session's orientation check, the geometry and the
+// constraints' overlay. `region` (regional edits): the finest level's influence_region array.
 OrientationCheck report_result(const SurfaceEditSpec& spec, const RunOutputs& out, const MultiresSurface& rest,
                                const MultiresSurface& edited, const DesignConstraints& placed, const Eigen::MatrixXd& delta,
-                               const Eigen::VectorXi* region, MetricRow& row) {
+                               const Eigen::VectorXi* region, const OrientationCheck& orientation, MetricRow& row) {
   const SurfaceMesh& finest = edited.mesh(edited.levels());
   // The edited surface analysed anew: its details are what the edit left of the rest
   // shape's (synthesize_from keeps the rest details, whatever the energy did to them).
@@ -270,7 +272,7 @@ OrientationCheck report_result(const SurfaceEditSpec& spec, const RunOutputs& ou
   report_spike(spec, placed, delta, row);
   for (const PlacedCurve& c : placed.curves)  // a curve placed otherwise than asked says how
     if (!c.note.empty()) row["message"] += (row["message"].empty() ? "" : "; ") + c.note;
-  const OrientationCheck orientation = report_orientation(rest, edited, placed, row);
+  report_orientation(orientation, row);
   SurfaceMesh result = result_mesh(rest.mesh(rest.levels()), finest.positions(), rest.levels(), placed);
   if (region) result.vertex_data["influence_region"] = region->cast<double>();
   mark_flipped(result, orientation.folds);
@@ -286,16 +288,13 @@ OrientationCheck execute_regional(SurfaceEditSpec& spec, RunCache& cache, const 
                                   const MultiresSurface& rest, int level, MetricRow& row) {
   const EditTerms terms = spec.edit_terms();
   // Under §5's ladder the whole-level passes are solved on it (design/regional_edit.h).
-  const std::optional<PassLadder> ladder =
-      spec.accuracy.multilevel() ? std::optional<PassLadder>(pass_ladder(spec, spec.solver.get())) : std::nullopt;
+  const std::unique_ptr<SurfaceEditSession> session = open_session(spec, borrowed(rest), false);
   const double before_solve_mb = trimmed_rss_mb();
   reset_peak_rss();
   if (spec.output.system)
     throw InvalidInput("output.system: an edit with regions of influence solves one system per pass (design/regional_edit.h); "
                        "writing them is not supported: set output.system: false");
-  const RegionalEditResult r =
-      solve_regional_edit(terms, rest, level, spec.constraint_mode, *spec.solver, spec.implementation, spec.qp_config(),
-                          spec.constraint_tolerance, ladder ? &*ladder : nullptr);
+  const SurfaceEditStep r = session->solve();
   const double solve_peak_mb = peak_rss_mb();
   row["peak_rss_mb"] = num(solve_peak_mb);
   row["solve_extra_mb"] = num(solve_peak_mb - before_solve_mb);
@@ -303,35 +302,26 @@ OrientationCheck execute_regional(SurfaceEditSpec& spec, RunCache& cache, const 
   for (const RegionalPass& p : r.passes) unknowns += p.unknowns;
   row["n_dofs"] = std::to_string(unknowns);
   row["n_fine"] = std::to_string(rest.mesh(rest.levels()).n_vertices());
-  row["analyze_s"] = num(r.analyze_s);
-  row["solve_s"] = num(r.solve_s);
-  row["solve_min_s"] = num(r.solve_s);
-  row["iterations"] = std::to_string(r.summary.iterations);
-  row["residual"] = num(r.summary.residual);
-  row["constraint_violation"] = num(r.constraint_violation);
-  row["termination"] = std::string(to_string(r.summary.termination));
-  row["message"] = r.summary.message;
-  if (r.passes.size() != 0 && !is_success(r.summary.termination)) return {};
+  const SolveSummary& summary = r.solution.summary;  // the solver's; the run's own checks are added below
+  row["analyze_s"] = num(r.solution.analyze_s);
+  row["solve_s"] = num(r.solution.solve_s);
+  row["solve_min_s"] = num(r.solution.solve_s);
+  row["iterations"] = std::to_string(summary.iterations);
+  row["residual"] = num(summary.residual);
+  row["constraint_violation"] = num(r.constraint_residual);
+  row["termination"] = std::string(to_string(summary.termination));
+  row["message"] = summary.message;
+  if (r.passes.size() != 0 && !is_success(summary.termination)) return {};
   const int finest = rest.levels();
-  const Eigen::MatrixXd moved = r.edited.mesh(finest).positions() - rest.mesh(finest).positions();
+  const MultiresSurface& edited = session->current();
+  const Eigen::MatrixXd moved = edited.mesh(finest).positions() - rest.mesh(finest).positions();
   row["region_fraction"] = num((r.region.array() > 0).count() / static_cast<double>(r.region.size()));
   const double largest = moved.rowwise().norm().maxCoeff();
   row["moved_fraction"] =
       num((moved.rowwise().norm().array() > 1e-12 * largest).count() / static_cast<double>(moved.rows()));
   row["outside_region_move"] = num(r.outside_region_move);
-  count_curve_points(r.placed, row);
-  if (r.outside_region_move > 0) {  // cannot happen by construction: a bug, never a quiet number
-    row["termination"] = std::string(to_string(Termination::NumericalFailure));
-    row["message"] += "; a vertex outside every region of influence moved by " + num(r.outside_region_move);
-  }
-  // The energy of the whole deformation on the edit level.
-  EditTerms energies_only = terms;
-  energies_only.constraints.clear();
-  energies_only.influences.clear();
-  DesignConstraints none;
-  const EditProblem at_edit = assemble_edit_problem(energies_only, rest, level, none);
-  const Eigen::MatrixXd delta = r.edited.mesh(level).positions() - rest.mesh(level).positions();
-  row["energy"] = num(edit_energy(at_edit, delta));
+  count_curve_points(session->placed(), row);
+  row["energy"] = num(r.energy);  // of the whole deformation on the edit level
   if (spec.output.reference_solution) {
     const std::string key = spec.problem_key() + "|regional optimum";
     if (!cache.reference_solution(key)) {
@@ -348,7 +338,7 @@ OrientationCheck execute_regional(SurfaceEditSpec& spec, RunCache& cache, const 
     }
     if (const ReferenceSolution* ref = cache.reference_solution(key)) row["error_vs_reference"] = num(relative_error(moved, ref->u));
   }
-  return report_result(spec, out, rest, r.edited, r.placed, moved, &r.region, row);
+  return report_result(spec, out, rest, edited, session->placed(), moved, &r.region, r.orientation, row);
 }
 
 // time_s: the run's own time. The shared work done during it (a hierarchy, a reference solve)
@@ -512,21 +502,22 @@ MetricRow attempt_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
       return row;
     }
     Timer t;
-    DesignConstraints placed;
-    const int coarse = spec.accuracy.multilevel() ? spec.accuracy.coarse_level : level;
-    const EditLadder ladder = assemble_edit_ladder(spec.edit_terms(), rest, coarse, level, placed);
-    const EditProblem& problem = ladder.problems.back();
+    // The run's session (design/surface_edit_session.h): it solves each step and checks each
+    // result; this run writes what it found. A reversed normal is solved again by execute_run,
+    // so that each attempt writes its own files.
+    const std::unique_ptr<SurfaceEditSession> session = open_session(spec, borrowed(rest), false);
+    const EditProblem& problem = session->problem();
+    const DesignConstraints& placed = session->placed();
     row["assemble_s"] = num(t.seconds());
     row["n_dofs"] = std::to_string(problem.H.rows());
     row["n_fine"] = std::to_string(rest.mesh(rest.levels()).n_vertices());
     row["n_constrained"] = std::to_string(problem.constraints.A.rows() + problem.constraints.A_coupled.rows());
     count_curve_points(placed, row);
-    const Eigen::MatrixXd start = spec.initial_guess == InitialGuess::Random ? random_start(spec, problem.H.rows()) : Eigen::MatrixXd();
     // A rotation-aware edit is its own yardstick (its rounds stop at a tolerance): the linear
     // solve would measure how far the rotations went, not an error.
     const auto references = spec.rotations.iterations > 0
-                                ? std::vector<const ReferenceSolution*>{nullptr}
-                                : reference_solutions(spec, cache, problem, drag_scales(spec.accuracy.drag_steps));
+                                ? std::vector<const ReferenceSolution*>(spec.steps.size(), nullptr)
+                                : reference_solutions(spec, cache, problem, step_targets(spec, *session));
     const ReferenceSolution* reference = references.back();
     // peak_rss_mb: the solve's peak (analysis included), not the yardstick's; solve_extra_mb:
     // that peak above what the process held before it (the hierarchy, H, the constraints), i.e.
@@ -534,41 +525,23 @@ MetricRow attempt_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
     const double before_solve_mb = trimmed_rss_mb();
     reset_peak_rss();
     IterationSink sink(spec, out, rest.mesh(level), level, placed, problem, reference ? &reference->u : nullptr);
-    EditSolution sol;
-    std::vector<Eigen::MatrixXd> level_solutions;
-    std::string folded_on_the_way;  // a drag's earlier steps that folded
     const IterationCallback cb = std::ref(sink);
-    if (spec.accuracy.multilevel()) {
-      // output.vtk: all records the drag: each step's surface, for a strip (Figure 9, bottom).
-      std::vector<std::pair<double, std::string>> steps;
-      StepOrientationCheck step_check(rest, level, placed);
-      const int n_steps = static_cast<int>(drag_scales(spec.accuracy.drag_steps).size());
-      const StepCallback write_step = [&](int step, const Eigen::MatrixXd& delta) {
-        // Steps before the last were synthesized by their check (run_drag checks, then calls this).
-        if (step == n_steps) step_check(delta);
-        const MultiresSurface& edited = step_check.edited();
-        const std::string file = out.run_id + "_step" + std::to_string(step) + ".vtp";
-        write_vtp(result_mesh(rest.mesh(rest.levels()), edited.mesh(rest.levels()).positions(), rest.levels(), placed),
-                  (fs::path(out.dir) / "vtk" / file).string());
-        steps.emplace_back(step, file);
-      };
-      const StepCheck check_step = std::ref(step_check);
-      DragOutcome drag = run_drag(spec, out, ladder, references, cb, true, check_step,
-                                  spec.output.vtk == VtkPolicy::All ? write_step : StepCallback());
-      folded_on_the_way = std::move(drag.folded_steps);
-      if (!steps.empty()) write_pvd(steps, (fs::path(out.dir) / "vtk" / (out.run_id + "_steps.pvd")).string());
-      sol = std::move(drag.last);
-      level_solutions = std::move(drag.level_solutions);
-    } else if (spec.rotations.iterations > 0) {
-      const RotationAwareSolution r = solve_rotation_aware(problem, spec.edit_terms().energies, rest.mesh(level),
-                                                           spec.constraint_mode, *spec.solver, spec.implementation,
-                                                           spec.qp_config(), spec.rotations);
-      sol = r.solution;
-      row["rotation_rounds"] = std::to_string(r.rounds);
-    } else {
-      sol = solve_edit(problem, spec.constraint_mode, *spec.solver, spec.implementation, cb, start.size() ? &start : nullptr,
-                       spec.qp_config());
-    }
+    // output.vtk: all records the steps of a drag or schedule: each step's surface, for a strip
+    // (Figure 9, bottom).
+    const bool stepwise = spec.accuracy.multilevel() || spec.scheduled;
+    std::vector<std::pair<double, std::string>> vtk_steps;
+    const StepCallback write_step = [&](int step, const SurfaceEditSession& s) {
+      const std::string file = out.run_id + "_step" + std::to_string(step) + ".vtp";
+      write_vtp(result_mesh(rest.mesh(rest.levels()), s.current().mesh(rest.levels()).positions(), rest.levels(), placed),
+                (fs::path(out.dir) / "vtk" / file).string());
+      vtk_steps.emplace_back(step, file);
+    };
+    const StepsOutcome steps = run_steps(spec, out, *session, references, cb, stepwise,
+                                         stepwise && spec.output.vtk == VtkPolicy::All ? write_step : StepCallback());
+    if (!vtk_steps.empty()) write_pvd(vtk_steps, (fs::path(out.dir) / "vtk" / (out.run_id + "_steps.pvd")).string());
+    const std::string& folded_on_the_way = steps.folded_steps;  // a drag's earlier steps that folded
+    const EditSolution& sol = steps.last.solution;
+    if (spec.rotations.iterations > 0) row["rotation_rounds"] = std::to_string(steps.last.rotation_rounds);
     sink.finish();
     const double solve_peak_mb = peak_rss_mb();
     if (spec.output.system) {
@@ -590,10 +563,9 @@ MetricRow attempt_run(SurfaceEditSpec& spec, RunCache& cache, const RunOutputs& 
     if (!folded_on_the_way.empty())
       row["message"] += (row["message"].empty() ? "" : "; ") + ("drag steps folded on the way: " + folded_on_the_way);
     if (sol.delta.allFinite() && sol.summary.termination != Termination::NumericalFailure) {
-      measure_accuracy(spec, problem, sol, reference, row);
-      const MultiresSurface edited = with_deformation(rest, level, sol.delta);
-      checked = report_result(spec, out, rest, edited, placed, sol.delta, nullptr, row);
-      write_ladder(spec, out, rest, ladder, coarse, level_solutions);
+      measure_accuracy(spec, problem, steps.last, reference, row);
+      checked = report_result(spec, out, rest, session->current(), placed, sol.delta, nullptr, steps.last.orientation, row);
+      write_ladder(spec, out, rest, session->ladder(), session->coarse_level(), session->level_solutions());
     }
   } catch (const SolverError& e) {
     row["termination"] = std::string(to_string(Termination::NumericalFailure));

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "fairshape/experiment/run_outputs.h"
+#include "fairshape/experiment/kinds/surface_edit/drag_run.h"
 #include "fairshape/experiment/kinds/surface_edit/surface_edit_spec.h"
 #include "fairshape/remesh/remesh.h"
 #include "fairshape/subdivision/multires_surface.h"
@@ -22,11 +23,6 @@ const std::vector<std::string>& step_columns();
 // Columns of iterations.csv: one row per residual check of the solve (output.iterations).
 const std::vector<std::string>& iteration_columns();
 
-// CHOLMOD's solution of a run's system and the time of its solve with the factor in hand.
-struct ReferenceSolution {
-  Eigen::MatrixXd u;
-  double solve_s = 0;
-};
 
 // Work that runs of one process share — a hierarchy built or loaded, a reference solution —
 // is done once and charged to no run: its time is left out of the time_s of the run during

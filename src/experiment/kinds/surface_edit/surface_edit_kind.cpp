@@ -7,7 +7,7 @@
 #include "fairshape/design/regional_edit.h"
 #include "fairshape/experiment/components.h"
 #include "fairshape/experiment/kinds/kinds.h"
-#include "fairshape/experiment/kinds/surface_edit/drag_run.h"
+#include "fairshape/experiment/kinds/surface_edit/open_session.h"
 #include "fairshape/experiment/kinds/surface_edit/run_one.h"
 #include "fairshape/experiment/kinds/thread_limit.h"
 

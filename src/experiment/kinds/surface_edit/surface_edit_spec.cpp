@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <map>
+#include <sstream>
 
 #include "fairshape/core/config.h"
 #include "fairshape/experiment/components.h"
@@ -136,19 +138,28 @@ Influence read_influence(Config& k, const std::string& type) {
   return i;
 }
 
+}  // namespace
+
+ConstraintTerm read_constraint_term(Config& k, const Components& c, Backend backend) {
+  ConstraintTerm t;
+  t.type = k.require<std::string>("type", "constraint name (see `fairshape list`)");
+  t.influence = read_influence(k, t.type);
+  if (k.documenting()) {  // every constraint's options belong to an item of the list
+    for (const auto& name : c.constraints.names())
+      (void)c.constraints.create(name, c.constraints.has(name, backend) ? backend : Backend::Reference, k);
+    return t;
+  }
+  t.constraint = c.constraints.create(t.type, backend, k);
+  k.check_no_unknown_keys();
+  return t;
+}
+
+namespace {
+
 void read_constraints(Config& root, const Components& c, Backend backend, SurfaceEditSpec& s) {
   for (Config k : root.child_list("constraints", "constraints: [{type, options...}]")) {
-    ConstraintTerm t;
-    t.type = k.require<std::string>("type", "constraint name (see `fairshape list`)");
-    t.influence = read_influence(k, t.type);
-    if (k.documenting()) {  // every constraint's options belong to an item of the list
-      for (const auto& name : c.constraints.names())
-        (void)c.constraints.create(name, c.constraints.has(name, backend) ? backend : Backend::Reference, k);
-      continue;
-    }
-    t.constraint = c.constraints.create(t.type, backend, k);
-    k.check_no_unknown_keys();
-    s.constraints.push_back(std::move(t));
+    ConstraintTerm t = read_constraint_term(k, c, backend);
+    if (!k.documenting()) s.constraints.push_back(std::move(t));
   }
 }
 
@@ -265,6 +276,58 @@ void refuse_drags_with_regions(Config& pc, const SurfaceEditSpec& s) {
                           "influence are solved in passes, once (use drag_steps: 1)");
 }
 
+// steps: the run as a sequence of session steps (design/surface_edit_session.h), each naming what
+// changes before it is solved — every target scaled (problem.drag_steps' step k is scale: k/N),
+// handles moved to offsets of their own — and optionally §5's mode it is solved with. Without
+// the list, problem.drag_steps equal steps of the configured offsets.
+void read_steps(Config& root, SurfaceEditSpec& s) {
+  s.scheduled = root.has("steps");
+  const std::vector<Config> items = root.child_list(
+      "steps", "design steps, each solved in turn from the last: [{scale, offsets: {handle: [x, y, z]}, accuracy}]");
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    Config k = items[i];
+    EditStepSpec step;
+    if (k.has("scale") || k.documenting())
+      step.scale = k.get_number("scale", 1.0, -1e6, 1e6, "every target this many times its configured offset (applied first)");
+    const auto offsets = k.get<std::map<int, std::vector<double>>>(
+        "offsets", {}, "handle (the constraint's index in `constraints`) → its offset from rest [x, y, z] from this step on");
+    for (const auto& [handle, v] : offsets) {
+      std::ostringstream where;
+      where << k.key_path("offsets") << "." << handle;
+      if (handle < 0 || handle >= static_cast<int>(s.constraints.size()))
+        throw InvalidConfig(where.str() + ": no such handle (the constraints are numbered 0.." +
+                            std::to_string(static_cast<int>(s.constraints.size()) - 1) + ")");
+      if (v.size() != 3 || !std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
+        throw InvalidConfig(where.str() + ": expected a finite offset [x, y, z]");
+      step.offsets.emplace_back(handle, Vec3(v[0], v[1], v[2]));
+    }
+    if (k.has("accuracy") || k.documenting()) {
+      step.accuracy = k.get_enum("accuracy", s.accuracy.mode, accuracy_names(),
+                                 "§5's mode of this step's solve (default problem.accuracy): interactive | improved | "
+                                 "converged, on the run's ladder");
+      if (!k.documenting() && *step.accuracy != s.accuracy.mode &&
+          (!s.accuracy.multilevel() || *step.accuracy == AccuracyMode::SingleLevel))
+        throw InvalidConfig(k.key_path("accuracy") + ": '" + std::string(accuracy_names().name(*step.accuracy)) +
+                            "' needs problem.accuracy interactive, improved or converged (a ladder), and a step "
+                            "cannot leave it");
+    }
+    k.check_no_unknown_keys();
+    if (!k.documenting()) s.steps.push_back(std::move(step));
+  }
+  if (root.documenting()) return;
+  if (s.scheduled && s.steps.empty()) throw InvalidConfig("steps: at least one step");
+  if (s.scheduled && s.accuracy.drag_steps > 1)
+    throw InvalidConfig("steps: give the design steps or problem.drag_steps, not both");
+  if (!s.scheduled)
+    for (int k = 1; k <= s.accuracy.drag_steps; ++k)
+      s.steps.push_back({static_cast<double>(k) / s.accuracy.drag_steps, {}, {}});
+  for (std::size_t i = 0; s.scheduled && i < s.constraints.size(); ++i)
+    if (s.constraints[i].influence.regional())
+      throw InvalidConfig("steps: design steps cannot be combined with constraints[" + std::to_string(i) +
+                          "]'s influence_level / influence_rings: constraints with regions of influence are solved in "
+                          "passes, once");
+}
+
 // problem.rotation_iterations: details that turn with the surface (design/rotation_aware_edit.h),
 // on the single-level edit: the ladder and the regional passes solve the linear energy.
 void read_rotations(Config& pc, SurfaceEditSpec& s) {
@@ -316,12 +379,8 @@ void adopt_saved_hierarchy(Config& in, SurfaceEditSpec& s) {
   s.crease_method = st.options.crease;
 }
 
-}  // namespace
-
-// Every key of the run read from `root` (parse_config: unknown keys reported together).
-static SurfaceEditSpec read_surface_edit(const YAML::Node& run_config, const Components& c, const std::vector<std::string>& search_dirs, Config& root) {
-  SurfaceEditSpec s;
-  static_cast<RunBasics&>(s) = read_run_basics(root);
+// input: the mesh file and how its hierarchy is built.
+void read_input(Config& root, const std::vector<std::string>& search_dirs, SurfaceEditSpec& s) {
   Config in = root.child("input", "input geometry");
   s.mesh_path = read_input_path(in, "mesh", "mesh file (.obj, .off, .ply), or a saved hierarchy (.vtm)", search_dirs);
   s.representation = in.get_enum("representation", Representation::Mesh, representation_names(),
@@ -364,6 +423,33 @@ static SurfaceEditSpec read_surface_edit(const YAML::Node& run_config, const Com
   if (s.representation == Representation::Mesh && s.levels > 0)
     throw InvalidConfig(in.key_path("levels") + ": " + std::to_string(s.levels) +
                         " subdivision levels need representation catmull-clark or loop");
+}
+
+// A hierarchy given in memory (the Python module's fairshape.edit): it fixes the representation,
+// the levels and the subdivision rules, so `input` holds the edit level alone.
+void adopt_given_hierarchy(Config& root, const MultiresSurface& h, SurfaceEditSpec& s) {
+  Config in = root.child("input", "input geometry");
+  s.edit_level = in.get_int("edit_level", -1, -1, 8, "level the deformation is solved on (-1: the finest)");
+  in.check_no_unknown_keys();
+  s.representation = h.options().scheme == SchemeType::Loop ? Representation::Loop : Representation::CatmullClark;
+  s.levels = h.levels();
+  s.boundary = h.options().boundary;
+  s.loop_weights = h.options().weights;
+  s.crease_method = h.options().crease;
+  if (s.edit_level > s.levels)
+    throw InvalidConfig(in.key_path("edit_level") + ": " + std::to_string(s.edit_level) + " is above the finest level " +
+                        std::to_string(s.levels));
+}
+
+}  // namespace
+
+// Every key of the run read from `root` (parse_config: unknown keys reported together).
+static SurfaceEditSpec read_surface_edit(const YAML::Node& run_config, const Components& c, const std::vector<std::string>& search_dirs, Config& root,
+                                         const MultiresSurface* given = nullptr) {
+  SurfaceEditSpec s;
+  static_cast<RunBasics&>(s) = read_run_basics(root);
+  if (given) adopt_given_hierarchy(root, *given, s);
+  else read_input(root, search_dirs, s);
   read_energies(root, c, s.implementation, s);
   read_constraints(root, c, s.implementation, s);
   Config pc = root.child("problem", "how the problem is posed");
@@ -388,6 +474,7 @@ static SurfaceEditSpec read_surface_edit(const YAML::Node& run_config, const Com
   pc.check_no_unknown_keys();
   read_solver(root, c, s.implementation, s);
   read_output(root, s);
+  read_steps(root, s);
   // After the unknown-key check: a missing `energy:` is most often a misspelt one, and that
   // message names the misspelling and the valid keys.
   root.check_no_unknown_keys();
@@ -395,6 +482,7 @@ static SurfaceEditSpec read_surface_edit(const YAML::Node& run_config, const Com
 
   for (const char* key : {"input", "energy", "constraints", "problem"})
     s.system_key += yaml_to_string(run_config[key]) + "|";
+  if (s.scheduled) s.system_key += yaml_to_string(run_config["steps"]) + "|";
   return s;
 }
 
@@ -405,6 +493,10 @@ std::vector<OptionDoc> SurfaceEditSpec::keys() {
 SurfaceEditSpec SurfaceEditSpec::from_config(const YAML::Node& run_config, const Components& c,
                              const std::vector<std::string>& search_dirs) {
   return parse_config(run_config, [&](Config& root) { return read_surface_edit(run_config, c, search_dirs, root); });
+}
+
+SurfaceEditSpec SurfaceEditSpec::from_config(const YAML::Node& run_config, const Components& c, const MultiresSurface& given) {
+  return parse_config(run_config, [&](Config& root) { return read_surface_edit(run_config, c, {}, root, &given); });
 }
 
 }  // namespace fairshape

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,12 +26,12 @@ namespace fairshape {
 struct EnergyTerm {
   std::string type;
   double weight = 1.0;
-  std::unique_ptr<Energy> energy;
+  std::shared_ptr<Energy> energy;  // shared with the sessions built from this spec
 };
 
 struct ConstraintTerm {
   std::string type;
-  std::unique_ptr<Constraint> constraint;
+  std::shared_ptr<Constraint> constraint;
   Influence influence;  // influence_level, influence_rings (design/influence.h)
 };
 
@@ -67,6 +68,13 @@ struct AccuracyOptions {
 };
 
 
+//! One design step of a run: what changes before it is solved.
+struct EditStepSpec {
+  std::optional<double> scale;                    // every target scale × its configured value
+  std::vector<std::pair<int, Vec3>> offsets;      // handle (constraint index) → its offset from rest
+  std::optional<AccuracyMode> accuracy;           // §5's mode of this step (default problem.accuracy)
+};
+
 struct SurfaceEditSpec : RunBasics {
   std::string mesh_path;
   Representation representation = Representation::Mesh;
@@ -101,8 +109,12 @@ struct SurfaceEditSpec : RunBasics {
   Formulation formulation = Formulation::Displacement;
   std::string solver_type;
   InitialGuess initial_guess = InitialGuess::Zero;
-  std::unique_ptr<Solver> solver;
+  std::shared_ptr<Solver> solver;
   OutputOptions output;
+  //! The run's design steps, each solved by the session in turn (surface_edit_session.h): the
+  //! `steps:` list, or problem.drag_steps' equal steps (one step of scale 1 without either).
+  std::vector<EditStepSpec> steps;
+  bool scheduled = false;  // `steps:` given
   std::string system_key;  // equal for runs that solve the same linear system
 
   //! \param search_dirs where relative input paths are looked up after the working directory.
@@ -110,7 +122,14 @@ struct SurfaceEditSpec : RunBasics {
   static std::vector<OptionDoc> keys();
   static SurfaceEditSpec from_config(const YAML::Node& run_config, const Components& c,
                              const std::vector<std::string>& search_dirs);
+  //! The edit of a hierarchy given in memory (the Python module): `input` holds only
+  //! `edit_level`; mesh_path stays empty and the hierarchy's own rules are recorded.
+  static SurfaceEditSpec from_config(const YAML::Node& run_config, const Components& c, const MultiresSurface& given);
 };
+
+//! One item of `constraints:` (its type, options and region of influence), as a run reads it;
+//! also a constraint a session adds. \throw InvalidConfig naming the key.
+ConstraintTerm read_constraint_term(Config& item, const Components& c, Backend backend);
 
 //! Whether the run's linear solver (the solver block) takes part in its solve.
 bool solver_is_used(const SurfaceEditSpec& s);

@@ -36,7 +36,7 @@ add_library(OpenSubdiv::cpu INTERFACE IMPORTED)
 target_include_directories(OpenSubdiv::cpu SYSTEM INTERFACE ${OPENSUBDIV_INCLUDE_DIR})
 target_link_libraries(OpenSubdiv::cpu INTERFACE ${OPENSUBDIV_CPU_LIBRARY})
 
-# PETSc (the `petsc_*` solvers, issue 27): Debian's petsc-dev has a pkg-config file but no CMake
+# PETSc (the `petsc_*` solvers): Debian's petsc-dev has a pkg-config file but no CMake
 # package, and its headers include mpi.h without adding OpenMPI's include path.
 if(FAIRSHAPE_WITH_PETSC OR fairshape_WITH_PETSC)
   find_package(PkgConfig QUIET)

@@ -14,7 +14,7 @@ PACKAGES=(
   python3-jsonschema python3-yaml  # tests/cli/config_schema.sh checks every shipped config against `fairshape schema`
   clang libclang-rt-14-dev
   slurm-wlm munge  # tests/cli/slurm_array.sh starts a single-node cluster of its own (no service is started)
-  petsc-dev libhypre-dev openmpi-bin  # the PETSc/hypre solver peers and the mpirun -np 2 test (issue 27)
+  petsc-dev libhypre-dev openmpi-bin  # the PETSc/hypre solver peers and the mpirun -np 2 test
 )
 
 missing=()

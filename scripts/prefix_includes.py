@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Rewrites fairshape's own includes to the installed layout: "core/types.h" -> "fairshape/core/types.h".
 
-fairshape's headers are installed under include/fairshape/<module>/ (issue 26) and the build tree
+fairshape's headers are installed under include/fairshape/<module>/ and the build tree
 exposes the same prefix (build/include/fairshape/<module> -> src/<module>), so a project that uses
 fairshape never sees bare "core/..." or "io/..." names that could collide with its own. Run it on a
 branch made before the prefix to bring its sources along (it is idempotent):

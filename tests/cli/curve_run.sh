@@ -62,7 +62,7 @@ rc=0; "$FS" run configs/sauvage/fig1.yaml --set 'sweep={}' --set "$PINS" --out "
 grep -q "edit 1: infeasible edit: points 0 and 128" "$SCRATCH/far_later/runs.csv" || fail "infeasible edit not reported"
 ! grep -qi "nan" "$SCRATCH/far_later/runs.csv" || fail "NaN written"
 # A point count with no coarser level (300 points: 299 segments) is refused, naming counts that
-# have levels; input.resample gives it them (issue 25: it silently got 0 levels).
+# have levels; input.resample gives it them (it silently got 0 levels).
 $PY - "$SCRATCH/c300.obj" <<'PYEOF'
 import math, sys
 with open(sys.argv[1], "w") as f:

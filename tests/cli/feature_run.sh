@@ -11,7 +11,7 @@ for c in time_s vertices_moved max_displacement triangles_adaptive; do head -1 "
 grep -q "displacement_norm" "$SCRATCH/fig11/vtk/"*.vtp || fail "VTK lacks the displacement array"
 [ "$(ls "$SCRATCH/fig11/curves/"*.obj | wc -l)" -eq 3 ] || fail "expected one base curve per feature"
 [ -s "$SCRATCH/fig11/adaptive/"*.obj ] || fail "missing the adaptive mesh"
-# Exports (issue 24 part 5): per-level VTPs with the feature displacements, the limit surface,
+# Exports: per-level VTPs with the feature displacements, the limit surface,
 # every curve's attachment on its drawn level and each finer one.
 RUN=$(sed -n 2p "$SCRATCH/fig11/runs.csv" | cut -d, -f1)
 [ "$(ls "$SCRATCH/fig11/levels/${RUN}_level"*.vtp | wc -l)" -eq 4 ] || fail "expected levels/<run>_level0..3.vtp"
@@ -30,7 +30,7 @@ PYEOF
 "$FS" run $C --out "$SCRATCH/ref" --set input.levels=3 --set feature_defaults.profile_tolerance=0.1 --set implementation=reference --set adaptive.enabled=false 2>/dev/null \
   || fail "reference run failed"
 cmp -s "$SCRATCH/fig11/final.obj" "$SCRATCH/ref/final.obj" || fail "reference and optimized final.obj differ"
-# The achieved profile per feature (issue 24); a feature outside its tolerance is no convergence.
+# The achieved profile per feature; a feature outside its tolerance is no convergence.
 head -1 "$SCRATCH/fig11/features.csv" | grep -q "height_min_limit,.*profile_error_limit,within_tolerance" || fail "features.csv lacks the limit profile"
 [ "$(tail -n +2 "$SCRATCH/fig11/features.csv" | wc -l)" -eq 3 ] || fail "expected one features.csv row per feature"
 rc=0; "$FS" run $C --out "$SCRATCH/tight" --set input.levels=3 --set adaptive.enabled=false --set profile_on=drawn_level 2>/dev/null || rc=$?
@@ -56,7 +56,7 @@ sys.exit(0 if ok else 1)
 PYEOF
 expect_error 2 "features\[0\].profile_tolerance" -- "$FS" run $C --set features.0.profile_tolerance=2 --out "$SCRATCH/x"
 expect_error 2 "profile_on: unknown value 'coarse'" -- "$FS" run $C --set profile_on=coarse --out "$SCRATCH/x"
-# Features in the multiresolution editor (issue 24 part 4): Figure 15's detail-preserving edit
+# Features in the multiresolution editor: Figure 15's detail-preserving edit
 # (ends held, middle lifted 0.2 on level 0) carries the features drawn before it; one drawn after
 # it sits on the edited surface; every feature keeps its profile (loosened for 3 levels).
 "$FS" run configs/khodakovsky-schroder/fig15.yaml --out "$SCRATCH/fig15e" --set input.levels=3 --set feature_defaults.profile_tolerance=0.5 --set feature_defaults.width_tolerance=0.5 2>/dev/null || fail "fig15 with the editor failed"
@@ -89,7 +89,7 @@ expect_error 2 "features\[0\].after_edit: there is no edit" -- "$FS" run $C --se
 expect_error 2 "base_edit: give the radial bump or a detail-preserving .edit., not both" -- "$FS" run configs/khodakovsky-schroder/fig15.yaml --set base_edit.enabled=true --out "$SCRATCH/x"
 expect_error 2 "edit.constraints\[2\]" -- "$FS" run configs/khodakovsky-schroder/fig15.yaml --set edit.constraints.2.spam=1 --out "$SCRATCH/x"
 expect_error 2 "edit.spam: unknown key" -- "$FS" run configs/khodakovsky-schroder/fig15.yaml --set edit.spam=1 --out "$SCRATCH/x"
-# Design steps (issue 24 part 4): a feature moved as a whole, one re-parameterized, one added and
+# Design steps: a feature moved as a whole, one re-parameterized, one added and
 # one removed between steps; the session ends where the same features placed at once end.
 # Both configs: the patch at 3 levels, loose tolerances, no adaptive mesh; then their features.
 patch_config() { printf 'defaults: [%s]\ninput: {mesh: %s, levels: 3}\nfeature_defaults: {profile_tolerance: 0.5, width_tolerance: 0.5}\nadaptive: {enabled: false}\n' "$PWD/$C" "$PWD/data/ks_patch.off"; }
@@ -156,7 +156,7 @@ expect_error 2 "feature 'crest': the surface turns by [0-9]* degrees within radi
   "$FS" run configs/khodakovsky-schroder/fig17.yaml --set feature_defaults.radius=0.6 --set 'features.0.level=0' \
   --out "$SCRATCH/wide"
 [ ! -e "$SCRATCH/wide/runs.csv" ] || fail "a run with too wide a feature was started"
-# Truly adaptive evaluation (issue 24 part 3): a sparse run never builds the uniform hierarchy
+# Truly adaptive evaluation: a sparse run never builds the uniform hierarchy
 # (fewer faces computed than the uniform levels have, fewer finest vertices than the uniform
 # finest level), writes the adaptive mesh as final.obj, and measures each feature as the uniform
 # run does: the same placement (faces, barycentric coordinates), the same vertices (a sparse

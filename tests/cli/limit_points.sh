@@ -1,4 +1,4 @@
-# Constraints anywhere on the surface (issue 22, part 3): a curve placed as points of the finest
+# Constraints anywhere on the surface: a curve placed as points of the finest
 # level's limit surface of a remeshed cow, a handle at (face, u, v), and bad surface points
 # refused at validation.
 source "$(dirname "$0")/lib.sh"

@@ -1,4 +1,4 @@
-# fairshape without its optional dependencies (issue 26, part 1): configured with
+# fairshape without its optional dependencies: configured with
 # FAIRSHAPE_WITH_VTK, _CGAL and _CERES off, the libraries that do not need them are generated and
 # none of the subdivision, energy and design chain's compile or link commands names VTK, CGAL or
 # Ceres; io (with its VTK stand-in) is built. Then with FAIRSHAPE_WITH_TBB off as well, inside a

@@ -1,4 +1,4 @@
-# fairshape as a package (issue 26, part 1): `cmake --install` into a scratch prefix, then a
+# fairshape as a package: `cmake --install` into a scratch prefix, then a
 # consumer project built only from that tree (find_package(fairshape 0.1 COMPONENTS subdivision
 # design), fairshape::design) runs the detail-preserving nose pull and must give the command
 # line's result; a project with fairshape as a subdirectory links fairshape::mesh. Set by

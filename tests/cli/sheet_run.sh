@@ -97,7 +97,7 @@ grep -q "null space" "$SCRATCH/loose/runs.csv" || fail "singular problem not exp
 ! grep -qi "nan" "$SCRATCH/loose/runs.csv" || fail "NaN written"
 echo "sheet_run: ok"
 
-# Bad input the fourth review found accepted (issue 23): each refused at load, naming the key.
+# Bad input the fourth review found accepted: each refused at load, naming the key.
 expect_error 2 "constraints\[0\]: give .by." -- "$FS" run $C --set 'constraints.0={type: point, uv: [0.125, 0.125]}' --out "$SCRATCH/x"
 expect_error 2 "moves\[0\]: a move needs .by." -- "$FS" run $C --set 'constraints.0={type: point, uv: [0.125, 0.125], by: [0, 0, 0], moves: [{step: 2}]}' --out "$SCRATCH/x"
 expect_error 2 "energy.alpha/energy.beta: .*both zero" -- "$FS" run $C --set energy.alpha=0 --set energy.beta=0 --out "$SCRATCH/x"

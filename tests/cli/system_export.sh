@@ -1,4 +1,4 @@
-# output.system (issue 27 part 1): the Figure 2 edit at level 1 in paper mode writes its problem
+# output.system: the Figure 2 edit at level 1 in paper mode writes its problem
 # as Matrix Market; SciPy solves the written reduced system and must get the run's own answer
 # (final mesh − the subdivided rest), the constrained rows hold (A D = C), and every level's
 # prolongation maps the level below onto the next. Regions of influence refuse the key by name.

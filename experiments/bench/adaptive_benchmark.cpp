@@ -1,5 +1,5 @@
 // Truly adaptive against uniform evaluation (Khodakovsky & Schröder, "Fine level feature editing
-// for subdivision surfaces", §2.5; issue 24 part 3): a small feature drawn on the finest level of
+// for subdivision surfaces", §2.5): a small feature drawn on the finest level of
 // a bundled closed model refined until the uniform hierarchy has more than a million vertices.
 //   uniform:  the whole Loop hierarchy, the feature applied (FeaturedSurface, drawn-level
 //             profile), then the adaptive output thinned from it (adaptive_mesh) — what a run

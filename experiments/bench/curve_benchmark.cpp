@@ -34,8 +34,8 @@ struct Setup {
   }
 };
 
-// The loop papers/sauvage/README.md's Performance tables were measured with (before issue 25
-// parts 3-4 made the editing local by default): whole-curve solve, world-coordinate details.
+// The loop papers/sauvage/README.md's Performance tables were measured with (before the
+// editing was made local by default): whole-curve solve, world-coordinate details.
 EditingOptions paper_loop() {
   EditingOptions o;
   o.explicit_step = ExplicitStep::Sweep;

@@ -115,7 +115,7 @@ void BM_UniformLoopRefinement(benchmark::State& state) {
   }
 }
 
-// The visible-profile step (issue 24 part 1) against the paper's drawn-level semantics, same run:
+// The visible-profile step against the paper's drawn-level semantics, same run:
 // a whole hierarchy evaluated (every level's perturbation, the finer levels re-synthesized) with
 // a feature drawn on level 2 of a curved 32 × 32 sheet refined 4 times (263,169 finest vertices),
 // its profile made exact on the drawn level (the paper), the finest level, or the limit.
@@ -145,7 +145,7 @@ void BM_EvaluateHierarchy(benchmark::State& state) {
   state.counters["finest_vertices"] = static_cast<double>(h.mesh(4).n_vertices());
 }
 
-// A design step (issue 24 part 4): the sheet of BM_EvaluateHierarchy (263,169 finest vertices,
+// A design step: the sheet of BM_EvaluateHierarchy (263,169 finest vertices,
 // 351,153 over its 5 levels) with the wave on level 2 and two short ridges away from it, one on
 // the finest level and one on level 2; each iteration moves one of the ridges by a tenth of its
 // radius (back and forth) and evaluates the step, the whole hierarchy or its region.

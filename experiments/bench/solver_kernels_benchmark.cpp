@@ -1,4 +1,4 @@
-// Benchmarks of the solver kernels (issue 5), each beside the peer it is judged against:
+// Benchmarks of the solver kernels, each beside the peer it is judged against:
 //   - Gauss-Seidel sweeps on the thin-plate system of the base cow (in cache), reference
 //     (lexicographic) vs optimized (multicolour, TBB), and CHOLMOD vs Eigen LDLT factoring;
 //   - STREAM triad (a = b + s·c) and one sweep of the level-3/4 cow edit (out of cache), point
@@ -179,8 +179,8 @@ BENCHMARK(BM_ConvergedEdit_MultigridCG)->Arg(2)->Iterations(1)->Repetitions(3)->
 
 // The paper split's reduced system of the level-L edit (constrained vertices at their
 // minimum-norm values, as solve_edit's paper mode sets them), solved by multigrid-preconditioned
-// CG to 1e-10 with the block of three columns, or with its independent columns only (issue 27:
-// a single handle's right-hand side has rank 1). The analysis is outside the timing; both
+// CG to 1e-10 with the block of three columns, or with its independent columns only (a single
+// handle's right-hand side has rank 1). The analysis is outside the timing; both
 // variants run in one process on the same system, so their ratio is a same-run ratio.
 struct SplitSystem {
   ReducedSystem reduced;

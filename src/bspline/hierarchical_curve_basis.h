@@ -1,4 +1,4 @@
-// The one-dimensional hierarchical B-spline basis of a variational space curve (issue 23;
+// The one-dimensional hierarchical B-spline basis of a variational space curve (
 // Welch & Witkin, "Variational surface modeling", §3 and §5: curves are variational objects
 // "refined as needed" like the sheets). The same construction as the sheets'
 // (bspline/hierarchical_surface.h) on t ∈ [0, 1]: layer L has `spans` · 2^L equal spans of

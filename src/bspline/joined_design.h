@@ -1,4 +1,4 @@
-// Sheets joined along variational curves, solved as one program (issue 23, part 5). Welch &
+// Sheets joined along variational curves, solved as one program. Welch &
 // Witkin ("Variational surface modeling", §5) join two sheets "by snapping a pair of surface
 // curves to a single space curve", and make curves first-class variational objects; here the
 // space curve is a VariationalCurve whose control points are unknowns beside the sheets':

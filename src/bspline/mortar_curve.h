@@ -1,4 +1,4 @@
-// A curve constraint w(c(s)) = D(s) that does not lock (issue 23; papers/welch-witkin/README.md,
+// A curve constraint w(c(s)) = D(s) that does not lock (papers/welch-witkin/README.md,
 // "Curve constraints"): imposed weakly, against a space of multipliers along the curve,
 //   ∫ ψ_j(s) (w(c(s)) − D(s)) ds = 0   for every ψ_j of W,
 // with W the clamped B-splines of the surface's degree in the uv arc length s, with a knot

@@ -1,4 +1,4 @@
-// Details in local frames (`details: local_frames`; issue 25 part 4), as in Finkelstein and
+// Details in local frames (`details: local_frames`), as in Finkelstein and
 // Salesin's "Multiresolution curves", on which Sauvage, Hahmann and Bonneau's "Length
 // preserving multiresolution editing of curves" builds. The paper's lazy-wavelet details
 // d^j_i are vectors in world coordinates: when an edit turns a coarse segment, its details do

@@ -1,5 +1,5 @@
 // Solving Sauvage, Hahmann and Bonneau's eq. 2 ("Length preserving multiresolution editing of
-// curves", §3) on the edit's support only (`solve_region: support`; issue 25 part 3).
+// curves", §3) on the edit's support only (`solve_region: support`).
 //
 // The paper's optimization runs over the whole curve: its smoothness term then reshapes parts
 // the user never touched (by 3e-3 to 4e-2 of the curve's size in Figures 3 and 4). Here the

@@ -28,7 +28,7 @@ struct CurveMove {
   double chord_scale = 0;
 };
 
-// How the loop keeps an edit local (issue 25 parts 3 and 4; papers/sauvage/README.md).
+// How the loop keeps an edit local (papers/sauvage/README.md).
 enum class ExplicitStep { Local, Sweep };        // explicit_local.h | explicit_length.h
 enum class DetailFrames { Global, LocalFrames };  // the paper's world-coordinate details | detail_frames.h
 enum class SolveRegion { Support, Curve };       // edit_window.h | the paper's whole-curve eq. 2

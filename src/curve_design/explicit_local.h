@@ -1,5 +1,5 @@
 // The explicit length step of Sauvage, Hahmann and Bonneau, "Length preserving multiresolution
-// editing of curves" (§4.1), kept inside the edit's support (edit_support.h; issue 25 part 3).
+// editing of curves" (§4.1), kept inside the edit's support (edit_support.h).
 //
 // The paper lets "some control points at level w" move when the edit stretches the curve and
 // leaves how to its reference [16]. Moving them in a sweep from the dragged point (the `sweep`

@@ -1,6 +1,6 @@
 // Solvers of the length-constrained problem (length_problem.h): the linearized Lagrange loop
 // of Sauvage et al. §3, an exact augmented-Lagrangian solve over Ceres and a globalized trust
-// region that ends at local minima (issue 25). Registered by
+// region that ends at local minima. Registered by
 // name, each with reference and optimized back ends where they differ.
 #pragma once
 

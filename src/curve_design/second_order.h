@@ -1,4 +1,4 @@
-// Second-order optimality of a length-constrained solve (issue 25, part 1). A point where the
+// Second-order optimality of a length-constrained solve. A point where the
 // lengths hold and ∇F + Jᵀλ = 0 may still be a constrained saddle: Sauvage, Hahmann and
 // Bonneau's linearization and its Newton variant only look for stationary points. At a local
 // minimum the Lagrangian's Hessian W = Q ⊗ I₃ + Σ_r λ_r ∇²f_r is positive semidefinite on the

@@ -364,7 +364,7 @@ LengthSolveReport TrustRegionLengthSolver::solve(const LengthProblem& p, const M
     // 5a. Slow progress with negative curvature left (the glassy tail of a curve with many soft
     // modes: Figure 1's edit from 8k points up): F down by a fraction progress_decrease, the
     // stationarity by a tenth or the negative count by half within progress_window iterations,
-    // else stop and say so rather than spend the budget (issue 25; README, *Solvers*).
+    // else stop and say so rather than spend the budget (papers/sauvage/README.md, *Solvers*).
     if (o_.progress_window > 0) {
       if (inertia <= 0 || F < window_F - o_.progress_decrease * std::abs(window_F) || stat < 0.1 * window_stat ||
           2 * inertia <= window_negative) {

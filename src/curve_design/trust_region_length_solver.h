@@ -1,6 +1,6 @@
 // A globalized solver of the length problem of Sauvage, Hahmann and Bonneau, "Length preserving
 // multiresolution editing of curves" (eq. 2), not in the paper: a trust-region Newton method on
-// the set of curves with the reference lengths (issue 25, parts 1 and 2). The paper's
+// the set of curves with the reference lengths. The paper's
 // linearization and its Newton variant look for stationary points and, on Figure 1's edit,
 // stop at constrained saddles at every β; this solver
 //   1. retracts the start onto the lengths (Gauss–Newton, length_manifold.h) — a start that

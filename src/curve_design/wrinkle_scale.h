@@ -1,4 +1,4 @@
-// Wrinkles as numbers (issue 25 part 5): the scale and size of what length preservation adds
+// Wrinkles as numbers: the scale and size of what length preservation adds
 // to the curve the designer asked for. Sauvage, Hahmann and Bonneau's §4 says the wrinkle level
 // w, the edit level e and β set the wrinkles' scale; counting curvature sign changes cannot test
 // that (it counts the input's own ripple and means nothing for a 3-D curve). Measured here on

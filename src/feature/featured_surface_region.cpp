@@ -1,4 +1,4 @@
-// Region-limited re-evaluation of a FeaturedSurface between design steps (issue 24 part 4):
+// Region-limited re-evaluation of a FeaturedSurface between design steps:
 // features are definitions re-applied to the surface (Khodakovsky & Schröder, "Fine level feature
 // editing for subdivision surfaces", §2.6), so a step that adds, moves, edits or removes some of
 // them changes the hierarchy only where they reach. What is recomputed, level by level from the

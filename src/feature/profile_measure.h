@@ -1,4 +1,4 @@
-// What a feature achieves where it is seen (issue 24): per feature, on the finest level's control
+// What a feature achieves where it is seen: per feature, on the finest level's control
 // points and on the limit points of the finest vertices, the height at the curve, the width on
 // each side and the deviation from the requested cross-section. Definitions (all relative to the
 // surface the feature was applied to — the original, or the coarser features' visible target):

@@ -1,4 +1,4 @@
-// What each feature achieves on a sparse Loop hierarchy (adaptive_evaluation.h, issue 24): the
+// What each feature achieves on a sparse Loop hierarchy (adaptive_evaluation.h): the
 // measurement of profile_measure.h taken on the finest sparse level, at its control points and
 // at the limit points of its vertices, so that a sparse run reports what a uniform run reports,
 // whatever level a feature is drawn on (the requested profile composed as the uniform run

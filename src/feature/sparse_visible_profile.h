@@ -1,4 +1,4 @@
-// The profile where it is seen (visible_profile.h, issue 24) on a sparse Loop hierarchy
+// The profile where it is seen (visible_profile.h) on a sparse Loop hierarchy
 // (sparse_loop.h): Khodakovsky & Schröder ("Fine level feature editing for subdivision
 // surfaces", §2.5) compute the surface only where it is refined, and a feature drawn on level
 // l < L is seen on the finest level L and at the limit. The uniform evaluation

@@ -1,4 +1,4 @@
-// The profile where it is seen (issue 24): Khodakovsky & Schröder ("Fine level feature editing
+// The profile where it is seen: Khodakovsky & Schröder ("Fine level feature editing
 // for subdivision surfaces", §1.4, §2.5) move the control points of the level l a curve is drawn
 // on; subdividing them smooths the profile (a groove drawn on level 0 of the helmet reaches 59 %
 // of its height on the finest level). Here level l keeps that role in the hierarchy (coarse

@@ -75,7 +75,7 @@ struct RemeshOptions {
   double sample_spacing = 1e-3;
 };
 
-// The quality targets of issue 22: a remesh that misses one says so (RemeshReport::misses).
+// The quality targets (README.md, remeshing): a remesh that misses one says so (RemeshReport::misses).
 inline constexpr double kHausdorffTarget = 0.015;  // of the dense mesh's bounding-box diagonal
 inline constexpr double kEdgeRatioTarget = 100;    // longest / shortest finest-level edge
 

@@ -1,6 +1,6 @@
 // A x = B solved for the independent columns of B only. A single handle's edit has a
 // right-hand side of rank 1 — every column is a multiple of one (B = f dᵀ for the handle's
-// offset d; issue 27 measured the y column exactly 0 and z = 0.533·x on the cow) — yet a block
+// offset d; measured: the y column exactly 0 and z = 0.533·x on the cow) — yet a block
 // solve pays for every column: an iterative solver's iterations cost about the number of
 // columns times one. By linearity, solving the r independent columns and combining their
 // solutions gives every column's: X = X_r [I C] (up to the column order), where B = B_r [I C].

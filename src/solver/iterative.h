@@ -15,7 +15,7 @@ namespace fairshape {
 // Stopping rules. Boier-Martin et al. run a fixed number of sweeps (tolerance 0,
 // energy_tolerance 0: exactly max_iterations); a residual tolerance and an energy-change
 // tolerance are the alternatives their §6 leaves as future work.
-// A small residual is not a small error on a fourth-order system (issue 27: at a million
+// A small residual is not a small error on a fourth-order system (measured: at a million
 // vertices the error of an iterate floors near 1e-7 while its residual keeps falling), so a
 // solve can also stop on an estimate of its relative error: conjugate gradients (plain and
 // multigrid-preconditioned) by the Hestenes-Stiefel lower bound of the A-norm error,

@@ -179,7 +179,7 @@ std::vector<std::vector<int>> singular_patches(const SparseMatrix& A, const std:
   return patches;
 }
 
-// Stiff stars (issue 27, part 2). The divided differences of a local quadratic fit on a
+// Stiff stars (papers/boier-martin/README.md). The divided differences of a local quadratic fit on a
 // near-degenerate ring are large, so the energy there is far stiffer than a fourth-order
 // operator on that mesh size (diag ∝ h⁻⁴) would be: on the hand model diag(A)·h⁴ spans four
 // orders of magnitude. Gauss-Seidel and the subdivision coarse space then both leave a band

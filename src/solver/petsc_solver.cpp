@@ -1,4 +1,4 @@
-// The petsc_* solvers (issue 27's peers, and its distributed back end): conjugate gradients
+// The petsc_* solvers (the multigrid's peers, and its distributed back end): conjugate gradients
 // preconditioned by PETSc's PCMG over fairshape's own prolongations (petsc_mg), PETSc's GAMG
 // (petsc_gamg) or hypre's BoomerAMG (petsc_boomeramg). One implementation serves both back-end
 // names: PETSc is the external peer the optimized and reference solvers are measured against.

@@ -76,7 +76,7 @@ void check_local(const EditStages& s, const char* what) {
 
 EditingOptions sweep_whole() {
   EditingOptions o;
-  o.explicit_step = ExplicitStep::Sweep;  // the loop before issue 25 parts 3-4
+  o.explicit_step = ExplicitStep::Sweep;  // the loop before the edit was made local
   o.details = DetailFrames::Global;
   o.solve_region = SolveRegion::Curve;
   return o;

@@ -1,4 +1,4 @@
-// The curve editing loop a designer drives from a config (issue 25 part 6): a drag split into
+// The curve editing loop a designer drives from a config: a drag split into
 // steps, each solved from the curve the previous one left, and the per-solve history.
 #include <catch2/catch.hpp>
 

@@ -1,5 +1,5 @@
 // A fixed total length instead of every segment's (the alternative Sauvage, Hahmann and Bonneau
-// discuss in "Length preserving multiresolution editing of curves"; issue 25 part 6): the
+// discuss in "Length preserving multiresolution editing of curves"): the
 // constraint's derivatives, the bordered banded KKT solve against a dense one, Figure 1's edit
 // under it (total met, segments stretched, both back ends alike, a true minimum) and bad input.
 #include <catch2/catch.hpp>

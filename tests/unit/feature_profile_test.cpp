@@ -1,4 +1,4 @@
-// The feature profile where it is seen (issue 24): a curve drawn on any level l of a Loop
+// The feature profile where it is seen: a curve drawn on any level l of a Loop
 // hierarchy shows the requested height, width and cross-section on the finest level and on the
 // limit surface, within the documented 2 % — on a plane, a sphere and the helmet. The paper's
 // literal semantics (profile_on: drawn_level, the old behaviour) misses that on coarser levels,
@@ -132,7 +132,7 @@ TEST_CASE("profile_on finest makes the finest control points exact, the limit wi
 }
 
 TEST_CASE("the drawn level's control points alone (the paper read literally) miss the profile on coarser levels", "[feature][profile]") {
-  // The measured failure of issue 24, kept as a property of profile_on: drawn_level: the same
+  // The measured failure of drawn-level profiles, kept as a property of profile_on: drawn_level: the same
   // measurement that passes above reports it, and it grows the coarser the drawn level.
   for (const Case& c : cases()) {
     INFO(c.surface);

@@ -1,5 +1,5 @@
 // Region-limited re-evaluation between design steps (FeaturedSurface::set_region_evaluation,
-// featured_surface_region.cpp; issue 24 part 4): a session of steps — a coarse feature moved, a
+// featured_surface_region.cpp): a session of steps — a coarse feature moved, a
 // fine one re-parameterized, a feature added on a level that had none, features removed until
 // none is left, one added again — evaluated once region by region and once whole after every
 // step, on the patch, the helmet and the helmet with random local details. Every level agrees to

@@ -1,4 +1,4 @@
-// Variational space curves and sheets joined along one (issue 23, part 5): the curve's basis,
+// Variational space curves and sheets joined along one: the curve's basis,
 // energy and fit, its own constraints, the coupling rows and the joint program.
 #include <catch2/catch.hpp>
 

@@ -1,5 +1,5 @@
 // The variational curve's hierarchical B-spline basis and its refinement by constraint error
-// (issue 23, part 5: "a curve as a 1-D hierarchical B-spline"), alone and joined to sheets.
+// (Welch & Witkin's curves as 1-D hierarchical B-splines), alone and joined to sheets.
 #include <catch2/catch.hpp>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// A x = B on B's independent columns only (solver/independent_columns.h, issue 27): a single
+// A x = B on B's independent columns only (solver/independent_columns.h): a single
 // handle's right-hand side has rank 1, and the combined solutions are the block solve's.
 #include <catch2/catch.hpp>
 

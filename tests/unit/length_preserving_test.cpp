@@ -315,7 +315,7 @@ double projected_descent(const LengthProblem& p, const MatrixX3& X, const Matrix
 
 namespace {
 
-// What every solver's end must be (issue 25, part 1): a local minimum (reduced Hessian PSD to
+// What every solver's end must be: a local minimum (reduced Hessian PSD to
 // kSecondOrderTolerance, verified independently by a projected step along the softest
 // direction that does not descend), a saddle that says so, or an honest failure.
 enum class Outcome { Minimum, Saddle, Failure };

@@ -399,7 +399,7 @@ TEST_CASE("stiff-star patches cut multigrid-CG's iterations on a model with stif
                     Catch::Contains("patch_smoothing"));
 }
 
-// Stopping on an estimate of the error (solver/iterative.h, issue 27): on a fourth-order system
+// Stopping on an estimate of the error (solver/iterative.h): on a fourth-order system
 // the residual says little about the error, so every iterative solver can stop on
 // error_tolerance instead. What is asserted is what a user relies on: the true relative error
 // (against a direct solve) is within a small factor of the asked one, the estimate reported is

@@ -1,4 +1,4 @@
-// Features drawn below the finest level on a sparse Loop hierarchy (issue 24; Khodakovsky &
+// Features drawn below the finest level on a sparse Loop hierarchy (Khodakovsky &
 // Schröder, "Fine level feature editing for subdivision surfaces", §2.5): whatever level a
 // feature is drawn on and wherever its profile is made exact (profile_on), the sparse
 // evaluation equals the uniform one (FeaturedSurface) on every vertex it computes, computes

@@ -1,4 +1,4 @@
-// The trust region's large-curve path (issue 25, Figure 1's edit at 131k points): the small
+// The trust region's large-curve path (Figure 1's edit at 131k points): the small
 // trust-region subproblem, block inverse iteration against the dense reduced Hessian, and a
 // 2049-point Figure 1 edit where one eigenvector per iteration does not reach a minimum within
 // its budget and the block step does — judged independently of the solver (KKT inertia,

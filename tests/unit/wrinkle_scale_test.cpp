@@ -1,4 +1,4 @@
-// Wrinkles as numbers (issue 25 part 5): the amplitude and wavelength of a known ripple, open and
+// Wrinkles as numbers: the amplitude and wavelength of a known ripple, open and
 // closed, in 3-D, invariant to rigid motions and proportional to scale.
 #include <catch2/catch.hpp>
 

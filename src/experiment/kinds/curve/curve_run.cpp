@@ -151,7 +151,7 @@ void read_optimization(Config& root, CurveEditSettings& s, const Polyline& curve
   oc.check_no_unknown_keys();
 }
 
-// How the loop keeps edits local (papers/sauvage/README.md, issue 25 parts 3 and 4).
+// How the loop keeps edits local (papers/sauvage/README.md).
 EditingOptions read_editing(Config& root, bool& accept_partial_edit) {
   EditingOptions o;
   Config c = root.child("editing", "how the editing loop keeps an edit local: {explicit_step, details, solve_region}");

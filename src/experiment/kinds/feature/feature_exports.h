@@ -1,4 +1,4 @@
-// What a feature run exports beside final.obj (issue 24 part 5): the result's limit surface, the
+// What a feature run exports beside final.obj: the result's limit surface, the
 // per-level feature displacements the paper keeps apart from the surface (Khodakovsky &
 // Schröder, §1.4: features live in the hierarchy as offsets of the level they are drawn on),
 // and each curve's attachment (face, barycentric coordinates) on its drawn level and every

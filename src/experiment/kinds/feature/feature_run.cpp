@@ -95,7 +95,7 @@ feature::FeatureParams read_feature_params(Config& c, const feature::FeaturePara
                                 "largest turn of the surface normal within the radius before the feature is refused");
   p.quadratic = c.get<bool>("quadratic", d.quadratic, "frames on the quadratic spline of the polygon (§2.4)");
   p.quadratic_samples = c.get_int("quadratic_samples", d.quadratic_samples, 1, 256, "straight pieces per quadratic span");
-  // Visible profile (issue 24): how closely the finest level and the limit must show it.
+  // Visible profile: how closely the finest level and the limit must show it.
   p.profile_tolerance = c.get_number("profile_tolerance", d.profile_tolerance, 1e-6, 1,
                                      "largest height / profile error as a fraction of |height| (finest level and limit)");
   p.width_tolerance = c.get_number("width_tolerance", d.width_tolerance, 1e-6, 1,

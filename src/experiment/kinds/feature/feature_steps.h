@@ -1,4 +1,4 @@
-// A feature run's design steps (issue 24 part 4): between steps features are added, moved as a
+// A feature run's design steps: between steps features are added, moved as a
 // whole, re-parameterized or removed — the editing session of Khodakovsky & Schröder §2.6, where
 // features are definitions re-applied to the surface, not baked into it. Each step is evaluated
 // and reported in steps.csv with how much of the surface it changed.

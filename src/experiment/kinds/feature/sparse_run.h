@@ -1,4 +1,4 @@
-// A feature run on the sparse Loop hierarchy alone (adaptive.evaluation: sparse; issue 24 part 3):
+// A feature run on the sparse Loop hierarchy alone (adaptive.evaluation: sparse):
 // Khodakovsky & Schröder §2.5 compute the surface only where it is refined, so a feature on a
 // large model costs time and memory in proportion to its region, whatever level it is drawn on
 // and wherever its profile is exact (profile_on: the region a coarse feature changes is computed

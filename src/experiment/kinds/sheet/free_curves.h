@@ -1,4 +1,4 @@
-// Variational curves in sheet configs (issue 23, part 5): a `curves:` entry with
+// Variational curves in sheet configs: a `curves:` entry with
 // `variational: {spans, degree, alpha, beta}` is a free curve (bspline/variational_curve.h)
 // that starts as the least-squares fit of its form and then moves by its own constraints —
 // `constraints:` entries of type curve_point (`curve, t, target | by, moves`) and curve_tangent

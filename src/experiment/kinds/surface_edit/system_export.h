@@ -1,5 +1,5 @@
 // output.system: a surface edit's assembled problem as Matrix Market files in
-// system/<run_id>/ (issue 27 part 1), so any external solver can be tried on exactly the
+// system/<run_id>/, so any external solver can be tried on exactly the
 // problem fairshape solved. SciPy reads every file (scipy.io.mmread); README.txt in the folder
 // says what each one is.
 #pragma once

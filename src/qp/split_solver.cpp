@@ -96,18 +96,21 @@ QpReport SplitSolver::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b, 
     out.summary = solve_independent_columns(free_, red_.A, red_.b, x, o.callback ? expanded : IterationCallback());
   }
   out.p = red_.expand(x);
-  out.constraint_residual = o.measure_residual ? constraint_residual(A_, b, out.p) : std::numeric_limits<double>::quiet_NaN();
-  if (o.measure_residual && is_success(out.summary.termination)) judge_rows_met(out, b);
+  out.constraint_residual = std::numeric_limits<double>::quiet_NaN();
+  if (o.measure_residual) {  // one product with A serves the residual and the judgement's scale
+    const Eigen::MatrixXd Ap = A_ * out.p;  // analyze() refused a program without rows
+    out.constraint_residual = (Ap - b).norm();
+    if (is_success(out.summary.termination)) judge_rows_met(out, std::max(b.norm(), Ap.norm()));
+  }
   return out;
 }
 
-void SplitSolver::judge_rows_met(QpReport& out, const Eigen::MatrixXd& b) const {
+void SplitSolver::judge_rows_met(QpReport& out, double scale) const {
   // A⁺b is the rows' least-squares fit: for inconsistent rows (one point pulled to two places)
   // it meets none of them, and the free solve converging says nothing about that. Judged here,
   // on the answer, against a bound far above the factorizations' rounding (1e-12 relative on the
   // bundled edits) and far below any inconsistency a designer would make.
   constexpr double kRowsMetTolerance = 1e-8;
-  const double scale = std::max(b.norm(), (A_ * out.p).norm());
   const double relative = scale > 0 ? out.constraint_residual / scale : out.constraint_residual;
   if (relative <= kRowsMetTolerance) return;
   std::ostringstream msg;

@@ -34,8 +34,9 @@ class SplitSolver final : public QpSolver {
  private:
   //! ½ p_cᵀ H_cc p_c − f_cᵀ p_c for the constrained unknowns' values `fixed` (touched_ order).
   double constrained_energy(const Eigen::MatrixXd& f, const Eigen::MatrixXd& fixed) const;
-  //! A success whose answer misses its rows (inconsistent rows) becomes constraints_unmet.
-  void judge_rows_met(QpReport& out, const Eigen::MatrixXd& b) const;
+  //! A success whose answer misses its rows (inconsistent rows) becomes constraints_unmet;
+  //! `scale`: max(‖b‖, ‖A p‖), what the residual is relative to.
+  void judge_rows_met(QpReport& out, double scale) const;
 
   std::unique_ptr<Solver> owned_;
   Solver& free_;
